@@ -1,0 +1,62 @@
+#pragma once
+// The one exception type for bad user input (a file, a flag, a message). It carries
+// where the problem is (file, line, field path) and what was expected, so the CLI can
+// print it and exit with code 2. Programmer errors use CCBUILD_CHECK instead.
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ccbuild {
+
+/// One finding about user input. `line` is 1-based, 0 when unknown; `field` is a path
+/// such as `floors[1].openings[0].sill` (empty when the whole file is at fault).
+struct Diagnostic {
+  std::string file;
+  int line = 0;
+  std::string field;
+  std::string message;
+
+  /// "file:line: field: message", leaving out what is unknown.
+  std::string to_string() const;
+};
+
+/// Bad user input. Holds one or more diagnostics; what() lists them one per line.
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(Diagnostic diagnostic);
+  explicit InputError(std::vector<Diagnostic> diagnostics);
+  InputError(std::string file, int line, std::string field, std::string message);
+
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  const Diagnostic& first() const { return diagnostics_.front(); }
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+
+/// Collects diagnostics during a validation pass, then throws them together.
+class DiagnosticSink {
+ public:
+  void add(Diagnostic diagnostic) { diagnostics_.push_back(std::move(diagnostic)); }
+  bool empty() const { return diagnostics_.empty(); }
+  /// Throws InputError with everything collected; does nothing when empty.
+  void throw_if_any() const;
+
+ private:
+  std::vector<Diagnostic> diagnostics_;
+};
+
+namespace detail {
+[[noreturn]] void check_failed(const char* condition, const char* file, int line,
+                               const std::string& message);
+}  // namespace detail
+
+}  // namespace ccbuild
+
+/// Always-on invariant check (also in Release): aborts with a message. For programmer
+/// errors only; bad user input throws ccbuild::InputError.
+#define CCBUILD_CHECK(condition, message)                                                         \
+  do {                                                                                            \
+    if (!(condition)) ::ccbuild::detail::check_failed(#condition, __FILE__, __LINE__, (message)); \
+  } while (false)

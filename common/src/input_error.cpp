@@ -1,0 +1,53 @@
+#include "ccbuild/common/input_error.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace ccbuild {
+namespace {
+std::string join(const std::vector<Diagnostic>& diagnostics) {
+  std::string text;
+  for (const auto& d : diagnostics) {
+    if (!text.empty()) text += '\n';
+    text += d.to_string();
+  }
+  return text;
+}
+}  // namespace
+
+std::string Diagnostic::to_string() const {
+  std::string text;
+  if (!file.empty()) {
+    text.append(file);
+    if (line > 0) text.append(":").append(std::to_string(line));
+    text.append(": ");
+  }
+  if (!field.empty()) text.append(field).append(": ");
+  text.append(message);
+  return text;
+}
+
+InputError::InputError(Diagnostic diagnostic)
+    : InputError(std::vector<Diagnostic>{std::move(diagnostic)}) {}
+
+InputError::InputError(std::vector<Diagnostic> diagnostics)
+    : std::runtime_error(join(diagnostics)), diagnostics_(std::move(diagnostics)) {
+  if (diagnostics_.empty()) diagnostics_.push_back({});
+}
+
+InputError::InputError(std::string file, int line, std::string field, std::string message)
+    : InputError(Diagnostic{std::move(file), line, std::move(field), std::move(message)}) {}
+
+void DiagnosticSink::throw_if_any() const {
+  if (!diagnostics_.empty()) throw InputError(diagnostics_);
+}
+
+namespace detail {
+void check_failed(const char* condition, const char* file, int line, const std::string& message) {
+  std::fprintf(stderr, "ccbuild: internal check failed at %s:%d: %s (%s)\n", file, line,
+               message.c_str(), condition);
+  std::abort();
+}
+}  // namespace detail
+
+}  // namespace ccbuild

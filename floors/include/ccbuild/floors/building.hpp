@@ -1,0 +1,55 @@
+#pragma once
+// A whole building: floors stacked one on another, each with its plan, height, openings
+// and the anchor points where climbing pipes are embedded; plus the layer height and
+// references to the material and machine profiles.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ccbuild/floors/plan.hpp"
+#include "ccbuild/floors/units.hpp"
+
+namespace ccbuild::floors {
+
+/// A vertical anchor pipe embedded in a wall, `offset_m` from the wall's start vertex.
+struct AnchorPoint {
+  std::string id;
+  std::int64_t wall_id = 0;
+  double offset_m = 0.0;
+  SourceRef source;
+};
+
+struct Floor {
+  std::string name;
+  int index = 0;                  ///< 0 = ground floor
+  double height_m = 0.0;          ///< floor-to-floor height
+  double base_elevation_m = 0.0;  ///< sum of the heights below
+  FloorPlan plan;                 ///< includes the floor's own openings
+  std::vector<AnchorPoint> anchors;
+  SourceRef source;
+};
+
+struct Building {
+  std::string name;
+  std::string source_file;
+  LengthUnit units = LengthUnit::kMeter;  ///< as the file said; the model is in metres
+  double layer_height_m = 0.0;
+  std::vector<Floor> floors;
+  std::filesystem::path material_profile;  ///< resolved against the building file's folder
+  std::filesystem::path machine_profile;
+  SourceRef material_source;
+  SourceRef machine_source;
+};
+
+/// Loads and validates a building file (YAML or JSON) and the plans it references
+/// (paths relative to the building file). Does not open the material and machine
+/// profiles; their owners load them (load_material_profile, machine::load_machine).
+/// Throws InputError naming file, line and field for every problem found.
+Building load_building(const std::filesystem::path& path);
+
+/// True when the file's root is a building (has `floors`) rather than a single plan.
+bool looks_like_building(const std::filesystem::path& path);
+
+}  // namespace ccbuild::floors

@@ -1,0 +1,36 @@
+#pragma once
+// The concrete's material profile: what the scheduler needs to know about how fast a
+// layer may follow the previous one and how strength grows with age. Files state units
+// in their key names (`_s`, `_min`, `_mpa`, `_kg_m3`).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace ccbuild::floors {
+
+struct StrengthPoint {
+  double age_s = 0.0;
+  double strength_mpa = 0.0;
+};
+
+struct MaterialProfile {
+  std::string name;
+  std::string source_file;
+  double density_kg_m3 = 2200.0;
+  /// Interval between starting layer k and layer k+1: under min the lower layer cannot
+  /// carry the next (wait); over max the layers no longer bond (cold joint).
+  double min_layer_interval_s = 0.0;
+  double max_layer_interval_s = 0.0;
+  /// Compressive strength against age, ages strictly increasing, strength non-decreasing.
+  std::vector<StrengthPoint> strength_curve;
+
+  /// Strength at `age_s`, linear between points, flat outside them.
+  double strength_at_mpa(double age_s) const;
+};
+
+/// Loads and validates a material profile (YAML or JSON).
+/// Throws InputError naming file, line and field.
+MaterialProfile load_material_profile(const std::filesystem::path& path);
+
+}  // namespace ccbuild::floors

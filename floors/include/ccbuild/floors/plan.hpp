@@ -1,0 +1,102 @@
+#pragma once
+// A floor plan: vertices, straight walls between them, and openings (doors, windows)
+// cut into walls. Three encodings load into the same model: YAML, JSON and the plain
+// table text of the papers' examples. All lengths in the model are metres.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccbuild/floors/units.hpp"
+
+namespace ccbuild {
+class Field;
+}
+
+namespace ccbuild::floors {
+
+/// Where an element was written, so later checks can point at it.
+struct SourceRef {
+  std::string file;
+  int line = 0;      ///< 1-based, 0 when unknown
+  std::string path;  ///< field path such as `walls[3]`, empty for the table format
+};
+
+struct Vertex {
+  std::int64_t id = 0;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  SourceRef source;
+};
+
+struct Wall {
+  std::int64_t id = 0;
+  std::int64_t start_vertex = 0;
+  std::int64_t end_vertex = 0;
+  std::optional<double> thickness_m;  ///< unset: the machine's nozzle width
+  SourceRef source;
+};
+
+/// A gap in a wall: absent from every layer whose mid-height lies in [sill, head).
+/// A door has sill 0.
+struct Opening {
+  std::string id;  ///< optional name from the file ("W3"); empty when not given
+  std::int64_t wall_id = 0;
+  double offset_m = 0.0;  ///< from the wall's start vertex along the wall
+  double width_m = 0.0;
+  double sill_m = 0.0;  ///< above the floor's base
+  double head_m = 0.0;  ///< above the floor's base
+  SourceRef source;
+};
+
+struct FloorPlan {
+  std::vector<Vertex> vertices;
+  std::vector<Wall> walls;
+  std::vector<Opening> openings;
+  std::string source_file;
+
+  const Vertex* find_vertex(std::int64_t id) const;
+  const Wall* find_wall(std::int64_t id) const;
+  /// Start and end points of a wall whose vertices exist (checked: aborts otherwise).
+  Eigen::Vector2d wall_start_m(const Wall& wall) const;
+  Eigen::Vector2d wall_end_m(const Wall& wall) const;
+  double wall_length_m(const Wall& wall) const;
+  double total_wall_length_m() const;
+};
+
+/// True when two plans hold the same vertices, walls and openings (in the same order,
+/// lengths within `tolerance_m`); where they were read from is ignored.
+bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m = 1e-9);
+
+enum class PlanFormat { kAuto, kYaml, kJson, kTable };
+
+/// Guesses the encoding: `.json` is JSON, `.yaml`/`.yml` YAML; otherwise a file whose
+/// first meaningful line is a section header (`vertices`, `walls`, `openings`) is the
+/// table format, anything else YAML.
+PlanFormat detect_plan_format(const std::filesystem::path& path, const std::string& text);
+
+/// Loads and validates a plan file. Lengths in the file are in the file's own `units`
+/// key when it has one (YAML/JSON), else in `default_unit`.
+/// Throws InputError naming file, line and field for anything malformed or invalid.
+FloorPlan load_plan(const std::filesystem::path& path, LengthUnit default_unit = LengthUnit::kMeter,
+                    PlanFormat format = PlanFormat::kAuto);
+
+/// Parses the table format (`vertices` lines `id x y`, then `walls` lines `id a b`,
+/// optionally `openings` lines `wall offset width sill head`). Does not validate.
+/// Throws InputError naming file and line.
+FloorPlan parse_plan_table(const std::string& text, const std::string& file, LengthUnit unit);
+
+/// Reads a plan from a YAML/JSON map (a plan file's root, or a building's inline plan).
+/// Does not validate. Throws InputError naming file, line and field path.
+FloorPlan read_plan(const Field& field, LengthUnit default_unit);
+
+/// Checks a plan: ids unique, walls reference existing vertices and have length, no two
+/// walls overlap collinearly, openings fit their wall and do not overlap, sill < head,
+/// at least one wall. `floor_height_m`, when given, bounds opening heads.
+/// Throws InputError listing every problem found.
+void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m = std::nullopt,
+                   const std::string& context = "");
+
+}  // namespace ccbuild::floors

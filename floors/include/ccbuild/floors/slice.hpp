@@ -1,0 +1,69 @@
+#pragma once
+// Slicing a floor into layers. A floor of height H with layer height h has ceil(H/h)
+// layers (the last may be thinner); the part of a wall inside an opening is absent from
+// every layer whose mid-height lies in [sill, head). Each layer is a list of wall
+// segments that remember their origin; endpoints closer than a tolerance are merged.
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/plan.hpp"
+
+namespace ccbuild::floors {
+
+/// One straight piece of a wall at one height, in the wall's own direction.
+struct LayerSegment {
+  std::int64_t wall_id = 0;
+  int piece = 0;        ///< 0-based, counted from the wall's start vertex
+  int piece_count = 1;  ///< pieces this wall has in this layer (1 when not cut)
+  int start_point = 0;  ///< index into Layer::points
+  int end_point = 0;
+  double length_m = 0.0;
+};
+
+struct Layer {
+  int floor_index = 0;
+  int index = 0;            ///< within its floor, 0 = bottom
+  double z_bottom_m = 0.0;  ///< building elevation
+  double z_top_m = 0.0;
+  std::vector<Eigen::Vector2d> points;
+  std::vector<LayerSegment> segments;
+  /// Same value for layers with the same geometry (segments as point pairs, quantised
+  /// to 1 micrometre, order-independent); wall ids do not enter it.
+  std::uint64_t geometry_hash = 0;
+
+  double total_length_m() const;
+  Eigen::Vector2d start_m(const LayerSegment& s) const { return points[s.start_point]; }
+  Eigen::Vector2d end_m(const LayerSegment& s) const { return points[s.end_point]; }
+};
+
+struct SliceOptions {
+  /// Endpoints closer than this are one point; pieces shorter than it are dropped.
+  double merge_tolerance_m = 1e-3;
+};
+
+/// Number of layers of a floor: ceil(height / layer height), with a relative tolerance
+/// so that 3.0 / 0.1 is 30 and not 31.
+int layer_count(double floor_height_m, double layer_height_m);
+
+/// All layers of one floor of a building.
+std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
+                               const SliceOptions& options = {});
+
+/// One layer at a given height above the plan's floor base (for single-plan tools).
+Layer slice_plan_at(const FloorPlan& plan, double z_bottom_m, double z_top_m,
+                    const SliceOptions& options = {});
+
+/// Turns a plan into one layer with every wall whole (openings ignored).
+Layer plan_as_layer(const FloorPlan& plan, const SliceOptions& options = {});
+
+/// Computes the geometry hash of a layer's segments (see Layer::geometry_hash).
+std::uint64_t geometry_hash(const Layer& layer);
+
+/// 16 hex digits.
+std::string hash_to_hex(std::uint64_t hash);
+
+}  // namespace ccbuild::floors

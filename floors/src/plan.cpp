@@ -1,0 +1,124 @@
+#include "ccbuild/floors/plan.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "ccbuild/common/document.hpp"
+#include "ccbuild/common/input_error.hpp"
+
+namespace ccbuild::floors {
+
+const Vertex* FloorPlan::find_vertex(std::int64_t id) const {
+  for (const auto& v : vertices)
+    if (v.id == id) return &v;
+  return nullptr;
+}
+
+const Wall* FloorPlan::find_wall(std::int64_t id) const {
+  for (const auto& w : walls)
+    if (w.id == id) return &w;
+  return nullptr;
+}
+
+Eigen::Vector2d FloorPlan::wall_start_m(const Wall& wall) const {
+  const Vertex* v = find_vertex(wall.start_vertex);
+  CCBUILD_CHECK(v != nullptr, "wall start vertex exists (plan not validated?)");
+  return v->position_m;
+}
+
+Eigen::Vector2d FloorPlan::wall_end_m(const Wall& wall) const {
+  const Vertex* v = find_vertex(wall.end_vertex);
+  CCBUILD_CHECK(v != nullptr, "wall end vertex exists (plan not validated?)");
+  return v->position_m;
+}
+
+double FloorPlan::wall_length_m(const Wall& wall) const {
+  return (wall_end_m(wall) - wall_start_m(wall)).norm();
+}
+
+double FloorPlan::total_wall_length_m() const {
+  double total = 0.0;
+  for (const auto& w : walls) total += wall_length_m(w);
+  return total;
+}
+
+namespace {
+bool near(double a, double b, double tolerance) {
+  return std::abs(a - b) <= tolerance;
+}
+}  // namespace
+
+bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m) {
+  if (a.vertices.size() != b.vertices.size() || a.walls.size() != b.walls.size() ||
+      a.openings.size() != b.openings.size())
+    return false;
+  for (std::size_t i = 0; i < a.vertices.size(); ++i) {
+    const auto& u = a.vertices[i];
+    const auto& v = b.vertices[i];
+    if (u.id != v.id || !near(u.position_m.x(), v.position_m.x(), tolerance_m) ||
+        !near(u.position_m.y(), v.position_m.y(), tolerance_m))
+      return false;
+  }
+  for (std::size_t i = 0; i < a.walls.size(); ++i) {
+    const auto& u = a.walls[i];
+    const auto& v = b.walls[i];
+    if (u.id != v.id || u.start_vertex != v.start_vertex || u.end_vertex != v.end_vertex ||
+        u.thickness_m.has_value() != v.thickness_m.has_value() ||
+        (u.thickness_m && !near(*u.thickness_m, *v.thickness_m, tolerance_m)))
+      return false;
+  }
+  for (std::size_t i = 0; i < a.openings.size(); ++i) {
+    const auto& u = a.openings[i];
+    const auto& v = b.openings[i];
+    if (u.id != v.id || u.wall_id != v.wall_id || !near(u.offset_m, v.offset_m, tolerance_m) ||
+        !near(u.width_m, v.width_m, tolerance_m) || !near(u.sill_m, v.sill_m, tolerance_m) ||
+        !near(u.head_m, v.head_m, tolerance_m))
+      return false;
+  }
+  return true;
+}
+
+PlanFormat detect_plan_format(const std::filesystem::path& path, const std::string& text) {
+  const std::string ext = path.extension().string();
+  if (ext == ".json") return PlanFormat::kJson;
+  if (ext == ".yaml" || ext == ".yml") return PlanFormat::kYaml;
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    const auto begin = line.find_first_not_of(" \t\r");
+    if (begin == std::string::npos) continue;
+    const auto end = line.find_last_not_of(" \t\r");
+    const std::string first = line.substr(begin, end - begin + 1);
+    const bool table = first == "vertices" || first == "walls" || first == "openings";
+    return table ? PlanFormat::kTable : PlanFormat::kYaml;
+  }
+  return PlanFormat::kTable;  // empty: the table reader says what is missing
+}
+
+FloorPlan load_plan(const std::filesystem::path& path, LengthUnit default_unit, PlanFormat format) {
+  const std::string text = read_text_file(path);
+  if (format == PlanFormat::kAuto) format = detect_plan_format(path, text);
+  FloorPlan plan;
+  switch (format) {
+    case PlanFormat::kTable:
+      plan = parse_plan_table(text, path.string(), default_unit);
+      break;
+    case PlanFormat::kJson: {
+      const Document doc = parse_json(text, path.string());
+      plan = read_plan(Field::root(doc), default_unit);
+      break;
+    }
+    case PlanFormat::kYaml:
+    case PlanFormat::kAuto: {
+      const Document doc = parse_yaml(text, path.string());
+      plan = read_plan(Field::root(doc), default_unit);
+      break;
+    }
+  }
+  plan.source_file = path.string();
+  validate_plan(plan);
+  return plan;
+}
+
+}  // namespace ccbuild::floors

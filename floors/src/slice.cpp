@@ -1,0 +1,180 @@
+#include "ccbuild/floors/slice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+#include "ccbuild/common/input_error.hpp"
+
+namespace ccbuild::floors {
+namespace {
+
+// Merges points closer than the tolerance, keeping the first one seen; a grid of
+// tolerance-sized cells makes each lookup constant time.
+class PointMerger {
+ public:
+  PointMerger(double tolerance_m, std::vector<Eigen::Vector2d>& points)
+      : tolerance_m_(tolerance_m), points_(points) {}
+
+  int add(const Eigen::Vector2d& p) {
+    const std::int64_t cx = cell(p.x()), cy = cell(p.y());
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        const auto it = grid_.find(key(cx + dx, cy + dy));
+        if (it == grid_.end()) continue;
+        for (int index : it->second)
+          if ((points_[index] - p).norm() <= tolerance_m_) return index;
+      }
+    }
+    const int index = static_cast<int>(points_.size());
+    points_.push_back(p);
+    grid_[key(cx, cy)].push_back(index);
+    return index;
+  }
+
+ private:
+  std::int64_t cell(double v) const {
+    return static_cast<std::int64_t>(std::floor(v / tolerance_m_));
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y) {
+    return static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^ static_cast<std::uint64_t>(y);
+  }
+
+  double tolerance_m_;
+  std::vector<Eigen::Vector2d>& points_;
+  std::unordered_map<std::uint64_t, std::vector<int>> grid_;
+};
+
+// Cuts every wall at the openings active at height `mid_m` (nullopt: none).
+Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceOptions& options) {
+  CCBUILD_CHECK(options.merge_tolerance_m > 0.0, "merge tolerance is positive");
+  Layer layer;
+  PointMerger merger(options.merge_tolerance_m, layer.points);
+  for (const auto& wall : plan.walls) {
+    const Eigen::Vector2d a = plan.wall_start_m(wall);
+    const Eigen::Vector2d b = plan.wall_end_m(wall);
+    const double length = (b - a).norm();
+    std::vector<std::pair<double, double>> gaps;
+    if (mid_m) {
+      for (const auto& o : plan.openings) {
+        if (o.wall_id == wall.id && *mid_m >= o.sill_m && *mid_m < o.head_m)
+          gaps.emplace_back(std::max(0.0, o.offset_m), std::min(length, o.offset_m + o.width_m));
+      }
+    }
+    std::sort(gaps.begin(), gaps.end());
+    std::vector<std::pair<double, double>> solid;
+    double from = 0.0;
+    for (const auto& [g0, g1] : gaps) {
+      if (g0 > from) solid.emplace_back(from, g0);
+      from = std::max(from, g1);
+    }
+    if (from < length) solid.emplace_back(from, length);
+    std::erase_if(solid,
+                  [&](const auto& s) { return s.second - s.first <= options.merge_tolerance_m; });
+
+    const Eigen::Vector2d dir = (b - a) / length;
+    for (std::size_t k = 0; k < solid.size(); ++k) {
+      LayerSegment seg;
+      seg.wall_id = wall.id;
+      seg.piece = static_cast<int>(k);
+      seg.piece_count = static_cast<int>(solid.size());
+      const Eigen::Vector2d p =
+          solid[k].first == 0.0 ? a : Eigen::Vector2d(a + dir * solid[k].first);
+      const Eigen::Vector2d q =
+          solid[k].second == length ? b : Eigen::Vector2d(a + dir * solid[k].second);
+      seg.start_point = merger.add(p);
+      seg.end_point = merger.add(q);
+      if (seg.start_point == seg.end_point) continue;
+      seg.length_m = (layer.points[seg.end_point] - layer.points[seg.start_point]).norm();
+      layer.segments.push_back(seg);
+    }
+  }
+  layer.geometry_hash = geometry_hash(layer);
+  return layer;
+}
+
+}  // namespace
+
+double Layer::total_length_m() const {
+  double total = 0.0;
+  for (const auto& s : segments) total += s.length_m;
+  return total;
+}
+
+int layer_count(double floor_height_m, double layer_height_m) {
+  CCBUILD_CHECK(floor_height_m > 0.0 && layer_height_m > 0.0, "heights are positive");
+  const double ratio = floor_height_m / layer_height_m;
+  return std::max(1, static_cast<int>(std::ceil(ratio - 1e-9 * std::max(1.0, ratio))));
+}
+
+std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
+                               const SliceOptions& options) {
+  const int count = layer_count(floor.height_m, layer_height_m);
+  std::vector<Layer> layers;
+  layers.reserve(count);
+  for (int k = 0; k < count; ++k) {
+    const double z0 = k * layer_height_m;
+    const double z1 = std::min((k + 1) * layer_height_m, floor.height_m);
+    Layer layer = slice_plan_at(floor.plan, z0, z1, options);
+    layer.floor_index = floor.index;
+    layer.index = k;
+    layer.z_bottom_m = floor.base_elevation_m + z0;
+    layer.z_top_m = floor.base_elevation_m + z1;
+    layers.push_back(std::move(layer));
+  }
+  return layers;
+}
+
+Layer slice_plan_at(const FloorPlan& plan, double z_bottom_m, double z_top_m,
+                    const SliceOptions& options) {
+  Layer layer = cut_walls(plan, 0.5 * (z_bottom_m + z_top_m), options);
+  layer.z_bottom_m = z_bottom_m;
+  layer.z_top_m = z_top_m;
+  return layer;
+}
+
+Layer plan_as_layer(const FloorPlan& plan, const SliceOptions& options) {
+  return cut_walls(plan, std::nullopt, options);
+}
+
+std::uint64_t geometry_hash(const Layer& layer) {
+  using Point = std::pair<std::int64_t, std::int64_t>;
+  auto quantise = [&](int index) {
+    const auto& p = layer.points[index];
+    return Point{std::llround(p.x() * 1e6), std::llround(p.y() * 1e6)};
+  };
+  std::vector<std::pair<Point, Point>> segments;
+  segments.reserve(layer.segments.size());
+  for (const auto& s : layer.segments) {
+    Point a = quantise(s.start_point), b = quantise(s.end_point);
+    if (b < a) std::swap(a, b);
+    segments.emplace_back(a, b);
+  }
+  std::sort(segments.begin(), segments.end());
+  // FNV-1a over the values' bytes, least significant first: stable across platforms.
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  auto mix = [&](std::int64_t value) {
+    auto bits = static_cast<std::uint64_t>(value);
+    for (int i = 0; i < 8; ++i) {
+      hash ^= (bits >> (8 * i)) & 0xFF;
+      hash *= 0x100000001b3ULL;
+    }
+  };
+  mix(static_cast<std::int64_t>(segments.size()));
+  for (const auto& [a, b] : segments) {
+    mix(a.first);
+    mix(a.second);
+    mix(b.first);
+    mix(b.second);
+  }
+  return hash;
+}
+
+std::string hash_to_hex(std::uint64_t hash) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
+}  // namespace ccbuild::floors

@@ -1,0 +1,42 @@
+#include "ccbuild/floors/units.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace ccbuild::floors {
+
+std::optional<LengthUnit> parse_length_unit(const std::string& text) {
+  if (text == "m") return LengthUnit::kMeter;
+  if (text == "ft") return LengthUnit::kFoot;
+  return std::nullopt;
+}
+
+std::string to_string(LengthUnit unit) {
+  return unit == LengthUnit::kFoot ? "ft" : "m";
+}
+
+std::optional<double> parse_length_m(const std::string& text, LengthUnit default_unit) {
+  std::size_t begin = text.find_first_not_of(" \t");
+  if (begin == std::string::npos) return std::nullopt;
+  std::size_t end = text.find_last_not_of(" \t") + 1;
+  std::string body = text.substr(begin, end - begin);
+  LengthUnit unit = default_unit;
+  for (const auto& [suffix, u] :
+       {std::pair{"ft", LengthUnit::kFoot}, std::pair{"m", LengthUnit::kMeter}}) {
+    const std::string s(suffix);
+    if (body.size() > s.size() && body.compare(body.size() - s.size(), s.size(), s) == 0) {
+      body = body.substr(0, body.size() - s.size());
+      while (!body.empty() && body.back() == ' ') body.pop_back();
+      unit = u;
+      break;
+    }
+  }
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(body.data(), body.data() + body.size(), value);
+  if (body.empty() || ec != std::errc() || ptr != body.data() + body.size() ||
+      !std::isfinite(value))
+    return std::nullopt;
+  return value * meters_per(unit);
+}
+
+}  // namespace ccbuild::floors

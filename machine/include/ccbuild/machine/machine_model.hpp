@@ -1,0 +1,51 @@
+#pragma once
+// What the planner and the scheduler know about a Contour Crafting machine. The
+// kinematics (axis speeds, work envelope, the nozzle's rotation range, i.e. its stopper)
+// come from the machine's URDF; the process parameters (deposition speed, delays, lift,
+// idle limit) from the machine profile. All SI: m, s, rad.
+
+#include <filesystem>
+#include <string>
+
+namespace ccbuild::machine {
+
+struct AxisLimits {
+  double min_m = 0.0;
+  double max_m = 0.0;
+  double speed_m_s = 0.0;  ///< the joint's velocity limit
+};
+
+struct MachineModel {
+  std::string name = "default";
+  std::string source_file;  ///< profile the model was loaded from, empty for defaults
+
+  // --- Kinematics (URDF) ---
+  AxisLimits x;                                      ///< along the rails
+  AxisLimits y;                                      ///< along the bridge
+  AxisLimits z;                                      ///< nozzle height
+  double rotation_speed_rad_s = 1.5707963267948966;  ///< nozzle yaw velocity limit
+  /// Cumulative nozzle heading must stay within [min, max]; ±2π is a ±360° stopper.
+  double stopper_min_rad = -6.283185307179586;
+  double stopper_max_rad = 6.283185307179586;
+
+  // --- Process (profile) ---
+  double deposition_speed_m_s = 0.1;   ///< nozzle speed along a wall while extruding
+  double travel_speed_m_s = 0.5;       ///< straight-line (euclidean) air moves
+  bool rotate_while_moving = true;     ///< then a move costs max(travel, rotation), else the sum
+  double accel_delay_s = 0.5;          ///< acceleration + deceleration per air move
+  double lift_time_s = 2.0;            ///< raising the nozzle over deposited walls
+  double lower_time_s = 2.0;           ///< lowering it back
+  double nozzle_idle_limit_s = 600.0;  ///< longest idle (air) move before concrete clogs
+  double nozzle_width_m = 0.15;        ///< default wall thickness
+
+  /// The defaults above, with x/y axes 0..50 m at 0.5 m/s and z 0..10 m at 0.1 m/s.
+  static MachineModel defaults();
+};
+
+/// Loads a machine profile (YAML or JSON) and the URDF it names (path relative to the
+/// profile). Throws InputError naming the profile or URDF file, the line or field, and
+/// what was expected: missing joints, wrong joint types, non-positive speeds, a URDF
+/// urdfdom cannot parse.
+MachineModel load_machine(const std::filesystem::path& profile_path);
+
+}  // namespace ccbuild::machine

@@ -1,0 +1,11 @@
+#pragma once
+// Each subcommand adds itself to the app; its callback sets `exit_code`.
+
+#include <CLI/CLI.hpp>
+
+namespace ccbuild::cli {
+
+void add_validate_command(CLI::App& app, int& exit_code);
+void add_layers_command(CLI::App& app, int& exit_code);
+
+}  // namespace ccbuild::cli

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs, with apt, every Debian 12 package ccbuild needs to build, test and run.
+# Idempotent: packages already present are left alone, and apt is not touched at all
+# when nothing is missing. Must run as root (or via sudo) when something is missing.
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config
+  liblcm-dev liblcm-bin libglib2.0-dev
+  libeigen3-dev
+  libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev libode-dev
+  liburdfdom-dev libfcl-dev liblemon-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  libsqlite3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  iproute2 util-linux
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${#missing[@]} missing package(s): ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null; then SUDO="sudo"; else
+    echo "install-deps: not root and no sudo; run as root: $0" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Quick start, step 1: install what is missing, build, and run the main job on the
+# bundled example building.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/build.sh
+example=config/buildings/house.yaml
+echo
+echo "== ccbuild validate $example"
+./build/ccbuild validate "$example"
+echo
+echo "== ccbuild layers $example"
+./build/ccbuild layers "$example"

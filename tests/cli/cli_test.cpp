@@ -1,0 +1,96 @@
+// The ccbuild binary end to end: exit codes 0/2, messages that name file and line, and
+// JSON that parses.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild {
+namespace {
+using testing::contains;
+using testing::run_ccbuild;
+
+TEST(Cli, ValidateBundledHouse) {
+  const auto r = run_ccbuild("validate config/buildings/house.yaml");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "valid building"));
+  EXPECT_TRUE(contains(r.out, "total: 2 floor(s)"));
+  EXPECT_TRUE(contains(r.out, "CC gantry, single nozzle"));
+}
+
+TEST(Cli, ValidateJsonAgreesWithTheModel) {
+  const auto r = run_ccbuild("validate config/buildings/apartment.yaml --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["floors"].size(), 5u);
+  EXPECT_EQ(j["units"], "ft");
+  EXPECT_EQ(j["totals"]["layers"], 125);
+  EXPECT_GE(j["floors"][0]["walls"].get<int>(), 180);
+}
+
+TEST(Cli, ValidatePlanInEachEncoding) {
+  for (const char* file : {"cottage.yaml", "cottage.json", "cottage.txt"}) {
+    const auto r = run_ccbuild(std::string("validate tests/data/plans/") + file + " --json");
+    ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["kind"], "plan");
+    EXPECT_EQ(j["totals"]["walls"], 7);
+    EXPECT_EQ(j["totals"]["openings"], 2);
+    EXPECT_EQ(j["totals"]["layers"], 30);  // default 3 m floor of 0.1 m layers
+  }
+}
+
+TEST(Cli, BrokenPlanExitsTwoWithFileAndLine) {
+  const auto r = run_ccbuild("validate tests/data/broken/unknown_vertex.yaml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "tests/data/broken/unknown_vertex.yaml:7: walls[1].end: "));
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(Cli, BrokenBuildingReportsEveryFloorProblem) {
+  const auto r = run_ccbuild("validate tests/data/buildings/head_above_floor.yaml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "is above the floor height"));
+}
+
+TEST(Cli, LayersListsRunsPerFloor) {
+  const auto r = run_ccbuild("layers config/buildings/house.yaml --floor 1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["floors"].size(), 1u);
+  const auto& runs = j["floors"][0]["runs"];
+  ASSERT_GE(runs.size(), 2u);
+  // Runs cover layers 0..29 without gaps.
+  int next = 0;
+  for (const auto& run : runs) {
+    EXPECT_EQ(run["first_layer"], next);
+    next = run["last_layer"].get<int>() + 1;
+  }
+  EXPECT_EQ(next, 30);
+}
+
+TEST(Cli, UsageErrorsExitTwo) {
+  EXPECT_EQ(run_ccbuild("").exit_code, 2);
+  EXPECT_EQ(run_ccbuild("validate").exit_code, 2);
+  EXPECT_EQ(run_ccbuild("validate x.yaml --no-such-flag").exit_code, 2);
+  EXPECT_EQ(run_ccbuild("frobnicate").exit_code, 2);
+  const auto floor = run_ccbuild("layers config/buildings/house.yaml --floor 7");
+  EXPECT_EQ(floor.exit_code, 2);
+  EXPECT_TRUE(contains(floor.err, "no floor 7"));
+  const auto missing = run_ccbuild("validate no/such/file.yaml");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_TRUE(contains(missing.err, "no/such/file.yaml: file not found"));
+}
+
+TEST(Cli, HelpTeachesAndExitsZero) {
+  const auto r = run_ccbuild("layers --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(contains(r.out, "Examples:"));
+  EXPECT_TRUE(contains(r.out, "--floor"));
+}
+
+}  // namespace
+}  // namespace ccbuild

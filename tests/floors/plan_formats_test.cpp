@@ -1,0 +1,83 @@
+// The three plan encodings load into the same model, lengths convert to metres, and the
+// bundled examples load.
+
+#include <gtest/gtest.h>
+
+#include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/plan.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::floors {
+namespace {
+using testing::data;
+
+TEST(PlanFormats, ThreeEncodingsGiveTheSameModel) {
+  const FloorPlan yaml = load_plan(data("plans/cottage.yaml"));
+  const FloorPlan json = load_plan(data("plans/cottage.json"));
+  const FloorPlan table = load_plan(data("plans/cottage.txt"));
+  ASSERT_EQ(yaml.walls.size(), 7u);
+  ASSERT_EQ(yaml.openings.size(), 2u);
+  EXPECT_TRUE(same_model(yaml, json));
+  EXPECT_TRUE(same_model(yaml, table));
+  // And the comparison is not vacuous: change one coordinate and they differ.
+  FloorPlan moved = table;
+  moved.vertices[2].position_m.x() += 0.01;
+  EXPECT_FALSE(same_model(yaml, moved));
+}
+
+TEST(PlanFormats, DetectsTheTableFormatWhateverTheExtension) {
+  EXPECT_EQ(detect_plan_format("plan.txt", "# c\n\nvertices\n1 0 0\n"), PlanFormat::kTable);
+  EXPECT_EQ(detect_plan_format("plan", "vertices:\n  - {id: 1, x: 0, y: 0}\n"), PlanFormat::kYaml);
+  EXPECT_EQ(detect_plan_format("plan.json", "{}"), PlanFormat::kJson);
+}
+
+TEST(PlanFormats, FeetConvertToMetres) {
+  const FloorPlan plan = load_plan(data("plans/cottage_ft.yaml"));
+  EXPECT_NEAR(plan.wall_length_m(plan.walls[0]), 3.048, 1e-12);
+  // A table file has no units key: its lengths are in the unit the caller says.
+  const FloorPlan feet = load_plan(data("plans/paper_example1.txt"), LengthUnit::kFoot);
+  EXPECT_NEAR(feet.wall_length_m(feet.walls[0]), 20 * 0.3048, 1e-12);
+}
+
+TEST(PlanFormats, PaperExampleLoadsAsWritten) {
+  const FloorPlan plan = load_plan(data("plans/paper_example1.txt"));
+  ASSERT_EQ(plan.vertices.size(), 8u);
+  ASSERT_EQ(plan.walls.size(), 7u);
+  EXPECT_EQ(plan.walls[4].start_vertex, 1);
+  EXPECT_EQ(plan.walls[4].end_vertex, 7);
+  EXPECT_DOUBLE_EQ(plan.wall_length_m(plan.walls[4]), 50.0);
+}
+
+TEST(PlanFormats, UnitsParseWithSuffixes) {
+  EXPECT_NEAR(*parse_length_m("40ft", LengthUnit::kMeter), 12.192, 1e-12);
+  EXPECT_NEAR(*parse_length_m("2.5 ft", LengthUnit::kMeter), 0.762, 1e-12);
+  EXPECT_NEAR(*parse_length_m("3", LengthUnit::kFoot), 0.9144, 1e-12);
+  EXPECT_NEAR(*parse_length_m("12m", LengthUnit::kFoot), 12.0, 1e-12);
+  EXPECT_FALSE(parse_length_m("ten ft", LengthUnit::kMeter));
+  EXPECT_FALSE(parse_length_m("nan", LengthUnit::kMeter));
+}
+
+TEST(PlanFormats, BundledExampleBuildingsLoad) {
+  const Building house = load_building(testing::source_path("config/buildings/house.yaml"));
+  ASSERT_EQ(house.floors.size(), 2u);
+  for (const auto& f : house.floors) {
+    EXPECT_GE(f.plan.walls.size(), 35u);
+    EXPECT_LE(f.plan.walls.size(), 50u);
+    EXPECT_DOUBLE_EQ(f.height_m, 3.0);
+  }
+  const Building block = load_building(testing::source_path("config/buildings/apartment.yaml"));
+  ASSERT_EQ(block.floors.size(), 5u);
+  EXPECT_EQ(block.units, LengthUnit::kFoot);
+  EXPECT_GE(block.floors[0].plan.walls.size(), 180u);
+  // The top storeys have the smaller footprint.
+  auto extent_x = [](const Floor& f) {
+    double max_x = 0.0;
+    for (const auto& v : f.plan.vertices) max_x = std::max(max_x, v.position_m.x());
+    return max_x;
+  };
+  EXPECT_LT(extent_x(block.floors[4]), extent_x(block.floors[0]));
+  EXPECT_NEAR(block.floors[1].base_elevation_m, 10 * 0.3048, 1e-9);
+}
+
+}  // namespace
+}  // namespace ccbuild::floors

@@ -1,0 +1,157 @@
+// Each broken fixture holds one mistake; the error must name the file, the line (or
+// field) and say what was expected.
+
+#include <gtest/gtest.h>
+
+#include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/plan.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::floors {
+namespace {
+using testing::contains;
+using testing::data;
+using testing::expect_input_error;
+
+struct BrokenCase {
+  const char* file;
+  int line;             // expected line of the first diagnostic (0: not checked)
+  const char* field;    // expected field path, "" when not checked
+  const char* message;  // expected part of the message
+};
+
+class BrokenPlan : public ::testing::TestWithParam<BrokenCase> {};
+
+TEST_P(BrokenPlan, IsRejectedWithLocatedMessage) {
+  const BrokenCase c = GetParam();
+  const std::string path = data(std::string("broken/") + c.file);
+  const InputError e = expect_input_error([&] { load_plan(path); });
+  const Diagnostic& d = e.first();
+  EXPECT_EQ(d.file, path);
+  if (c.line > 0) {
+    EXPECT_EQ(d.line, c.line) << e.what();
+  }
+  if (*c.field) {
+    EXPECT_EQ(d.field, c.field) << e.what();
+  }
+  EXPECT_TRUE(contains(e.what(), c.message));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Fixtures, BrokenPlan,
+    ::testing::Values(
+        BrokenCase{"unknown_vertex.yaml", 7, "walls[1].end", "end vertex 9 is not defined"},
+        BrokenCase{"duplicate_vertex.txt", 4, "vertices.id",
+                   "vertex id 2 is defined twice (first at line 3)"},
+        BrokenCase{"duplicate_wall.json", 5, "walls[1].id",
+                   "wall id 1 is defined twice (first at line 4)"},
+        BrokenCase{"zero_length.yaml", 8, "walls[1]", "wall 2 has zero length"},
+        BrokenCase{"nan_coordinate.txt", 3, "vertices: x", "expected a finite number, got 'nan'"},
+        BrokenCase{"inf_coordinate.yaml", 3, "vertices[1].x",
+                   "expected a finite number, got '.inf'"},
+        BrokenCase{"non_numeric.json", 4, "vertices[1].x",
+                   "expected a number, got the string \"four\""},
+        BrokenCase{"non_numeric.txt", 3, "vertices: y", "expected a number, got 'zero'"},
+        BrokenCase{"collinear_overlap.txt", 9, "walls",
+                   "wall 2 overlaps wall 1 (line 8) along 5.000 m"},
+        BrokenCase{
+            "opening_off_wall.yaml", 7, "openings[0]",
+            "opening 'W1' on wall 1 does not fit on its wall: offset 3.500 m + width 1.200 m"},
+        BrokenCase{"opening_overlap.yaml", 8, "openings[1]",
+                   "opening 'W2' on wall 1 overlaps opening 'W1' on wall 1 (line 7) by 0.200 m"},
+        BrokenCase{"sill_above_head.yaml", 7, "openings[0].sill",
+                   "sill (2.100 m) must be below head (0.900 m)"},
+        BrokenCase{"no_walls.yaml", 0, "walls", "the plan has no walls"},
+        BrokenCase{"unknown_key.yaml", 5, "walls[0].thicknes",
+                   "unknown key 'thicknes'; did you mean 'thickness'?"},
+        BrokenCase{"wrong_units.yaml", 1, "units", "expected 'm' or 'ft', got 'meters'"},
+        BrokenCase{"bad_syntax.json", 4, "", "invalid JSON"},
+        BrokenCase{"walls_before_vertices.txt", 1, "walls",
+                   "must come after the 'vertices' section"}),
+    [](const auto& info) {
+      std::string name = info.param.file;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+TEST(Validation, ReportsEveryProblemNotJustTheFirst) {
+  FloorPlan plan = load_plan(data("plans/cottage.yaml"));
+  plan.walls.push_back(plan.walls.front());        // duplicate id 1
+  plan.openings.push_back(plan.openings.front());  // overlaps itself
+  plan.openings.back().sill_m = 3.0;               // and sill above head
+  const InputError e = expect_input_error([&] { validate_plan(plan); });
+  EXPECT_GE(e.diagnostics().size(), 2u) << e.what();
+  EXPECT_TRUE(contains(e.what(), "wall id 1 is defined twice"));
+  EXPECT_TRUE(contains(e.what(), "must be below head"));
+}
+
+TEST(Validation, OpeningsStackedVerticallyOnOneStretchAreFine) {
+  FloorPlan plan = load_plan(data("plans/cottage.yaml"));
+  Opening transom = plan.openings[0];  // above the door on wall 7
+  transom.sill_m = 2.3;
+  transom.head_m = 2.6;
+  plan.openings.push_back(transom);
+  EXPECT_NO_THROW(validate_plan(plan));
+}
+
+TEST(Validation, NegativeSillAndZeroWidthAreRejected) {
+  FloorPlan plan = load_plan(data("plans/cottage.yaml"));
+  plan.openings[0].sill_m = -0.1;
+  plan.openings[1].width_m = 0.0;
+  const InputError e = expect_input_error([&] { validate_plan(plan); });
+  EXPECT_TRUE(contains(e.what(), "sill height must be zero or more"));
+  EXPECT_TRUE(contains(e.what(), "width must be positive"));
+}
+
+struct BrokenBuilding {
+  const char* file;
+  int line;
+  const char* field;
+  const char* message;
+};
+
+class BrokenBuildingFile : public ::testing::TestWithParam<BrokenBuilding> {};
+
+TEST_P(BrokenBuildingFile, IsRejectedWithLocatedMessage) {
+  const BrokenBuilding c = GetParam();
+  const std::string path = data(std::string("buildings/") + c.file);
+  const InputError e = expect_input_error([&] { load_building(path); });
+  EXPECT_EQ(e.first().file, path) << e.what();
+  EXPECT_EQ(e.first().line, c.line) << e.what();
+  EXPECT_EQ(e.first().field, c.field) << e.what();
+  EXPECT_TRUE(contains(e.what(), c.message));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Fixtures, BrokenBuildingFile,
+    ::testing::Values(
+        BrokenBuilding{"negative_height.yaml", 7, "floors[0].height",
+                       "floor height must be positive"},
+        BrokenBuilding{"zero_layer_height.yaml", 2, "layer_height",
+                       "layer height must be positive"},
+        BrokenBuilding{"wrong_units.yaml", 1, "units", "expected 'm' or 'ft', got 'feet'"},
+        BrokenBuilding{"missing_plan.yaml", 6, "floors[0].plan",
+                       "plan file 'plans/nowhere.yaml' not found"},
+        BrokenBuilding{"typo_floor_key.yaml", 6, "floors[0].hieght", "did you mean 'height'?"},
+        BrokenBuilding{"anchor_in_opening.yaml", 10, "floors[0].anchors[0].offset",
+                       "anchor 'A1' at 2.000 m on wall 3 lies inside an opening"}),
+    [](const auto& info) {
+      std::string name = info.param.file;
+      for (char& ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return name;
+    });
+
+TEST(Validation, OpeningAboveTheFloorIsNamedInThePlanFile) {
+  const InputError e =
+      expect_input_error([] { load_building(data("buildings/head_above_floor.yaml")); });
+  // The opening is written in the plan file; the floor that is too low is named too.
+  EXPECT_TRUE(contains(e.first().file, "plans/cottage.yaml"));
+  EXPECT_EQ(e.first().line, 20);
+  EXPECT_TRUE(contains(e.what(), "floor 'low'"));
+  EXPECT_TRUE(contains(e.what(), "is above the floor height (2.000 m)"));
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
