@@ -1,0 +1,243 @@
+// ccbuild plan-layer PLAN: the tool path of one layer for one nozzle.
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/slice.hpp"
+#include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/orchestrator/layer_report.hpp"
+#include "ccbuild/planner/plan_layer.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace ccbuild::cli {
+namespace {
+namespace fs = std::filesystem;
+
+struct PlanLayerOptions {
+  std::string file;
+  PlanInputOptions plan;
+  int floor = 0;
+  std::optional<int> layer;
+  std::string metric = "euclidean";
+  std::string objective = "distance";
+  std::string algorithm = "cc-tsp";
+  std::optional<std::int64_t> start_vertex;
+  std::optional<std::int64_t> first_wall;
+  double time_limit_s = 30.0;
+  std::uint64_t seed = 1;
+  std::optional<long> max_kicks;
+  std::string machine;
+  bool json = false;
+  std::string svg;
+  bool force = false;
+};
+
+machine::MachineModel load_machine_for(const PlanLayerOptions& options, const LoadedInput& input,
+                                       std::string& description) {
+  fs::path profile;
+  if (!options.machine.empty()) {
+    profile = options.machine;
+  } else if (input.is_building) {
+    profile = input.building.machine_profile;
+  } else {
+    profile = fs::path(CCBUILD_CONFIG_DIR) / "machines" / "cc-gantry.yaml";
+    std::error_code ec;
+    if (!fs::exists(profile, ec)) {
+      description = "built-in defaults (no --machine given)";
+      return machine::MachineModel::defaults();
+    }
+  }
+  machine::MachineModel m = machine::load_machine(profile);
+  description = m.name + " (" + profile.string() + ")";
+  return m;
+}
+
+void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
+  const auto algorithm = planner::parse_algorithm(o.algorithm);
+  const auto metric = planner::parse_metric(o.metric);
+  const auto objective = planner::parse_objective(o.objective);
+  if (!o.svg.empty()) check_output_path(o.svg, o.force, {o.file});
+  const LoadedInput input = load_input(o.file, o.plan);
+  const floors::Building& b = input.building;
+  if (o.floor < 0 || o.floor >= static_cast<int>(b.floors.size()))
+    throw InputError("", 0, "--floor",
+                     format("no floor %d; %s has floors 0 to %zu", o.floor, o.file.c_str(),
+                            b.floors.size() - 1));
+  const floors::Floor& floor = b.floors[o.floor];
+  floors::Layer layer;
+  std::string where;
+  if (input.is_building || o.layer) {
+    const auto layers = floors::slice_floor(floor, b.layer_height_m);
+    const int k = o.layer.value_or(0);
+    if (k < 0 || k >= static_cast<int>(layers.size()))
+      throw InputError(
+          "", 0, "--layer",
+          format("no layer %d; floor %d has layers 0 to %zu", k, o.floor, layers.size() - 1));
+    layer = layers[k];
+    where = format("floor %d layer %d", o.floor, k);
+  } else {
+    layer = floors::plan_as_layer(floor.plan);
+    where = "all walls whole";
+  }
+
+  std::string machine_description;
+  const machine::MachineModel machine = load_machine_for(o, input, machine_description);
+
+  planner::PlanOptions options;
+  options.algorithm = *algorithm;
+  options.metric = *metric;
+  options.objective = *objective;
+  options.time_limit_s = o.time_limit_s;
+  options.seed = o.seed;
+  options.max_kicks = o.max_kicks;
+  if (o.first_wall && !o.start_vertex)
+    throw InputError("", 0, "--first-wall", "needs --start-vertex");
+  if (o.start_vertex) {
+    const floors::Vertex* v = floor.plan.find_vertex(*o.start_vertex);
+    if (v == nullptr)
+      throw InputError("", 0, "--start-vertex",
+                       format("vertex %lld is not in the plan", (long long)*o.start_vertex));
+    options.path = planner::PathSpec::open_from(v->position_m);
+    if (o.first_wall) {
+      const std::int64_t id = std::llabs(*o.first_wall);
+      const bool reversed = *o.first_wall < 0;
+      // A wall cut by an opening starts with its first piece (its last when reversed).
+      int chosen = -1;
+      for (int s = 0; s < static_cast<int>(layer.segments.size()); ++s) {
+        const auto& seg = layer.segments[s];
+        if (seg.wall_id != id) continue;
+        if (chosen < 0 || reversed) chosen = s;
+        if (!reversed) break;
+      }
+      if (chosen < 0)
+        throw InputError(
+            "", 0, "--first-wall",
+            format("wall %lld is not in this layer (%s)", (long long)id, where.c_str()));
+      options.path.first = planner::Step{chosen, reversed};
+    }
+  }
+
+  const planner::LayerPlan plan = planner::plan_layer(layer, machine, options);
+  const auto& e = plan.evaluation;
+  if (!o.svg.empty())
+    write_file_atomically(o.svg, orchestrator::layer_plan_svg(layer, plan, o.file + ", " + where),
+                          o.force, {o.file});
+
+  if (o.json) {
+    auto out = orchestrator::layer_plan_json(layer, plan);
+    out["file"] = o.file;
+    out["layer"] = where;
+    out["seed"] = o.seed;
+    out["idle_limit_s"] = machine.nozzle_idle_limit_s;
+    std::cout << out.dump(2) << "\n";
+  } else {
+    const double unit = floors::meters_per(b.units);
+    auto length = [&](double m) {
+      std::string text = format("%.3f m", m);
+      if (b.units == floors::LengthUnit::kFoot) text += format(" (%.3f ft)", m / unit);
+      return text;
+    };
+    std::cout << format("%s, %s: %zu walls\n", o.file.c_str(), where.c_str(),
+                        layer.segments.size());
+    std::cout << format("  %-13s %s, %s metric, %s objective, %s\n", "algorithm",
+                        o.algorithm.c_str(), o.metric.c_str(), o.objective.c_str(),
+                        plan.path.closed ? "closed tour" : "open path from the start vertex");
+    std::cout << format("  %-13s %s\n", "machine", machine_description.c_str());
+    std::cout << format("  %-13s %s, %.2f s (%d lifts, %.1f turns of the nozzle)\n", "airtime",
+                        length(e.airtime_distance_m).c_str(), e.airtime_s, e.lift_count,
+                        e.total_rotation_rad / (2 * M_PI));
+    std::cout << format("  %-13s %.2f s\n", "deposition", e.deposition_s);
+    std::cout << format("  %-13s %.2f s\n", "layer time", e.layer_time_s);
+    const double gap = plan.gap();
+    std::cout << format(
+        "  %-13s %s, gap %s\n", "lower bound", length(plan.lower_bound_m).c_str(),
+        std::isnan(gap) ? "n/a (bound is 0)" : format("%.2f%%", 100.0 * gap).c_str());
+    std::cout << format("  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
+                        machine.nozzle_idle_limit_s,
+                        e.idle_limit_violations
+                            ? format(": %d move(s) over the limit", e.idle_limit_violations).c_str()
+                            : "");
+    std::cout << format("  %-13s %.3f s, %s%s\n", "solve", plan.solve_s,
+                        planner::to_string(plan.stop).c_str(),
+                        plan.kicks ? format(" after %ld kicks", plan.kicks).c_str() : "");
+    std::cout << format("  %-13s %s\n", "sequence",
+                        orchestrator::signed_sequence(layer, plan.sequence).c_str());
+    if (!o.svg.empty()) std::cout << format("  %-13s %s\n", "drawing", o.svg.c_str());
+  }
+  if (e.idle_limit_violations > 0)
+    std::cerr << format("ccbuild: warning: %d air move(s) exceed the nozzle idle limit of %.0f s\n",
+                        e.idle_limit_violations, machine.nozzle_idle_limit_s);
+  exit_code = kExitOk;
+}
+
+}  // namespace
+
+void add_plan_layer_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<PlanLayerOptions>();
+  CLI::App* command = app.add_subcommand(
+      "plan-layer",
+      "Plan the tool path of one layer for one nozzle (CC-TSP: each wall is two nodes joined by a "
+      "fixed edge, solved by a chained local search seeded with an Euler walk).\n"
+      "Prints airtime (distance and time), deposition and layer time, a lower bound on airtime "
+      "distance with the gap to it, and the sequence as signed wall ids (-5: wall 5 from its end "
+      "vertex to its start vertex; 5:2: the second piece of a wall cut by an opening).\n"
+      "Examples:\n"
+      "  ccbuild plan-layer tests/data/plans/paper_example1.txt --start-vertex 1 --first-wall 1\n"
+      "  ccbuild plan-layer config/buildings/house.yaml --floor 1 --layer 12 --objective time "
+      "--svg l12.svg\n"
+      "  ccbuild plan-layer plan.yaml --algorithm nearest --metric rectilinear --json");
+  command->add_option("PLAN", o->file, "Floor plan (YAML, JSON, table text) or building file")
+      ->required();
+  command->add_option("--floor", o->floor, "Floor of a building (0 = ground)")
+      ->capture_default_str();
+  command->add_option(
+      "--layer", o->layer,
+      "Layer within the floor (default 0); for a plan file, slices it with --floor-height and "
+      "--layer-height instead of planning whole walls");
+  command
+      ->add_option("--metric", o->metric,
+                   "Air moves: euclidean (straight) or rectilinear (x, then y)")
+      ->check(CLI::IsMember({"euclidean", "rectilinear"}))
+      ->capture_default_str();
+  command
+      ->add_option("--objective", o->objective,
+                   "distance: airtime distance only; time: travel, rotation with the stopper, "
+                   "delays and lifts")
+      ->check(CLI::IsMember({"distance", "time"}))
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--algorithm", o->algorithm,
+          "cc-tsp; nearest (greedy nearest wall end); original (file order); exact (small layers)")
+      ->check(CLI::IsMember({"cc-tsp", "nearest", "original", "exact"}))
+      ->capture_default_str();
+  command->add_option("--start-vertex", o->start_vertex,
+                      "Plan an open path starting at this plan vertex (default: a closed tour)");
+  command->add_option(
+      "--first-wall", o->first_wall,
+      "With --start-vertex: deposit this wall first (negative: from its end vertex)");
+  command->add_option("--time-limit", o->time_limit_s, "Bound on the whole run, set-up included, s")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--seed", o->seed, "Random seed: the same seed and inputs give the same plan")
+      ->capture_default_str();
+  command
+      ->add_option("--max-kicks", o->max_kicks,
+                   "Kicks of the chained search (default: from the layer size)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option(
+      "--machine", o->machine,
+      "Machine profile (default: the building's, or config/machines/cc-gantry.yaml)");
+  command->add_flag("--json", o->json, "Print one JSON object instead of text");
+  command->add_option("--svg", o->svg, "Also draw the plan into this SVG file");
+  command->add_flag("--force", o->force, "Overwrite an existing --svg file");
+  add_plan_input_options(*command, o->plan);
+  command->callback([o, &exit_code] { run_plan_layer(*o, exit_code); });
+}
+
+}  // namespace ccbuild::cli

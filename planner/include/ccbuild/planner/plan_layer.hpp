@@ -1,0 +1,68 @@
+#pragma once
+// Planning one layer for one nozzle: the CC-TSP tool path (papers 000 §4, 003 §5), the
+// baselines it is compared with, and an exact solver for small layers.
+
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "ccbuild/floors/slice.hpp"
+#include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/planner/cost_model.hpp"
+#include "ccbuild/planner/lower_bound.hpp"
+#include "ccbuild/planner/termination.hpp"
+#include "ccbuild/planner/tool_path.hpp"
+
+namespace ccbuild::planner {
+
+enum class Algorithm {
+  kCcTsp,     ///< two nodes per wall, chained local search (2-opt, Or-opt, kicks)
+  kNearest,   ///< greedy: always to the nearest end of a wall not yet built
+  kOriginal,  ///< walls in file order, each in its drawn direction
+  kExact,     ///< dynamic programming over subsets; small layers only
+};
+std::string to_string(Algorithm algorithm);
+std::optional<Algorithm> parse_algorithm(const std::string& text);
+
+/// Largest layer the exact solver accepts (walls, i.e. segments).
+inline constexpr int kExactMaxSegments = 18;
+
+struct PlanOptions {
+  Algorithm algorithm = Algorithm::kCcTsp;
+  Metric metric = Metric::kEuclidean;
+  Objective objective = Objective::kDistance;
+  PathSpec path;
+  /// Bounds the whole run, set-up included, s. The search also ends on its own when it
+  /// proves optimality or spends its kick budget; only then is the answer independent of
+  /// machine speed.
+  double time_limit_s = 30.0;
+  std::uint64_t seed = 1;
+  /// Kicks of the chained local search; unset: chosen from the layer's size.
+  std::optional<long> max_kicks;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+struct LayerPlan {
+  Algorithm algorithm = Algorithm::kCcTsp;
+  Metric metric = Metric::kEuclidean;
+  Objective objective = Objective::kDistance;
+  PathSpec path;
+  Sequence sequence;           ///< every segment of the layer exactly once
+  Evaluation evaluation;       ///< exact (CostModel::evaluate)
+  double lower_bound_m = 0.0;  ///< valid bound on airtime distance (see lower_bound.hpp)
+  int odd_points = 0;
+  double solve_s = 0.0;  ///< wall-clock time of the whole run
+  StopReason stop = StopReason::kFinished;
+  long kicks = 0;  ///< kicks tried by cc-tsp
+
+  /// (airtime distance - bound) / bound; 0 when both are 0.
+  double gap() const;
+};
+
+/// Plans a layer. Throws InputError for options that do not fit the layer (exact on a
+/// large layer, a first wall that is not in it, a layer without walls).
+LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& machine,
+                     const PlanOptions& options);
+
+}  // namespace ccbuild::planner

@@ -1,0 +1,446 @@
+#include "cc_tsp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <numeric>
+
+#include "ccbuild/common/input_error.hpp"
+
+namespace ccbuild::planner::detail {
+
+// ------------------------------------------------------------------ TourCosts ------
+
+TourCosts::TourCosts(const CostModel& model, std::vector<int> segments, Objective objective,
+                     bool open, const Vec2& start, std::optional<Vec2> start_heading)
+    : model_(model), segments_(std::move(segments)), objective_(objective), has_depot_(open) {
+  item_count_ = static_cast<int>(segments_.size()) + (has_depot_ ? 1 : 0);
+  position_.resize(2 * item_count_);
+  arrive_.assign(2 * item_count_, Vec2::Zero());
+  const auto& layer = model_.layer();
+  item_of_segment_.assign(layer.segments.size(), -1);
+  for (std::size_t k = 0; k < segments_.size(); ++k) {
+    item_of_segment_[segments_[k]] = static_cast<int>(k);
+    const auto& s = layer.segments[segments_[k]];
+    const Vec2 a = layer.start_m(s), b = layer.end_m(s);
+    position_[2 * k] = a;
+    position_[2 * k + 1] = b;
+    const Vec2 d = (b - a).normalized();
+    arrive_[2 * k] = -d;  // arriving at the start point means travelling backwards
+    arrive_[2 * k + 1] = d;
+  }
+  if (has_depot_) {
+    position_[2 * depot()] = start;      // the free end: position never used
+    position_[2 * depot() + 1] = start;  // the start point
+    if (start_heading) arrive_[2 * depot() + 1] = start_heading->normalized();
+  }
+}
+
+bool TourCosts::crosses_any(int u, int v) const {
+  if (u > v) std::swap(u, v);  // one direction for both, so the cost stays symmetric
+  return !model_.crossed_segments(position_[u], position_[v]).empty();
+}
+
+double TourCosts::cost(int u, int v) const {
+  if (is_free(u) || is_free(v)) return 0.0;
+  const Vec2& a = position_[u];
+  const Vec2& b = position_[v];
+  if (objective_ == Objective::kDistance) return model_.distance_m(a, b);
+  // Leaving u along its wall's heading, entering v's wall: turn between them.
+  double rotation = 0.0;
+  if (!arrive_[u].isZero() && !arrive_[v].isZero())
+    rotation = std::acos(std::clamp(-arrive_[u].dot(arrive_[v]), -1.0, 1.0));
+  const bool lifted = model_.distance_m(a, b) > 1e-9 && crosses_any(u, v);
+  return model_.move_time_s(a, b, rotation, lifted);
+}
+
+void TourCosts::build_neighbours(int k) {
+  const int nodes = 2 * item_count_;
+  neighbours_.assign(nodes, {});
+  // Candidates by straight-line distance, then ordered by the real cost.
+  std::vector<Vec2> points(position_.begin(), position_.end());
+  PointGrid grid(points);
+  const int wanted = std::min(nodes - 2, objective_ == Objective::kTime ? k + 4 : k);
+  for (int u = 0; u < nodes; ++u) {
+    if (is_free(u) || wanted <= 0) continue;
+    auto near = grid.nearest(u, wanted, [&](int v) { return v / 2 == u / 2 || is_free(v); });
+    std::stable_sort(near.begin(), near.end(),
+                     [&](int a, int b) { return cost(u, a) < cost(u, b); });
+    if (static_cast<int>(near.size()) > k) near.resize(k);
+    if (has_depot_ && u / 2 != depot()) near.insert(near.begin(), 2 * depot());
+    neighbours_[u] = std::move(near);
+  }
+}
+
+// ------------------------------------------------------------------- WallTour ------
+
+WallTour::WallTour(std::vector<int> order, std::vector<char> reversed)
+    : order_(std::move(order)), reversed_(std::move(reversed)) {
+  where_.assign(order_.size(), -1);
+  for (int p = 0; p < size(); ++p) where_[order_[p]] = p;
+}
+
+void WallTour::reverse(int first, int last) {
+  const int n = size();
+  int length = (last - first + n) % n + 1;
+  if (2 * length > n) {  // the complement is shorter
+    const int new_first = next(last), new_last = prev(first);
+    length = n - length;
+    first = new_first;
+    last = new_last;
+  }
+  for (int k = 0; k < length; ++k) reversed_[order_[(first + k) % n]] ^= 1;
+  int i = first, j = last;
+  for (int k = 0; k < length / 2; ++k) {
+    std::swap(order_[i], order_[j]);
+    where_[order_[i]] = i;
+    where_[order_[j]] = j;
+    i = next(i);
+    j = prev(j);
+  }
+}
+
+void WallTour::move_block(int first, int length, int after, bool reversed) {
+  const int n = size();
+  const int last = (first + length - 1) % n;
+  const int forward = (after - last + n) % n;  // items between block and insertion point, going on
+  const int backward = (first - 1 - after + 2 * n) % n;  // ... going back
+  scratch_.clear();
+  auto block = [&] {
+    for (int k = 0; k < length; ++k) {
+      const int item = order_[(first + (reversed ? length - 1 - k : k)) % n];
+      if (reversed) reversed_[item] ^= 1;
+      scratch_.push_back(item);
+    }
+  };
+  int write_from;
+  if (forward <= backward) {
+    // [first .. after] becomes (last+1 .. after) + block
+    for (int k = 1; k <= forward; ++k) scratch_.push_back(order_[(last + k) % n]);
+    block();
+    write_from = first;
+  } else {
+    // [after+1 .. last] becomes block + (after+1 .. first-1)
+    block();
+    for (int k = 1; k <= backward; ++k) scratch_.push_back(order_[(after + k) % n]);
+    write_from = (after + 1) % n;
+  }
+  for (std::size_t k = 0; k < scratch_.size(); ++k) {
+    const int p = (write_from + static_cast<int>(k)) % n;
+    order_[p] = scratch_[k];
+    where_[order_[p]] = p;
+  }
+}
+
+double WallTour::cost(const TourCosts& costs) const {
+  double total = 0.0;
+  for (int p = 0; p < size(); ++p) total += costs.cost(exit(p), entry(next(p)));
+  return total;
+}
+
+// ---------------------------------------------------------------- local search -----
+
+namespace {
+
+constexpr double kEps = 1e-9;
+
+class LocalSearch {
+ public:
+  LocalSearch(const TourCosts& costs, WallTour& tour) : costs_(costs), tour_(tour) {
+    queued_.assign(tour.size(), 0);
+  }
+
+  void push(int item) {
+    if (!queued_[item]) {
+      queued_[item] = 1;
+      queue_.push_back(item);
+    }
+  }
+  void push_position(int p) { push(tour_.item_at(p)); }
+
+  /// Runs until no queued item improves; returns the total gain.
+  double run(const StopCondition& stop) {
+    double gain = 0.0;
+    long steps = 0;
+    while (!queue_.empty()) {
+      if ((++steps & 255) == 0 && stop.should_stop()) break;
+      const int item = queue_.front();
+      queue_.pop_front();
+      queued_[item] = 0;
+      double g = 0.0;
+      if (improve(item, g)) {
+        gain += g;
+        push(item);
+      }
+    }
+    return gain;
+  }
+
+ private:
+  double c(int u, int v) const { return costs_.cost(u, v); }
+
+  bool improve(int item, double& gain) {
+    for (int side = 0; side < 2; ++side) {
+      if (two_opt(2 * item + side, gain)) return true;
+    }
+    return or_opt(item, gain);
+  }
+
+  void touch(std::initializer_list<int> positions) {
+    for (int p : positions) push_position(p);
+  }
+
+  bool two_opt(int a, double& gain) {
+    const int pa = tour_.position_of(a / 2);
+    if (tour_.size() < 3) return false;
+    if (a == tour_.exit(pa)) {
+      const int pb = tour_.next(pa);
+      const int b = tour_.entry(pb);
+      const double ab = c(a, b);
+      for (int cand : costs_.neighbours(a)) {
+        if (ab - c(a, cand) <= kEps) break;
+        const int pc = tour_.position_of(cand / 2);
+        if (cand != tour_.exit(pc) || pc == pa) continue;
+        const int pd = tour_.next(pc);
+        const int d = tour_.entry(pd);
+        const double delta = ab + c(cand, d) - c(a, cand) - c(b, d);
+        if (delta > kEps) {
+          tour_.reverse(pb, pc);
+          gain = delta;
+          touch({tour_.position_of(a / 2), tour_.position_of(b / 2), tour_.position_of(cand / 2),
+                 tour_.position_of(d / 2)});
+          return true;
+        }
+      }
+    } else {
+      const int pb = tour_.prev(pa);
+      const int b = tour_.exit(pb);
+      const double ab = c(a, b);
+      for (int cand : costs_.neighbours(a)) {
+        if (ab - c(a, cand) <= kEps) break;
+        const int pc = tour_.position_of(cand / 2);
+        if (cand != tour_.entry(pc) || pc == pa) continue;
+        const int pd = tour_.prev(pc);
+        const int d = tour_.exit(pd);
+        const double delta = ab + c(d, cand) - c(a, cand) - c(b, d);
+        if (delta > kEps) {
+          tour_.reverse(pa, pd);
+          gain = delta;
+          touch({tour_.position_of(a / 2), tour_.position_of(b / 2), tour_.position_of(cand / 2),
+                 tour_.position_of(d / 2)});
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  bool or_opt(int item, double& gain) {
+    const int n = tour_.size();
+    const int pi = tour_.position_of(item);
+    for (int length = 1; length <= 3; ++length) {
+      if (length + 2 > n) break;
+      for (int variant = 0; variant < (length == 1 ? 1 : 2); ++variant) {
+        const int s = variant == 0 ? pi : (pi - length + 1 + n) % n;
+        const int e = (s + length - 1) % n;
+        const int p = tour_.prev(s), q = tour_.next(e);
+        const int xp = tour_.exit(p), es = tour_.entry(s), xe = tour_.exit(e), eq = tour_.entry(q);
+        const double removal = c(xp, es) + c(xe, eq) - c(xp, eq);
+        if (removal <= kEps) continue;
+        auto in_block = [&](int pos) { return (pos - s + n) % n < length; };
+        for (int x : {es, xe}) {
+          for (int cand : costs_.neighbours(x)) {
+            if (c(x, cand) >= removal - kEps) break;
+            const int pc = tour_.position_of(cand / 2);
+            if (in_block(pc)) continue;
+            const bool cand_exit = cand == tour_.exit(pc);
+            int after;
+            double added;
+            bool reversed;
+            if (x == es && cand_exit) {  // c, block, next(c)
+              if (pc == p) continue;
+              after = pc;
+              const int n1 = tour_.entry(tour_.next(pc));
+              added = c(cand, es) + c(xe, n1) - c(cand, n1);
+              reversed = false;
+            } else if (x == es) {  // prev(c), reversed block, c
+              if (pc == q) continue;
+              after = tour_.prev(pc);
+              const int xk = tour_.exit(after);
+              added = c(xk, xe) + c(es, cand) - c(xk, cand);
+              reversed = true;
+            } else if (!cand_exit) {  // prev(c), block, c
+              if (pc == q) continue;
+              after = tour_.prev(pc);
+              const int xk = tour_.exit(after);
+              added = c(xk, es) + c(xe, cand) - c(xk, cand);
+              reversed = false;
+            } else {  // c, reversed block, next(c)
+              if (pc == p) continue;
+              after = pc;
+              const int n1 = tour_.entry(tour_.next(pc));
+              added = c(cand, xe) + c(es, n1) - c(cand, n1);
+              reversed = true;
+            }
+            const double delta = removal - added;
+            if (delta > kEps) {
+              const int after_item = tour_.item_at(after),
+                        next_item = tour_.item_at(tour_.next(after));
+              const int p_item = tour_.item_at(p), q_item = tour_.item_at(q);
+              const int s_item = tour_.item_at(s), e_item = tour_.item_at(e);
+              tour_.move_block(s, length, after, reversed);
+              gain = delta;
+              for (int it : {after_item, next_item, p_item, q_item, s_item, e_item}) push(it);
+              return true;
+            }
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+  const TourCosts& costs_;
+  WallTour& tour_;
+  std::deque<int> queue_;
+  std::vector<char> queued_;
+};
+
+}  // namespace
+
+namespace {
+
+// Cost change of moving block [first, first+length) to just after `after`.
+double block_move_delta(const TourCosts& costs, const WallTour& t, int first, int length, int after,
+                        bool reversed) {
+  const int n = t.size();
+  const int last = (first + length - 1) % n;
+  const int p = t.prev(first), q = t.next(last);
+  const int xp = t.exit(p), es = t.entry(first), xe = t.exit(last), eq = t.entry(q);
+  const double removal = costs.cost(xp, es) + costs.cost(xe, eq) - costs.cost(xp, eq);
+  const int xa = t.exit(after), n1 = t.entry(t.next(after));
+  const double added = reversed ? costs.cost(xa, xe) + costs.cost(es, n1) - costs.cost(xa, n1)
+                                : costs.cost(xa, es) + costs.cost(xe, n1) - costs.cost(xa, n1);
+  return added - removal;
+}
+
+// Cost change of reversing positions first..last.
+double reversal_delta(const TourCosts& costs, const WallTour& t, int first, int last) {
+  const int p = t.prev(first), q = t.next(last);
+  const int xp = t.exit(p), ef = t.entry(first), xl = t.exit(last), eq = t.entry(q);
+  return costs.cost(xp, xl) + costs.cost(ef, eq) - costs.cost(xp, ef) - costs.cost(xl, eq);
+}
+
+}  // namespace
+
+SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
+                                   const SearchSettings& settings, const StopCondition& stop) {
+  SearchOutcome out;
+  const int n = tour.size();
+  std::mt19937_64 rng(settings.seed);
+  double current = tour.cost(costs);
+  {
+    LocalSearch search(costs, tour);
+    std::vector<int> items(n);
+    std::iota(items.begin(), items.end(), 0);
+    std::shuffle(items.begin(), items.end(), rng);
+    for (int item : items) search.push(item);
+    current -= search.run(stop);
+  }
+  out.reason = StopReason::kConverged;
+  double best = current;
+  WallTour saved = tour;
+  long since_improvement = 0;
+  const int max_block = std::max(1, std::min(50, n / 4));
+  for (out.kicks = 0; n >= 5 && out.kicks < settings.max_kicks; ++out.kicks) {
+    if (settings.target_cost && best <= *settings.target_cost + 1e-9) {
+      out.reason = StopReason::kProvenOptimal;
+      break;
+    }
+    if ((out.kicks & 15) == 0 && stop.should_stop()) {
+      out.reason = stop.reason();
+      break;
+    }
+    if (since_improvement >= settings.stall_kicks) break;
+    // A local double bridge: swap two adjacent short blocks B and C, reversing either at
+    // random, then repair locally.
+    const int l1 = 1 + static_cast<int>(rng() % max_block);
+    const int l2 = 1 + static_cast<int>(rng() % max_block);
+    const int s = static_cast<int>(rng() % n);
+    const unsigned flips = static_cast<unsigned>(rng() % 4);
+    if (l1 + l2 + 2 >= n) continue;
+    const int b_first = (s + 1) % n, c_last = (s + l1 + l2) % n;
+    LocalSearch search(costs, tour);
+    current += block_move_delta(costs, tour, b_first, l1, c_last, (flips & 1) != 0);
+    tour.move_block(b_first, l1, c_last, (flips & 1) != 0);
+    const int s_item = tour.item_at(s);
+    if (flips & 2) {
+      const int cf = tour.next(tour.position_of(s_item));
+      const int cl = (tour.position_of(s_item) + l2) % n;
+      current += reversal_delta(costs, tour, cf, cl);
+      tour.reverse(cf, cl);
+    }
+    const int ps = tour.position_of(s_item);
+    for (int k = 0; k <= l1 + l2 + 1; ++k) {
+      if (k <= 1 || k >= l1 + l2 || k == l2 || k == l2 + 1) search.push_position((ps + k) % n);
+    }
+    current -= search.run(stop);
+    if (current < best - 1e-9) {
+      best = current;
+      saved = tour;
+      since_improvement = 0;
+    } else if (current <= best + 1e-12) {
+      best = std::min(best, current);
+      saved = tour;  // sideways: keep wandering along plateaus of equal cost
+      ++since_improvement;
+    } else {
+      tour = saved;
+      current = best;
+      ++since_improvement;
+    }
+  }
+  out.tour = saved;
+  out.cost = saved.cost(costs);  // fresh sum: no drift from the running total
+  if (settings.target_cost && out.cost <= *settings.target_cost + 1e-9)
+    out.reason = StopReason::kProvenOptimal;
+  return out;
+}
+
+// ------------------------------------------------------------ tours and sequences ---
+
+WallTour tour_from_sequence(const TourCosts& costs, const Sequence& sequence) {
+  std::vector<int> order;
+  std::vector<char> reversed(costs.item_count(), 0);
+  order.reserve(costs.item_count());
+  if (costs.has_depot()) order.push_back(costs.depot());
+  for (const Step& step : sequence) {
+    const int item = costs.item_of_segment(step.segment);
+    CCBUILD_CHECK(item >= 0, "sequence step belongs to this tour");
+    order.push_back(item);
+    reversed[item] = step.reversed ? 1 : 0;
+  }
+  CCBUILD_CHECK(static_cast<int>(order.size()) == costs.item_count(),
+                "sequence covers every item once");
+  return WallTour(std::move(order), std::move(reversed));
+}
+
+Sequence sequence_from_tour(const TourCosts& costs, const WallTour& tour) {
+  Sequence out;
+  const int n = tour.size();
+  if (!costs.has_depot()) {
+    for (int p = 0; p < n; ++p)
+      out.push_back({costs.segment_of(tour.item_at(p)), tour.reversed(tour.item_at(p))});
+    return out;
+  }
+  const int pd = tour.position_of(costs.depot());
+  // Unreversed, the depot leaves from its start node: read on; else read backwards.
+  const bool forward = !tour.reversed(costs.depot());
+  for (int k = 1; k < n; ++k) {
+    const int p = forward ? (pd + k) % n : (pd - k + n) % n;
+    const int item = tour.item_at(p);
+    out.push_back({costs.segment_of(item), forward ? tour.reversed(item) : !tour.reversed(item)});
+  }
+  return out;
+}
+
+}  // namespace ccbuild::planner::detail

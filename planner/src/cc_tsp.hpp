@@ -1,0 +1,129 @@
+#pragma once
+// Internals of the CC-TSP solver. Each wall piece ("item") becomes two nodes, its two
+// ends; the edge between them is fixed (the papers' -M edge), every other pair costs the
+// air move between them. A tour is an array of items, each traversed forwards or
+// backwards, so the fixed edges can never be broken: 2-opt reverses whole items and
+// Or-opt moves whole items.
+//
+// Open paths add a depot item whose one node sits at the start point and whose other
+// node (the free end) costs nothing to reach from anywhere, so the tour read from the
+// depot is the path, and its return is free.
+
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "ccbuild/planner/cost_model.hpp"
+#include "ccbuild/planner/termination.hpp"
+#include "ccbuild/planner/tool_path.hpp"
+#include "geometry.hpp"
+
+namespace ccbuild::planner::detail {
+
+/// Symmetric air-move costs between item ends, approximating the time model where it is
+/// sequence-dependent: rotation ignores the stopper's state, and a move is priced as
+/// lifted when it crosses any wall of the layer.
+class TourCosts {
+ public:
+  /// `segments` are the layer segments to order. For open paths, the depot sits at
+  /// `start`, facing `start_heading` when given (a fixed first wall) or free to turn.
+  TourCosts(const CostModel& model, std::vector<int> segments, Objective objective, bool open,
+            const Vec2& start, std::optional<Vec2> start_heading);
+
+  int item_count() const { return item_count_; }  ///< segments, plus the depot if open
+  bool has_depot() const { return has_depot_; }
+  int depot() const { return static_cast<int>(segments_.size()); }
+  int segment_of(int item) const { return segments_[item]; }
+  /// The item of a layer segment, -1 when the segment is not part of this tour.
+  int item_of_segment(int segment) const { return item_of_segment_[segment]; }
+  const Vec2& position(int node) const { return position_[node]; }
+  bool is_free(int node) const { return has_depot_ && node == 2 * depot(); }
+
+  double cost(int u, int v) const;
+  /// Neighbour candidates of a node, cheapest first (the free end, if any, first of all).
+  const std::vector<int>& neighbours(int node) const { return neighbours_[node]; }
+  void build_neighbours(int k);
+
+ private:
+  bool crosses_any(int u, int v) const;
+
+  const CostModel& model_;
+  std::vector<int> segments_;
+  std::vector<int> item_of_segment_;
+  Objective objective_;
+  bool has_depot_;
+  int item_count_;
+  std::vector<Vec2> position_;
+  std::vector<Vec2> arrive_;  ///< unit heading arriving at a node along its wall (0: free to turn)
+  std::vector<std::vector<int>> neighbours_;
+};
+
+/// A cyclic order of items, each with a direction.
+class WallTour {
+ public:
+  WallTour() = default;
+  /// Items in `order`, `reversed[item]` for each item.
+  WallTour(std::vector<int> order, std::vector<char> reversed);
+
+  int size() const { return static_cast<int>(order_.size()); }
+  int item_at(int position) const { return order_[position]; }
+  int position_of(int item) const { return where_[item]; }
+  bool reversed(int item) const { return reversed_[item] != 0; }
+  int entry(int position) const {
+    return 2 * order_[position] + (reversed_[order_[position]] ? 1 : 0);
+  }
+  int exit(int position) const {
+    return 2 * order_[position] + (reversed_[order_[position]] ? 0 : 1);
+  }
+  int next(int position) const { return position + 1 == size() ? 0 : position + 1; }
+  int prev(int position) const { return position == 0 ? size() - 1 : position - 1; }
+
+  /// Reverses the cyclic range first..last (positions) and the direction of its items;
+  /// reverses the complement instead when that is shorter (same tour, other way round).
+  void reverse(int first, int last);
+  /// Moves the `length` items from position `first` to just after position `after`
+  /// (outside them), reversed or not.
+  void move_block(int first, int length, int after, bool reversed);
+
+  double cost(const TourCosts& costs) const;
+
+ private:
+  std::vector<int> order_;
+  std::vector<int> where_;
+  std::vector<char> reversed_;
+  std::vector<int> scratch_;
+};
+
+struct SearchSettings {
+  long max_kicks = 0;
+  long stall_kicks = 0;  ///< stop after this many kicks without improvement
+  std::uint64_t seed = 1;
+  /// Stop as soon as the cost reaches this (a lower bound), when set.
+  std::optional<double> target_cost;
+};
+
+struct SearchOutcome {
+  WallTour tour;
+  double cost = 0.0;
+  long kicks = 0;
+  StopReason reason = StopReason::kConverged;
+};
+
+/// Chained local search: 2-opt and Or-opt (blocks of 1-3 items) driven by neighbour
+/// lists and don't-look bits, then kicks (a local double bridge with random reversals)
+/// each followed by local search, keeping the best tour.
+SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
+                                   const SearchSettings& settings, const StopCondition& stop);
+
+/// An initial tour: the T-join of odd points (minimum matching), components joined by
+/// doubled shortest links, then an Euler walk whose choices follow the current heading.
+/// `segments` and the path are as in TourCosts.
+Sequence euler_construction(const CostModel& model, const std::vector<int>& segments, bool open,
+                            const Vec2& start, std::optional<Vec2> start_heading);
+
+/// Tour <-> sequence, for the items of `costs`.
+WallTour tour_from_sequence(const TourCosts& costs, const Sequence& sequence);
+Sequence sequence_from_tour(const TourCosts& costs, const WallTour& tour);
+
+}  // namespace ccbuild::planner::detail

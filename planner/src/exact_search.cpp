@@ -1,0 +1,203 @@
+// Local search under the exact time evaluation. The chained search optimises symmetric
+// approximate costs; lifts (which depend on what is already built) and the stopper
+// (which depends on how far the nozzle has wound) are only seen here. Candidates are
+// evaluated from the first position they change, reusing the nozzle states before it.
+
+#include <algorithm>
+
+#include "ccbuild/common/input_error.hpp"
+#include "search_internal.hpp"
+
+namespace ccbuild::planner::detail {
+namespace {
+
+class IncrementalTime {
+ public:
+  IncrementalTime(const CostModel& model, const PathSpec& path)
+      : model_(model), path_(path), position_(model.layer().segments.size(), -1) {}
+
+  /// Makes `sequence` current; returns its airtime, s.
+  double reset(const Sequence& sequence) {
+    current_ = sequence;
+    std::fill(position_.begin(), position_.end(), -1);
+    for (std::size_t k = 0; k < current_.size(); ++k)
+      position_[current_[k].segment] = static_cast<int>(k);
+    state_.assign(current_.size() + 1, {});
+    time_.assign(current_.size() + 1, 0.0);
+    cost_ = run(current_, 0, position_, true);
+    return cost_;
+  }
+
+  /// Airtime of `candidate`, equal to the current sequence before `from`.
+  double evaluate(const Sequence& candidate, std::size_t from) {
+    scratch_ = position_;
+    for (std::size_t k = from; k < candidate.size(); ++k)
+      scratch_[candidate[k].segment] = static_cast<int>(k);
+    return run(candidate, from, scratch_, false);
+  }
+
+  void accept(const Sequence& candidate, std::size_t from) {
+    current_ = candidate;
+    for (std::size_t k = from; k < current_.size(); ++k)
+      position_[current_[k].segment] = static_cast<int>(k);
+    cost_ = run(current_, from, position_, true);
+  }
+
+  double cost() const { return cost_; }
+  const Sequence& current() const { return current_; }
+  long steps() const { return steps_; }
+
+ private:
+  double run(const Sequence& sequence, std::size_t from, const std::vector<int>& position,
+             bool store) {
+    PathState state = from == 0 ? model_.begin(path_) : state_[from];
+    double time = time_[from];
+    steps_ += static_cast<long>(sequence.size() - from) + 1;
+    for (std::size_t k = from; k < sequence.size(); ++k) {
+      if (store) {
+        state_[k] = state;
+        time_[k] = time;
+      }
+      const int here = static_cast<int>(k);
+      const Move m = model_.advance(state, sequence[k], path_,
+                                    [&](int s) { return position[s] >= 0 && position[s] < here; });
+      if (k > 0 || !path_.closed) time += m.time_s;
+    }
+    if (store) {
+      state_[sequence.size()] = state;
+      time_[sequence.size()] = time;
+    }
+    if (path_.closed && !sequence.empty())
+      time += model_.close(state, sequence.front(), [&](int s) { return position[s] >= 0; }).time_s;
+    return time;
+  }
+
+  const CostModel& model_;
+  const PathSpec& path_;
+  Sequence current_;
+  std::vector<int> position_;
+  std::vector<int> scratch_;
+  std::vector<PathState> state_;
+  std::vector<double> time_;
+  double cost_ = 0.0;
+  long steps_ = 0;
+};
+
+Sequence reversed_block(const Sequence& s, std::size_t i, std::size_t j) {
+  Sequence out = s;
+  std::reverse(out.begin() + i, out.begin() + j + 1);
+  for (std::size_t k = i; k <= j; ++k) out[k].reversed = !out[k].reversed;
+  return out;
+}
+
+// Moves s[i, i+length) so that it starts at `to` in the result, reversed or not.
+Sequence moved_block(const Sequence& s, std::size_t i, std::size_t length, std::size_t to,
+                     bool reversed) {
+  Sequence block(s.begin() + i, s.begin() + i + length);
+  if (reversed) {
+    std::reverse(block.begin(), block.end());
+    for (auto& step : block) step.reversed = !step.reversed;
+  }
+  Sequence rest;
+  rest.reserve(s.size());
+  rest.insert(rest.end(), s.begin(), s.begin() + i);
+  rest.insert(rest.end(), s.begin() + i + length, s.end());
+  rest.insert(rest.begin() + to, block.begin(), block.end());
+  return rest;
+}
+
+}  // namespace
+
+Sequence improve_exact_time(const CostModel& model, Sequence sequence, const PathSpec& path,
+                            std::size_t fixed_prefix, const ExactPolishSettings& settings,
+                            std::mt19937_64& rng, const StopCondition& stop) {
+  const std::size_t n = sequence.size();
+  if (n < 2) return sequence;
+  IncrementalTime eval(model, path);
+  eval.reset(sequence);
+  const std::size_t window = std::max<std::size_t>(1, std::min(n, settings.window));
+  auto out_of_budget = [&] {
+    return eval.steps() >= settings.max_step_evaluations || stop.should_stop();
+  };
+  auto try_candidate = [&](const Sequence& candidate, std::size_t from) {
+    if (eval.evaluate(candidate, from) < eval.cost() - 1e-9) {
+      eval.accept(candidate, from);
+      return true;
+    }
+    return false;
+  };
+  // Where a closed tour starts, and its direction, change its lifts and its unwinding.
+  auto try_rotations = [&] {
+    if (!path.closed) return false;
+    const Sequence cur = eval.current();
+    for (std::size_t r = 1; r < n; ++r) {
+      Sequence rotated(cur.begin() + r, cur.end());
+      rotated.insert(rotated.end(), cur.begin(), cur.begin() + r);
+      if (try_candidate(rotated, 0)) return true;
+    }
+    return try_candidate(reversed_block(cur, 0, n - 1), 0);
+  };
+  // 2-opt and Or-opt moves that change the sequence from position i on.
+  auto try_at = [&](std::size_t i) {
+    for (std::size_t j = i; j < std::min(n, i + window); ++j)
+      if (try_candidate(reversed_block(eval.current(), i, j), i)) return true;
+    for (std::size_t length = 1; length <= 3 && i + length <= n; ++length) {
+      const std::size_t lo = std::max(fixed_prefix, i > window ? i - window : 0);
+      const std::size_t hi = std::min(n - length, i + window);
+      for (std::size_t to = lo; to <= hi; ++to) {
+        if (to == i) continue;
+        for (bool reversed : {false, true})
+          if (try_candidate(moved_block(eval.current(), i, length, to, reversed), std::min(i, to)))
+            return true;
+      }
+    }
+    return false;
+  };
+  // First improvement, scanning positions round and round until a whole round is quiet.
+  auto descend = [&] {
+    const std::size_t movable = n - fixed_prefix;
+    bool again = true;
+    while (again && !out_of_budget()) {
+      again = try_rotations();
+      std::size_t i = fixed_prefix, quiet = 0;
+      while (quiet < movable && !out_of_budget()) {
+        if (try_at(i)) {
+          quiet = 0;
+          again = true;
+        } else {
+          ++quiet;
+        }
+        i = i + 1 < n ? i + 1 : fixed_prefix;
+      }
+      again = again && path.closed;  // a changed closed tour may now start better elsewhere
+    }
+  };
+
+  descend();
+  Sequence best = eval.current();
+  double best_cost = eval.cost();
+  const std::size_t movable = n - fixed_prefix;
+  for (long kick = 0; kick < settings.max_kicks && movable >= 4 && !out_of_budget(); ++kick) {
+    if (kick % 2 == 0) {
+      // Double bridge on the movable part: swap two adjacent blocks, maybe reversing one.
+      const std::size_t cap = std::max<std::size_t>(1, std::min<std::size_t>(movable / 3, 8));
+      const std::size_t l1 = 1 + rng() % cap, l2 = 1 + rng() % cap;
+      if (l1 + l2 > movable) continue;
+      const std::size_t start = fixed_prefix + rng() % (movable - l1 - l2 + 1);
+      eval.reset(moved_block(best, start, l1, start + l2, rng() % 2 == 0));
+    } else {
+      // Reverse a block of any length: reaches orders that small swaps cannot.
+      const std::size_t i = fixed_prefix + rng() % movable;
+      const std::size_t j = fixed_prefix + rng() % movable;
+      eval.reset(reversed_block(best, std::min(i, j), std::max(i, j)));
+    }
+    descend();
+    if (eval.cost() <= best_cost + 1e-9) {  // equal too: walk along plateaus
+      best = eval.current();
+      best_cost = std::min(best_cost, eval.cost());
+    }
+  }
+  return best;
+}
+
+}  // namespace ccbuild::planner::detail

@@ -1,0 +1,143 @@
+// plan_layer end to end: the reference examples, coverage, determinism, option errors.
+
+#include "ccbuild/planner/plan_layer.hpp"
+
+#include <gtest/gtest.h>
+
+#include "ccbuild/floors/plan.hpp"
+#include "layouts.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::planner {
+namespace {
+using testing::contains;
+using testing::expect_input_error;
+
+LayerPlan plan_example(const std::string& file, Metric metric, Algorithm algorithm) {
+  const floors::FloorPlan plan = floors::load_plan(testing::data("plans/" + file));
+  static floors::Layer layer;
+  layer = floors::plan_as_layer(plan);
+  PlanOptions o;
+  o.metric = metric;
+  o.algorithm = algorithm;
+  o.path =
+      PathSpec::open_from(plan.find_vertex(1)->position_m, Step{0, false});  // wall 1 first, 1 -> 2
+  return plan_layer(layer, testing::simple_machine(), o);
+}
+
+TEST(PlanLayer, ReferenceExamplesReachTheirOptimum) {
+  for (Metric metric : {Metric::kEuclidean, Metric::kRectilinear}) {
+    for (Algorithm algorithm : {Algorithm::kCcTsp, Algorithm::kExact}) {
+      const LayerPlan one = plan_example("paper_example1.txt", metric, algorithm);
+      EXPECT_NEAR(one.evaluation.airtime_distance_m, 25.0, 1e-9)
+          << to_string(metric) << " " << to_string(algorithm);
+      EXPECT_EQ(one.sequence.front(), (Step{0, false}));
+      const LayerPlan two = plan_example("paper_example2.txt", metric, algorithm);
+      EXPECT_NEAR(two.evaluation.airtime_distance_m, 35.0, 1e-9)
+          << to_string(metric) << " " << to_string(algorithm);
+    }
+  }
+}
+
+TEST(PlanLayer, BaselinesOnTheReferenceExample) {
+  // File order: 1, 2, 3, ... each forwards: 5 + 30.414 + ... (hand: moves between ends).
+  const LayerPlan original =
+      plan_example("paper_example1.txt", Metric::kEuclidean, Algorithm::kOriginal);
+  for (std::size_t i = 0; i < original.sequence.size(); ++i)
+    EXPECT_EQ(original.sequence[i], (Step{int(i), false}));
+  const double expected = 5.0 + std::hypot(35 - 15, 0 - 30) + std::hypot(35 - 0, 30 - 50) +
+                          std::hypot(35 - 0, 50 - 0) + std::hypot(0 - 35, 50 - 0) + 0.0;
+  EXPECT_NEAR(original.evaluation.airtime_distance_m, expected, 1e-9);
+  const LayerPlan nearest =
+      plan_example("paper_example1.txt", Metric::kEuclidean, Algorithm::kNearest);
+  EXPECT_GE(nearest.evaluation.airtime_distance_m, 25.0 - 1e-9);
+}
+
+TEST(PlanLayer, EveryAlgorithmDepositsEveryWallExactlyOnce) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const floors::Layer layer = testing::floor_plan_layer(6 + 3 * static_cast<int>(seed), seed);
+    for (Algorithm algorithm : {Algorithm::kCcTsp, Algorithm::kNearest, Algorithm::kOriginal}) {
+      for (bool closed : {true, false}) {
+        PlanOptions o;
+        o.algorithm = algorithm;
+        o.objective = seed % 2 ? Objective::kTime : Objective::kDistance;
+        if (!closed) o.path = PathSpec::open_from(layer.points[layer.segments[3].end_point]);
+        const LayerPlan plan = plan_layer(layer, testing::simple_machine(), o);
+        EXPECT_TRUE(covers_every_segment_once(plan.sequence, layer.segments.size()));
+        EXPECT_EQ(plan.evaluation.moves.size(), layer.segments.size());
+        EXPECT_GE(plan.evaluation.airtime_distance_m, plan.lower_bound_m - 1e-9);
+      }
+    }
+  }
+}
+
+TEST(PlanLayer, CcTspBeatsBothBaselinesOnFloorPlans) {
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const floors::Layer layer = testing::floor_plan_layer(20, seed);
+    auto airtime = [&](Algorithm a) {
+      PlanOptions o;
+      o.algorithm = a;
+      return plan_layer(layer, testing::simple_machine(), o).evaluation.airtime_distance_m;
+    };
+    const double cc = airtime(Algorithm::kCcTsp);
+    EXPECT_LT(cc, airtime(Algorithm::kNearest));
+    EXPECT_LT(cc, airtime(Algorithm::kOriginal));
+  }
+}
+
+TEST(PlanLayer, SameSeedSamePlan) {
+  const floors::Layer layer = testing::floor_plan_layer(40, 7);
+  PlanOptions o;
+  o.objective = Objective::kTime;
+  o.seed = 42;
+  const LayerPlan a = plan_layer(layer, testing::simple_machine(), o);
+  const LayerPlan b = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_EQ(a.sequence, b.sequence);
+  EXPECT_EQ(a.evaluation.airtime_s, b.evaluation.airtime_s);
+}
+
+TEST(PlanLayer, FirstWallFixesTheStartInEitherDirection) {
+  const floors::Layer layer = testing::floor_plan_layer(10, 3);
+  PlanOptions o;
+  o.path = PathSpec::open_from(layer.points[0], Step{4, true});
+  const LayerPlan plan = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_EQ(plan.sequence.front(), (Step{4, true}));
+  EXPECT_TRUE(covers_every_segment_once(plan.sequence, layer.segments.size()));
+}
+
+TEST(PlanLayer, OptionsThatDoNotFitAreInputErrors) {
+  const floors::Layer big = testing::floor_plan_layer(20, 1);
+  PlanOptions exact;
+  exact.algorithm = Algorithm::kExact;
+  EXPECT_TRUE(contains(
+      expect_input_error([&] { plan_layer(big, testing::simple_machine(), exact); }).what(),
+      "exact handles layers of at most"));
+  PlanOptions closed_first;
+  closed_first.path.first = Step{0, false};
+  EXPECT_TRUE(contains(
+      expect_input_error([&] { plan_layer(big, testing::simple_machine(), closed_first); }).what(),
+      "needs an open path"));
+  PlanOptions off_layer;
+  off_layer.path = PathSpec::open_from({0, 0}, Step{100000, false});
+  EXPECT_TRUE(contains(
+      expect_input_error([&] { plan_layer(big, testing::simple_machine(), off_layer); }).what(),
+      "not a wall of this layer"));
+  floors::Layer empty;
+  EXPECT_TRUE(
+      contains(expect_input_error([&] { plan_layer(empty, testing::simple_machine(), {}); }).what(),
+               "no walls"));
+}
+
+TEST(PlanLayer, TimeLimitBoundsTheRun) {
+  const floors::Layer layer = testing::floor_plan_layer(300, 5);
+  PlanOptions o;
+  o.time_limit_s = 0.2;
+  o.max_kicks = 100000000;
+  const LayerPlan plan = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_TRUE(covers_every_segment_once(plan.sequence, layer.segments.size()));
+  EXPECT_EQ(plan.stop, StopReason::kTimeLimit);
+  EXPECT_LT(plan.solve_s, 1.0);  // generous: only catches a limit that is ignored
+}
+
+}  // namespace
+}  // namespace ccbuild::planner
