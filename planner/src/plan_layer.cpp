@@ -94,8 +94,8 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   costs.build_neighbours(options.objective == Objective::kTime ? 10 : 8);
   detail::SearchSettings settings;
   const long items = costs.item_count();
-  settings.max_kicks = options.max_kicks ? *options.max_kicks : 1000 + 20 * items;
-  settings.stall_kicks = options.max_kicks ? *options.max_kicks : 500 + 5 * items;
+  settings.max_kicks = options.max_kicks ? *options.max_kicks : 2000 + 60 * items;
+  settings.stall_kicks = options.max_kicks ? *options.max_kicks : 1000 + 20 * items;
   settings.seed = options.seed;
   if (options.objective == Objective::kDistance)
     settings.target_cost = lower_bound - fixed_distance;
