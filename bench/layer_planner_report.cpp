@@ -21,8 +21,12 @@ using planner::Algorithm;
 
 namespace {
 
-double mean(const std::vector<double>& v) { return v.empty() ? NAN : std::accumulate(v.begin(), v.end(), 0.0) / v.size(); }
-double max_of(const std::vector<double>& v) { return v.empty() ? NAN : *std::max_element(v.begin(), v.end()); }
+double mean(const std::vector<double>& v) {
+  return v.empty() ? NAN : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+}
+double max_of(const std::vector<double>& v) {
+  return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
+}
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
@@ -50,15 +54,18 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   const machine::MachineModel machine = machine::MachineModel::defaults();
-  std::printf("| walls | layouts | saved vs nearest | saved vs original | gap to bound (mean / max) | gap to exact | "
-              "cc-tsp solve s (median / max) | nearest s |\n");
+  std::printf(
+      "| walls | layouts | saved vs nearest | saved vs original | gap to bound (mean / max) | gap "
+      "to exact | "
+      "cc-tsp solve s (median / max) | nearest s |\n");
   std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (int size : sizes) {
-    std::vector<double> saved_nearest, saved_original, gap_bound, gap_exact, solve, nearest_s, seed_spread;
+    std::vector<double> saved_nearest, saved_original, gap_bound, gap_exact, solve, nearest_s,
+        seed_spread;
     int walls = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
-      const floors::Layer layer =
-          floors::slice_plan_at(floors::generate_plan_with_segments(size, static_cast<std::uint64_t>(seed)), 1.0, 2.0);
+      const floors::Layer layer = floors::slice_plan_at(
+          floors::generate_plan_with_segments(size, static_cast<std::uint64_t>(seed)), 1.0, 2.0);
       walls += static_cast<int>(layer.segments.size());
       auto run = [&](Algorithm algorithm, std::uint64_t planner_seed = 1) {
         planner::PlanOptions o;
@@ -94,18 +101,21 @@ int main(int argc, char** argv) {
         gap_exact.push_back(100.0 * (value(cc) / value(exact) - 1.0));
       }
       if (per_layout)
-        std::fprintf(stderr, "  size %d seed %d: %zu walls, cc %.3f, nearest %.3f, original %.3f, bound %.3f, %.3f s, %s\n",
-                     size, seed, layer.segments.size(), value(cc), value(nearest), value(original), cc.lower_bound_m,
-                     cc.solve_s, planner::to_string(cc.stop).c_str());
+        std::fprintf(stderr,
+                     "  size %d seed %d: %zu walls, cc %.3f, nearest %.3f, original %.3f, bound "
+                     "%.3f, %.3f s, %s\n",
+                     size, seed, layer.segments.size(), value(cc), value(nearest), value(original),
+                     cc.lower_bound_m, cc.solve_s, planner::to_string(cc.stop).c_str());
     }
     char exact[64] = "—";
-    if (!gap_exact.empty()) std::snprintf(exact, sizeof exact, "%.2f%% (%zu)", max_of(gap_exact), gap_exact.size());
-    std::printf("| %d | %d | %.1f%% | %.1f%% | %.2f%% / %.2f%% | %s | %.3f / %.3f | %.3f |\n", walls / seeds, seeds,
-                mean(saved_nearest), mean(saved_original), mean(gap_bound), max_of(gap_bound), exact, median(solve),
-                max_of(solve), median(nearest_s));
+    if (!gap_exact.empty())
+      std::snprintf(exact, sizeof exact, "%.2f%% (%zu)", max_of(gap_exact), gap_exact.size());
+    std::printf("| %d | %d | %.1f%% | %.1f%% | %.2f%% / %.2f%% | %s | %.3f / %.3f | %.3f |\n",
+                walls / seeds, seeds, mean(saved_nearest), mean(saved_original), mean(gap_bound),
+                max_of(gap_bound), exact, median(solve), max_of(solve), median(nearest_s));
     if (!seed_spread.empty())
-      std::printf("|   | spread of %d cc-tsp seeds per layout: mean %.3f%%, max %.3f%% |\n", planner_seeds, mean(seed_spread),
-                  max_of(seed_spread));
+      std::printf("|   | spread of %d cc-tsp seeds per layout: mean %.3f%%, max %.3f%% |\n",
+                  planner_seeds, mean(seed_spread), max_of(seed_spread));
     std::fflush(stdout);
   }
   return 0;

@@ -11,8 +11,8 @@
 using namespace ccbuild;
 
 static void BM_PlanLayer(benchmark::State& state) {
-  const floors::Layer layer =
-      floors::slice_plan_at(floors::generate_plan_with_segments(static_cast<int>(state.range(0)), 1), 1.0, 2.0);
+  const floors::Layer layer = floors::slice_plan_at(
+      floors::generate_plan_with_segments(static_cast<int>(state.range(0)), 1), 1.0, 2.0);
   const machine::MachineModel machine = machine::MachineModel::defaults();
   planner::PlanOptions options;
   options.time_limit_s = 60.0;
@@ -25,6 +25,11 @@ static void BM_PlanLayer(benchmark::State& state) {
   state.counters["walls"] = static_cast<double>(layer.segments.size());
   state.counters["gap_pct"] = 100.0 * gap;
 }
-BENCHMARK(BM_PlanLayer)->Arg(100)->Arg(1000)->Arg(5000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PlanLayer)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK_MAIN();

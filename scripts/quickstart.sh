@@ -11,3 +11,7 @@ echo "== ccbuild validate $example"
 echo
 echo "== ccbuild layers $example"
 ./build/ccbuild layers "$example"
+echo
+echo "== ccbuild plan-layer $example --floor 0 --layer 12 --objective time --svg build/house-floor0-layer12.svg"
+./build/ccbuild plan-layer "$example" --floor 0 --layer 12 --objective time --force \
+  --svg build/house-floor0-layer12.svg

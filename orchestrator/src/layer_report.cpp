@@ -110,9 +110,6 @@ std::string layer_plan_svg(const floors::Layer& layer, const planner::LayerPlan&
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(width, 0) << "\" height=\""
       << number(height, 0) << "\" viewBox=\"0 0 " << number(width, 0) << " " << number(height, 0)
       << "\">\n";
-  svg << "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"5\" refY=\"5\" markerWidth=\"5\" "
-         "markerHeight=\"5\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" "
-         "fill=\"#333\"/></marker></defs>\n";
   svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   const auto& e = plan.evaluation;
   svg << "<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">" << title << " — "
@@ -120,18 +117,25 @@ std::string layer_plan_svg(const floors::Layer& layer, const planner::LayerPlan&
       << " m / " << number(e.airtime_s, 1) << " s, layer " << number(e.layer_time_s, 1)
       << " s</text>\n";
   // Walls, each with an arrow at its middle pointing the way it is deposited.
+  std::ostringstream arrows;
   svg << "<g stroke=\"#333\" stroke-width=\"3\" fill=\"none\">\n";
   for (const auto& step : plan.sequence) {
     const auto& s = layer.segments[step.segment];
     Eigen::Vector2d a = layer.start_m(s), b = layer.end_m(s);
     if (step.reversed) std::swap(a, b);
-    const Eigen::Vector2d m = 0.5 * (a + b);
     svg << "<line x1=\"" << X(a.x()) << "\" y1=\"" << Y(a.y()) << "\" x2=\"" << X(b.x())
-        << "\" y2=\"" << Y(b.y()) << "\"/>";
-    svg << "<line x1=\"" << X(a.x()) << "\" y1=\"" << Y(a.y()) << "\" x2=\"" << X(m.x())
-        << "\" y2=\"" << Y(m.y()) << "\" marker-end=\"url(#arrow)\" stroke-width=\"1\"/>\n";
+        << "\" y2=\"" << Y(b.y()) << "\"/>\n";
+    // An arrowhead at the middle, pointing the way the wall is deposited (y is up).
+    const Eigen::Vector2d d = (b - a).normalized();
+    const Eigen::Vector2d m = 0.5 * (a + b);
+    const double size = 7.0 / scale;
+    const Eigen::Vector2d tip = m + d * size, n(-d.y(), d.x());
+    const Eigen::Vector2d left = m - d * size + n * size * 0.7,
+                          right = m - d * size - n * size * 0.7;
+    arrows << "<polygon points=\"" << X(tip.x()) << "," << Y(tip.y()) << " " << X(left.x()) << ","
+           << Y(left.y()) << " " << X(right.x()) << "," << Y(right.y()) << "\"/>\n";
   }
-  svg << "</g>\n";
+  svg << "</g>\n<g fill=\"#333\">\n" << arrows.str() << "</g>\n";
   // Air moves, dashed and numbered in order; lifted moves in red.
   svg << "<g fill=\"none\" stroke-width=\"1.2\" stroke-dasharray=\"5,4\">\n";
   int number_of_move = 0;

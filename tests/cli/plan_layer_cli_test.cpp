@@ -1,0 +1,121 @@
+// ccbuild plan-layer end to end: text and JSON answers, the SVG file, and bad input.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+using testing::run_ccbuild;
+
+TEST(PlanLayerCli, ReferenceExampleInText) {
+  const auto r =
+      run_ccbuild("plan-layer tests/data/plans/paper_example1.txt --start-vertex 1 --first-wall 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "airtime       25.000 m"));
+  EXPECT_TRUE(contains(r.out, "lower bound   25.000 m, gap 0.00%"));
+  EXPECT_TRUE(contains(r.out, "sequence      1 "));
+}
+
+TEST(PlanLayerCli, JsonCarriesEveryRequiredField) {
+  const auto r = run_ccbuild(
+      "plan-layer tests/data/plans/paper_example2.txt --start-vertex 1 --first-wall 1 "
+      "--metric rectilinear --objective time --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key :
+       {"algorithm", "metric", "objective", "airtime_distance", "airtime_s", "deposition_s",
+        "layer_time_s", "lower_bound_distance", "solve_s", "sequence", "moves", "max_idle_s"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["metric"], "rectilinear");
+  EXPECT_EQ(j["sequence"].size(), 8u);
+  EXPECT_EQ(j["sequence"][0], 1);
+  EXPECT_EQ(j["moves"].size(), 8u);
+  EXPECT_NEAR(j["layer_time_s"].get<double>(),
+              j["airtime_s"].get<double>() + j["deposition_s"].get<double>(), 1e-5);
+  const auto& move = j["moves"][1];
+  for (const char* key : {"from", "to", "distance", "time_s", "lifted", "rotation_rad"})
+    EXPECT_TRUE(move.contains(key));
+}
+
+TEST(PlanLayerCli, SameSeedSameJson) {
+  const std::string args =
+      "plan-layer config/buildings/house.yaml --floor 1 --layer 12 --objective time --seed 7 "
+      "--json";
+  auto a = nlohmann::json::parse(run_ccbuild(args).out);
+  auto b = nlohmann::json::parse(run_ccbuild(args).out);
+  a.erase("solve_s");
+  b.erase("solve_s");
+  EXPECT_EQ(a.dump(), b.dump());
+}
+
+TEST(PlanLayerCli, BuildingLayerWithCutWalls) {
+  const auto r = run_ccbuild("plan-layer config/buildings/house.yaml --floor 0 --layer 12 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["sequence"].size(), j["walls"].get<std::size_t>());
+  EXPECT_EQ(j["sequence_pieces"].size(), j["walls"].get<std::size_t>());
+  EXPECT_LE(j["lower_bound_distance"].get<double>(), j["airtime_distance"].get<double>() + 1e-9);
+}
+
+TEST(PlanLayerCli, SvgIsWrittenWholeAndNotOverwrittenUnasked) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_svg_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string svg = (dir / "plan.svg").string();
+  const auto first = run_ccbuild("plan-layer tests/data/plans/cottage.yaml --svg " + svg);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(contains(text, "<svg"));
+  EXPECT_TRUE(contains(text, "</svg>"));
+  EXPECT_TRUE(contains(text, "start"));
+  const auto again = run_ccbuild("plan-layer tests/data/plans/cottage.yaml --svg " + svg);
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_TRUE(contains(again.err, "--force"));
+  EXPECT_EQ(run_ccbuild("plan-layer tests/data/plans/cottage.yaml --force --svg " + svg).exit_code,
+            0);
+  // Never over an input.
+  const auto onto_input = run_ccbuild(
+      "plan-layer tests/data/plans/cottage.yaml --force --svg tests/data/plans/cottage.yaml");
+  EXPECT_EQ(onto_input.exit_code, 2);
+  fs::remove_all(dir);
+}
+
+TEST(PlanLayerCli, BadInputExitsTwoWithAReason) {
+  struct Case {
+    const char* args;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"plan-layer tests/data/broken/unknown_vertex.yaml", "unknown_vertex.yaml:7"},
+      {"plan-layer tests/data/plans/cottage.yaml --first-wall 3",
+       "--first-wall: needs --start-vertex"},
+      {"plan-layer tests/data/plans/cottage.yaml --start-vertex 99",
+       "vertex 99 is not in the plan"},
+      {"plan-layer tests/data/plans/cottage.yaml --start-vertex 1 --first-wall 42",
+       "wall 42 is not in this layer"},
+      {"plan-layer tests/data/plans/cottage.yaml --metric manhattan", "manhattan"},
+      {"plan-layer tests/data/plans/cottage.yaml --time-limit -1", "--time-limit"},
+      {"plan-layer config/buildings/apartment.yaml --algorithm exact",
+       "exact handles layers of at most"},
+      {"plan-layer config/buildings/house.yaml --layer 99", "no layer 99"},
+      {"plan-layer tests/data/plans/cottage.yaml --machine tests/data/machines/missing_joint.yaml",
+       "bridge_why"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_ccbuild(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args;
+    EXPECT_TRUE(contains(r.err, c.message)) << c.args;
+    EXPECT_TRUE(r.out.empty()) << c.args << ": " << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace ccbuild
