@@ -48,9 +48,7 @@ class PointMerger {
 
 // Cuts every wall at the openings active at height `mid_m` (nullopt: none).
 Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceOptions& options) {
-  CCBUILD_CHECK(options.merge_tolerance_m > 0.0, "merge tolerance is positive");
-  Layer layer;
-  PointMerger merger(options.merge_tolerance_m, layer.points);
+  std::vector<PieceSpec> pieces;
   for (const auto& wall : plan.walls) {
     const Eigen::Vector2d a = plan.wall_start_m(wall);
     const Eigen::Vector2d b = plan.wall_end_m(wall);
@@ -63,38 +61,83 @@ Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceO
       }
     }
     std::sort(gaps.begin(), gaps.end());
-    std::vector<std::pair<double, double>> solid;
     double from = 0.0;
+    const Eigen::Vector2d dir = (b - a) / length;
+    auto add = [&](double s0, double s1) {
+      const Eigen::Vector2d p = s0 == 0.0 ? a : Eigen::Vector2d(a + dir * s0);
+      const Eigen::Vector2d q = s1 == length ? b : Eigen::Vector2d(a + dir * s1);
+      pieces.push_back({wall.id, p, q, s0});
+    };
     for (const auto& [g0, g1] : gaps) {
-      if (g0 > from) solid.emplace_back(from, g0);
+      if (g0 > from) add(from, g0);
       from = std::max(from, g1);
     }
-    if (from < length) solid.emplace_back(from, length);
-    std::erase_if(solid,
-                  [&](const auto& s) { return s.second - s.first <= options.merge_tolerance_m; });
+    if (from < length) add(from, length);
+  }
+  return layer_from_pieces(pieces, options);
+}
 
-    const Eigen::Vector2d dir = (b - a) / length;
-    for (std::size_t k = 0; k < solid.size(); ++k) {
+}  // namespace
+
+Layer layer_from_pieces(const std::vector<PieceSpec>& pieces, const SliceOptions& options) {
+  CCBUILD_CHECK(options.merge_tolerance_m > 0.0, "merge tolerance is positive");
+  // Pieces grouped by wall, walls in order of first appearance, pieces along the wall.
+  std::vector<std::int64_t> wall_order;
+  std::unordered_map<std::int64_t, std::vector<const PieceSpec*>> by_wall;
+  for (const auto& p : pieces) {
+    if ((p.end_m - p.start_m).norm() <= options.merge_tolerance_m) continue;
+    auto [it, fresh] = by_wall.try_emplace(p.wall_id);
+    if (fresh) wall_order.push_back(p.wall_id);
+    it->second.push_back(&p);
+  }
+  Layer layer;
+  PointMerger merger(options.merge_tolerance_m, layer.points);
+  for (std::int64_t id : wall_order) {
+    auto& list = by_wall[id];
+    std::stable_sort(list.begin(), list.end(), [](const PieceSpec* a, const PieceSpec* b) {
+      return a->along_m < b->along_m;
+    });
+    const std::size_t first = layer.segments.size();
+    for (const PieceSpec* p : list) {
       LayerSegment seg;
-      seg.wall_id = wall.id;
-      seg.piece = static_cast<int>(k);
-      seg.piece_count = static_cast<int>(solid.size());
-      const Eigen::Vector2d p =
-          solid[k].first == 0.0 ? a : Eigen::Vector2d(a + dir * solid[k].first);
-      const Eigen::Vector2d q =
-          solid[k].second == length ? b : Eigen::Vector2d(a + dir * solid[k].second);
-      seg.start_point = merger.add(p);
-      seg.end_point = merger.add(q);
+      seg.wall_id = id;
+      seg.start_point = merger.add(p->start_m);
+      seg.end_point = merger.add(p->end_m);
       if (seg.start_point == seg.end_point) continue;
       seg.length_m = (layer.points[seg.end_point] - layer.points[seg.start_point]).norm();
       layer.segments.push_back(seg);
+    }
+    const int count = static_cast<int>(layer.segments.size() - first);
+    for (int k = 0; k < count; ++k) {
+      layer.segments[first + k].piece = k;
+      layer.segments[first + k].piece_count = count;
     }
   }
   layer.geometry_hash = geometry_hash(layer);
   return layer;
 }
 
-}  // namespace
+Layer sub_layer(const Layer& layer, const std::vector<int>& segments) {
+  Layer out;
+  out.floor_index = layer.floor_index;
+  out.index = layer.index;
+  out.z_bottom_m = layer.z_bottom_m;
+  out.z_top_m = layer.z_top_m;
+  std::unordered_map<int, int> point_map;
+  auto point = [&](int p) {
+    auto [it, fresh] = point_map.try_emplace(p, static_cast<int>(out.points.size()));
+    if (fresh) out.points.push_back(layer.points[p]);
+    return it->second;
+  };
+  for (int s : segments) {
+    LayerSegment seg = layer.segments[s];
+    seg.start_point = point(seg.start_point);
+    seg.end_point = point(seg.end_point);
+    out.segments.push_back(seg);
+  }
+  out.geometry_hash = geometry_hash(out);
+  return out;
+}
 
 double Layer::total_length_m() const {
   double total = 0.0;

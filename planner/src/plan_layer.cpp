@@ -116,8 +116,8 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     detail::ExactPolishSettings polish;
     const bool small = n <= 16;
     polish.window = small ? static_cast<std::size_t>(n) : 8;
-    polish.max_kicks = options.max_kicks ? *options.max_kicks : (small ? 500 : 20);
-    polish.max_step_evaluations = small ? 40'000'000 : 4'000'000;
+    polish.max_kicks = options.polish_kicks ? *options.polish_kicks : (small ? 500 : 20);
+    polish.max_step_evaluations = small ? 40'000'000 : std::min<long>(4'000'000, 400L * n * n);
     out.sequence =
         detail::improve_exact_time(model, out.sequence, path, prefix.size(), polish, rng, stop);
     if (stop.should_stop()) out.reason = stop.reason();

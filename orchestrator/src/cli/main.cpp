@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add_validate_command(app, exit_code);
   add_layers_command(app, exit_code);
   add_plan_layer_command(app, exit_code);
+  add_sweep_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

@@ -10,6 +10,8 @@
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/orchestrator/layer_report.hpp"
+#include "ccbuild/orchestrator/multi_report.hpp"
+#include "ccbuild/planner/multi_nozzle.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -35,7 +37,64 @@ struct PlanLayerOptions {
   bool json = false;
   std::string svg;
   bool force = false;
+  // Several nozzles.
+  int nozzles = 1;
+  std::string gantry_width;
+  std::string rail_axis = "x";
+  std::string method = "auto";
+  std::string platform_width;
 };
+
+// A length flag: "5ft", "1.5m", or a bare number in the input's own unit.
+double length_option(const std::string& text, const char* flag, floors::LengthUnit unit) {
+  const auto value = floors::parse_length_m(text, unit);
+  if (!value)
+    throw InputError("", 0, flag, "expected a length such as 1.5, 1.5m or 5ft, got '" + text + "'");
+  return *value;
+}
+
+void print_multi(const PlanLayerOptions& o, const std::string& where, const floors::Layer& layer,
+                 const planner::MultiNozzlePlan& plan, const planner::MultiNozzleOptions& options) {
+  std::cout << format("%s, %s: %zu walls, %d nozzles on %s rails, gantries %.3f m wide%s\n",
+                      o.file.c_str(), where.c_str(), layer.segments.size(), options.nozzles,
+                      o.rail_axis.c_str(), options.gantry_width_m,
+                      options.platform_width_m
+                          ? format(", platform %.3f m", *options.platform_width_m).c_str()
+                          : "");
+  if (plan.collision_free) {
+    std::cout << format("  %-13s %.2f s; one nozzle %.2f s: %.1f%% saved\n", "layer time",
+                        plan.layer_time_s, plan.single_nozzle_time_s,
+                        100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
+    std::cout << format("  %-13s %.2f s (busy time summed over nozzles)\n", "machine time",
+                        plan.machine_time_s);
+    std::cout << format("  %-13s %.3f m (gantry width %.3f m): collision-free\n", "min gap",
+                        plan.min_gap_m, options.gantry_width_m);
+    if (plan.platform_travel_s > 0)
+      std::cout << format("  %-13s %.2f s\n", "platform", plan.platform_travel_s);
+  } else {
+    std::cout << format("  %-13s none found: %s\n", "plan", plan.failure.c_str());
+  }
+  for (std::size_t k = 0; k < plan.stages.size(); ++k) {
+    const auto& stage = plan.stages[k];
+    if (plan.stages.size() > 1)
+      std::cout << format("  stage %zu       %s %.3f-%.3f m, %.2f s\n", k + 1, o.rail_axis.c_str(),
+                          stage.from_m, stage.to_m, stage.time_s);
+    std::cout << format("  %-13s %s\n", "method",
+                        stage.nozzles.empty() ? "none" : stage.method_detail.c_str());
+    for (const auto& attempt : stage.attempts)
+      std::cout << format("  %-13s %s\n", "", attempt.c_str());
+    for (const auto& n : stage.nozzles) {
+      std::cout << format(
+          "  nozzle %-6d section %s %.3f-%.3f m, %zu walls, start offset %d, busy %.2f s, waits "
+          "%.2f s\n",
+          n.nozzle + 1, o.rail_axis.c_str(), n.section_from_m, n.section_to_m, n.sequence.size(),
+          n.start_offset, n.busy_s, n.wait_s);
+      if (!n.sequence.empty())
+        std::cout << format("  %-13s %s\n", "",
+                            orchestrator::signed_sequence(n.layer, n.sequence).c_str());
+    }
+  }
+}
 
 machine::MachineModel load_machine_for(const PlanLayerOptions& options, const LoadedInput& input,
                                        std::string& description) {
@@ -122,6 +181,37 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     }
   }
 
+  if (o.nozzles >= 2) {
+    if (o.start_vertex)
+      throw InputError("", 0, "--start-vertex", "multi-nozzle paths are closed tours");
+    if (o.gantry_width.empty())
+      throw InputError("", 0, "--gantry-width", "is required with --nozzles");
+    planner::MultiNozzleOptions multi;
+    multi.nozzles = o.nozzles;
+    multi.gantry_width_m = length_option(o.gantry_width, "--gantry-width", b.units);
+    multi.rail_axis = o.rail_axis == "y" ? planner::RailAxis::kY : planner::RailAxis::kX;
+    multi.method = *planner::parse_multi_method(o.method);
+    if (!o.platform_width.empty())
+      multi.platform_width_m = length_option(o.platform_width, "--platform-width", b.units);
+    multi.planning = options;
+    const planner::MultiNozzlePlan plan = planner::plan_layer_multi(layer, machine, multi);
+    if (!o.svg.empty())
+      write_file_atomically(o.svg, orchestrator::multi_plan_svg(plan, multi, o.file + ", " + where),
+                            o.force, {o.file});
+    if (o.json) {
+      auto out = orchestrator::multi_plan_json(plan, multi);
+      out["file"] = o.file;
+      out["layer"] = where;
+      out["seed"] = o.seed;
+      std::cout << out.dump(2) << "\n";
+    } else {
+      print_multi(o, where, layer, plan, multi);
+    }
+    exit_code = plan.collision_free ? kExitOk : kExitNo;
+    return;
+  }
+  if (o.nozzles < 1) throw InputError("", 0, "--nozzles", "must be at least 1");
+
   const planner::LayerPlan plan = planner::plan_layer(layer, machine, options);
   const auto& e = plan.evaluation;
   if (!o.svg.empty())
@@ -190,7 +280,10 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       "  ccbuild plan-layer tests/data/plans/paper_example1.txt --start-vertex 1 --first-wall 1\n"
       "  ccbuild plan-layer config/buildings/house.yaml --floor 1 --layer 12 --objective time "
       "--svg l12.svg\n"
-      "  ccbuild plan-layer plan.yaml --algorithm nearest --metric rectilinear --json");
+      "  ccbuild plan-layer plan.yaml --algorithm nearest --metric rectilinear --json\n"
+      "  ccbuild plan-layer config/buildings/apartment.yaml --layer 10 --nozzles 2 --gantry-width "
+      "5ft --svg two.svg\n"
+      "Exit code 1 when no collision-free multi-nozzle plan was found (the reasons are printed).");
   command->add_option("PLAN", o->file, "Floor plan (YAML, JSON, table text) or building file")
       ->required();
   command->add_option("--floor", o->floor, "Floor of a building (0 = ground)")
@@ -236,6 +329,31 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
   command->add_flag("--json", o->json, "Print one JSON object instead of text");
   command->add_option("--svg", o->svg, "Also draw the plan into this SVG file");
   command->add_flag("--force", o->force, "Overwrite an existing --svg file");
+  command
+      ->add_option(
+          "--nozzles", o->nozzles,
+          "Nozzles on common rails (2 or more: sections, collision-free paths, x/t checks)")
+      ->capture_default_str();
+  command->add_option("--gantry-width", o->gantry_width,
+                      "With --nozzles: closest two gantry centres may come, e.g. 1.5m or 5ft "
+                      "(bare: the file's unit)");
+  command
+      ->add_option("--rail-axis", o->rail_axis, "With --nozzles: the axis the gantries ride along")
+      ->check(CLI::IsMember({"x", "y"}))
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--method", o->method,
+          "With --nozzles: auto (path cycling, buffer zone path cycling, auxiliary buffer zone, "
+          "then "
+          "waits), path-cycling, global-path-cycling, bz-path-cycling, aux-buffer-zone, delay")
+      ->check(CLI::IsMember({"auto", "path-cycling", "global-path-cycling", "bz-path-cycling",
+                             "aux-buffer-zone", "delay"}))
+      ->capture_default_str();
+  command->add_option(
+      "--platform-width", o->platform_width,
+      "With --nozzles: an overhead platform this long along the rails; longer layouts are built in "
+      "platform-wide stages");
   add_plan_input_options(*command, o->plan);
   command->callback([o, &exit_code] { run_plan_layer(*o, exit_code); });
 }

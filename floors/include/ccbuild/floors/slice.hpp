@@ -45,6 +45,23 @@ struct SliceOptions {
   double merge_tolerance_m = 1e-3;
 };
 
+/// A straight piece of a wall, before endpoints are merged into a layer.
+struct PieceSpec {
+  std::int64_t wall_id = 0;
+  Eigen::Vector2d start_m = Eigen::Vector2d::Zero();  ///< in the wall's own direction
+  Eigen::Vector2d end_m = Eigen::Vector2d::Zero();
+  double along_m = 0.0;  ///< where the piece starts along its wall: orders the pieces
+};
+
+/// Builds a layer from pieces: merges endpoints closer than the tolerance, drops pieces
+/// shorter than it, numbers each wall's pieces along the wall, sorts segments by wall
+/// (in first-appearance order) then piece, and computes the geometry hash.
+Layer layer_from_pieces(const std::vector<PieceSpec>& pieces, const SliceOptions& options = {});
+
+/// The layer made of some of `layer`'s segments (indices), keeping their wall ids and
+/// piece numbers; points are renumbered and the hash recomputed.
+Layer sub_layer(const Layer& layer, const std::vector<int>& segments);
+
 /// Number of layers of a floor: ceil(height / layer height), with a relative tolerance
 /// so that 3.0 / 0.1 is 30 and not 31.
 int layer_count(double floor_height_m, double layer_height_m);

@@ -40,6 +40,10 @@ struct PlanOptions {
   std::uint64_t seed = 1;
   /// Kicks of the chained local search; unset: chosen from the layer's size.
   std::optional<long> max_kicks;
+  /// Kicks of the exact-time polish (time objective only); unset: 500 on layers of up to
+  /// 16 walls (enough to reach the optimum the exact solver finds), 20 above; 0 skips
+  /// the polish.
+  std::optional<long> polish_kicks;
   const std::atomic<bool>* cancel = nullptr;
 };
 
