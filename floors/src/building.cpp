@@ -5,6 +5,7 @@
 #include <set>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "plan_internal.hpp"
 
@@ -12,12 +13,6 @@ namespace ccbuild::floors {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string metres(double value_m) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.3f m", value_m);
-  return text;
-}
 
 // Profiles are opened by their owners; here we only resolve and check they exist.
 fs::path resolve_reference(const Field& field, const fs::path& base, SourceRef& source) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "plan_internal.hpp"
@@ -14,12 +15,6 @@ namespace ccbuild::floors {
 namespace {
 
 constexpr double kLengthTolerance_m = 1e-6;
-
-std::string metres(double value_m) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.3f m", value_m);
-  return text;
-}
 
 std::string where(const SourceRef& source) {
   if (source.line > 0) return "line " + std::to_string(source.line);

@@ -86,6 +86,32 @@ std::optional<Sequence> exact_sequence(const CostModel& model, const std::vector
 
   const std::size_t masks = std::size_t{1} << n;
   const std::uint32_t full = static_cast<std::uint32_t>(masks - 1);
+  // Every wall not yet built still needs one air move into it, which costs at least the
+  // cheapest such move from anywhere (short-way turn, no lift): a bound on what remains,
+  // used to prune states that cannot beat the best tour known.
+  std::vector<double> cheapest_in(n, kInf);
+  for (int a = 0; a < S; ++a) {
+    for (int b = 0; b < S; ++b) {
+      if (a / 2 == b / 2) continue;
+      const int ab = a * S + b;
+      double c = dist[ab];
+      if (timed) {
+        const double turn_s =
+            std::abs(wrap_angle(heading[b] - heading[a])) / machine.rotation_speed_rad_s;
+        c = dist[ab] <= 1e-9 ? turn_s
+                             : (machine.rotate_while_moving ? std::max(motion[ab], turn_s)
+                                                            : motion[ab] + turn_s);
+      }
+      cheapest_in[b / 2] = std::min(cheapest_in[b / 2], c);
+    }
+  }
+  std::vector<double> remaining(masks, 0.0);  // bound for the walls outside each mask
+  for (std::uint32_t mask = 0; mask < masks; ++mask) {
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j)
+      if (!(mask >> j & 1)) sum += cheapest_in[j];
+    remaining[mask] = sum;
+  }
   std::vector<double> value(masks * S * K);
   std::vector<std::int32_t> parent(masks * S * K);
   auto index = [&](std::uint32_t mask, int s, int k) {
@@ -112,7 +138,7 @@ std::optional<Sequence> exact_sequence(const CostModel& model, const std::vector
         if (!(mask >> (a / 2) & 1)) continue;
         for (int ka = 0; ka < K; ++ka) {
           const double v = value[index(mask, a, ka)];
-          if (v >= best) continue;
+          if (v + remaining[mask] >= best) continue;
           for (int b = 0; b < S; ++b) {
             const int j = b / 2;
             if (mask >> j & 1) continue;
@@ -128,7 +154,7 @@ std::optional<Sequence> exact_sequence(const CostModel& model, const std::vector
             }
             const double w = v + cost;
             const std::size_t target = index(mask | (1u << j), b, kb);
-            if (w < value[target] && w < best) {
+            if (w < value[target] && w + remaining[mask | (1u << j)] < best) {
               value[target] = w;
               parent[target] = a * K + ka;
             }

@@ -1,31 +1,8 @@
 #include "cli_common.hpp"
 
-#include <cstdarg>
-#include <cstdio>
-
 #include "ccbuild/common/input_error.hpp"
 
 namespace ccbuild::cli {
-
-std::string format(const char* pattern, ...) {
-  va_list args;
-  va_start(args, pattern);
-  char small[512];
-  va_list copy;
-  va_copy(copy, args);
-  const int needed = std::vsnprintf(small, sizeof small, pattern, copy);
-  va_end(copy);
-  std::string out;
-  if (needed < static_cast<int>(sizeof small)) {
-    out.assign(small, needed < 0 ? 0 : needed);
-  } else {
-    out.resize(needed + 1);
-    std::vsnprintf(out.data(), out.size(), pattern, args);
-    out.resize(needed);
-  }
-  va_end(args);
-  return out;
-}
 
 void add_plan_input_options(CLI::App& command, PlanInputOptions& options) {
   command

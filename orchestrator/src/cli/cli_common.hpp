@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/plan.hpp"
 
@@ -16,8 +17,7 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitNo = 1;  ///< the run worked; the answer is "no" (infeasible, collision)
 inline constexpr int kExitBadInput = 2;  ///< bad input or usage
 
-/// printf into a std::string.
-std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
+using ::ccbuild::printf_string;
 
 /// Options every command that reads a single plan shares.
 struct PlanInputOptions {

@@ -25,8 +25,8 @@ void run_layers(const LayersOptions& options, int& exit_code) {
   const floors::Building& b = input.building;
   if (options.floor && (*options.floor < 0 || *options.floor >= static_cast<int>(b.floors.size())))
     throw InputError("", 0, "--floor",
-                     format("no floor %d; %s has floors 0 to %zu", *options.floor,
-                            options.file.c_str(), b.floors.size() - 1));
+                     printf_string("no floor %d; %s has floors 0 to %zu", *options.floor,
+                                   options.file.c_str(), b.floors.size() - 1));
   const orchestrator::BuildingSummary summary = orchestrator::summarize_building(b);
 
   if (options.json) {
@@ -60,25 +60,25 @@ void run_layers(const LayersOptions& options, int& exit_code) {
     return;
   }
 
-  std::cout << format("%s: layers of %.3f m, %d distinct geometries in all\n", options.file.c_str(),
-                      b.layer_height_m, summary.distinct_geometries);
+  std::cout << printf_string("%s: layers of %.3f m, %d distinct geometries in all\n",
+                             options.file.c_str(), b.layer_height_m, summary.distinct_geometries);
   for (const auto& f : summary.floors) {
     if (options.floor && f.floor_index != *options.floor) continue;
     std::cout << "\n"
-              << format(
+              << printf_string(
                      "floor %d '%s': %.3f m high from %.3f m, %d layers, %d distinct geometries\n",
                      f.floor_index, f.name.c_str(), f.height_m, f.base_elevation_m, f.layer_count,
                      f.distinct_geometries);
-    std::cout << format("  %-13s %-9s %-16s %6s %9s %12s\n", "layers", "geometry", "hash", "walls",
-                        "segments", "wall length");
+    std::cout << printf_string("  %-13s %-9s %-16s %6s %9s %12s\n", "layers", "geometry", "hash",
+                               "walls", "segments", "wall length");
     for (const auto& r : f.runs) {
       const std::string range =
           r.first_layer == r.last_layer
               ? std::to_string(r.first_layer)
               : std::to_string(r.first_layer) + "-" + std::to_string(r.last_layer);
-      std::cout << format("  %-13s G%-8d %-16s %6d %9d %10.2f m\n", range.c_str(), r.geometry_label,
-                          floors::hash_to_hex(r.geometry_hash).c_str(), r.wall_count,
-                          r.segment_count, r.wall_length_m);
+      std::cout << printf_string("  %-13s G%-8d %-16s %6d %9d %10.2f m\n", range.c_str(),
+                                 r.geometry_label, floors::hash_to_hex(r.geometry_hash).c_str(),
+                                 r.wall_count, r.segment_count, r.wall_length_m);
     }
   }
   exit_code = kExitOk;

@@ -45,6 +45,15 @@ struct PlanLayerOptions {
   std::string platform_width;
 };
 
+// What the JSON answer was computed from.
+nlohmann::ordered_json annotated(nlohmann::ordered_json out, const PlanLayerOptions& o,
+                                 const std::string& where) {
+  out["file"] = o.file;
+  out["layer"] = where;
+  out["seed"] = o.seed;
+  return out;
+}
+
 // A length flag: "5ft", "1.5m", or a bare number in the input's own unit.
 double length_option(const std::string& text, const char* flag, floors::LengthUnit unit) {
   const auto value = floors::parse_length_m(text, unit);
@@ -55,43 +64,44 @@ double length_option(const std::string& text, const char* flag, floors::LengthUn
 
 void print_multi(const PlanLayerOptions& o, const std::string& where, const floors::Layer& layer,
                  const planner::MultiNozzlePlan& plan, const planner::MultiNozzleOptions& options) {
-  std::cout << format("%s, %s: %zu walls, %d nozzles on %s rails, gantries %.3f m wide%s\n",
-                      o.file.c_str(), where.c_str(), layer.segments.size(), options.nozzles,
-                      o.rail_axis.c_str(), options.gantry_width_m,
-                      options.platform_width_m
-                          ? format(", platform %.3f m", *options.platform_width_m).c_str()
-                          : "");
+  std::cout << printf_string(
+      "%s, %s: %zu walls, %d nozzles on %s rails, gantries %.3f m wide%s\n", o.file.c_str(),
+      where.c_str(), layer.segments.size(), options.nozzles, o.rail_axis.c_str(),
+      options.gantry_width_m,
+      options.platform_width_m
+          ? printf_string(", platform %.3f m", *options.platform_width_m).c_str()
+          : "");
   if (plan.collision_free) {
-    std::cout << format("  %-13s %.2f s; one nozzle %.2f s: %.1f%% saved\n", "layer time",
-                        plan.layer_time_s, plan.single_nozzle_time_s,
-                        100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
-    std::cout << format("  %-13s %.2f s (busy time summed over nozzles)\n", "machine time",
-                        plan.machine_time_s);
-    std::cout << format("  %-13s %.3f m (gantry width %.3f m): collision-free\n", "min gap",
-                        plan.min_gap_m, options.gantry_width_m);
+    std::cout << printf_string("  %-13s %.2f s; one nozzle %.2f s: %.1f%% saved\n", "layer time",
+                               plan.layer_time_s, plan.single_nozzle_time_s,
+                               100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
+    std::cout << printf_string("  %-13s %.2f s (busy time summed over nozzles)\n", "machine time",
+                               plan.machine_time_s);
+    std::cout << printf_string("  %-13s %.3f m (gantry width %.3f m): collision-free\n", "min gap",
+                               plan.min_gap_m, options.gantry_width_m);
     if (plan.platform_travel_s > 0)
-      std::cout << format("  %-13s %.2f s\n", "platform", plan.platform_travel_s);
+      std::cout << printf_string("  %-13s %.2f s\n", "platform", plan.platform_travel_s);
   } else {
-    std::cout << format("  %-13s none found: %s\n", "plan", plan.failure.c_str());
+    std::cout << printf_string("  %-13s none found: %s\n", "plan", plan.failure.c_str());
   }
   for (std::size_t k = 0; k < plan.stages.size(); ++k) {
     const auto& stage = plan.stages[k];
     if (plan.stages.size() > 1)
-      std::cout << format("  stage %zu       %s %.3f-%.3f m, %.2f s\n", k + 1, o.rail_axis.c_str(),
-                          stage.from_m, stage.to_m, stage.time_s);
-    std::cout << format("  %-13s %s\n", "method",
-                        stage.nozzles.empty() ? "none" : stage.method_detail.c_str());
+      std::cout << printf_string("  stage %zu       %s %.3f-%.3f m, %.2f s\n", k + 1,
+                                 o.rail_axis.c_str(), stage.from_m, stage.to_m, stage.time_s);
+    std::cout << printf_string("  %-13s %s\n", "method",
+                               stage.nozzles.empty() ? "none" : stage.method_detail.c_str());
     for (const auto& attempt : stage.attempts)
-      std::cout << format("  %-13s %s\n", "", attempt.c_str());
+      std::cout << printf_string("  %-13s %s\n", "", attempt.c_str());
     for (const auto& n : stage.nozzles) {
-      std::cout << format(
+      std::cout << printf_string(
           "  nozzle %-6d section %s %.3f-%.3f m, %zu walls, start offset %d, busy %.2f s, waits "
           "%.2f s\n",
           n.nozzle + 1, o.rail_axis.c_str(), n.section_from_m, n.section_to_m, n.sequence.size(),
           n.start_offset, n.busy_s, n.wait_s);
       if (!n.sequence.empty())
-        std::cout << format("  %-13s %s\n", "",
-                            orchestrator::signed_sequence(n.layer, n.sequence).c_str());
+        std::cout << printf_string("  %-13s %s\n", "",
+                                   orchestrator::signed_sequence(n.layer, n.sequence).c_str());
     }
   }
 }
@@ -125,8 +135,8 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   const floors::Building& b = input.building;
   if (o.floor < 0 || o.floor >= static_cast<int>(b.floors.size()))
     throw InputError("", 0, "--floor",
-                     format("no floor %d; %s has floors 0 to %zu", o.floor, o.file.c_str(),
-                            b.floors.size() - 1));
+                     printf_string("no floor %d; %s has floors 0 to %zu", o.floor, o.file.c_str(),
+                                   b.floors.size() - 1));
   const floors::Floor& floor = b.floors[o.floor];
   floors::Layer layer;
   std::string where;
@@ -134,11 +144,11 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     const auto layers = floors::slice_floor(floor, b.layer_height_m);
     const int k = o.layer.value_or(0);
     if (k < 0 || k >= static_cast<int>(layers.size()))
-      throw InputError(
-          "", 0, "--layer",
-          format("no layer %d; floor %d has layers 0 to %zu", k, o.floor, layers.size() - 1));
+      throw InputError("", 0, "--layer",
+                       printf_string("no layer %d; floor %d has layers 0 to %zu", k, o.floor,
+                                     layers.size() - 1));
     layer = layers[k];
-    where = format("floor %d layer %d", o.floor, k);
+    where = printf_string("floor %d layer %d", o.floor, k);
   } else {
     layer = floors::plan_as_layer(floor.plan);
     where = "all walls whole";
@@ -160,7 +170,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     const floors::Vertex* v = floor.plan.find_vertex(*o.start_vertex);
     if (v == nullptr)
       throw InputError("", 0, "--start-vertex",
-                       format("vertex %lld is not in the plan", (long long)*o.start_vertex));
+                       printf_string("vertex %lld is not in the plan", (long long)*o.start_vertex));
     options.path = planner::PathSpec::open_from(v->position_m);
     if (o.first_wall) {
       const std::int64_t id = std::llabs(*o.first_wall);
@@ -176,7 +186,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
       if (chosen < 0)
         throw InputError(
             "", 0, "--first-wall",
-            format("wall %lld is not in this layer (%s)", (long long)id, where.c_str()));
+            printf_string("wall %lld is not in this layer (%s)", (long long)id, where.c_str()));
       options.path.first = planner::Step{chosen, reversed};
     }
   }
@@ -199,11 +209,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
       write_file_atomically(o.svg, orchestrator::multi_plan_svg(plan, multi, o.file + ", " + where),
                             o.force, {o.file});
     if (o.json) {
-      auto out = orchestrator::multi_plan_json(plan, multi);
-      out["file"] = o.file;
-      out["layer"] = where;
-      out["seed"] = o.seed;
-      std::cout << out.dump(2) << "\n";
+      std::cout << annotated(orchestrator::multi_plan_json(plan, multi), o, where).dump(2) << "\n";
     } else {
       print_multi(o, where, layer, plan, multi);
     }
@@ -219,49 +225,49 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
                           o.force, {o.file});
 
   if (o.json) {
-    auto out = orchestrator::layer_plan_json(layer, plan);
-    out["file"] = o.file;
-    out["layer"] = where;
-    out["seed"] = o.seed;
+    auto out = annotated(orchestrator::layer_plan_json(layer, plan), o, where);
     out["idle_limit_s"] = machine.nozzle_idle_limit_s;
     std::cout << out.dump(2) << "\n";
   } else {
     const double unit = floors::meters_per(b.units);
     auto length = [&](double m) {
-      std::string text = format("%.3f m", m);
-      if (b.units == floors::LengthUnit::kFoot) text += format(" (%.3f ft)", m / unit);
+      std::string text = printf_string("%.3f m", m);
+      if (b.units == floors::LengthUnit::kFoot) text += printf_string(" (%.3f ft)", m / unit);
       return text;
     };
-    std::cout << format("%s, %s: %zu walls\n", o.file.c_str(), where.c_str(),
-                        layer.segments.size());
-    std::cout << format("  %-13s %s, %s metric, %s objective, %s\n", "algorithm",
-                        o.algorithm.c_str(), o.metric.c_str(), o.objective.c_str(),
-                        plan.path.closed ? "closed tour" : "open path from the start vertex");
-    std::cout << format("  %-13s %s\n", "machine", machine_description.c_str());
-    std::cout << format("  %-13s %s, %.2f s (%d lifts, %.1f turns of the nozzle)\n", "airtime",
-                        length(e.airtime_distance_m).c_str(), e.airtime_s, e.lift_count,
-                        e.total_rotation_rad / (2 * M_PI));
-    std::cout << format("  %-13s %.2f s\n", "deposition", e.deposition_s);
-    std::cout << format("  %-13s %.2f s\n", "layer time", e.layer_time_s);
+    std::cout << printf_string("%s, %s: %zu walls\n", o.file.c_str(), where.c_str(),
+                               layer.segments.size());
+    std::cout << printf_string(
+        "  %-13s %s, %s metric, %s objective, %s\n", "algorithm", o.algorithm.c_str(),
+        o.metric.c_str(), o.objective.c_str(),
+        plan.path.closed ? "closed tour" : "open path from the start vertex");
+    std::cout << printf_string("  %-13s %s\n", "machine", machine_description.c_str());
+    std::cout << printf_string("  %-13s %s, %.2f s (%d lifts, %.1f turns of the nozzle)\n",
+                               "airtime", length(e.airtime_distance_m).c_str(), e.airtime_s,
+                               e.lift_count, e.total_rotation_rad / (2 * M_PI));
+    std::cout << printf_string("  %-13s %.2f s\n", "deposition", e.deposition_s);
+    std::cout << printf_string("  %-13s %.2f s\n", "layer time", e.layer_time_s);
     const double gap = plan.gap();
-    std::cout << format(
+    std::cout << printf_string(
         "  %-13s %s, gap %s\n", "lower bound", length(plan.lower_bound_m).c_str(),
-        std::isnan(gap) ? "n/a (bound is 0)" : format("%.2f%%", 100.0 * gap).c_str());
-    std::cout << format("  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
-                        machine.nozzle_idle_limit_s,
-                        e.idle_limit_violations
-                            ? format(": %d move(s) over the limit", e.idle_limit_violations).c_str()
-                            : "");
-    std::cout << format("  %-13s %.3f s, %s%s\n", "solve", plan.solve_s,
-                        planner::to_string(plan.stop).c_str(),
-                        plan.kicks ? format(" after %ld kicks", plan.kicks).c_str() : "");
-    std::cout << format("  %-13s %s\n", "sequence",
-                        orchestrator::signed_sequence(layer, plan.sequence).c_str());
-    if (!o.svg.empty()) std::cout << format("  %-13s %s\n", "drawing", o.svg.c_str());
+        std::isnan(gap) ? "n/a (bound is 0)" : printf_string("%.2f%%", 100.0 * gap).c_str());
+    std::cout << printf_string(
+        "  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
+        machine.nozzle_idle_limit_s,
+        e.idle_limit_violations
+            ? printf_string(": %d move(s) over the limit", e.idle_limit_violations).c_str()
+            : "");
+    std::cout << printf_string(
+        "  %-13s %.3f s, %s%s\n", "solve", plan.solve_s, planner::to_string(plan.stop).c_str(),
+        plan.kicks ? printf_string(" after %ld kicks", plan.kicks).c_str() : "");
+    std::cout << printf_string("  %-13s %s\n", "sequence",
+                               orchestrator::signed_sequence(layer, plan.sequence).c_str());
+    if (!o.svg.empty()) std::cout << printf_string("  %-13s %s\n", "drawing", o.svg.c_str());
   }
   if (e.idle_limit_violations > 0)
-    std::cerr << format("ccbuild: warning: %d air move(s) exceed the nozzle idle limit of %.0f s\n",
-                        e.idle_limit_violations, machine.nozzle_idle_limit_s);
+    std::cerr << printf_string(
+        "ccbuild: warning: %d air move(s) exceed the nozzle idle limit of %.0f s\n",
+        e.idle_limit_violations, machine.nozzle_idle_limit_s);
   exit_code = kExitOk;
 }
 

@@ -14,6 +14,7 @@
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
+#include "ccbuild/planner/plan_layer.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -113,6 +114,14 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
   else if (input.is_building)
     machine = machine::load_machine(b.machine_profile);
 
+  // Each layer's single-nozzle time, once, for the comparison inside every plan.
+  std::map<std::uint64_t, double> single_time;
+  for (const auto& [hash, entry] : distinct) {
+    planner::PlanOptions single;
+    single.objective = *planner::parse_objective(o.objective);
+    single.seed = o.seed;
+    single_time[hash] = planner::plan_layer(entry.first, machine, single).evaluation.layer_time_s;
+  }
   std::vector<Row> rows;
   const std::size_t total =
       o.nozzles.size() * o.rail_axes.size() * platforms.size() * gantries.size();
@@ -123,7 +132,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
         for (double gantry : gantries) {
           Row row{n, axis, platform, gantry, "", true, "", 0.0, 0.0, 0};
           ++done;
-          std::cerr << format(
+          std::cerr << printf_string(
               "sweep: %zu/%zu  %d nozzles, %s rails, platform %.2f m, gantry %.2f m, %zu layer "
               "geometr%s\n",
               done, total, n, axis.c_str(), platform, gantry, distinct.size(),
@@ -138,6 +147,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
           m.planning.max_kicks = 300;
           try {
             for (const auto& [hash, entry] : distinct) {
+              m.single_nozzle_time_s = single_time[hash];
               const auto plan = planner::plan_layer_multi(entry.first, machine, m);
               if (&entry.first == largest) {
                 for (const auto& stage : plan.stages)
@@ -192,27 +202,27 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
   } else {
     int layers = 0;
     for (const auto& [hash, entry] : distinct) layers += entry.second;
-    std::cout << format(
+    std::cout << printf_string(
         "%s: %d layer(s), %zu distinct; times summed over all of them; methods per platform stage "
         "of the "
         "largest layer (A path cycling, B buffer zone path cycling, C auxiliary buffer zone, D "
         "delay, - none)\n",
         o.file.c_str(), layers, distinct.size());
-    std::cout << format("%-8s %-5s %10s %10s  %-8s %16s %16s %9s\n", "nozzles", "rails",
-                        ("platform " + u).c_str(), ("gantry " + u).c_str(), "methods",
-                        "construction min", "machine min", "vertices");
+    std::cout << printf_string("%-8s %-5s %10s %10s  %-8s %16s %16s %9s\n", "nozzles", "rails",
+                               ("platform " + u).c_str(), ("gantry " + u).c_str(), "methods",
+                               "construction min", "machine min", "vertices");
     for (const auto& r : rows) {
-      std::cout << format("%-8d %-5s %10.1f %10.1f  %-8s %16s %16s %9d\n", r.nozzles,
-                          r.rail_axis.c_str(), r.platform_m / per_unit, r.gantry_m / per_unit,
-                          r.methods.c_str(),
-                          r.ok ? format("%.1f", r.construction_s / 60).c_str() : "none",
-                          r.ok ? format("%.1f", r.machine_s / 60).c_str() : "none", r.vertices);
+      std::cout << printf_string(
+          "%-8d %-5s %10.1f %10.1f  %-8s %16s %16s %9d\n", r.nozzles, r.rail_axis.c_str(),
+          r.platform_m / per_unit, r.gantry_m / per_unit, r.methods.c_str(),
+          r.ok ? printf_string("%.1f", r.construction_s / 60).c_str() : "none",
+          r.ok ? printf_string("%.1f", r.machine_s / 60).c_str() : "none", r.vertices);
     }
     for (const auto& r : rows)
       if (!r.ok)
-        std::cout << format("  %d nozzles, %s, platform %.1f, gantry %.1f: %s\n", r.nozzles,
-                            r.rail_axis.c_str(), r.platform_m / per_unit, r.gantry_m / per_unit,
-                            r.failure.c_str());
+        std::cout << printf_string("  %d nozzles, %s, platform %.1f, gantry %.1f: %s\n", r.nozzles,
+                                   r.rail_axis.c_str(), r.platform_m / per_unit,
+                                   r.gantry_m / per_unit, r.failure.c_str());
   }
   exit_code = kExitOk;
 }

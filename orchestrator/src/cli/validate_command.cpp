@@ -71,26 +71,26 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
   }
 
   std::cout << options.file << ": valid " << (input.is_building ? "building" : "plan") << "\n";
-  if (!b.name.empty()) std::cout << format("  %-10s %s\n", "name", b.name.c_str());
-  std::cout << format("  %-10s %s in the file, metres inside\n", "units",
-                      floors::to_string(b.units).c_str());
-  std::cout << format("  %-10s %.3f m\n", "layer", b.layer_height_m);
+  if (!b.name.empty()) std::cout << printf_string("  %-10s %s\n", "name", b.name.c_str());
+  std::cout << printf_string("  %-10s %s in the file, metres inside\n", "units",
+                             floors::to_string(b.units).c_str());
+  std::cout << printf_string("  %-10s %.3f m\n", "layer", b.layer_height_m);
   if (material)
-    std::cout << format("  %-10s %s (%s)\n", "material", material->name.c_str(),
-                        b.material_profile.c_str());
+    std::cout << printf_string("  %-10s %s (%s)\n", "material", material->name.c_str(),
+                               b.material_profile.c_str());
   if (machine)
-    std::cout << format("  %-10s %s (%s)\n", "machine", machine->name.c_str(),
-                        b.machine_profile.c_str());
+    std::cout << printf_string("  %-10s %s (%s)\n", "machine", machine->name.c_str(),
+                               b.machine_profile.c_str());
   std::cout << "\n"
-            << format("  %-5s %-16s %9s %6s %9s %8s %7s %11s\n", "floor", "name", "height", "walls",
-                      "openings", "anchors", "layers", "geometries");
+            << printf_string("  %-5s %-16s %9s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
+                             "walls", "openings", "anchors", "layers", "geometries");
   for (const auto& f : summary.floors) {
-    std::cout << format("  %-5d %-16s %7.3f m %6d %9d %8d %7d %11d\n", f.floor_index,
-                        f.name.c_str(), f.height_m, f.wall_count, f.opening_count, f.anchor_count,
-                        f.layer_count, f.distinct_geometries);
+    std::cout << printf_string("  %-5d %-16s %7.3f m %6d %9d %8d %7d %11d\n", f.floor_index,
+                               f.name.c_str(), f.height_m, f.wall_count, f.opening_count,
+                               f.anchor_count, f.layer_count, f.distinct_geometries);
   }
   std::cout << "\n"
-            << format(
+            << printf_string(
                    "  total: %zu floor(s), %d walls, %d openings, %d layers, %d distinct layer "
                    "geometries\n",
                    summary.floors.size(), walls, openings, summary.total_layers,

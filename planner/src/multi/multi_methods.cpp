@@ -7,23 +7,12 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "multi_internal.hpp"
 
 namespace ccbuild::planner::detail {
 namespace {
-
-std::string seconds(double s) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f s", s);
-  return text;
-}
-
-std::string metres(double m) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f m", m);
-  return text;
-}
 
 Sequence rotated(const Sequence& tour, int by) {
   if (tour.empty()) return tour;
@@ -140,8 +129,8 @@ std::string verify(const StageContext& ctx, const std::vector<NozzlePath>& paths
     min_gap = std::min(min_gap, min_gap_m(paths[k].timeline, paths[k + 1].timeline, axis));
     if (const auto c = first_conflict(paths[k].timeline, paths[k + 1].timeline, axis, w))
       return "nozzles " + std::to_string(k + 1) + " and " + std::to_string(k + 2) +
-             " collide at t = " + seconds(c->time_s) + " (rail positions " + metres(c->left_m) +
-             " and " + metres(c->right_m) + ")";
+             " collide at t = " + seconds(c->time_s) + " (rail positions " + metres(c->left_m, 2) +
+             " and " + metres(c->right_m, 2) + ")";
   }
   // Each gantry must stay where the others leave it room on the rails.
   for (int k = 0; k < n; ++k) {
@@ -149,8 +138,8 @@ std::string verify(const StageContext& ctx, const std::vector<NozzlePath>& paths
     for (const auto& p : paths[k].timeline.positions()) {
       const double r = rail_coordinate(p, axis);
       if (r < lo - 1e-9 || r > hi + 1e-9)
-        return "nozzle " + std::to_string(k + 1) + " would need rail position " + metres(r) +
-               ", outside its reach " + metres(lo) + " to " + metres(hi);
+        return "nozzle " + std::to_string(k + 1) + " would need rail position " + metres(r, 2) +
+               ", outside its reach " + metres(lo, 2) + " to " + metres(hi, 2);
     }
   }
   return "";
@@ -411,8 +400,8 @@ std::optional<std::vector<NozzlePath>> buffer_zone_path_cycling(const StageConte
   for (int k = 1; k < n; ++k) {
     const double section = (k == n - 1 ? ctx.to_m : division.cuts[k]) - division.cuts[k - 1];
     if (section <= buffer) {
-      why = "section " + std::to_string(k + 1) + " (" + metres(section) +
-            ") is not wider than its buffer zone (" + metres(buffer) + ")";
+      why = "section " + std::to_string(k + 1) + " (" + metres(section, 2) +
+            ") is not wider than its buffer zone (" + metres(buffer, 2) + ")";
       return std::nullopt;
     }
     widths[k] = {buffer};
@@ -450,7 +439,7 @@ std::optional<std::vector<NozzlePath>> aux_buffer_zone(const StageContext& ctx, 
   borders.push_back(ctx.to_m);
   for (int k = 0; k < n; ++k) {
     if (borders[k + 1] - borders[k] <= buffer + w) {
-      why = "section " + std::to_string(k + 1) + " (" + metres(borders[k + 1] - borders[k]) +
+      why = "section " + std::to_string(k + 1) + " (" + metres(borders[k + 1] - borders[k], 2) +
             ") is too narrow for a buffer zone and a gantry";
       return std::nullopt;
     }

@@ -2,6 +2,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 #include "multi_internal.hpp"
@@ -35,12 +36,6 @@ std::optional<MultiMethod> parse_multi_method(const std::string& text) {
 }
 
 namespace {
-
-std::string metres(double m) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f m", m);
-  return text;
-}
 
 using detail::rail_coordinate;
 
@@ -118,12 +113,12 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   const double rails = machine.x.max_m - machine.x.min_m;
   if ((n - 1) * w >= rails)
     throw InputError("", 0, "--nozzles",
-                     std::to_string(n) + " gantries " + metres(w) +
-                         " wide do not fit on the machine's " + metres(rails) + " of rails");
+                     std::to_string(n) + " gantries " + metres(w, 2) +
+                         " wide do not fit on the machine's " + metres(rails, 2) + " of rails");
   if (hi - lo > rails)
     throw InputError("", 0, "--rail-axis",
-                     "the layout is " + metres(hi - lo) + " long along " + to_string(axis) +
-                         " but the rails reach " + metres(rails) +
+                     "the layout is " + metres(hi - lo, 2) + " long along " + to_string(axis) +
+                         " but the rails reach " + metres(rails, 2) +
                          "; use --platform-width or a machine with longer rails");
   const double rail_mid = 0.5 * (lo + hi);
   if (options.platform_width_m) {
@@ -131,13 +126,15 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
     if (!(p > 0.0)) throw InputError("", 0, "--platform-width", "must be positive");
     if ((n - 1) * w >= p)
       throw InputError("", 0, "--platform-width",
-                       std::to_string(n) + " gantries " + metres(w) + " wide do not fit on a " +
-                           metres(p) + " platform");
+                       std::to_string(n) + " gantries " + metres(w, 2) + " wide do not fit on a " +
+                           metres(p, 2) + " platform");
   }
 
   const StopCondition stop(options.planning.time_limit_s, options.planning.cancel);
   MultiNozzlePlan plan;
-  {
+  if (options.single_nozzle_time_s) {
+    plan.single_nozzle_time_s = *options.single_nozzle_time_s;
+  } else {
     PlanOptions single = options.planning;
     single.algorithm = Algorithm::kCcTsp;
     single.path = PathSpec::closed_tour();
@@ -177,8 +174,8 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
     Stage stage = plan_stage(ctx);
     if (stage.nozzles.empty()) {
       plan.collision_free = false;
-      plan.failure = "stage " + std::to_string(k + 1) + " (" + metres(strips[k].first) + " to " +
-                     metres(strips[k].second) + "): no method found a collision-free plan";
+      plan.failure = "stage " + std::to_string(k + 1) + " (" + metres(strips[k].first, 2) + " to " +
+                     metres(strips[k].second, 2) + "): no method found a collision-free plan";
     } else {
       plan.layer_time_s += stage.time_s;
       plan.vertex_count += stage.vertex_count;

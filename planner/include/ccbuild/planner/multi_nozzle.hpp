@@ -61,6 +61,9 @@ struct MultiNozzleOptions {
   double buffer_width_factor = 1.25;
   /// Cycle pairs checked by the cycling methods before they give up.
   long max_cycle_checks = 200000;
+  /// The same layer's single-nozzle layer time when the caller already has it (several
+  /// configurations of one layer); unset: planned here, for the comparison.
+  std::optional<double> single_nozzle_time_s;
 };
 
 /// One nozzle's share of one stage.

@@ -25,8 +25,9 @@ enum class Algorithm {
 std::string to_string(Algorithm algorithm);
 std::optional<Algorithm> parse_algorithm(const std::string& text);
 
-/// Largest layer the exact solver accepts (walls, i.e. segments).
-inline constexpr int kExactMaxSegments = 18;
+/// Largest layer the exact solver accepts (walls, i.e. segments): its tables grow as
+/// 2^walls (16 walls: 75 MB for the time objective).
+inline constexpr int kExactMaxSegments = 16;
 
 struct PlanOptions {
   Algorithm algorithm = Algorithm::kCcTsp;

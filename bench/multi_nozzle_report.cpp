@@ -1,0 +1,115 @@
+// Multi-nozzle report: over generated layouts of increasing complexity, for 2 and 3
+// nozzles and gantry widths of 2.5, 5, 7.5 and 10 ft, each method's success rate and the
+// construction (layer) time it saves against one nozzle.
+//
+//   build/bench/bench_multi_nozzle --layouts 50
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "ccbuild/floors/generate.hpp"
+#include "ccbuild/floors/slice.hpp"
+#include "ccbuild/planner/multi_nozzle.hpp"
+
+using namespace ccbuild;
+using planner::MultiMethod;
+
+int main(int argc, char** argv) {
+  CLI::App app("Benchmark report of multi-nozzle planning on generated floor plans");
+  int layouts = 50;
+  int smallest = 20, largest = 500;
+  std::vector<int> nozzle_counts{2, 3};
+  std::vector<double> widths_ft{2.5, 5.0, 7.5, 10.0};
+  std::string objective = "time";
+  app.add_option("--layouts", layouts, "Layouts, from --smallest to --largest walls");
+  app.add_option("--smallest", smallest);
+  app.add_option("--largest", largest);
+  app.add_option("--nozzles", nozzle_counts)->delimiter(',');
+  app.add_option("--gantry-width-ft", widths_ft)->delimiter(',');
+  app.add_option("--objective", objective)->check(CLI::IsMember({"time", "distance"}));
+  CLI11_PARSE(app, argc, argv);
+
+  const std::vector<MultiMethod> methods{MultiMethod::kPathCycling,
+                                         MultiMethod::kGlobalPathCycling,
+                                         MultiMethod::kBufferZonePathCycling,
+                                         MultiMethod::kAuxBufferZone,
+                                         MultiMethod::kDelay,
+                                         MultiMethod::kAuto};
+  struct Tally {
+    int tried = 0, succeeded = 0;
+    std::vector<double> saved;
+  };
+  // (nozzles, width, method, big) -> tally; big: layouts of 100+ walls.
+  std::map<std::tuple<int, double, int, bool>, Tally> tally;
+  const machine::MachineModel machine = machine::MachineModel::defaults();
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < layouts; ++i) {
+    const int walls = layouts == 1 ? smallest : smallest + (largest - smallest) * i / (layouts - 1);
+    const floors::Layer layer = floors::slice_plan_at(
+        floors::generate_plan_with_segments(walls, static_cast<std::uint64_t>(i + 1)), 1.0, 2.0);
+    const bool big = layer.segments.size() >= 100;
+    planner::PlanOptions single;
+    single.objective = *planner::parse_objective(objective);
+    const double single_time = planner::plan_layer(layer, machine, single).evaluation.layer_time_s;
+    for (int n : nozzle_counts) {
+      for (double ft : widths_ft) {
+        for (std::size_t m = 0; m < methods.size(); ++m) {
+          planner::MultiNozzleOptions o;
+          o.nozzles = n;
+          o.gantry_width_m = ft * floors::kMetersPerFoot;
+          o.method = methods[m];
+          o.planning.objective = *planner::parse_objective(objective);
+          o.planning.max_kicks = 300;
+          o.single_nozzle_time_s = single_time;
+          Tally& t = tally[{n, ft, static_cast<int>(m), big}];
+          ++t.tried;
+          try {
+            const planner::MultiNozzlePlan plan = planner::plan_layer_multi(layer, machine, o);
+            if (plan.collision_free) {
+              ++t.succeeded;
+              t.saved.push_back(100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
+            }
+          } catch (const std::exception& e) {
+            std::fprintf(stderr, "layout %d: %s\n", i + 1, e.what());
+          }
+        }
+      }
+    }
+    std::fprintf(stderr, "layout %d/%d (%zu walls) done, %.0f s\n", i + 1, layouts,
+                 layer.segments.size(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::printf(
+      "| nozzles | gantry ft | layouts | method | success (all) | saved, mean (all) | success "
+      "(100+ walls) | "
+      "saved, mean / min (100+ walls) |\n|---:|---:|---:|---|---:|---:|---:|---:|\n");
+  for (int n : nozzle_counts) {
+    for (double ft : widths_ft) {
+      for (std::size_t m = 0; m < methods.size(); ++m) {
+        Tally all, big = tally[{n, ft, static_cast<int>(m), true}];
+        for (bool b : {false, true}) {
+          const Tally& t = tally[{n, ft, static_cast<int>(m), b}];
+          all.tried += t.tried;
+          all.succeeded += t.succeeded;
+          all.saved.insert(all.saved.end(), t.saved.begin(), t.saved.end());
+        }
+        auto mean = [](const std::vector<double>& v) {
+          return v.empty() ? NAN : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+        };
+        auto least = [](const std::vector<double>& v) {
+          return v.empty() ? NAN : *std::min_element(v.begin(), v.end());
+        };
+        std::printf("| %d | %.1f | %d | %s | %d/%d | %.1f%% | %d/%d | %.1f%% / %.1f%% |\n", n, ft,
+                    all.tried, planner::to_string(methods[m]).c_str(), all.succeeded, all.tried,
+                    mean(all.saved), big.succeeded, big.tried, mean(big.saved), least(big.saved));
+      }
+    }
+  }
+  return 0;
+}

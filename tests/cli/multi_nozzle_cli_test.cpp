@@ -1,0 +1,122 @@
+// plan-layer --nozzles and sweep end to end.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+using testing::run_ccbuild;
+
+TEST(MultiNozzleCli, HouseWithTwoNozzlesInJson) {
+  const auto r = run_ccbuild(
+      "plan-layer config/buildings/house.yaml --floor 0 --layer 12 --nozzles 2 "
+      "--gantry-width 5ft --objective time --max-kicks 300 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["collision_free"].get<bool>());
+  EXPECT_LT(j["layer_time_s"].get<double>(), j["single_nozzle_layer_time_s"].get<double>());
+  EXPECT_GE(j["min_gap_m"].get<double>(), j["gantry_width_m"].get<double>() - 1e-9);
+  EXPECT_NEAR(j["gantry_width_m"].get<double>(), 1.524, 1e-9);
+  ASSERT_EQ(j["stages"].size(), 1u);
+  const auto& stage = j["stages"][0];
+  EXPECT_TRUE(stage["method"].is_string());
+  ASSERT_EQ(stage["nozzles"].size(), 2u);
+  std::size_t walls = 0;
+  for (const auto& n : stage["nozzles"]) {
+    for (const char* key :
+         {"section", "sequence", "start_offset", "busy_s", "wait_s", "finish_s", "zones"})
+      EXPECT_TRUE(n.contains(key)) << key;
+    walls += n["sequence"].size();
+  }
+  EXPECT_GE(walls, 69u);  // every wall piece, plus pieces cut at the section border
+}
+
+TEST(MultiNozzleCli, TextAndDrawing) {
+  const fs::path svg =
+      fs::temp_directory_path() / ("ccbuild_multi_" + std::to_string(::getpid()) + ".svg");
+  const auto r = run_ccbuild(
+      "plan-layer config/buildings/house.yaml --floor 1 --layer 5 --nozzles 3 --gantry-width 1m "
+      "--rail-axis y --max-kicks 200 --svg " +
+      svg.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "3 nozzles on y rails"));
+  EXPECT_TRUE(contains(r.out, "collision-free"));
+  EXPECT_TRUE(contains(r.out, "nozzle 3"));
+  std::ifstream in(svg);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(contains(text.str(), "over time"));
+  fs::remove(svg);
+}
+
+TEST(MultiNozzleCli, NoPlanIsAnAnswerWithExitOne) {
+  const auto r = run_ccbuild(
+      "plan-layer tests/data/plans/narrow_room.txt --nozzles 2 --gantry-width 3.5 "
+      "--method path-cycling");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.out, "none found"));
+  EXPECT_TRUE(contains(r.out, "path-cycling: no combination"));
+  // auto falls back to waits, turns or parking and succeeds.
+  EXPECT_EQ(
+      run_ccbuild("plan-layer tests/data/plans/narrow_room.txt --nozzles 2 --gantry-width 3.5")
+          .exit_code,
+      0);
+}
+
+TEST(MultiNozzleCli, BadParametersExitTwo) {
+  struct Case {
+    const char* args;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"--nozzles 2", "--gantry-width: is required"},
+      {"--nozzles 2 --gantry-width 0", "must be positive"},
+      {"--nozzles 2 --gantry-width five", "expected a length"},
+      {"--nozzles 30 --gantry-width 10ft", "do not fit"},
+      {"--nozzles 3 --gantry-width 5ft --platform-width 2ft", "platform"},
+      {"--nozzles 2 --gantry-width 1 --start-vertex 1", "closed tours"},
+      {"--nozzles 2 --gantry-width 1 --method sideways", "sideways"},
+      {"--nozzles 2 --gantry-width 1 --rail-axis z", "z"},
+      {"--nozzles 0", "at least 1"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_ccbuild(std::string("plan-layer tests/data/plans/cottage.yaml ") + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args;
+    EXPECT_TRUE(contains(r.err, c.message)) << c.args << ": " << r.err;
+  }
+}
+
+TEST(MultiNozzleCli, SweepWritesTheTableAndReportsProgress) {
+  const fs::path csv =
+      fs::temp_directory_path() / ("ccbuild_sweep_" + std::to_string(::getpid()) + ".csv");
+  const auto r = run_ccbuild(
+      "sweep tests/data/plans/cottage.yaml --nozzles 2 --platform-width 8m,20m "
+      "--gantry-width 1m,1.5m --rail-axis x,y --csv " +
+      csv.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "sweep: 8/8"));
+  EXPECT_TRUE(contains(r.out, "construction min"));
+  std::ifstream in(csv);
+  std::string line;
+  int rows = 0;
+  std::getline(in, line);
+  EXPECT_TRUE(contains(line, "construction_time_s"));
+  while (std::getline(in, line)) ++rows;
+  EXPECT_EQ(rows, 8);
+  fs::remove(csv);
+  const auto bad = run_ccbuild("sweep tests/data/plans/cottage.yaml --gantry-width -1m");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_TRUE(contains(bad.err, "expected positive lengths"));
+}
+
+}  // namespace
+}  // namespace ccbuild
