@@ -106,7 +106,8 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   for (const Step& step : detail::sequence_from_tour(costs, outcome.tour))
     out.sequence.push_back(step);
 
-  if (options.objective == Objective::kTime &&
+  const bool polish_wanted = !options.polish_kicks || *options.polish_kicks > 0;
+  if (options.objective == Objective::kTime && polish_wanted &&
       static_cast<std::size_t>(n) <= kExactPolishMaxSegments && !stop.should_stop()) {
     std::mt19937_64 rng(options.seed ^ 0x9E3779B97F4A7C15ULL);
     // Small layers get the whole neighbourhood and many kicks: the time landscape (stopper

@@ -47,8 +47,12 @@ Timeline parked_at(const Eigen::Vector2d& position_m) {
 
 Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
                      const std::vector<double>& wait_before_step_s) {
+  return timeline_of(model, sequence, path, model.evaluate(sequence, path), wait_before_step_s);
+}
+
+Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
+                     const Evaluation& e, const std::vector<double>& wait_before_step_s) {
   const auto& machine = model.machine();
-  const Evaluation e = model.evaluate(sequence, path);
   Timeline t;
   const Eigen::Vector2d start =
       path.closed && !sequence.empty() ? model.step_start_m(sequence.front()) : path.start_m;

@@ -56,6 +56,14 @@ TEST(Cli, BrokenBuildingReportsEveryFloorProblem) {
   EXPECT_TRUE(contains(r.err, "is above the floor height"));
 }
 
+TEST(Cli, BuildingLargerThanTheMachineReachIsRejected) {
+  const auto r = run_ccbuild("validate tests/data/buildings/too_big_for_machine.yaml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "tiny_gantry.yaml"));
+  EXPECT_TRUE(
+      contains(r.err, "the building is 6.00 m x 4.00 m but the machine reaches 5.00 m x 29.00 m"));
+}
+
 TEST(Cli, LayersListsRunsPerFloor) {
   const auto r = run_ccbuild("layers config/buildings/house.yaml --floor 1 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/orchestrator/layer_summary.hpp"
@@ -29,6 +30,24 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     material = floors::load_material_profile(b.material_profile);
     machine = machine::load_machine(b.machine_profile);
   }
+  // The building must fit inside the machine's reach (its extent against the URDF axis
+  // ranges; where the site origin lies is not modelled, so lengths are compared).
+  Eigen::Vector2d lo(1e18, 1e18), hi(-1e18, -1e18);
+  for (const auto& floor : b.floors)
+    for (const auto& v : floor.plan.vertices) {
+      lo = lo.cwiseMin(v.position_m);
+      hi = hi.cwiseMax(v.position_m);
+    }
+  const Eigen::Vector2d extent = hi - lo;
+  if (machine) {
+    const double reach_x = machine->x.max_m - machine->x.min_m,
+                 reach_y = machine->y.max_m - machine->y.min_m;
+    if (extent.x() > reach_x || extent.y() > reach_y)
+      throw InputError(
+          b.machine_profile.string(), 0, "",
+          printf_string("the building is %.2f m x %.2f m but the machine reaches %.2f m x %.2f m",
+                        extent.x(), extent.y(), reach_x, reach_y));
+  }
   const orchestrator::BuildingSummary summary = orchestrator::summarize_building(b);
   int walls = 0, openings = 0, anchors = 0;
   for (const auto& f : summary.floors) {
@@ -48,6 +67,7 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     if (material)
       out["material"] = {{"name", material->name}, {"file", b.material_profile.string()}};
     if (machine) out["machine"] = {{"name", machine->name}, {"file", b.machine_profile.string()}};
+    out["extent_m"] = {extent.x(), extent.y()};
     out["floors"] = nlohmann::ordered_json::array();
     for (const auto& f : summary.floors) {
       out["floors"].push_back({{"index", f.floor_index},
@@ -79,8 +99,12 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     std::cout << printf_string("  %-10s %s (%s)\n", "material", material->name.c_str(),
                                b.material_profile.c_str());
   if (machine)
-    std::cout << printf_string("  %-10s %s (%s)\n", "machine", machine->name.c_str(),
-                               b.machine_profile.c_str());
+    std::cout << printf_string(
+        "  %-10s %s (%s); the building's %.2f m x %.2f m is within its %.2f m x %.2f m reach\n",
+        "machine", machine->name.c_str(), b.machine_profile.c_str(), extent.x(), extent.y(),
+        machine->x.max_m - machine->x.min_m, machine->y.max_m - machine->y.min_m);
+  else
+    std::cout << printf_string("  %-10s %.2f m x %.2f m\n", "extent", extent.x(), extent.y());
   std::cout << "\n"
             << printf_string("  %-5s %-16s %9s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
                              "walls", "openings", "anchors", "layers", "geometries");

@@ -513,6 +513,10 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
   //    hold before the step it was on, just long enough that the conflict moves later;
   //    choose the shorter hold.
   auto paths = build_paths(ctx, s.cut, s.works, cycles, waits);
+  // Each nozzle's walls and cost model, kept for the many trial holds.
+  std::vector<std::unique_ptr<SectionModel>> models;
+  for (int k = 0; k < n; ++k)
+    models.push_back(std::make_unique<SectionModel>(ctx, s.cut, s.works[k].section_segments));
   auto earliest = [&](const std::vector<NozzlePath>& p, int& pair) -> std::optional<Conflict> {
     std::optional<Conflict> first;
     for (int k = 0; k + 1 < n; ++k) {
@@ -561,13 +565,15 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
           if (hold <= 0.0 || hold >= best_hold) continue;
           auto trial = waits[y];
           trial[step] += hold;
-          const auto p = build_paths(ctx, s.cut, {s.works[y]}, {cycles[y]}, {trial});
+          const Timeline candidate =
+              timeline_of(*models[y]->model, paths[y].sequence, PathSpec::closed_tour(),
+                          paths[y].evaluation, trial);
           // Progress: nothing involving y may now conflict at or before the old conflict.
           bool progress = true;
           for (int other : {y - 1, y + 1}) {
             if (other < 0 || other >= n) continue;
-            const auto& left = other < y ? paths[other].timeline : p[0].timeline;
-            const auto& right = other < y ? p[0].timeline : paths[other].timeline;
+            const auto& left = other < y ? paths[other].timeline : candidate;
+            const auto& right = other < y ? candidate : paths[other].timeline;
             if (auto c = first_conflict(left, right, axis, w);
                 c && c->time_s <= conflict->time_s + 1e-6)
               progress = false;

@@ -58,6 +58,9 @@ class Timeline {
 /// k's air move. A closed tour includes its closing move.
 Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
                      const std::vector<double>& wait_before_step_s = {});
+/// The same, reusing the sequence's evaluation (waits change the timing, not the moves).
+Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
+                     const Evaluation& evaluation, const std::vector<double>& wait_before_step_s);
 
 /// A timeline that stays at one point from t = 0 (an idle or parked gantry).
 Timeline parked_at(const Eigen::Vector2d& position_m);
