@@ -47,7 +47,9 @@ int main(int argc, char** argv) {
   };
   // (nozzles, width, method, big) -> tally; big: layouts of 100+ walls.
   std::map<std::tuple<int, double, int, bool>, Tally> tally;
-  const machine::MachineModel machine = machine::MachineModel::defaults();
+  // The default machine with 100 m of rails, so that the largest layouts fit.
+  machine::MachineModel machine = machine::MachineModel::defaults();
+  machine.x.max_m = machine.x.min_m + 100.0;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < layouts; ++i) {
     const int walls = layouts == 1 ? smallest : smallest + (largest - smallest) * i / (layouts - 1);
