@@ -55,8 +55,12 @@ endif()
 ccbuild_require(lemon_FOUND "LEMON" "liblemon-dev")
 if(NOT TARGET ccbuild::lemon)
   add_library(ccbuild::lemon INTERFACE IMPORTED)
-  # The matching algorithms we use are header-only templates.
+  # Matching and minimum cut are header-only templates; the LP interface (GLPK
+  # underneath, as Debian builds LEMON) is in the shared library.
+  find_library(LEMON_SHARED_LIBRARY NAMES lemon)
+  ccbuild_require(LEMON_SHARED_LIBRARY "LEMON's library" "liblemon-dev")
   target_include_directories(ccbuild::lemon SYSTEM INTERFACE ${LEMON_INCLUDE_DIR})
+  target_link_libraries(ccbuild::lemon INTERFACE ${LEMON_SHARED_LIBRARY})
 endif()
 
 find_package(yaml-cpp QUIET)

@@ -54,6 +54,7 @@ nlohmann::ordered_json layer_plan_json(const floors::Layer& layer, const planner
   out["deposition_s"] = rounded(e.deposition_s);
   out["layer_time_s"] = rounded(e.layer_time_s);
   out["lower_bound_distance"] = rounded(plan.lower_bound_m);
+  out["lower_bound_source"] = plan.lower_bound_source;
   const double gap = plan.gap();
   out["gap"] = std::isnan(gap) ? json(nullptr) : json(rounded(gap));
   out["solve_s"] = rounded(plan.solve_s);

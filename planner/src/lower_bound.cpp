@@ -182,7 +182,16 @@ MatchingBound min_weight_matching(const std::vector<Vec2>& terminals, Metric met
   return result;
 }
 
-LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path) {
+std::string to_string(BoundKind kind) {
+  return kind == BoundKind::kMatching ? "matching" : "connected";
+}
+
+std::string LayerBound::source() const {
+  return connected && connected->lower_bound_m > matching_m ? "connected" : "matching";
+}
+
+LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path,
+                               BoundKind kind, const StopCondition& stop) {
   LayerBound bound;
   std::vector<int> degree(layer.points.size(), 0);
   for (const auto& s : layer.segments) {
@@ -217,7 +226,13 @@ LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const 
   }
   // An open path ends anywhere: one free end matches any terminal at no cost.
   bound.matching = min_weight_matching(terminals, metric, !path.closed);
-  bound.distance_m = bound.matching.lower_bound_m;
+  bound.matching_m = bound.matching.lower_bound_m;
+  bound.distance_m = bound.matching_m;
+  if (kind == BoundKind::kConnected) {
+    bound.connected = connected_airtime_bound(layer, metric, path, {}, stop);
+    if (bound.connected->certified)
+      bound.distance_m = std::max(bound.distance_m, bound.connected->lower_bound_m);
+  }
   return bound;
 }
 

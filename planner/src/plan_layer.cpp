@@ -159,8 +159,9 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   plan.metric = options.metric;
   plan.objective = options.objective;
   plan.path = path;
-  const LayerBound bound = airtime_lower_bound(layer, options.metric, path);
+  const LayerBound bound = airtime_lower_bound(layer, options.metric, path, options.bound, stop);
   plan.lower_bound_m = bound.distance_m;
+  plan.lower_bound_source = bound.source();
   plan.odd_points = bound.odd_points;
 
   std::vector<int> all(n);

@@ -1,6 +1,8 @@
 // The matching bound: optimal on small point sets (checked by brute force), a valid
 // bound on tours, and certified on the complete graph even when the sparse candidate
-// graph misses the pairs the optimum needs.
+// graph misses the pairs the optimum needs. The connected bound: exact on hand-computed
+// layouts the matching cannot see, never above the exact optimum, certified beyond its
+// candidate pairs, and valid when stopped early.
 
 #include "ccbuild/planner/lower_bound.hpp"
 
@@ -9,6 +11,7 @@
 #include <functional>
 #include <random>
 
+#include "ccbuild/planner/plan_layer.hpp"
 #include "layouts.hpp"
 
 namespace ccbuild::planner {
@@ -78,6 +81,101 @@ TEST(LowerBound, OddPointsOfAFloorPlan) {
   const LayerBound open =
       airtime_lower_bound(layer, Metric::kEuclidean, PathSpec::open_from({7, 8}));
   EXPECT_NEAR(open.distance_m, 0.0, 1e-9);
+}
+
+// Two 4 m square rooms 6 m apart along x: every point has even degree, so the matching
+// bound is 0, but any closed tour must cross the 6 m gap and come back (12 m). An open
+// path from the first room's far corner (0, 0) crosses once, but a room is a closed
+// loop, so it leaves the first room where it started it (or comes back): 10 m.
+floors::Layer two_rooms(double gap_m) {
+  const double x = 4.0 + gap_m;
+  return testing::layer_from_walls({{0, 0, 4, 0},
+                                    {4, 0, 4, 4},
+                                    {4, 4, 0, 4},
+                                    {0, 4, 0, 0},
+                                    {x, 0, x + 4, 0},
+                                    {x + 4, 0, x + 4, 4},
+                                    {x + 4, 4, x, 4},
+                                    {x, 4, x, 0}});
+}
+
+TEST(ConnectedBound, SeesTheGapBetweenSeparateRooms) {
+  const auto layer = two_rooms(6.0);
+  for (Metric metric : {Metric::kEuclidean, Metric::kRectilinear}) {
+    const LayerBound closed = airtime_lower_bound(layer, metric, PathSpec::closed_tour());
+    EXPECT_NEAR(closed.matching_m, 0.0, 1e-9);
+    ASSERT_TRUE(closed.connected && closed.connected->certified);
+    EXPECT_NEAR(closed.distance_m, 12.0, 1e-6);
+    EXPECT_EQ(closed.source(), "connected");
+    const LayerBound open = airtime_lower_bound(layer, metric, PathSpec::open_from({0, 0}));
+    EXPECT_NEAR(open.distance_m, 10.0, 1e-6);
+    // The matching-only bound is what it was.
+    const LayerBound matching =
+        airtime_lower_bound(layer, metric, PathSpec::closed_tour(), BoundKind::kMatching);
+    EXPECT_FALSE(matching.connected);
+    EXPECT_NEAR(matching.distance_m, 0.0, 1e-9);
+  }
+}
+
+TEST(ConnectedBound, CertifiesPairsFarBeyondTheCandidates) {
+  // Twelve small rooms in a tight row and one room 100 m away: no point of the row has
+  // the far room among its nearest neighbours, yet every tour travels there and back.
+  std::vector<std::array<double, 4>> walls;
+  auto room = [&](double x) {
+    walls.push_back({x, 0, x + 1, 0});
+    walls.push_back({x + 1, 0, x + 1, 1});
+    walls.push_back({x + 1, 1, x, 1});
+    walls.push_back({x, 1, x, 0});
+  };
+  for (int k = 0; k < 12; ++k) room(1.5 * k);  // gaps of 0.5 m
+  room(17.5 + 100.0);
+  const auto layer = testing::layer_from_walls(walls);
+  const LayerBound b = airtime_lower_bound(layer, Metric::kEuclidean, PathSpec::closed_tour());
+  // 11 gaps of 0.5 m, each crossed twice, and 100 m there and back.
+  EXPECT_NEAR(b.distance_m, 2 * 11 * 0.5 + 200.0, 1e-6);
+}
+
+TEST(ConnectedBound, NeverAboveTheExactOptimum) {
+  int stronger = 0, cases = 0;
+  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+    const floors::Layer layer =
+        seed % 2 ? testing::random_layer(5 + static_cast<int>(seed % 6), seed)
+                 : testing::floor_plan_layer(2 + static_cast<int>(seed % 3), seed);
+    if (layer.segments.size() > 12) continue;
+    for (Metric metric : {Metric::kEuclidean, Metric::kRectilinear}) {
+      for (bool closed : {true, false}) {
+        PlanOptions o;
+        o.algorithm = Algorithm::kExact;
+        o.metric = metric;
+        o.path = closed ? PathSpec::closed_tour() : PathSpec::open_from(layer.points[0]);
+        const LayerPlan exact = plan_layer(layer, testing::simple_machine(), o);
+        const LayerBound b = airtime_lower_bound(layer, metric, o.path);
+        SCOPED_TRACE("seed " + std::to_string(seed) + (closed ? " closed" : " open"));
+        ASSERT_TRUE(b.connected && b.connected->certified);
+        EXPECT_LE(b.connected->lower_bound_m, exact.evaluation.airtime_distance_m + 1e-6);
+        EXPECT_GE(b.distance_m, b.matching_m);
+        ++cases;
+        if (b.connected->lower_bound_m > b.matching_m + 1e-6) ++stronger;
+      }
+    }
+  }
+  EXPECT_GE(cases, 40);
+  EXPECT_GE(stronger, cases / 4);  // it does more than repeat the matching
+}
+
+TEST(ConnectedBound, StoppedAtOnceIsStillValid) {
+  const floors::Layer layer = testing::floor_plan_layer(12, 7);
+  PlanOptions o;
+  const LayerPlan plan = plan_layer(layer, testing::simple_machine(), o);
+  const ConnectedBound stopped = connected_airtime_bound(
+      layer, Metric::kEuclidean, PathSpec::closed_tour(), {}, StopCondition(0.0));
+  EXPECT_TRUE(stopped.certified);
+  EXPECT_EQ(stopped.stopped_by, "time-limit");
+  EXPECT_LE(stopped.lower_bound_m, plan.evaluation.airtime_distance_m + 1e-6);
+  const ConnectedBound full =
+      connected_airtime_bound(layer, Metric::kEuclidean, PathSpec::closed_tour());
+  EXPECT_GE(full.lower_bound_m, stopped.lower_bound_m - 1e-9);
+  EXPECT_LE(full.lower_bound_m, plan.evaluation.airtime_distance_m + 1e-6);
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ struct PlanLayerOptions {
   std::string metric = "euclidean";
   std::string objective = "distance";
   std::string algorithm = "cc-tsp";
+  std::string bound = "connected";
   std::optional<std::int64_t> start_vertex;
   std::optional<std::int64_t> first_wall;
   double time_limit_s = 30.0;
@@ -164,6 +165,8 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   options.time_limit_s = o.time_limit_s;
   options.seed = o.seed;
   options.max_kicks = o.max_kicks;
+  options.bound =
+      o.bound == "matching" ? planner::BoundKind::kMatching : planner::BoundKind::kConnected;
   if (o.first_wall && !o.start_vertex)
     throw InputError("", 0, "--first-wall", "needs --start-vertex");
   if (o.start_vertex) {
@@ -249,7 +252,8 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     std::cout << printf_string("  %-13s %.2f s\n", "layer time", e.layer_time_s);
     const double gap = plan.gap();
     std::cout << printf_string(
-        "  %-13s %s, gap %s\n", "lower bound", length(plan.lower_bound_m).c_str(),
+        "  %-13s %s (%s), gap %s\n", "lower bound", length(plan.lower_bound_m).c_str(),
+        plan.lower_bound_source.c_str(),
         std::isnan(gap) ? "n/a (bound is 0)" : printf_string("%.2f%%", 100.0 * gap).c_str());
     std::cout << printf_string(
         "  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
@@ -314,6 +318,13 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
           "--algorithm", o->algorithm,
           "cc-tsp; nearest (greedy nearest wall end); original (file order); exact (small layers)")
       ->check(CLI::IsMember({"cc-tsp", "nearest", "original", "exact"}))
+      ->capture_default_str();
+  command
+      ->add_option("--bound", o->bound,
+                   "Lower bound: connected (an LP with connectivity cuts, certified on every "
+                   "pair of points) or matching (the odd points' matching alone: faster, "
+                   "weaker)")
+      ->check(CLI::IsMember({"connected", "matching"}))
       ->capture_default_str();
   command->add_option("--start-vertex", o->start_vertex,
                       "Plan an open path starting at this plan vertex (default: a closed tour)");

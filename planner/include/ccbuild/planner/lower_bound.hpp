@@ -14,12 +14,20 @@
 // every pair of points of the complete graph and the solve repeated with the violated
 // pairs added. The bound reported is the dual objective, repaired if needed, so it is a
 // proof, not an estimate. Costs are rounded down to 10 micrometres.
+//
+// The matching ignores that the walk is connected, so on layers of many separate pieces
+// (short walls between openings) it can sit several per cent below the optimum. The
+// connected bound below adds connectivity in an LP; the layer's bound is the better of
+// the two.
 
 #include <Eigen/Core>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "ccbuild/floors/slice.hpp"
+#include "ccbuild/planner/termination.hpp"
 #include "ccbuild/planner/tool_path.hpp"
 
 namespace ccbuild::planner {
@@ -39,17 +47,74 @@ struct MatchingBound {
 MatchingBound min_weight_matching(const std::vector<Eigen::Vector2d>& terminals, Metric metric,
                                   bool wildcard);
 
+/// Work limits of the connected bound. They are counts, not seconds, so that the bound
+/// (and every answer that depends on it) is the same on any machine.
+struct ConnectedBoundLimits {
+  int max_rounds = 300;         ///< cutting-plane rounds
+  int pricing_interval = 10;    ///< rounds between checks on the complete graph
+  int max_pricing_rounds = 20;  ///< column additions per check
+  /// Stop when `pricing_interval` rounds raised the LP by less than this fraction.
+  double stall_fraction = 2e-4;
+  int neighbours = 5;            ///< initial candidate pairs per point
+  int max_cuts_per_round = 400;  ///< from each exact separation
+  /// Exact parity separation (a Gomory-Hu tree of all points) only up to this many
+  /// points; above it, parity cuts come from the support graph's parts alone.
+  int max_parity_tree_nodes = 4000;
+};
+
+struct ConnectedBound {
+  double lower_bound_m = 0.0;  ///< certified: a dual solution feasible on the complete graph
+  double lp_value_m = 0.0;     ///< the last LP's value on its candidate pairs
+  bool certified = false;
+  int rounds = 0;
+  int cuts = 0;  ///< cuts added beyond the initial ones
+  int columns = 0;
+  int rows = 0;
+  std::string
+      stopped_by;  ///< no-violated-cuts, stalled, round-limit, time-limit, cancelled, lp-failed
+};
+
+/// The connected bound: air moves and walls together are connected and every point has
+/// even degree, which the matching bound only half uses. The LP relaxation
+///   min sum d(u, v) x_uv  over all pairs of points, x >= 0, with
+///   x(delta(S)) >= 1  for every set S of points that an odd number of walls leave,
+///   x(delta(S)) >= 2  for every union S of whole wall-connected parts (not all of them),
+/// (for an open path, a free end joined to the start like a wall, with exactly one air
+/// move) is solved with LEMON's LP (GLPK) by cutting planes on a sparse candidate graph;
+/// the cuts are found from the LP solution (parts of its support, and the minimum cut
+/// between wall-connected parts). After every round its dual solution is checked on every
+/// pair of points of the complete graph and scaled until feasible there, so the value
+/// reported is a proof whatever cuts were found. Units: metres. Throws nothing for valid
+/// layers; `certified` is false only when the LP solver failed.
+ConnectedBound connected_airtime_bound(const floors::Layer& layer, Metric metric,
+                                       const PathSpec& path,
+                                       const ConnectedBoundLimits& limits = {},
+                                       const StopCondition& stop = StopCondition());
+
+enum class BoundKind {
+  kMatching,   ///< the matching bound alone (fast; ignores connectivity)
+  kConnected,  ///< the better of the matching and the connected bound
+};
+std::string to_string(BoundKind kind);
+
 struct LayerBound {
   double distance_m = 0.0;  ///< lower bound on the airtime distance of `path` on the layer
-  int odd_points = 0;       ///< points where an odd number of wall ends meet
+  double matching_m = 0.0;  ///< the matching bound
+  std::optional<ConnectedBound> connected;  ///< when asked for
+  int odd_points = 0;                       ///< points where an odd number of wall ends meet
   /// Terminal points used (layer point indices; -2 for an open path's start when it is
   /// not a layer point) and their matching, for constructing a tour from it.
   std::vector<int> terminals;
   MatchingBound matching;
+  /// Which bound `distance_m` is: "matching" or "connected".
+  std::string source() const;
 };
 
-/// The matching bound above, for a closed tour or an open path from path.start_m (a
-/// fixed first wall only raises the true optimum, so the bound stays valid).
-LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path);
+/// The lower bound on the airtime distance of `path` (closed tour, or open path from
+/// path.start_m; a fixed first wall only raises the true optimum, so the bound stays
+/// valid). Metres. The connected bound stops early, still valid, when `stop` says so.
+LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path,
+                               BoundKind kind = BoundKind::kConnected,
+                               const StopCondition& stop = StopCondition());
 
 }  // namespace ccbuild::planner

@@ -45,6 +45,9 @@ struct PlanOptions {
   /// 16 walls (enough to reach the optimum the exact solver finds), 20 above; 0 skips
   /// the polish.
   std::optional<long> polish_kicks;
+  /// Lower bound reported (and used to stop the search once met): the connected bound
+  /// by default; the matching bound alone is faster on very large layers.
+  BoundKind bound = BoundKind::kConnected;
   const std::atomic<bool>* cancel = nullptr;
 };
 
@@ -53,9 +56,10 @@ struct LayerPlan {
   Metric metric = Metric::kEuclidean;
   Objective objective = Objective::kDistance;
   PathSpec path;
-  Sequence sequence;           ///< every segment of the layer exactly once
-  Evaluation evaluation;       ///< exact (CostModel::evaluate)
-  double lower_bound_m = 0.0;  ///< valid bound on airtime distance (see lower_bound.hpp)
+  Sequence sequence;               ///< every segment of the layer exactly once
+  Evaluation evaluation;           ///< exact (CostModel::evaluate)
+  double lower_bound_m = 0.0;      ///< valid bound on airtime distance (see lower_bound.hpp)
+  std::string lower_bound_source;  ///< "matching" or "connected": which bound it is
   int odd_points = 0;
   double solve_s = 0.0;  ///< wall-clock time of the whole run
   StopReason stop = StopReason::kFinished;
