@@ -6,7 +6,9 @@
 // are made collision-free by one of:
 //   path-cycling         each section's closed tour is started elsewhere (cycled), nozzle
 //                        after nozzle, backtracking when one has no cycle left (individual)
-//   global-path-cycling  one CC-TSP tour of the whole layer split into N pieces, cycled
+//   global-path-cycling  one CC-TSP tour of the whole layer cut into N contiguous pieces:
+//                        of the balanced cuts, those lying furthest apart along the
+//                        rails; then cycled
 //   bz-path-cycling      a buffer zone at each inner border, built first; the working zone
 //                        behind it is cycled against the neighbour's buffer
 //   aux-buffer-zone      buffer zones, plus an auxiliary zone where a nozzle's buffer work
