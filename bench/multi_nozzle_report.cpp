@@ -27,20 +27,29 @@ int main(int argc, char** argv) {
   std::vector<int> nozzle_counts{2, 3};
   std::vector<double> widths_ft{2.5, 5.0, 7.5, 10.0};
   std::string objective = "time";
+  std::vector<std::string> method_names{
+      "path-cycling", "global-path-cycling", "bz-path-cycling", "aux-buffer-zone", "delay", "auto"};
   app.add_option("--layouts", layouts, "Layouts, from --smallest to --largest walls");
   app.add_option("--smallest", smallest);
   app.add_option("--largest", largest);
   app.add_option("--nozzles", nozzle_counts)->delimiter(',');
   app.add_option("--gantry-width-ft", widths_ft)->delimiter(',');
   app.add_option("--objective", objective)->check(CLI::IsMember({"time", "distance"}));
+  app.add_option("--methods", method_names, "Methods to run (default: all five, then auto)")
+      ->delimiter(',');
+  bool verbose = false;
+  app.add_flag("--verbose", verbose, "One line per plan on stderr: method, outcome, saved");
   CLI11_PARSE(app, argc, argv);
 
-  const std::vector<MultiMethod> methods{MultiMethod::kPathCycling,
-                                         MultiMethod::kGlobalPathCycling,
-                                         MultiMethod::kBufferZonePathCycling,
-                                         MultiMethod::kAuxBufferZone,
-                                         MultiMethod::kDelay,
-                                         MultiMethod::kAuto};
+  std::vector<MultiMethod> methods;
+  for (const std::string& name : method_names) {
+    const auto m = planner::parse_multi_method(name);
+    if (!m) {
+      std::fprintf(stderr, "unknown method %s\n", name.c_str());
+      return 2;
+    }
+    methods.push_back(*m);
+  }
   struct Tally {
     int tried = 0, succeeded = 0;
     std::vector<double> saved;
@@ -76,6 +85,18 @@ int main(int argc, char** argv) {
             if (plan.collision_free) {
               ++t.succeeded;
               t.saved.push_back(100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
+            }
+            if (verbose) {
+              const auto& stage = plan.stages.front();
+              std::fprintf(stderr, "  %zu walls, %d nozzles, %.1f ft, %s: %s\n",
+                           layer.segments.size(), n, ft, planner::to_string(methods[m]).c_str(),
+                           plan.collision_free
+                               ? (stage.method_detail + ", saved " +
+                                  std::to_string(100.0 * (1.0 - plan.layer_time_s /
+                                                                    plan.single_nozzle_time_s)) +
+                                  "%")
+                                     .c_str()
+                               : stage.attempts.back().c_str());
             }
           } catch (const std::exception& e) {
             std::fprintf(stderr, "layout %d: %s\n", i + 1, e.what());
