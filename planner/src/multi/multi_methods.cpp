@@ -646,6 +646,11 @@ std::optional<std::vector<NozzlePath>> with_waits(const StageContext& ctx, const
   std::vector<std::vector<double>> waits(n);
   for (int k = 0; k < n; ++k) waits[k].assign(s.works[k].working.size(), 0.0);
   auto paths = build_paths(ctx, s.cut, s.works, cycles, waits);
+  // Holds that would make the stage longer than all the nozzles' work done one after
+  // another are pointless (and a nozzle finished in another's way makes them grow without
+  // end): give up there.
+  double one_after_another_s = 0.0;
+  for (const auto& p : paths) one_after_another_s += p.busy_s;
   // Each nozzle's walls and cost model, kept for the many trial holds.
   std::vector<std::unique_ptr<SectionModel>> models;
   for (int k = 0; k < n; ++k)
@@ -728,6 +733,7 @@ std::optional<std::vector<NozzlePath>> with_waits(const StageContext& ctx, const
                                {waits[chosen.nozzle]});
     rebuilt[0].nozzle = chosen.nozzle;
     paths[chosen.nozzle] = std::move(rebuilt[0]);
+    if (paths[chosen.nozzle].finish_s > one_after_another_s) return std::nullopt;
   }
   return std::nullopt;
 }
