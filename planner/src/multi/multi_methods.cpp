@@ -514,7 +514,10 @@ std::optional<std::vector<NozzlePath>> global_path_cycling(const StageContext& c
                   std::move(split));
     if (static_cast<int>(ranked.size()) > kSplitsToCycle) ranked.pop_back();
   });
-  CCBUILD_CHECK(!ranked.empty(), "the most balanced split is within its own tolerance");
+  if (ranked.empty()) {  // only when the enumeration ran out of budget first
+    why = "no cut of the tour into " + std::to_string(n) + " balanced pieces was found";
+    return std::nullopt;
+  }
   // 3. Path cycling on the pieces, the best-ranked split first.
   std::string first_why;
   for (const TourSplit& split : ranked) {
