@@ -56,6 +56,8 @@ nlohmann::ordered_json multi_plan_json(const planner::MultiNozzlePlan& plan,
     s["method_detail"] = stage.method_detail;
     s["attempts"] = stage.attempts;
     s["time_s"] = rounded(stage.time_s);
+    s["faster_delay_s"] =
+        stage.faster_delay_s ? json(rounded(*stage.faster_delay_s)) : json(nullptr);
     s["min_gap_m"] =
         std::isfinite(stage.min_gap_m) ? json(rounded(stage.min_gap_m)) : json(nullptr);
     json nozzles = json::array();

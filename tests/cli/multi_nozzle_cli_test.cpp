@@ -29,6 +29,7 @@ TEST(MultiNozzleCli, HouseWithTwoNozzlesInJson) {
   ASSERT_EQ(j["stages"].size(), 1u);
   const auto& stage = j["stages"][0];
   EXPECT_TRUE(stage["method"].is_string());
+  EXPECT_TRUE(stage.contains("faster_delay_s"));  // null unless delay would have been faster
   ASSERT_EQ(stage["nozzles"].size(), 2u);
   std::size_t walls = 0;
   for (const auto& n : stage["nozzles"]) {

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 
 #include "ccbuild/common/format.hpp"
@@ -299,95 +301,250 @@ std::optional<std::vector<NozzlePath>> path_cycling(const StageContext& ctx, std
   return checked(ctx, build_paths(ctx, s.cut, s.works, *cycles), why);
 }
 
+namespace {
+
+// The ways to cut one closed tour into contiguous pieces, each of which becomes a closed
+// path of its own: the moves between pieces are dropped and each piece returns to its
+// start. Steps are indexed around the tour twice over (t and t + m are the same step), so
+// a piece is a start and a length.
+class TourPieces {
+ public:
+  TourPieces(const Sequence& tour, const CostModel& model, RailAxis axis)
+      : tour_(tour), model_(model), m_(static_cast<int>(tour.size())) {
+    const Evaluation e = model.evaluate(tour, PathSpec::closed_tour());
+    const double speed = model.machine().deposition_speed_m_s;
+    deposition_.assign(2 * m_ + 1, 0.0);
+    moves_.assign(2 * m_ + 1, 0.0);
+    std::vector<double> lo(2 * m_), hi(2 * m_);
+    for (int t = 0; t < 2 * m_; ++t) {
+      const Step& step = tour[t % m_];
+      deposition_[t + 1] = deposition_[t] + model.layer().segments[step.segment].length_m / speed;
+      // e.moves[k] leads to step k + 1; the last one (the closing move) to step 0.
+      moves_[t + 1] = moves_[t] + e.moves[(t % m_ + m_ - 1) % m_].time_s;
+      const double a = rail_coordinate(model.step_start_m(step), axis),
+                   b = rail_coordinate(model.step_end_m(step), axis);
+      lo[t] = std::min(a, b);
+      hi[t] = std::max(a, b);
+    }
+    // Sparse tables for the rail extent of any run of steps.
+    lo_.push_back(lo);
+    hi_.push_back(hi);
+    for (int span = 1; 2 * span <= 2 * m_; span *= 2) {
+      std::vector<double> l(2 * m_ - 2 * span + 1), h(l.size());
+      for (std::size_t t = 0; t < l.size(); ++t) {
+        l[t] = std::min(lo_.back()[t], lo_.back()[t + span]);
+        h[t] = std::max(hi_.back()[t], hi_.back()[t + span]);
+      }
+      lo_.push_back(std::move(l));
+      hi_.push_back(std::move(h));
+    }
+    // The largest moves, for bounding what the moves dropped between pieces can take.
+    largest_moves_s_.reserve(e.moves.size());
+    for (const Move& move : e.moves) largest_moves_s_.push_back(move.time_s);
+    std::sort(largest_moves_s_.rbegin(), largest_moves_s_.rend());
+  }
+
+  int size() const { return m_; }
+  /// Deposition and inner moves of steps [a, a + len), as timed in the whole tour.
+  double inner_s(int a, int len) const {
+    return deposition_[a + len] - deposition_[a] + moves_[a + len] - moves_[a + 1];
+  }
+  /// inner_s plus the move from the piece's last wall back to its first.
+  double time_s(int a, int len) const {
+    const Step& first = tour_[a % m_];
+    const Step& last = tour_[(a + len - 1) % m_];
+    const double turn =
+        std::remainder(model_.heading_rad(first) - model_.heading_rad(last), 2.0 * M_PI);
+    return inner_s(a, len) +
+           model_.move_time_s(model_.step_end_m(last), model_.step_start_m(first), turn, false);
+  }
+  /// Smallest and largest rail coordinate of the walls of steps [a, a + len).
+  std::pair<double, double> extent(int a, int len) const {
+    int level = 0;
+    while ((2 << level) <= len) ++level;
+    const int b = a + len - (1 << level);
+    return {std::min(lo_[level][a], lo_[level][b]), std::max(hi_[level][a], hi_[level][b])};
+  }
+  /// An upper bound of the moves dropped when a run is cut into `pieces` pieces.
+  double dropped_bound_s(int pieces) const {
+    double sum = 0.0;
+    for (int k = 0; k + 1 < pieces && k < static_cast<int>(largest_moves_s_.size()); ++k)
+      sum += largest_moves_s_[k];
+    return sum;
+  }
+
+  /// Calls visit(cuts, longest) for every way to cut the tour into `n` pieces that each
+  /// take at most `limit` s (which visit may lower as it goes); cuts are ascending step
+  /// indices where pieces begin, the last piece running on round the end of the tour to
+  /// cuts[0]. Returns false when `budget` ran out first.
+  template <class Visit>
+  bool each_split(int n, double& limit, long& budget, Visit&& visit) const {
+    std::vector<int> cuts(n);
+    std::function<bool(int, double)> place = [&](int k, double longest) -> bool {
+      const int from = cuts[k - 1], end = cuts[0] + m_;
+      if (k == n) {
+        const double t = time_s(from, end - from);
+        if (t <= limit) visit(cuts, std::max(longest, t));
+        return true;
+      }
+      // Piece k - 1 is [from, c). What follows, [c, end), must still fit n - k pieces:
+      // its inner time shrinks as c grows, so start at the first c where it can.
+      const int left = n - k;
+      const double room = left * limit + dropped_bound_s(left);
+      int lo = from + 1, hi = m_ - left;  // cuts stay below m: cuts[0] is the smallest
+      if (lo > hi) return true;
+      {
+        int a = lo, b = hi + 1;
+        while (a < b) {
+          const int mid = (a + b) / 2;
+          if (inner_s(mid, end - mid) <= room)
+            b = mid;
+          else
+            a = mid + 1;
+        }
+        lo = a;
+      }
+      for (int c = lo; c <= hi; ++c) {
+        if (inner_s(from, c - from) > limit) break;
+        const double t = time_s(from, c - from);
+        if (t > limit) continue;
+        if (--budget < 0) return false;
+        cuts[k] = c;
+        if (!place(k + 1, std::max(longest, t))) return false;
+      }
+      return true;
+    };
+    for (int c0 = 0; c0 < m_; ++c0) {
+      cuts[0] = c0;
+      if (!place(1, 0.0)) return false;
+    }
+    return true;
+  }
+
+ private:
+  const Sequence& tour_;
+  const CostModel& model_;
+  int m_;
+  std::vector<double> deposition_, moves_;  // prefix sums over the doubled tour
+  std::vector<std::vector<double>> lo_, hi_;
+  std::vector<double> largest_moves_s_;
+};
+
+// A way to cut the tour, with its pieces in rail order.
+struct TourSplit {
+  std::vector<std::pair<int, int>> pieces;  // (start, length), ascending rail position
+  std::vector<std::pair<double, double>> extents;
+  double longest_s = 0.0;
+  double shortfall_m = 0.0;  // summed over adjacent pieces: how much less than a gantry
+                             // width apart their rail extents are
+};
+
+TourSplit make_split(const TourPieces& tp, const std::vector<int>& cuts, double longest,
+                     double gantry_width_m) {
+  const int n = static_cast<int>(cuts.size());
+  std::vector<std::pair<int, int>> pieces;
+  for (int k = 0; k < n; ++k) {
+    const int end = k + 1 < n ? cuts[k + 1] : cuts[0] + tp.size();
+    pieces.emplace_back(cuts[k], end - cuts[k]);
+  }
+  std::vector<std::pair<double, double>> extents;
+  for (const auto& [a, len] : pieces) extents.push_back(tp.extent(a, len));
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return extents[a].first + extents[a].second < extents[b].first + extents[b].second;
+  });
+  TourSplit out;
+  out.longest_s = longest;
+  for (int k : order) {
+    out.pieces.push_back(pieces[k]);
+    out.extents.push_back(extents[k]);
+  }
+  for (int k = 0; k + 1 < n; ++k)
+    out.shortfall_m +=
+        std::max(0.0, gantry_width_m - (out.extents[k + 1].first - out.extents[k].second));
+  return out;
+}
+
+// Splits ranked for cycling: less shortfall first (to the centimetre), then faster.
+bool better_split(const TourSplit& a, const TourSplit& b) {
+  const long sa = std::lround(a.shortfall_m * 100.0), sb = std::lround(b.shortfall_m * 100.0);
+  return sa != sb ? sa < sb : a.longest_s < b.longest_s;
+}
+
+constexpr int kSplitsToCycle = 6;         // best-ranked splits handed to path cycling in turn
+constexpr long kSplitBudget = 4'000'000;  // pieces timed per enumeration
+
+}  // namespace
+
 std::optional<std::vector<NozzlePath>> global_path_cycling(const StageContext& ctx,
                                                            std::string& why, int& vertices) {
   const int n = ctx.options.nozzles;
+  const double w = ctx.options.gantry_width_m;
   const CutLayer cut = cut_layer(ctx.layer, ctx.options.rail_axis, {});
   vertices = static_cast<int>(cut.layer.points.size());
   std::vector<int> all(cut.layer.segments.size());
   std::iota(all.begin(), all.end(), 0);
-  Sequence tour = closed_tour(cut.layer, all, ctx);
-  // Each piece becomes a closed path of its own, so the moves between pieces are
-  // dropped: start the tour after its longest move, then choose the split points that
-  // make the longest piece (deposition, inner moves, return to its start) shortest.
+  const Sequence tour = closed_tour(cut.layer, all, ctx);
+  if (static_cast<int>(tour.size()) < n) {
+    why = "the layer has fewer walls (" + std::to_string(tour.size()) + ") than nozzles";
+    return std::nullopt;
+  }
   const CostModel model(cut.layer, ctx.machine, ctx.options.planning.metric);
-  {
-    const Evaluation e = model.evaluate(tour, PathSpec::closed_tour());
-    std::size_t longest = 0;  // moves[k] leads to step k + 1; the last is the closing move
-    for (std::size_t k = 0; k < e.moves.size(); ++k)
-      if (e.moves[k].time_s > e.moves[longest].time_s) longest = k;
-    std::rotate(tour.begin(), tour.begin() + (longest + 1) % tour.size(), tour.end());
+  const TourPieces tp(tour, model, ctx.options.rail_axis);
+  // 1. The most balanced split: its longest piece as short as possible. Start from the
+  //    layer time (any split is shorter) and tighten as splits are found.
+  double limit = model.evaluate(tour, PathSpec::closed_tour()).layer_time_s + 1.0;
+  double best = std::numeric_limits<double>::infinity();
+  long budget = kSplitBudget;
+  tp.each_split(n, limit, budget, [&](const std::vector<int>&, double longest) {
+    best = std::min(best, longest);
+    limit = best * (1.0 - 1e-12);
+  });
+  // 2. Among the splits balanced within the tolerance (longest piece at most that much
+  //    longer than the best one's), those whose pieces lie furthest apart along the rails.
+  limit = best * (1.0 + ctx.options.balance_tolerance) + 1e-9;
+  budget = kSplitBudget;
+  std::vector<TourSplit> ranked;
+  tp.each_split(n, limit, budget, [&](const std::vector<int>& cuts, double longest) {
+    TourSplit split = make_split(tp, cuts, longest, w);
+    if (static_cast<int>(ranked.size()) == kSplitsToCycle && !better_split(split, ranked.back()))
+      return;
+    ranked.insert(std::upper_bound(ranked.begin(), ranked.end(), split, better_split),
+                  std::move(split));
+    if (static_cast<int>(ranked.size()) > kSplitsToCycle) ranked.pop_back();
+  });
+  if (ranked.empty()) {  // only when the enumeration ran out of budget first
+    why = "no cut of the tour into " + std::to_string(n) + " balanced pieces was found";
+    return std::nullopt;
   }
-  const Evaluation e = model.evaluate(tour, PathSpec::closed_tour());
-  const double deposition_speed = ctx.machine.deposition_speed_m_s;
-  auto closing_s = [&](std::size_t first, std::size_t last) {
-    return model.move_time_s(model.step_end_m(tour[last]), model.step_start_m(tour[first]), 0.0,
-                             false);
-  };
-  auto pack = [&](double limit, std::vector<std::size_t>* starts) {
-    int count = 1;
-    std::size_t first = 0;
-    double inner = cut.layer.segments[tour[0].segment].length_m / deposition_speed;
-    if (starts) starts->assign(1, 0);
-    for (std::size_t k = 1; k < tour.size(); ++k) {
-      const double add =
-          e.moves[k - 1].time_s + cut.layer.segments[tour[k].segment].length_m / deposition_speed;
-      if (inner + add + closing_s(first, k) > limit) {
-        ++count;
-        first = k;
-        inner = cut.layer.segments[tour[k].segment].length_m / deposition_speed;
-        if (starts) starts->push_back(k);
-      } else {
-        inner += add;
+  // 3. Path cycling on the pieces, the best-ranked split first.
+  std::string first_why;
+  for (const TourSplit& split : ranked) {
+    std::vector<NozzleWork> works;
+    for (std::size_t k = 0; k < split.pieces.size(); ++k) {
+      const auto [a, len] = split.pieces[k];
+      NozzleWork work;
+      for (int t = a; t < a + len; ++t) {
+        work.working.push_back(tour[t % tour.size()]);
+        work.section_segments.push_back(work.working.back().segment);
       }
+      std::tie(work.from_m, work.to_m) = split.extents[k];
+      works.push_back(std::move(work));
     }
-    return count;
-  };
-  double lo_t = 0.0, hi_t = e.layer_time_s + 1.0;
-  for (int it = 0; it < 50; ++it) {
-    const double mid = 0.5 * (lo_t + hi_t);
-    (pack(mid, nullptr) <= n ? hi_t : lo_t) = mid;
-  }
-  std::vector<std::size_t> starts;
-  pack(hi_t, &starts);
-  std::vector<Sequence> pieces;
-  for (std::size_t p = 0; p < starts.size(); ++p) {
-    const std::size_t end = p + 1 < starts.size() ? starts[p + 1] : tour.size();
-    pieces.emplace_back(tour.begin() + starts[p], tour.begin() + end);
-  }
-  // Pieces go to gantries in the order of their mean rail position.
-  auto centre = [&](const Sequence& p) {
-    if (p.empty()) return 0.0;
-    double sum = 0.0;
-    for (const Step& step : p) {
-      const auto& seg = cut.layer.segments[step.segment];
-      sum += rail_coordinate(0.5 * (cut.layer.start_m(seg) + cut.layer.end_m(seg)),
-                             ctx.options.rail_axis);
+    std::string reason;
+    if (const auto cycles = compatible_cycles(ctx, cut, works, reason))
+      if (auto paths = checked(ctx, build_paths(ctx, cut, works, *cycles), reason)) return paths;
+    if (first_why.empty()) {
+      first_why = reason;
+      if (split.shortfall_m > 1e-9)
+        first_why += "; the best split's pieces are " + metres(split.shortfall_m, 2) +
+                     " short of a gantry width apart along the rails";
     }
-    return sum / p.size();
-  };
-  std::stable_sort(pieces.begin(), pieces.end(),
-                   [&](const Sequence& a, const Sequence& b) { return centre(a) < centre(b); });
-  std::vector<NozzleWork> works;
-  for (const Sequence& p : pieces) {
-    NozzleWork w;
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const Step& step : p) {
-      const auto& seg = cut.layer.segments[step.segment];
-      w.section_segments.push_back(step.segment);
-      for (const auto& q : {cut.layer.start_m(seg), cut.layer.end_m(seg)}) {
-        lo = std::min(lo, rail_coordinate(q, ctx.options.rail_axis));
-        hi = std::max(hi, rail_coordinate(q, ctx.options.rail_axis));
-      }
-    }
-    w.from_m = p.empty() ? ctx.from_m : lo;
-    w.to_m = p.empty() ? ctx.from_m : hi;
-    w.working = p;
-    works.push_back(std::move(w));
+    if (ctx.stop.should_stop()) break;
   }
-  const auto cycles = compatible_cycles(ctx, cut, works, why);
-  if (!cycles) return std::nullopt;
-  return checked(ctx, build_paths(ctx, cut, works, *cycles), why);
+  why = first_why + " (" + std::to_string(ranked.size()) + " balanced splits of the tour tried)";
+  return std::nullopt;
 }
 
 std::optional<std::vector<NozzlePath>> buffer_zone_path_cycling(const StageContext& ctx,
@@ -471,6 +628,121 @@ std::optional<std::vector<NozzlePath>> aux_buffer_zone(const StageContext& ctx, 
   return checked(ctx, build_paths(ctx, z.cut, z.works, std::vector<int>(n, 0)), why);
 }
 
+namespace {
+
+double stage_time_s(const std::vector<NozzlePath>& paths) {
+  double t = 0.0;
+  for (const auto& p : paths) t = std::max(t, p.finish_s);
+  return t;
+}
+
+// Delay, alternative 1: waits where needed. Take the earliest conflict and make one of the
+// two nozzles hold before the step it was on (or a few steps earlier), for the shortest
+// hold after which it can finish that step without meeting either neighbour; failing
+// that, the shortest hold that at least moves the conflict later.
+std::optional<std::vector<NozzlePath>> with_waits(const StageContext& ctx, const Sections& s,
+                                                  const std::vector<int>& cycles,
+                                                  std::string& detail) {
+  const int n = ctx.options.nozzles;
+  const RailAxis axis = ctx.options.rail_axis;
+  const double w = ctx.options.gantry_width_m;
+  std::vector<std::vector<double>> waits(n);
+  for (int k = 0; k < n; ++k) waits[k].assign(s.works[k].working.size(), 0.0);
+  auto paths = build_paths(ctx, s.cut, s.works, cycles, waits);
+  // Holds that would make the stage longer than all the nozzles' work done one after
+  // another are pointless (and a nozzle finished in another's way makes them grow without
+  // end): give up there.
+  double one_after_another_s = 0.0;
+  for (const auto& p : paths) one_after_another_s += p.busy_s;
+  // Each nozzle's walls and cost model, kept for the many trial holds.
+  std::vector<std::unique_ptr<SectionModel>> models;
+  for (int k = 0; k < n; ++k)
+    models.push_back(std::make_unique<SectionModel>(ctx, s.cut, s.works[k].section_segments));
+  auto earliest = [&](const std::vector<NozzlePath>& p, int& pair) -> std::optional<Conflict> {
+    std::optional<Conflict> first;
+    for (int k = 0; k + 1 < n; ++k) {
+      if (auto c = first_conflict(p[k].timeline, p[k + 1].timeline, axis, w);
+          c && (!first || c->time_s < first->time_s)) {
+        first = c;
+        pair = k;
+      }
+    }
+    return first;
+  };
+  for (int round = 0; round < 400 && !ctx.stop.should_stop(); ++round) {
+    int pair = 0;
+    const auto conflict = earliest(paths, pair);
+    if (!conflict) {
+      std::string problem;
+      auto ok = checked(ctx, paths, problem);
+      if (ok) {
+        double total = 0.0;
+        for (const auto& p : paths) total += p.wait_s;
+        detail = "delay (" + std::to_string(round) + " waits, " + seconds(total) + " in all)";
+      }
+      return ok;
+    }
+    if (conflict->time_s <= 1e-9) return std::nullopt;  // they start too close
+    struct Hold {
+      double s = std::numeric_limits<double>::infinity();
+      int nozzle = -1;
+      std::size_t step = 0;
+    } finishes, later;  // lets the nozzle finish its step / only moves the conflict later
+    for (int y : {pair, pair + 1}) {
+      const int o = y == pair ? pair + 1 : pair;
+      const auto& starts = paths[y].step_start_s;
+      if (starts.empty()) continue;
+      std::size_t current = 0;
+      while (current + 1 < starts.size() && starts[current + 1] <= conflict->time_s) ++current;
+      const double current_end =
+          current + 1 < starts.size() ? starts[current + 1] : paths[y].finish_s;
+      // Hold before the step in progress; if resting where that step begins is itself in
+      // the way, hold a few steps earlier.
+      for (std::size_t back = 0; back <= std::min<std::size_t>(current, 6); ++back) {
+        const std::size_t step = current - back;
+        std::vector<double> holds;
+        for (double t : paths[o].timeline.times())
+          if (t > starts[step]) holds.push_back(t - starts[step]);
+        holds.push_back(paths[o].finish_s - starts[step]);
+        std::sort(holds.begin(), holds.end());
+        holds.erase(std::unique(holds.begin(), holds.end()), holds.end());
+        for (double hold : holds) {
+          if (hold <= 0.0 || hold >= finishes.s) break;
+          auto trial = waits[y];
+          trial[step] += hold;
+          const Timeline candidate =
+              timeline_of(*models[y]->model, paths[y].sequence, PathSpec::closed_tour(),
+                          paths[y].evaluation, trial);
+          std::optional<double> next;  // y's first conflict with either neighbour now
+          for (int other : {y - 1, y + 1}) {
+            if (other < 0 || other >= n) continue;
+            const auto& left = other < y ? paths[other].timeline : candidate;
+            const auto& right = other < y ? candidate : paths[other].timeline;
+            if (auto c = first_conflict(left, right, axis, w); c && (!next || c->time_s < *next))
+              next = c->time_s;
+          }
+          if (!next || *next > current_end + hold + 1e-6) {
+            finishes = {hold, y, step};
+            break;
+          }
+          if (*next > conflict->time_s + 1e-6 && hold < later.s) later = {hold, y, step};
+        }
+      }
+    }
+    const Hold& chosen = finishes.nozzle >= 0 ? finishes : later;
+    if (chosen.nozzle < 0) return std::nullopt;
+    waits[chosen.nozzle][chosen.step] += chosen.s;
+    auto rebuilt = build_paths(ctx, s.cut, {s.works[chosen.nozzle]}, {cycles[chosen.nozzle]},
+                               {waits[chosen.nozzle]});
+    rebuilt[0].nozzle = chosen.nozzle;
+    paths[chosen.nozzle] = std::move(rebuilt[0]);
+    if (paths[chosen.nozzle].finish_s > one_after_another_s) return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std::string& why,
                                                     int& vertices, std::string& detail) {
   const int n = ctx.options.nozzles;
@@ -506,147 +778,83 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
       }
     }
   }
-  std::vector<std::vector<double>> waits(n);
-  for (int k = 0; k < n; ++k) waits[k].assign(s.works[k].working.size(), 0.0);
 
-  // 1. Waits where needed: take the earliest conflict and make one of the two nozzles
-  //    hold before the step it was on, just long enough that the conflict moves later;
-  //    choose the shorter hold.
-  auto paths = build_paths(ctx, s.cut, s.works, cycles, waits);
-  // Each nozzle's walls and cost model, kept for the many trial holds.
-  std::vector<std::unique_ptr<SectionModel>> models;
-  for (int k = 0; k < n; ++k)
-    models.push_back(std::make_unique<SectionModel>(ctx, s.cut, s.works[k].section_segments));
-  auto earliest = [&](const std::vector<NozzlePath>& p, int& pair) -> std::optional<Conflict> {
-    std::optional<Conflict> first;
-    for (int k = 0; k + 1 < n; ++k) {
-      if (auto c = first_conflict(p[k].timeline, p[k + 1].timeline, axis, w);
-          c && (!first || c->time_s < first->time_s)) {
-        first = c;
-        pair = k;
-      }
+  // The alternatives; the fastest collision-free one is returned.
+  std::optional<std::vector<NozzlePath>> fastest;
+  auto consider = [&](std::optional<std::vector<NozzlePath>> paths, std::string what) {
+    if (paths && (!fastest || stage_time_s(*paths) < stage_time_s(*fastest))) {
+      fastest = std::move(paths);
+      detail = std::move(what);
     }
-    return first;
   };
-  for (int round = 0; round < 400 && !ctx.stop.should_stop(); ++round) {
-    int pair = 0;
-    const auto conflict = earliest(paths, pair);
-    if (!conflict) {
-      std::string problem;
-      if (auto ok = checked(ctx, paths, problem)) {
-        double total = 0.0;
-        for (const auto& p : paths) total += p.wait_s;
-        detail = "delay (" + std::to_string(round) + " waits, " + seconds(total) + " in all)";
-        return ok;
-      }
-      break;
-    }
-    if (conflict->time_s <= 1e-9) break;  // they start too close: no hold can help
-    double best_hold = std::numeric_limits<double>::infinity();
-    int best_nozzle = -1;
-    std::size_t best_step = 0;
-    for (int y : {pair, pair + 1}) {
-      const int o = y == pair ? pair + 1 : pair;
-      const auto& starts = paths[y].step_start_s;
-      if (starts.empty()) continue;
-      std::size_t current = 0;
-      while (current + 1 < starts.size() && starts[current + 1] <= conflict->time_s) ++current;
-      // Hold before the step in progress; if resting where that step begins is itself in
-      // the way, hold a few steps earlier.
-      for (std::size_t back = 0; back <= std::min<std::size_t>(current, 6); ++back) {
-        const std::size_t step = current - back;
-        std::vector<double> holds;
-        for (double t : paths[o].timeline.times())
-          if (t > starts[step]) holds.push_back(t - starts[step]);
-        holds.push_back(paths[o].finish_s - starts[step]);
-        std::sort(holds.begin(), holds.end());
-        holds.erase(std::unique(holds.begin(), holds.end()), holds.end());
-        for (double hold : holds) {
-          if (hold <= 0.0 || hold >= best_hold) continue;
-          auto trial = waits[y];
-          trial[step] += hold;
-          const Timeline candidate =
-              timeline_of(*models[y]->model, paths[y].sequence, PathSpec::closed_tour(),
-                          paths[y].evaluation, trial);
-          // Progress: nothing involving y may now conflict at or before the old conflict.
-          bool progress = true;
-          for (int other : {y - 1, y + 1}) {
-            if (other < 0 || other >= n) continue;
-            const auto& left = other < y ? paths[other].timeline : candidate;
-            const auto& right = other < y ? candidate : paths[other].timeline;
-            if (auto c = first_conflict(left, right, axis, w);
-                c && c->time_s <= conflict->time_s + 1e-6)
-              progress = false;
-          }
-          if (progress) {
-            best_hold = hold;
-            best_nozzle = y;
-            best_step = step;
-            break;
-          }
-        }
-      }
-    }
-    if (best_nozzle < 0) break;
-    waits[best_nozzle][best_step] += best_hold;
-    auto rebuilt = build_paths(ctx, s.cut, {s.works[best_nozzle]}, {cycles[best_nozzle]},
-                               {waits[best_nozzle]});
-    rebuilt[0].nozzle = best_nozzle;
-    paths[best_nozzle] = std::move(rebuilt[0]);
+
+  // 1. Waits.
+  {
+    std::string what;
+    auto paths = with_waits(ctx, s, cycles, what);
+    consider(std::move(paths), what);
   }
 
   // 2. Turns: even-numbered nozzles work while odd ones hold at their start points, then
   //    the other way round. Safe when every holding nozzle rests a gantry width clear of
   //    its working neighbours' sections (the tours start there when they can).
   if (std::all_of(rests_clear.begin(), rests_clear.end(), [](char c) { return c != 0; })) {
+    const auto alone = build_paths(ctx, s.cut, s.works, cycles);
     std::vector<std::vector<double>> turn(n);
     double even_finish = 0.0;
-    for (int k = 0; k < n; k += 2) even_finish = std::max(even_finish, paths[k].busy_s);
+    for (int k = 0; k < n; k += 2) even_finish = std::max(even_finish, alone[k].busy_s);
     for (int k = 0; k < n; ++k) {
       turn[k].assign(s.works[k].working.size(), 0.0);
       if (k % 2 == 1 && !turn[k].empty()) turn[k][0] = even_finish;
     }
     std::string problem;
-    if (auto ok = checked(ctx, build_paths(ctx, s.cut, s.works, cycles, turn), problem)) {
-      detail = "delay (odd nozzles wait for even ones: " + seconds(even_finish) + ")";
-      return ok;
-    }
+    consider(checked(ctx, build_paths(ctx, s.cut, s.works, cycles, turn), problem),
+             "delay (odd nozzles wait for even ones: " + seconds(even_finish) + ")");
   }
 
-  // 3. One nozzle builds everything; the others park clear of the layout on the rails.
+  // 3. One nozzle builds the stage alone, on its single-nozzle tour of the uncut walls
+  //    (planned as a single nozzle would plan it); the others park clear of the layout at
+  //    the ends of the rails.
   {
-    std::vector<int> everything(s.cut.layer.segments.size());
-    std::iota(everything.begin(), everything.end(), 0);
+    const CutLayer whole = cut_layer(ctx.layer, axis, {});
     NozzleWork all;
     all.from_m = ctx.from_m;
     all.to_m = ctx.to_m;
-    all.section_segments = everything;
-    all.working = closed_tour(s.cut.layer, everything, ctx);
+    all.section_segments.resize(whole.layer.segments.size());
+    std::iota(all.section_segments.begin(), all.section_segments.end(), 0);
+    bool planned = false;
     for (int j = 0; j < n; ++j) {
       std::vector<NozzleWork> works(n);
       bool fits = true;
       for (int k = 0; k < n; ++k) {
-        if (k == j) {
-          works[k] = all;
-          continue;
-        }
+        if (k == j) continue;
         // Left of the worker: pack against the left end of the rails; right: the right end.
         const double at = k < j ? ctx.rail_min_m + k * w : ctx.rail_max_m - (n - 1 - k) * w;
         works[k].from_m = works[k].to_m = at;
         if ((k < j && at > ctx.from_m - w) || (k > j && at < ctx.to_m + w)) fits = false;
       }
       if (!fits) continue;
+      if (!planned) {
+        PlanOptions o = ctx.options.planning;
+        o.algorithm = Algorithm::kCcTsp;
+        o.path = PathSpec::closed_tour();
+        o.time_limit_s = std::max(0.05, std::min(o.time_limit_s, ctx.stop.remaining_s()));
+        all.working = plan_layer(whole.layer, ctx.machine, o).sequence;
+        planned = true;
+      }
+      works[j] = all;
       std::string problem;
-      if (auto ok = checked(ctx, build_paths(ctx, s.cut, works, std::vector<int>(n, 0)), problem)) {
-        detail = "delay (nozzle " + std::to_string(j + 1) + " alone, the others parked)";
-        return ok;
+      if (auto ok = checked(ctx, build_paths(ctx, whole, works, std::vector<int>(n, 0)), problem)) {
+        consider(std::move(ok),
+                 "delay (nozzle " + std::to_string(j + 1) + " alone, the others parked)");
+        break;
       }
     }
   }
+  if (fastest) return fastest;
   why =
       "no waits resolve the conflicts, no turns are safe (a nozzle cannot rest a gantry width "
-      "clear of its "
-      "neighbours' sections), and the rails leave no room to park";
+      "clear of its neighbours' sections), and the rails leave no room to park";
   return std::nullopt;
 }
 

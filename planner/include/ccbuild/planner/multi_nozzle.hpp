@@ -6,16 +6,20 @@
 // are made collision-free by one of:
 //   path-cycling         each section's closed tour is started elsewhere (cycled), nozzle
 //                        after nozzle, backtracking when one has no cycle left (individual)
-//   global-path-cycling  one CC-TSP tour of the whole layer split into N pieces, cycled
+//   global-path-cycling  one CC-TSP tour of the whole layer cut into N contiguous pieces:
+//                        of the balanced cuts, those lying furthest apart along the
+//                        rails; then cycled
 //   bz-path-cycling      a buffer zone at each inner border, built first; the working zone
 //                        behind it is cycled against the neighbour's buffer
 //   aux-buffer-zone      buffer zones, plus an auxiliary zone where a nozzle's buffer work
 //                        would end before its right neighbour's; no cycling
-//   delay                ours: waits inserted where a nozzle must hold until its neighbour
-//                        has moved away (least added time first); failing that, nozzles
-//                        take turns (odd, then even), or one works while the others park
+//   delay                ours: the fastest of three alternatives: waits inserted where a
+//                        nozzle must hold until its neighbour has moved away; nozzles
+//                        taking turns (even, then odd); one nozzle working alone on its
+//                        single-nozzle tour while the others park
 //   auto                 the papers' order (path cycling, buffer zone path cycling,
-//                        auxiliary buffer zone), then delay
+//                        auxiliary buffer zone), then delay; when a papers' method is
+//                        used and delay would be faster, the stage says so
 // Every plan returned has passed the exact x/t check of every adjacent pair.
 //
 // Overhead platform: with a platform width, the layout is split into platform-wide
@@ -91,6 +95,9 @@ struct Stage {
   MultiMethod method = MultiMethod::kAuto;  ///< the method that produced this stage's plan
   std::string method_detail;                ///< e.g. "delay (odd/even turns)"
   std::vector<std::string> attempts;        ///< each method tried, and why it failed
+  /// auto only: when it used one of the papers' methods and delay would have finished the
+  /// stage sooner, delay's time (also said in `attempts`); auto still keeps the papers' plan.
+  std::optional<double> faster_delay_s;
   std::vector<NozzlePath> nozzles;
   double time_s = 0.0;     ///< until the last nozzle finishes
   double min_gap_m = 0.0;  ///< smallest gap between adjacent gantries
