@@ -495,6 +495,14 @@ TEST(MultiNozzle, ImpossibleParametersAreInputErrors) {
   o = options(MultiMethod::kAuto, 10.0, 6);  // 5 x 10 m of spacing on 50 m of rails
   EXPECT_TRUE(contains(expect_input_error([&] { plan_layer_multi(layer, machine, o); }).what(),
                        "do not fit"));
+  // The rails are as long as the machine's axis along them: 10 m of y travel holds
+  // 5 gantries 2 m apart, not 6, when the rails run along y.
+  auto short_y = machine;
+  short_y.y.max_m = 10.0;
+  o = options(MultiMethod::kAuto, 2.0, 6);
+  o.rail_axis = RailAxis::kY;
+  EXPECT_TRUE(contains(expect_input_error([&] { plan_layer_multi(layer, short_y, o); }).what(),
+                       "do not fit"));
   o = options(MultiMethod::kAuto, 2.0, 3);
   o.platform_width_m = 3.0;
   EXPECT_TRUE(contains(expect_input_error([&] { plan_layer_multi(layer, machine, o); }).what(),

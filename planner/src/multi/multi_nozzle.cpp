@@ -127,8 +127,9 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
     lo = std::min(lo, rail_coordinate(p, axis));
     hi = std::max(hi, rail_coordinate(p, axis));
   }
-  // The rails: as long as the machine's rail axis, centred on the layout.
-  const double rails = machine.x.max_m - machine.x.min_m;
+  // The rails: as long as the machine's axis along them, centred on the layout.
+  const auto& rail_joint = axis == RailAxis::kX ? machine.x : machine.y;
+  const double rails = rail_joint.max_m - rail_joint.min_m;
   if ((n - 1) * w >= rails)
     throw InputError("", 0, "--nozzles",
                      std::to_string(n) + " gantries " + metres(w, 2) +

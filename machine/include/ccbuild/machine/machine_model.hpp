@@ -20,9 +20,9 @@ struct MachineModel {
   std::string source_file;  ///< profile the model was loaded from, empty for defaults
 
   // --- Kinematics (URDF) ---
-  AxisLimits x;                                      ///< along the rails
-  AxisLimits y;                                      ///< along the bridge
-  AxisLimits z;                                      ///< nozzle height
+  AxisLimits x;  ///< the layout's x (along the rails by default)
+  AxisLimits y;  ///< the layout's y (along the bridge by default)
+  AxisLimits z;  ///< nozzle height
   double rotation_speed_rad_s = 1.5707963267948966;  ///< nozzle yaw velocity limit
   /// Cumulative nozzle heading must stay within [min, max]; ±2π is a ±360° stopper.
   double stopper_min_rad = -6.283185307179586;
