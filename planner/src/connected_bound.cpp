@@ -13,30 +13,13 @@
 #include "ccbuild/planner/lower_bound.hpp"
 #include "geometry.hpp"
 #include "lemon_lp.hpp"
+#include "union_find.hpp"
 
 namespace ccbuild::planner {
 namespace {
 
+using detail::UnionFind;
 using detail::Vec2;
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int v) {
-    while (parent_[v] != v) v = parent_[v] = parent_[parent_[v]];
-    return v;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent_[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 /// A cut row: x(delta(S)) >= rhs (or = rhs for the free end's degree).
 struct CutRow {
@@ -115,7 +98,8 @@ class ConnectedBoundSolver {
       for (int pricing = 0; pricing < limits_.max_pricing_rounds; ++pricing) {
         std::vector<std::pair<double, std::pair<int, int>>> violated;
         bound = certified_dual_value(&violated);
-        if (violated.empty()) break;
+        // The scaled dual is a valid bound at every step, so a stop loses only strength.
+        if (violated.empty() || stop_.should_stop()) break;
         std::sort(violated.begin(), violated.end());
         const std::size_t add = std::min<std::size_t>(violated.size(), 4 * real_ + 100);
         for (std::size_t i = 0; i < add; ++i)
@@ -270,6 +254,26 @@ class ConnectedBoundSolver {
       for (int v = 0; v < real_; ++v) add_column(free_end_, v);
   }
 
+  /// The sum of `y` over the inequality rows that hold both `u` and `v`.
+  double dual_shared(int u, int v, const std::vector<double>& y) const {
+    double both = 0.0;
+    const auto& a = rows_of_[u];
+    const auto& b = rows_of_[v];
+    std::size_t i = 0, j = 0;
+    while (i < a.size() && j < b.size()) {
+      if (a[i] < b[j]) {
+        ++i;
+      } else if (b[j] < a[i]) {
+        ++j;
+      } else {
+        if (!rows_[a[i]].equality) both += y[a[i]];
+        ++i;
+        ++j;
+      }
+    }
+    return both;
+  }
+
   /// Dual values of the current LP made feasible for every pair of the complete graph,
   /// and their objective: a valid lower bound. Pairs with a negative reduced cost under
   /// the LP's own duals are returned in `violated` (reduced cost, pair).
@@ -288,25 +292,8 @@ class ConnectedBoundSolver {
       for (int m : rows_[r].members)
         if (m < real_) pi[m] += y[r];
     }
-    auto load = [&](int u, int v) {
-      // pi(u) + pi(v) minus twice the rows holding both.
-      double both = 0.0;
-      const auto& a = rows_of_[u];
-      const auto& b = rows_of_[v];
-      std::size_t i = 0, j = 0;
-      while (i < a.size() && j < b.size()) {
-        if (a[i] < b[j]) {
-          ++i;
-        } else if (b[j] < a[i]) {
-          ++j;
-        } else {
-          if (!rows_[a[i]].equality) both += y[a[i]];
-          ++i;
-          ++j;
-        }
-      }
-      return pi[u] + pi[v] - 2.0 * both;
-    };
+    // pi(u) + pi(v) minus twice the rows holding both.
+    auto load = [&](int u, int v) { return pi[u] + pi[v] - 2.0 * dual_shared(u, v, y); };
     // Scan every pair that could be loaded beyond its cost: cost(u, v) <= pi(u) + pi(v),
     // in x order (both metrics are at least |dx|).
     double pi_max = 0.0;
@@ -346,21 +333,7 @@ class ConnectedBoundSolver {
           if (!rows_[r].equality) other += scale * y[r];
         for (int r : rows_of_[free_end_])
           if (!rows_[r].equality) other += scale * y[r];
-        // Rows holding both cancel twice over.
-        const auto& a = rows_of_[v];
-        const auto& b = rows_of_[free_end_];
-        std::size_t i = 0, j = 0;
-        while (i < a.size() && j < b.size()) {
-          if (a[i] < b[j]) {
-            ++i;
-          } else if (b[j] < a[i]) {
-            ++j;
-          } else {
-            if (!rows_[a[i]].equality) other -= 2.0 * scale * y[a[i]];
-            ++i;
-            ++j;
-          }
-        }
+        other -= 2.0 * scale * dual_shared(v, free_end_, y);  // rows holding both
         free_dual = std::min(free_dual, -other);
       }
       value += free_dual;  // rhs of the free end's row is 1

@@ -9,6 +9,7 @@
 #include "cc_tsp.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/planner/lower_bound.hpp"
+#include "union_find.hpp"
 
 namespace ccbuild::planner::detail {
 namespace {
@@ -16,25 +17,6 @@ namespace {
 struct Edge {
   int a = 0, b = 0;
   int segment = -1;  // -1: an air move
-};
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent_[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-
- private:
-  std::vector<int> parent_;
 };
 
 }  // namespace

@@ -159,7 +159,11 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   plan.metric = options.metric;
   plan.objective = options.objective;
   plan.path = path;
-  const LayerBound bound = airtime_lower_bound(layer, options.metric, path, options.bound, stop);
+  // The bound gets a third of the time limit at most, so a tight limit still leaves the
+  // search most of it (the default limit is far beyond what the bound needs).
+  const StopCondition bound_stop = stop.within(options.time_limit_s / 3.0);
+  const LayerBound bound =
+      airtime_lower_bound(layer, options.metric, path, options.bound, bound_stop);
   plan.lower_bound_m = bound.distance_m;
   plan.lower_bound_source = bound.source();
   plan.odd_points = bound.odd_points;

@@ -178,5 +178,17 @@ TEST(ConnectedBound, StoppedAtOnceIsStillValid) {
   EXPECT_LE(full.lower_bound_m, plan.evaluation.airtime_distance_m + 1e-6);
 }
 
+TEST(ConnectedBound, SkippedWhenTheTimeLeftCannotHoldItsFirstSolve) {
+  const floors::Layer layer = testing::floor_plan_layer(12, 7);
+  const LayerBound in_time = airtime_lower_bound(layer, Metric::kEuclidean, PathSpec::closed_tour(),
+                                                 BoundKind::kConnected);
+  ASSERT_TRUE(in_time.connected.has_value());
+  const LayerBound late = airtime_lower_bound(layer, Metric::kEuclidean, PathSpec::closed_tour(),
+                                              BoundKind::kConnected, StopCondition(0.0));
+  EXPECT_FALSE(late.connected.has_value());
+  EXPECT_EQ(late.source(), "matching");
+  EXPECT_DOUBLE_EQ(late.distance_m, in_time.matching_m);
+}
+
 }  // namespace
 }  // namespace ccbuild::planner
