@@ -24,6 +24,14 @@ TEST(PlanLayerCli, ReferenceExampleInText) {
   EXPECT_TRUE(contains(r.out, "sequence      1 "));
 }
 
+TEST(PlanLayerCli, TimeObjectiveSaysItsGapIsInDistance) {
+  const auto r = run_ccbuild(
+      "plan-layer tests/data/plans/paper_example2.txt --start-vertex 1 --first-wall 1 "
+      "--objective time");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "in distance (time objective)")) << r.out;
+}
+
 TEST(PlanLayerCli, JsonCarriesEveryRequiredField) {
   const auto r = run_ccbuild(
       "plan-layer tests/data/plans/paper_example2.txt --start-vertex 1 --first-wall 1 "
