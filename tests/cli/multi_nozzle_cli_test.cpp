@@ -114,6 +114,12 @@ TEST(MultiNozzleCli, SweepWritesTheTableAndReportsProgress) {
   while (std::getline(in, line)) ++rows;
   EXPECT_EQ(rows, 8);
   fs::remove(csv);
+  // A configuration with no plan names the lowest layer that has none.
+  const auto none = run_ccbuild(
+      "sweep tests/data/buildings/cottage.yaml --nozzles 3 --rail-axis x --platform-width 8m "
+      "--gantry-width 2m");
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_TRUE(contains(none.out, "floor 0 layer 0 (and 3 more like it): stage 1")) << none.out;
   const auto bad = run_ccbuild("sweep tests/data/plans/cottage.yaml --gantry-width -1m");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_TRUE(contains(bad.err, "expected positive lengths"));

@@ -145,6 +145,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
           m.planning.objective = *planner::parse_objective(o.objective);
           m.planning.seed = o.seed;
           m.planning.max_kicks = 300;
+          std::pair<int, int> failed_at{0, 0};
           try {
             for (const auto& [hash, entry] : distinct) {
               m.single_nozzle_time_s = single_time[hash];
@@ -156,7 +157,23 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
               }
               if (!plan.collision_free) {
                 row.ok = false;
-                row.failure = plan.failure;
+                // Name the layer (the lowest of those sharing its geometry) unless the
+                // input was a single plan.
+                const std::string where =
+                    input.is_building
+                        ? printf_string(
+                              "floor %d layer %d%s: ", entry.first.floor_index, entry.first.index,
+                              entry.second > 1
+                                  ? printf_string(" (and %d more like it)", entry.second - 1)
+                                        .c_str()
+                                  : "")
+                        : std::string();
+                // Report the lowest failing layer, whatever the order of the geometries.
+                const std::pair<int, int> at{entry.first.floor_index, entry.first.index};
+                if (row.failure.empty() || at < failed_at) {
+                  row.failure = where + plan.failure;
+                  failed_at = at;
+                }
                 continue;
               }
               row.construction_s += plan.layer_time_s * entry.second;
