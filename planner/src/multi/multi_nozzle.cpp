@@ -113,7 +113,11 @@ Stage plan_stage(detail::StageContext& ctx) {
 }  // namespace
 
 MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::MachineModel& machine,
-                                 const MultiNozzleOptions& options) {
+                                 const MultiNozzleOptions& requested) {
+  // No single-nozzle bound is reported here, and the sections' tours, the delay method's
+  // lone tour and the single-nozzle reference are many: the cheap bound serves them all.
+  MultiNozzleOptions options = requested;
+  options.planning.bound = BoundKind::kMatching;
   const int n = options.nozzles;
   const double w = options.gantry_width_m;
   if (n < 2) throw InputError("", 0, "--nozzles", "must be at least 2 for multi-nozzle planning");

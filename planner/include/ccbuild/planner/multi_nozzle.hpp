@@ -56,7 +56,8 @@ struct MultiNozzleOptions {
   /// Overhead platform: the length along the rails the nozzles can reach at once.
   std::optional<double> platform_width_m;
   /// Metric, objective, seed, time limit (for the whole run) and kick budget of the
-  /// single-nozzle planning of each section. Paths are closed tours.
+  /// single-nozzle planning of each section. Paths are closed tours; `bound` is ignored
+  /// (the matching bound is used, as no single-nozzle bound is reported).
   PlanOptions planning;
   /// Iterative dividing stops when (slowest - fastest) / mean section time is below this.
   double balance_tolerance = 0.05;
