@@ -71,6 +71,13 @@ class ConnectedBoundSolver {
     for (int v = 0; v < nodes_; ++v) ++component_size_[component_[v]];
     cols_of_.resize(nodes_);
     rows_of_.resize(nodes_);
+    // The points in x order, for the pricing scans.
+    by_x_.resize(real_);
+    std::iota(by_x_.begin(), by_x_.end(), 0);
+    std::sort(by_x_.begin(), by_x_.end(), [&](int a, int b) {
+      return positions_[a].x() < positions_[b].x() ||
+             (positions_[a].x() == positions_[b].x() && a < b);
+    });
   }
 
   ConnectedBound run() {
@@ -298,12 +305,7 @@ class ConnectedBoundSolver {
     // in x order (both metrics are at least |dx|).
     double pi_max = 0.0;
     for (double p : pi) pi_max = std::max(pi_max, p);
-    std::vector<int> by_x(real_);
-    std::iota(by_x.begin(), by_x.end(), 0);
-    std::sort(by_x.begin(), by_x.end(), [&](int a, int b) {
-      return positions_[a].x() < positions_[b].x() ||
-             (positions_[a].x() == positions_[b].x() && a < b);
-    });
+    const std::vector<int>& by_x = by_x_;
     double scale = 1.0;
     for (int i = 0; i < real_; ++i) {
       const int u = by_x[i];
@@ -497,6 +499,7 @@ class ConnectedBoundSolver {
   ConnectedBoundLimits limits_;
   const StopCondition& stop_;
   std::vector<Vec2> positions_;
+  std::vector<int> by_x_;  // real points in ascending x
   int real_ = 0, nodes_ = 0, free_end_ = -1, components_ = 0;
   std::vector<char> odd_;
   std::vector<int> component_, component_size_;
