@@ -1,5 +1,5 @@
 #pragma once
-// Internals of multi-nozzle planning, shared by its three source files.
+// Internals of multi-nozzle planning, shared by its source files.
 
 #include <functional>
 #include <memory>
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/common/input_error.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 
 namespace ccbuild::planner::detail {
@@ -74,6 +75,36 @@ struct Sections {
 /// The stage's sections (computed on first use).
 const Sections& sections_of(const StageContext& ctx);
 
+// A section's walls as their own layer, and the map from cut-layer index to local index.
+struct SectionModel {
+  floors::Layer layer;
+  std::vector<int> local_of;  // by cut-layer segment; -1 when not in the section
+  std::unique_ptr<CostModel> model;
+
+  SectionModel(const StageContext& ctx, const CutLayer& cut, const std::vector<int>& segments)
+      : layer(floors::sub_layer(cut.layer, segments)), local_of(cut.layer.segments.size(), -1) {
+    for (std::size_t i = 0; i < segments.size(); ++i) local_of[segments[i]] = static_cast<int>(i);
+    if (!segments.empty())
+      model = std::make_unique<CostModel>(layer, ctx.machine, ctx.options.planning.metric);
+  }
+  Sequence local(const Sequence& s) const {
+    Sequence out;
+    out.reserve(s.size());
+    for (const Step& step : s) {
+      CCBUILD_CHECK(local_of[step.segment] >= 0, "a nozzle only builds walls of its section");
+      out.push_back({local_of[step.segment], step.reversed});
+    }
+    return out;
+  }
+};
+
+/// A nozzle's work in order: its fixed blocks, then its working tour started at step
+/// `cycle`.
+Sequence concatenated(const NozzleWork& work, int cycle);
+
+/// When the last nozzle of a stage finishes, s.
+double stage_time_s(const std::vector<NozzlePath>& paths);
+
 /// Turns works into nozzle paths with given working-tour cycles and waits; computes
 /// timelines. Empty sections park at their middle.
 std::vector<NozzlePath> build_paths(const StageContext& ctx, const CutLayer& cut,
@@ -84,6 +115,10 @@ std::vector<NozzlePath> build_paths(const StageContext& ctx, const CutLayer& cut
 /// Checks every adjacent pair exactly and each gantry's reach. Returns the first problem
 /// (empty when none) and the smallest gap.
 std::string verify(const StageContext& ctx, const std::vector<NozzlePath>& paths, double& min_gap);
+
+/// `paths` when they pass verify(); otherwise nullopt, with the problem in `why`.
+std::optional<std::vector<NozzlePath>> checked(const StageContext& ctx,
+                                               std::vector<NozzlePath> paths, std::string& why);
 
 /// Finds one cycle per nozzle so that all adjacent pairs are collision-free: nozzle after
 /// nozzle, backtracking when one has no cycle left that fits its left neighbour.

@@ -86,7 +86,7 @@ Stage plan_stage(detail::StageContext& ctx) {
     const std::string problem = detail::verify(ctx, stage.nozzles, gap);
     CCBUILD_CHECK(problem.empty(), "a returned multi-nozzle plan passes the exact check");
     stage.min_gap_m = gap;
-    for (const auto& n : stage.nozzles) stage.time_s = std::max(stage.time_s, n.finish_s);
+    stage.time_s = detail::stage_time_s(stage.nozzles);
     // auto keeps the papers' order, but says so when our delay method would have been
     // faster than the papers' method it used.
     if (ctx.options.method == MultiMethod::kAuto && method != MultiMethod::kDelay &&
@@ -95,8 +95,7 @@ Stage plan_stage(detail::StageContext& ctx) {
       int delay_vertices = 0;
       if (const auto alternative =
               detail::delay_method(ctx, delay_why, delay_vertices, delay_detail)) {
-        double t = 0.0;
-        for (const auto& n : *alternative) t = std::max(t, n.finish_s);
+        const double t = detail::stage_time_s(*alternative);
         if (t < stage.time_s - 1e-6) {
           stage.faster_delay_s = t;
           stage.attempts.push_back("delay: would take " + seconds(t) + " against " +
