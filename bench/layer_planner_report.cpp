@@ -58,8 +58,7 @@ int main(int argc, char** argv) {
                  "times are the heuristics')")
       ->check(CLI::IsMember({"connected", "matching"}));
   CLI11_PARSE(app, argc, argv);
-  const planner::BoundKind bound_kind =
-      bound == "connected" ? planner::BoundKind::kConnected : planner::BoundKind::kMatching;
+  const planner::BoundKind bound_kind = *planner::parse_bound(bound);
 
   const machine::MachineModel machine = machine::MachineModel::defaults();
   std::printf(

@@ -186,8 +186,15 @@ std::string to_string(BoundKind kind) {
   return kind == BoundKind::kMatching ? "matching" : "connected";
 }
 
+std::optional<BoundKind> parse_bound(const std::string& text) {
+  for (BoundKind kind : {BoundKind::kMatching, BoundKind::kConnected})
+    if (text == to_string(kind)) return kind;
+  return std::nullopt;
+}
+
 std::string LayerBound::source() const {
-  return connected && connected->lower_bound_m > matching_m ? "connected" : "matching";
+  return to_string(connected && connected->lower_bound_m > matching_m ? BoundKind::kConnected
+                                                                      : BoundKind::kMatching);
 }
 
 LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path,
@@ -232,8 +239,7 @@ LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const 
   // surely cannot keep (a generous 1e-7 s per wall squared: 2.5 s at 5,000 walls, where
   // it takes about 1.3 s), the matching bound stands alone rather than overrun it.
   const double walls = static_cast<double>(layer.segments.size());
-  const bool connected_fits = stop.remaining_s() >= 1e-7 * walls * walls;
-  if (kind == BoundKind::kConnected && connected_fits) {
+  if (kind == BoundKind::kConnected && stop.remaining_s() >= 1e-7 * walls * walls) {
     bound.connected = connected_airtime_bound(layer, metric, path, {}, stop);
     if (bound.connected->certified)
       bound.distance_m = std::max(bound.distance_m, bound.connected->lower_bound_m);

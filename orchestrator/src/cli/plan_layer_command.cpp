@@ -165,8 +165,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   options.time_limit_s = o.time_limit_s;
   options.seed = o.seed;
   options.max_kicks = o.max_kicks;
-  options.bound =
-      o.bound == "matching" ? planner::BoundKind::kMatching : planner::BoundKind::kConnected;
+  options.bound = *planner::parse_bound(o.bound);  // CLI11 checked the name
   if (o.first_wall && !o.start_vertex)
     throw InputError("", 0, "--first-wall", "needs --start-vertex");
   if (o.start_vertex) {

@@ -98,6 +98,8 @@ enum class BoundKind {
   kConnected,  ///< the better of the matching and the connected bound
 };
 std::string to_string(BoundKind kind);
+/// "matching" or "connected"; nullopt for anything else.
+std::optional<BoundKind> parse_bound(const std::string& text);
 
 struct LayerBound {
   double distance_m = 0.0;  ///< lower bound on the airtime distance of `path` on the layer
