@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
               if (stage.faster_delay_s)
                 t.delay_gain.push_back(100.0 * (1.0 - *stage.faster_delay_s / stage.time_s));
             }
-            if (plan.collision_free) {
+            if (plan.status) {
               ++t.succeeded;
               t.saved.push_back(100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
             }
@@ -105,13 +105,13 @@ int main(int argc, char** argv) {
               const auto& stage = plan.stages.front();
               std::fprintf(stderr, "  %zu walls, %d nozzles, %.1f ft, %s: %s\n",
                            layer.segments.size(), n, ft, planner::to_string(methods[m]).c_str(),
-                           plan.collision_free
+                           plan.status
                                ? (stage.method_detail + ", saved " +
                                   std::to_string(100.0 * (1.0 - plan.layer_time_s /
                                                                     plan.single_nozzle_time_s)) +
                                   "%")
                                      .c_str()
-                               : stage.attempts.back().c_str());
+                               : stage.attempts.back().to_string().c_str());
             }
           } catch (const std::exception& e) {
             std::fprintf(stderr, "layout %d: %s\n", i + 1, e.what());

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/common/limits.hpp"
 
 namespace ccbuild {
 namespace {
@@ -23,43 +24,67 @@ int yaml_line(const YAML::Node& node, int fallback) {
   return mark.line >= 0 ? mark.line + 1 : fallback;
 }
 
-DocNode from_yaml(const YAML::Node& node, const std::string& file, int fallback_line) {
-  DocNode out;
-  out.line = yaml_line(node, fallback_line);
-  switch (node.Type()) {
-    case YAML::NodeType::Undefined:
-    case YAML::NodeType::Null:
-      out.kind = DocNode::Kind::kNull;
-      break;
-    case YAML::NodeType::Scalar:
-      out.kind = DocNode::Kind::kScalar;
-      out.text = node.Scalar();
-      // yaml-cpp tags quoted scalars "!" and plain ones "?".
-      out.quoted = node.Tag() == "!";
-      break;
-    case YAML::NodeType::Sequence:
-      out.kind = DocNode::Kind::kSequence;
-      for (const auto& item : node) out.items.push_back(from_yaml(item, file, out.line));
-      break;
-    case YAML::NodeType::Map: {
-      out.kind = DocNode::Kind::kMap;
-      std::set<std::string> seen;
-      for (const auto& entry : node) {
-        const int key_line = yaml_line(entry.first, out.line);
-        if (!entry.first.IsScalar())
-          throw InputError(file, key_line, "", "map keys must be plain words");
-        std::string key = entry.first.Scalar();
-        if (!seen.insert(key).second)
-          throw InputError(file, key_line, key, "key '" + key + "' appears twice in the same map");
-        DocNode value = from_yaml(entry.second, file, key_line);
-        value.key_line = key_line;
-        out.entries.emplace_back(std::move(key), std::move(value));
+// Converts yaml-cpp's tree, which shares aliased nodes, into ours, which copies them: so
+// expansion is counted (an alias "billion laughs" stops at the value limit) and depth is
+// bounded (an alias that contains itself stops at the depth limit, not the stack's end).
+class YamlConverter {
+ public:
+  explicit YamlConverter(const std::string& file) : file_(file) {}
+
+  DocNode convert(const YAML::Node& node, int fallback_line, int depth) {
+    DocNode out;
+    out.line = yaml_line(node, fallback_line);
+    if (++values_ > limits::kMaxDocumentValues)
+      throw InputError(file_, out.line, "",
+                       "the document holds more than " +
+                           std::to_string(limits::kMaxDocumentValues) +
+                           " values once its aliases are expanded; this is not a plausible "
+                           "ccbuild file (an alias bomb?)");
+    if (depth > limits::kMaxNestingDepth)
+      throw InputError(file_, out.line, "",
+                       "maps and lists are nested more than " +
+                           std::to_string(limits::kMaxNestingDepth) +
+                           " levels deep (an alias that refers to itself?)");
+    switch (node.Type()) {
+      case YAML::NodeType::Undefined:
+      case YAML::NodeType::Null:
+        out.kind = DocNode::Kind::kNull;
+        break;
+      case YAML::NodeType::Scalar:
+        out.kind = DocNode::Kind::kScalar;
+        out.text = node.Scalar();
+        // yaml-cpp tags quoted scalars "!" and plain ones "?".
+        out.quoted = node.Tag() == "!";
+        break;
+      case YAML::NodeType::Sequence:
+        out.kind = DocNode::Kind::kSequence;
+        for (const auto& item : node) out.items.push_back(convert(item, out.line, depth + 1));
+        break;
+      case YAML::NodeType::Map: {
+        out.kind = DocNode::Kind::kMap;
+        std::set<std::string> seen;
+        for (const auto& entry : node) {
+          const int key_line = yaml_line(entry.first, out.line);
+          if (!entry.first.IsScalar())
+            throw InputError(file_, key_line, "", "map keys must be plain words");
+          std::string key = entry.first.Scalar();
+          if (!seen.insert(key).second)
+            throw InputError(file_, key_line, key,
+                             "key '" + key + "' appears twice in the same map");
+          DocNode value = convert(entry.second, key_line, depth + 1);
+          value.key_line = key_line;
+          out.entries.emplace_back(std::move(key), std::move(value));
+        }
+        break;
       }
-      break;
     }
+    return out;
   }
-  return out;
-}
+
+ private:
+  const std::string& file_;
+  std::size_t values_ = 0;
+};
 
 // ---------------------------------------------------------------- JSON -------------
 // nlohmann's SAX events carry no position, so the parser reads through an iterator that
@@ -173,6 +198,10 @@ class JsonBuilder : public nlohmann::json_sax<nlohmann::json> {
   // Places a finished value into its parent; returns a pointer to where it now lives.
   DocNode* place(DocNode node) {
     node.line = tracker_.token_line;
+    if (++values_ > limits::kMaxDocumentValues)
+      throw InputError(
+          file_, node.line, "",
+          "the document holds more than " + std::to_string(limits::kMaxDocumentValues) + " values");
     if (stack_.empty()) {
       root_ = std::move(node);
       return &root_;
@@ -191,6 +220,11 @@ class JsonBuilder : public nlohmann::json_sax<nlohmann::json> {
     return true;
   }
   bool open(DocNode node) {
+    // The tree is destroyed recursively: bound its depth before it can grow past it.
+    if (static_cast<int>(stack_.size()) >= limits::kMaxNestingDepth)
+      throw InputError(file_, tracker_.token_line, "",
+                       "objects and arrays are nested more than " +
+                           std::to_string(limits::kMaxNestingDepth) + " levels deep");
     // Children are appended only to the innermost open container, so pointers to
     // outer containers stay valid while it fills.
     stack_.push_back(place(std::move(node)));
@@ -203,6 +237,7 @@ class JsonBuilder : public nlohmann::json_sax<nlohmann::json> {
   std::vector<DocNode*> stack_;
   std::string pending_key_;
   int pending_key_line_ = 0;
+  std::size_t values_ = 0;
 };
 
 // -------------------------------------------------------------- helpers ------------
@@ -246,26 +281,66 @@ std::string index_path(const std::string& parent, std::size_t index) {
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    throw InputError(path.string(), 0, "", "cannot open file (does it exist?)");
+  if (fs::is_directory(status))
     throw InputError(path.string(), 0, "", "is a directory, expected a file");
+  // A FIFO would block the run and a device such as /dev/zero never ends: only regular
+  // files are read, and only up to the size limit.
+  if (!fs::is_regular_file(status))
+    throw InputError(path.string(), 0, "",
+                     "is not a regular file (a FIFO, device or socket?); expected a file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec && size > limits::kMaxInputFileBytes)
+    throw InputError(path.string(), 0, "",
+                     "is " + std::to_string(size / (1024 * 1024)) +
+                         " MiB; ccbuild reads input files of at most " +
+                         std::to_string(limits::kMaxInputFileBytes / (1024 * 1024)) + " MiB");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), 0, "", "cannot open file (does it exist?)");
-  std::ostringstream text;
-  text << in.rdbuf();
+  if (!in) throw InputError(path.string(), 0, "", "cannot open file (permissions?)");
+  std::string text;
+  text.resize(static_cast<std::size_t>(limits::kMaxInputFileBytes) + 1);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) throw InputError(path.string(), 0, "", "cannot read file");
-  return text.str();
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  // The file may have grown since it was measured.
+  if (text.size() > limits::kMaxInputFileBytes)
+    throw InputError(path.string(), 0, "",
+                     "is larger than " +
+                         std::to_string(limits::kMaxInputFileBytes / (1024 * 1024)) +
+                         " MiB, the most ccbuild reads");
+  return text;
 }
 
 Document parse_yaml(const std::string& text, const std::string& file) {
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(text);
+    documents = YAML::LoadAll(text);
   } catch (const YAML::Exception& error) {
+    std::string message = error.msg;
+    // yaml-cpp's depth guard says only "bad file".
+    if (message == "bad file")
+      message = "too deeply nested or malformed (yaml-cpp stopped reading here)";
     throw InputError(file, error.mark.line >= 0 ? error.mark.line + 1 : 0, "",
-                     "invalid YAML: " + error.msg);
+                     "invalid YAML: " + message);
   }
-  return Document{file, from_yaml(root, file, 1)};
+  // A second document would otherwise be ignored without a word.
+  for (std::size_t k = 1; k < documents.size(); ++k) {
+    if (!documents[k].IsNull())
+      throw InputError(file, yaml_line(documents[k], 0), "",
+                       "a second YAML document starts here (after '---'); a ccbuild file holds "
+                       "one document");
+  }
+  if (documents.empty()) {
+    DocNode empty;
+    empty.line = 1;
+    return Document{file, std::move(empty)};
+  }
+  YamlConverter converter(file);
+  return Document{file, converter.convert(documents[0], 1, 0)};
 }
 
 Document parse_json(const std::string& text, const std::string& file) {
@@ -305,6 +380,15 @@ double Field::as_number() const {
     fail("expected a number, got '" + node_->text + "'");
   if (!std::isfinite(value))
     fail("expected a finite number, got '" + node_->text + "' (NaN and infinity are not allowed)");
+  return value;
+}
+
+double Field::as_number_in(const Range& range_si, const std::string& unit,
+                           double si_per_unit) const {
+  const double value = as_number() * si_per_unit;
+  if (!range_si.contains(value))
+    fail("must be " + range_si.describe(unit, si_per_unit) + ", got " + node_->text +
+         (unit.empty() ? "" : " " + unit));
   return value;
 }
 

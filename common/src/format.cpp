@@ -1,5 +1,6 @@
 #include "ccbuild/common/format.hpp"
 
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 
@@ -16,6 +17,49 @@ std::string printf_string(const char* pattern, ...) {
   if (needed > 0) std::vsnprintf(out.data(), out.size() + 1, pattern, args);
   va_end(args);
   return out;
+}
+
+std::string plain_number(double value) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "infinity" : "-infinity";
+  const double magnitude = std::abs(value);
+  if (magnitude != 0.0 && (magnitude < 1e-4 || magnitude >= 1e9))
+    return printf_string("%.6g", value);
+  std::string text = printf_string("%.6f", value);
+  // Six significant digits at most, then no trailing zeros.
+  int digits = 0;
+  bool counting = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c < '0' || c > '9') continue;
+    if (c != '0') counting = true;
+    if (counting && ++digits > 6) {
+      const auto dot = text.find('.');
+      if (dot != std::string::npos && i > dot) text.resize(i);
+      break;
+    }
+  }
+  if (text.find('.') != std::string::npos) {
+    while (text.back() == '0') text.pop_back();
+    if (text.back() == '.') text.pop_back();
+  }
+  if (text == "-0") text = "0";
+  return text;
+}
+
+bool Range::contains(double value) const {
+  if (std::isnan(value)) return false;
+  const bool above_min = min_open ? value > min : value >= min;
+  const bool below_max = max_open ? value < max : value <= max;
+  return above_min && below_max;
+}
+
+std::string Range::describe(const std::string& unit, double per_unit) const {
+  const std::string suffix = unit.empty() ? "" : " " + unit;
+  const std::string lo = plain_number(min / per_unit), hi = plain_number(max / per_unit);
+  if (!min_open && !max_open) return "from " + lo + " to " + hi + suffix;
+  return std::string(min_open ? "more than " : "at least ") + lo +
+         (max_open ? " and less than " : " and at most ") + hi + suffix;
 }
 
 std::string metres(double value_m, int decimals) {

@@ -1,8 +1,5 @@
 #include "ccbuild/common/input_error.hpp"
 
-#include <cstdio>
-#include <cstdlib>
-
 namespace ccbuild {
 namespace {
 std::string join(const std::vector<Diagnostic>& diagnostics) {
@@ -44,9 +41,8 @@ void DiagnosticSink::throw_if_any() const {
 
 namespace detail {
 void check_failed(const char* condition, const char* file, int line, const std::string& message) {
-  std::fprintf(stderr, "ccbuild: internal check failed at %s:%d: %s (%s)\n", file, line,
-               message.c_str(), condition);
-  std::abort();
+  throw InternalError("internal check failed at " + std::string(file) + ":" + std::to_string(line) +
+                      ": " + message + " (" + condition + ")");
 }
 }  // namespace detail
 

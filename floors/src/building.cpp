@@ -1,5 +1,6 @@
 #include "ccbuild/floors/building.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -27,6 +28,7 @@ fs::path resolve_reference(const Field& field, const fs::path& base, SourceRef& 
 }
 
 void check_anchors(const Floor& floor, const std::string& context, DiagnosticSink& sink) {
+  auto metres = [&](double value_m) { return length_text(value_m, floor.plan.units); };
   std::map<std::string, const AnchorPoint*> seen;
   for (const auto& anchor : floor.anchors) {
     if (auto [it, fresh] = seen.emplace(anchor.id, &anchor); !fresh)
@@ -61,19 +63,25 @@ void check_anchors(const Floor& floor, const std::string& context, DiagnosticSin
 
 }  // namespace
 
-bool looks_like_building(const fs::path& path) {
-  const std::string text = read_text_file(path);
-  if (detect_plan_format(path, text) == PlanFormat::kTable) return false;
-  const Document doc = path.extension() == ".json" ? parse_json(text, path.string())
-                                                   : parse_yaml(text, path.string());
-  if (doc.root.kind != DocNode::Kind::kMap) return false;
-  for (const auto& entry : doc.root.entries)
-    if (entry.first == "floors") return true;
-  return false;
+namespace {
+
+// The layers of a whole building, counted in floating point so that no height can
+// overflow the count; over the limit is an input error at `field`.
+void check_layer_budget(const Building& building, const std::string& file, int line,
+                        const std::string& field) {
+  double layers = 0.0;
+  for (const auto& floor : building.floors)
+    layers += std::ceil(floor.height_m / building.layer_height_m - 1e-9);
+  if (layers > static_cast<double>(limits::kMaxLayers))
+    throw InputError(
+        file, line, field,
+        printf_string("%.0f layers of %s make this building; ccbuild plans at most "
+                      "%ld (a layer height in the wrong unit?)",
+                      layers, length_text(building.layer_height_m, building.units).c_str(),
+                      limits::kMaxLayers));
 }
 
-Building load_building(const fs::path& path) {
-  const Document doc = load_document(path);
+Building building_from_document(const Document& doc, const fs::path& path) {
   const Field root = Field::root(doc);
   MapReader map(root,
                 {"name", "description", "units", "layer_height", "material", "machine", "floors"});
@@ -82,12 +90,12 @@ Building load_building(const fs::path& path) {
 
   Building building;
   building.source_file = path.string();
+  building.files_read.push_back(path);
   if (auto name = map.optional("name")) building.name = name->as_string();
   building.units = read_units(map.required("units"));
-  const double scale = meters_per(building.units);
+  const LengthUnit unit = building.units;
   const Field layer_height = map.required("layer_height");
-  building.layer_height_m = layer_height.as_number() * scale;
-  if (building.layer_height_m <= 0.0) layer_height.fail("layer height must be positive");
+  building.layer_height_m = read_length(layer_height, limits::kLayerHeight_m, unit);
   building.material_profile =
       resolve_reference(map.required("material"), base, building.material_source);
   building.machine_profile =
@@ -96,6 +104,7 @@ Building load_building(const fs::path& path) {
   const Field floors = map.required("floors");
   const auto floor_fields = floors.items();
   if (floor_fields.empty()) floors.fail("a building needs at least one floor");
+  check_count(floors, floor_fields.size(), limits::kMaxFloors, "floors");
 
   std::map<fs::path, FloorPlan> plan_files;  // a plan shared by several floors is read once
   DiagnosticSink sink;
@@ -108,15 +117,13 @@ Building load_building(const fs::path& path) {
     floor.index = static_cast<int>(i);
     floor.source = source_of(f);
     floor.name = fm.has("name") ? fm.required("name").as_string() : "floor " + std::to_string(i);
-    const Field height = fm.required("height");
-    floor.height_m = height.as_number() * scale;
-    if (floor.height_m <= 0.0) height.fail("floor height must be positive");
+    floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
     floor.base_elevation_m = elevation_m;
     elevation_m += floor.height_m;
 
     const Field plan = fm.required("plan");
     if (plan.is_map()) {
-      floor.plan = read_plan(plan, building.units);
+      floor.plan = read_plan(plan, unit);
     } else {
       const std::string text = plan.as_string();
       const fs::path plan_path = (base / text).lexically_normal();
@@ -124,23 +131,29 @@ Building load_building(const fs::path& path) {
       if (!fs::is_regular_file(plan_path, ec))
         plan.fail("plan file '" + text + "' not found (looked for " + plan_path.string() + ")");
       auto cached = plan_files.find(plan_path);
-      if (cached == plan_files.end())
-        cached = plan_files.emplace(plan_path, load_plan(plan_path, building.units)).first;
+      if (cached == plan_files.end()) {
+        cached = plan_files.emplace(plan_path, load_plan(plan_path, unit)).first;
+        building.files_read.push_back(plan_path);
+      }
       floor.plan = cached->second;
     }
     if (auto openings = fm.optional("openings")) {
-      for (const Field& item : openings->items())
-        floor.plan.openings.push_back(read_opening(item, building.units));
+      const auto items = openings->items();
+      check_count(*openings, items.size() + floor.plan.openings.size(), limits::kMaxOpenings,
+                  "openings");
+      for (const Field& item : items) floor.plan.openings.push_back(read_opening(item, unit));
     }
     if (auto anchors = fm.optional("anchors")) {
-      for (const Field& item : anchors->items()) {
+      const auto items = anchors->items();
+      check_count(*anchors, items.size(), limits::kMaxAnchors, "anchors");
+      for (const Field& item : items) {
         MapReader am(item, {"id", "wall", "offset"});
         am.reject_unknown();
         AnchorPoint anchor;
         anchor.source = source_of(item);
         anchor.id = am.required("id").as_string();
-        anchor.wall_id = am.required("wall").as_positive_id();
-        anchor.offset_m = am.required("offset").as_number() * scale;
+        anchor.wall_id = read_id(am.required("wall"));
+        anchor.offset_m = read_length(am.required("offset"), limits::kAlongWall_m, unit);
         floor.anchors.push_back(anchor);
       }
     }
@@ -154,6 +167,68 @@ Building load_building(const fs::path& path) {
     building.floors.push_back(std::move(floor));
   }
   sink.throw_if_any();
+  check_layer_budget(building, doc.file, layer_height.line(), layer_height.path());
+  return building;
+}
+
+bool is_building_document(const Document& doc) {
+  if (doc.root.kind != DocNode::Kind::kMap) return false;
+  for (const auto& entry : doc.root.entries)
+    if (entry.first == "floors") return true;
+  return false;
+}
+
+}  // namespace
+
+Building load_building(const fs::path& path) {
+  return building_from_document(load_document(path), path);
+}
+
+BuildingOrPlan load_building_or_plan(const fs::path& path, LengthUnit plan_unit) {
+  const std::string text = read_text_file(path);
+  BuildingOrPlan out;
+  const PlanFormat format = detect_plan_format(path, text);
+  if (format == PlanFormat::kTable) {
+    out.plan = plan_from_text(text, path, plan_unit, format);
+    return out;
+  }
+  const Document doc = format == PlanFormat::kJson ? parse_json(text, path.string())
+                                                   : parse_yaml(text, path.string());
+  if (is_building_document(doc)) {
+    out.is_building = true;
+    out.building = building_from_document(doc, path);
+    return out;
+  }
+  out.plan = read_plan(Field::root(doc), plan_unit);
+  out.plan.source_file = path.string();
+  return out;
+}
+
+Building building_from_plan(FloorPlan plan, std::string name, double floor_height_m,
+                            double layer_height_m) {
+  const LengthUnit unit = plan.units;
+  auto check = [&](double value_m, const Range& range, const char* field) {
+    if (!range.contains(value_m))
+      throw InputError("", 0, field,
+                       "must be " + range.describe(to_string(unit), meters_per(unit)) + ", got " +
+                           plain_number(value_m / meters_per(unit)) + " " + to_string(unit));
+  };
+  check(floor_height_m, limits::kFloorHeight_m, "floor_height");
+  check(layer_height_m, limits::kLayerHeight_m, "layer_height");
+  Building building;
+  building.name = name;
+  building.source_file = plan.source_file;
+  building.files_read.push_back(plan.source_file);
+  building.units = unit;
+  building.layer_height_m = layer_height_m;
+  Floor floor;
+  floor.name = std::move(name);
+  floor.height_m = floor_height_m;
+  floor.plan = std::move(plan);
+  // Openings must fit under the floor, also when its height is the default.
+  validate_plan(floor.plan, floor.height_m);
+  building.floors.push_back(std::move(floor));
+  check_layer_budget(building, "", 0, "layer_height");
   return building;
 }
 

@@ -3,9 +3,20 @@
 #include <algorithm>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 
 namespace ccbuild::floors {
+namespace {
+// Plausible ranges (docs/formats.md): concretes and mortars weigh 1,500-2,600 kg/m3
+// (lightweight mixes less), layers follow each other within minutes to hours, and no
+// concrete is stronger than ~200 MPa.
+const Range kDensity_kg_m3 = Range::closed(500.0, 5000.0);
+const Range kInterval_s = Range::closed(0.0, 7 * 86'400.0);
+const Range kAge_s = Range::closed(0.0, 365 * 86'400.0);
+const Range kStrength_mpa = Range::closed(0.0, 200.0);
+constexpr std::size_t kMaxStrengthPoints = 1000;
+}  // namespace
 
 double MaterialProfile::strength_at_mpa(double age_s) const {
   if (strength_curve.empty()) return 0.0;
@@ -30,26 +41,25 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
   MaterialProfile m;
   m.source_file = path.string();
   m.name = map.required("name").as_string();
-  const Field density = map.required("density_kg_m3");
-  m.density_kg_m3 = density.as_number();
-  if (m.density_kg_m3 <= 0.0) density.fail("density must be positive");
-  const Field min_interval = map.required("min_layer_interval_s");
+  m.density_kg_m3 = map.required("density_kg_m3").as_number_in(kDensity_kg_m3, "kg/m3");
   const Field max_interval = map.required("max_layer_interval_s");
-  m.min_layer_interval_s = min_interval.as_number();
-  m.max_layer_interval_s = max_interval.as_number();
-  if (m.min_layer_interval_s < 0.0) min_interval.fail("must be zero or more seconds");
+  m.min_layer_interval_s = map.required("min_layer_interval_s").as_number_in(kInterval_s, "s");
+  m.max_layer_interval_s = max_interval.as_number_in(kInterval_s, "s");
   if (m.max_layer_interval_s <= m.min_layer_interval_s)
     max_interval.fail("must be greater than min_layer_interval_s (" +
-                      std::to_string(m.min_layer_interval_s) + " s)");
+                      plain_number(m.min_layer_interval_s) + " s)");
   const Field curve = map.required("strength_curve");
-  for (const Field& item : curve.items()) {
+  const auto items = curve.items();
+  if (items.size() > kMaxStrengthPoints)
+    curve.fail("holds " + std::to_string(items.size()) + " points; at most " +
+               std::to_string(kMaxStrengthPoints) + " are accepted");
+  for (const Field& item : items) {
     MapReader point(item, {"age_min", "strength_mpa"});
     point.reject_unknown();
     const Field age = point.required("age_min");
     const Field strength = point.required("strength_mpa");
-    StrengthPoint p{age.as_number() * 60.0, strength.as_number()};
-    if (p.age_s < 0.0) age.fail("age must be zero or more");
-    if (p.strength_mpa < 0.0) strength.fail("strength must be zero or more");
+    StrengthPoint p{age.as_number_in(kAge_s, "min", 60.0),
+                    strength.as_number_in(kStrength_mpa, "MPa")};
     if (!m.strength_curve.empty()) {
       if (p.age_s <= m.strength_curve.back().age_s) age.fail("ages must increase down the list");
       if (p.strength_mpa < m.strength_curve.back().strength_mpa)

@@ -96,27 +96,28 @@ PlanFormat detect_plan_format(const std::filesystem::path& path, const std::stri
   return PlanFormat::kTable;  // empty: the table reader says what is missing
 }
 
-FloorPlan load_plan(const std::filesystem::path& path, LengthUnit default_unit, PlanFormat format) {
-  const std::string text = read_text_file(path);
+FloorPlan plan_from_text(const std::string& text, const std::filesystem::path& path,
+                         LengthUnit default_unit, PlanFormat format) {
   if (format == PlanFormat::kAuto) format = detect_plan_format(path, text);
   FloorPlan plan;
   switch (format) {
     case PlanFormat::kTable:
       plan = parse_plan_table(text, path.string(), default_unit);
       break;
-    case PlanFormat::kJson: {
-      const Document doc = parse_json(text, path.string());
-      plan = read_plan(Field::root(doc), default_unit);
+    case PlanFormat::kJson:
+      plan = read_plan(Field::root(parse_json(text, path.string())), default_unit);
       break;
-    }
     case PlanFormat::kYaml:
-    case PlanFormat::kAuto: {
-      const Document doc = parse_yaml(text, path.string());
-      plan = read_plan(Field::root(doc), default_unit);
+    case PlanFormat::kAuto:
+      plan = read_plan(Field::root(parse_yaml(text, path.string())), default_unit);
       break;
-    }
   }
   plan.source_file = path.string();
+  return plan;
+}
+
+FloorPlan load_plan(const std::filesystem::path& path, LengthUnit default_unit, PlanFormat format) {
+  FloorPlan plan = plan_from_text(read_text_file(path), path, default_unit, format);
   validate_plan(plan);
   return plan;
 }

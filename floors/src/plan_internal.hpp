@@ -2,12 +2,19 @@
 // Pieces of the plan readers shared with the building reader (not public).
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/floors/limits.hpp"
 #include "ccbuild/floors/plan.hpp"
 
 namespace ccbuild::floors {
 
 /// `units:` value; throws InputError unless it is "m" or "ft".
 LengthUnit read_units(const Field& field);
+/// A length written in `unit`, inside `range_m`; returns metres.
+double read_length(const Field& field, const Range& range_m, LengthUnit unit);
+/// A vertex or wall id: 1 to limits::kMaxId.
+std::int64_t read_id(const Field& field);
+/// Throws InputError at `field` when a list holds more than `most` items.
+void check_count(const Field& list, std::size_t count, std::size_t most, const char* what);
 SourceRef source_of(const Field& field);
 Opening read_opening(const Field& field, LengthUnit unit);
 

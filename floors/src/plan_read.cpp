@@ -18,6 +18,23 @@ LengthUnit read_units(const Field& field) {
   return *unit;
 }
 
+double read_length(const Field& field, const Range& range_m, LengthUnit unit) {
+  return field.as_number_in(range_m, to_string(unit), meters_per(unit));
+}
+
+std::int64_t read_id(const Field& field) {
+  const std::int64_t id = field.as_positive_id();
+  if (id > limits::kMaxId)
+    field.fail("ids are 1 to " + std::to_string(limits::kMaxId) + ", got " + std::to_string(id));
+  return id;
+}
+
+void check_count(const Field& list, std::size_t count, std::size_t most, const char* what) {
+  if (count > most)
+    list.fail("holds " + std::to_string(count) + " " + what + "; ccbuild accepts at most " +
+              std::to_string(most));
+}
+
 SourceRef source_of(const Field& field) {
   return SourceRef{field.file(), field.line(), field.path()};
 }
@@ -25,7 +42,6 @@ SourceRef source_of(const Field& field) {
 Opening read_opening(const Field& field, LengthUnit unit) {
   MapReader map(field, {"id", "kind", "wall", "offset", "width", "sill", "head"});
   map.reject_unknown();
-  const double scale = meters_per(unit);
   Opening opening;
   opening.source = source_of(field);
   if (auto id = map.optional("id")) opening.id = id->as_string();
@@ -35,17 +51,17 @@ Opening read_opening(const Field& field, LengthUnit unit) {
     if (k != "door" && k != "window") kind->fail("expected 'door' or 'window', got '" + k + "'");
     door = k == "door";
   }
-  opening.wall_id = map.required("wall").as_positive_id();
-  opening.offset_m = map.required("offset").as_number() * scale;
-  opening.width_m = map.required("width").as_number() * scale;
+  opening.wall_id = read_id(map.required("wall"));
+  opening.offset_m = read_length(map.required("offset"), limits::kAlongWall_m, unit);
+  opening.width_m = read_length(map.required("width"), limits::kOpeningWidth_m, unit);
   // A forgotten sill must not turn a window into a door: only doors may leave it out.
   if (auto sill = map.optional("sill")) {
-    opening.sill_m = sill->as_number() * scale;
+    opening.sill_m = read_length(*sill, limits::kOpeningHeight_m, unit);
     if (door && opening.sill_m != 0.0) sill->fail("a door has sill 0");
   } else if (!door) {
     map.required("sill");
   }
-  opening.head_m = map.required("head").as_number() * scale;
+  opening.head_m = read_length(map.required("head"), limits::kOpeningHeight_m, unit);
   return opening;
 }
 
@@ -54,32 +70,42 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
   map.reject_unknown();
   LengthUnit unit = default_unit;
   if (auto u = map.optional("units")) unit = read_units(*u);
-  const double scale = meters_per(unit);
 
   FloorPlan plan;
   plan.source_file = field.file();
-  for (const Field& item : map.required("vertices").items()) {
+  plan.units = unit;
+  const Field vertices = map.required("vertices");
+  const auto vertex_items = vertices.items();
+  check_count(vertices, vertex_items.size(), limits::kMaxVertices, "vertices");
+  for (const Field& item : vertex_items) {
     MapReader v(item, {"id", "x", "y"});
     v.reject_unknown();
     Vertex vertex;
     vertex.source = source_of(item);
-    vertex.id = v.required("id").as_positive_id();
-    vertex.position_m = {v.required("x").as_number() * scale, v.required("y").as_number() * scale};
+    vertex.id = read_id(v.required("id"));
+    vertex.position_m = {read_length(v.required("x"), limits::kCoordinate_m, unit),
+                         read_length(v.required("y"), limits::kCoordinate_m, unit)};
     plan.vertices.push_back(vertex);
   }
-  for (const Field& item : map.required("walls").items()) {
+  const Field walls = map.required("walls");
+  const auto wall_items = walls.items();
+  check_count(walls, wall_items.size(), limits::kMaxWalls, "walls");
+  for (const Field& item : wall_items) {
     MapReader w(item, {"id", "start", "end", "thickness"});
     w.reject_unknown();
     Wall wall;
     wall.source = source_of(item);
-    wall.id = w.required("id").as_positive_id();
-    wall.start_vertex = w.required("start").as_positive_id();
-    wall.end_vertex = w.required("end").as_positive_id();
-    if (auto t = w.optional("thickness")) wall.thickness_m = t->as_number() * scale;
+    wall.id = read_id(w.required("id"));
+    wall.start_vertex = read_id(w.required("start"));
+    wall.end_vertex = read_id(w.required("end"));
+    if (auto t = w.optional("thickness"))
+      wall.thickness_m = read_length(*t, limits::kWallThickness_m, unit);
     plan.walls.push_back(wall);
   }
   if (auto openings = map.optional("openings")) {
-    for (const Field& item : openings->items()) plan.openings.push_back(read_opening(item, unit));
+    const auto items = openings->items();
+    check_count(*openings, items.size(), limits::kMaxOpenings, "openings");
+    for (const Field& item : items) plan.openings.push_back(read_opening(item, unit));
   }
   return plan;
 }
@@ -96,7 +122,7 @@ std::vector<std::string> split_words(const std::string& line) {
 
 class TableReader {
  public:
-  TableReader(const std::string& file, LengthUnit unit) : file_(file), scale_(meters_per(unit)) {}
+  TableReader(const std::string& file, LengthUnit unit) : file_(file), unit_(unit) {}
 
   [[noreturn]] void fail(int line, const std::string& field, const std::string& message) const {
     throw InputError(file_, line, field, message);
@@ -107,10 +133,14 @@ class TableReader {
     const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || ptr != word.data() + word.size() || value <= 0)
       fail(line, field, "expected a positive integer id, got '" + word + "'");
+    if (value > limits::kMaxId)
+      fail(line, field,
+           "ids are 1 to " + std::to_string(limits::kMaxId) + ", got " + std::to_string(value));
     return value;
   }
 
-  double length(const std::string& word, int line, const std::string& field) const {
+  double length(const std::string& word, int line, const std::string& field,
+                const Range& range_m) const {
     std::string text = word;
     if (!text.empty() && text.front() == '+') text.erase(0, 1);
     double value = 0.0;
@@ -120,14 +150,19 @@ class TableReader {
     if (!std::isfinite(value))
       fail(line, field,
            "expected a finite number, got '" + word + "' (NaN and infinity are not allowed)");
-    return value * scale_;
+    const double value_m = value * meters_per(unit_);
+    if (!range_m.contains(value_m))
+      fail(line, field,
+           "must be " + range_m.describe(to_string(unit_), meters_per(unit_)) + ", got " + word +
+               " " + to_string(unit_));
+    return value_m;
   }
 
   SourceRef source(int line, const std::string& section) const { return {file_, line, section}; }
 
  private:
   std::string file_;
-  double scale_;
+  LengthUnit unit_;
 };
 
 }  // namespace
@@ -136,6 +171,7 @@ FloorPlan parse_plan_table(const std::string& text, const std::string& file, Len
   const TableReader reader(file, unit);
   FloorPlan plan;
   plan.source_file = file;
+  plan.units = unit;
   std::istringstream lines(text);
   std::string line;
   std::string section;
@@ -167,9 +203,13 @@ FloorPlan parse_plan_table(const std::string& text, const std::string& file, Len
       Vertex v;
       v.source = reader.source(number, "vertices");
       v.id = reader.id(words[0], number, "vertices: id");
-      v.position_m = {reader.length(words[1], number, "vertices: x"),
-                      reader.length(words[2], number, "vertices: y")};
+      v.position_m = {reader.length(words[1], number, "vertices: x", limits::kCoordinate_m),
+                      reader.length(words[2], number, "vertices: y", limits::kCoordinate_m)};
       plan.vertices.push_back(v);
+      if (plan.vertices.size() > limits::kMaxVertices)
+        reader.fail(number, "vertices",
+                    "more than " + std::to_string(limits::kMaxVertices) +
+                        " vertices; ccbuild accepts at most that many");
     } else if (section == "walls") {
       if (words.size() != 3 && words.size() != 4)
         reader.fail(number, "walls",
@@ -180,8 +220,14 @@ FloorPlan parse_plan_table(const std::string& text, const std::string& file, Len
       w.id = reader.id(words[0], number, "walls: id");
       w.start_vertex = reader.id(words[1], number, "walls: a");
       w.end_vertex = reader.id(words[2], number, "walls: b");
-      if (words.size() == 4) w.thickness_m = reader.length(words[3], number, "walls: thickness");
+      if (words.size() == 4)
+        w.thickness_m =
+            reader.length(words[3], number, "walls: thickness", limits::kWallThickness_m);
       plan.walls.push_back(w);
+      if (plan.walls.size() > limits::kMaxWalls)
+        reader.fail(number, "walls",
+                    "more than " + std::to_string(limits::kMaxWalls) +
+                        " walls; ccbuild accepts at most that many");
     } else {
       if (words.size() != 5)
         reader.fail(number, "openings",
@@ -190,11 +236,15 @@ FloorPlan parse_plan_table(const std::string& text, const std::string& file, Len
       Opening o;
       o.source = reader.source(number, "openings");
       o.wall_id = reader.id(words[0], number, "openings: wall");
-      o.offset_m = reader.length(words[1], number, "openings: offset");
-      o.width_m = reader.length(words[2], number, "openings: width");
-      o.sill_m = reader.length(words[3], number, "openings: sill");
-      o.head_m = reader.length(words[4], number, "openings: head");
+      o.offset_m = reader.length(words[1], number, "openings: offset", limits::kAlongWall_m);
+      o.width_m = reader.length(words[2], number, "openings: width", limits::kOpeningWidth_m);
+      o.sill_m = reader.length(words[3], number, "openings: sill", limits::kOpeningHeight_m);
+      o.head_m = reader.length(words[4], number, "openings: head", limits::kOpeningHeight_m);
       plan.openings.push_back(o);
+      if (plan.openings.size() > limits::kMaxOpenings)
+        reader.fail(number, "openings",
+                    "more than " + std::to_string(limits::kMaxOpenings) +
+                        " openings; ccbuild accepts at most that many");
     }
   }
   if (!saw_vertices) reader.fail(0, "vertices", "missing the 'vertices' section");

@@ -146,8 +146,11 @@ double Layer::total_length_m() const {
 }
 
 int layer_count(double floor_height_m, double layer_height_m) {
-  CCBUILD_CHECK(floor_height_m > 0.0 && layer_height_m > 0.0, "heights are positive");
+  CCBUILD_CHECK(std::isfinite(floor_height_m) && std::isfinite(layer_height_m) &&
+                    floor_height_m > 0.0 && layer_height_m > 0.0,
+                "heights are positive and finite");
   const double ratio = floor_height_m / layer_height_m;
+  CCBUILD_CHECK(ratio <= 1e7, "a floor has a plausible number of layers (heights checked?)");
   return std::max(1, static_cast<int>(std::ceil(ratio - 1e-9 * std::max(1.0, ratio))));
 }
 
@@ -181,20 +184,26 @@ Layer plan_as_layer(const FloorPlan& plan, const SliceOptions& options) {
   return cut_walls(plan, std::nullopt, options);
 }
 
-std::uint64_t geometry_hash(const Layer& layer) {
-  using Point = std::pair<std::int64_t, std::int64_t>;
-  auto quantise = [&](int index) {
-    const auto& p = layer.points[index];
-    return Point{std::llround(p.x() * 1e6), std::llround(p.y() * 1e6)};
-  };
-  std::vector<std::pair<Point, Point>> segments;
-  segments.reserve(layer.segments.size());
-  for (const auto& s : layer.segments) {
-    Point a = quantise(s.start_point), b = quantise(s.end_point);
-    if (b < a) std::swap(a, b);
-    segments.emplace_back(a, b);
-  }
-  std::sort(segments.begin(), segments.end());
+namespace {
+
+std::array<std::int64_t, 2> quantised(const Eigen::Vector2d& p) {
+  return {std::llround(p.x() * 1e6), std::llround(p.y() * 1e6)};
+}
+
+GeometryKey::QuantisedSegment quantised(const Layer& layer, const LayerSegment& s, bool& swapped) {
+  auto a = quantised(layer.points[s.start_point]), b = quantised(layer.points[s.end_point]);
+  swapped = b < a;
+  if (swapped) std::swap(a, b);
+  return {a[0], a[1], b[0], b[1]};
+}
+
+}  // namespace
+
+GeometryKey::GeometryKey(const Layer& layer) {
+  segments_.reserve(layer.segments.size());
+  bool swapped = false;
+  for (const auto& s : layer.segments) segments_.push_back(quantised(layer, s, swapped));
+  std::sort(segments_.begin(), segments_.end());
   // FNV-1a over the values' bytes, least significant first: stable across platforms.
   std::uint64_t hash = 0xcbf29ce484222325ULL;
   auto mix = [&](std::int64_t value) {
@@ -204,14 +213,49 @@ std::uint64_t geometry_hash(const Layer& layer) {
       hash *= 0x100000001b3ULL;
     }
   };
-  mix(static_cast<std::int64_t>(segments.size()));
-  for (const auto& [a, b] : segments) {
-    mix(a.first);
-    mix(a.second);
-    mix(b.first);
-    mix(b.second);
+  mix(static_cast<std::int64_t>(segments_.size()));
+  for (const auto& q : segments_)
+    for (std::int64_t v : q) mix(v);
+  hash_ = hash;
+}
+
+std::optional<std::vector<SegmentMatch>> match_segments(const Layer& from, const Layer& to) {
+  if (from.segments.size() != to.segments.size()) return std::nullopt;
+  // Each quantised segment of `to`, sorted, with where it is and which way it runs.
+  struct Entry {
+    GeometryKey::QuantisedSegment key;
+    int segment;
+    bool swapped;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(to.segments.size());
+  for (std::size_t i = 0; i < to.segments.size(); ++i) {
+    bool swapped = false;
+    const auto key = quantised(to, to.segments[i], swapped);
+    entries.push_back({key, static_cast<int>(i), swapped});
   }
-  return hash;
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.key < b.key || (a.key == b.key && a.segment < b.segment);
+  });
+  std::vector<char> used(entries.size(), 0);
+  std::vector<SegmentMatch> out;
+  out.reserve(from.segments.size());
+  for (const auto& s : from.segments) {
+    bool swapped = false;
+    const auto key = quantised(from, s, swapped);
+    auto it = std::lower_bound(entries.begin(), entries.end(), key,
+                               [](const Entry& e, const auto& k) { return e.key < k; });
+    // Equal segments (none in a valid plan) are matched in order, each once.
+    while (it != entries.end() && it->key == key && used[it - entries.begin()]) ++it;
+    if (it == entries.end() || it->key != key) return std::nullopt;
+    used[it - entries.begin()] = 1;
+    out.push_back({it->segment, it->swapped != swapped});
+  }
+  return out;
+}
+
+std::uint64_t geometry_hash(const Layer& layer) {
+  return GeometryKey(layer).hash();
 }
 
 std::string hash_to_hex(std::uint64_t hash) {

@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "ccbuild/common/format.hpp"
+
 namespace ccbuild::floors {
 
 std::optional<LengthUnit> parse_length_unit(const std::string& text) {
@@ -13,6 +15,10 @@ std::optional<LengthUnit> parse_length_unit(const std::string& text) {
 
 std::string to_string(LengthUnit unit) {
   return unit == LengthUnit::kFoot ? "ft" : "m";
+}
+
+std::string length_text(double value_m, LengthUnit unit, int decimals) {
+  return printf_string("%.*f %s", decimals, value_m / meters_per(unit), to_string(unit).c_str());
 }
 
 std::optional<double> parse_length_m(const std::string& text, LengthUnit default_unit) {

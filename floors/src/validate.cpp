@@ -33,7 +33,8 @@ struct WallGeometry {
 };
 
 // Two walls on one line sharing more than a point would be deposited twice.
-void check_collinear_overlaps(const std::vector<WallGeometry>& walls, DiagnosticSink& sink) {
+void check_collinear_overlaps(const std::vector<WallGeometry>& walls, LengthUnit unit,
+                              DiagnosticSink& sink) {
   std::vector<const WallGeometry*> order;
   for (const auto& w : walls) order.push_back(&w);
   std::sort(order.begin(), order.end(), [](const WallGeometry* p, const WallGeometry* q) {
@@ -57,7 +58,7 @@ void check_collinear_overlaps(const std::vector<WallGeometry>& walls, Diagnostic
         sink.add(at(later.source, "",
                     "wall " + std::to_string(later.id) + " overlaps wall " +
                         std::to_string(earlier.id) + " (" + where(earlier.source) + ") along " +
-                        metres(overlap) +
+                        length_text(overlap, unit) +
                         " on the same line; each stretch of wall must be drawn once"));
       }
     }
@@ -70,6 +71,7 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
                    const std::string& context) {
   DiagnosticSink sink;
   const std::string prefix = context.empty() ? "" : context + ": ";
+  auto metres = [&](double value_m) { return length_text(value_m, plan.units); };
 
   if (plan.walls.empty())
     sink.add(Diagnostic{plan.source_file, 0, "walls",
@@ -123,7 +125,7 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
     geometry.push_back({&w, pa, pb, std::min(pa.x(), pb.x()), std::max(pa.x(), pb.x()),
                         std::min(pa.y(), pb.y()), std::max(pa.y(), pb.y())});
   }
-  check_collinear_overlaps(geometry, sink);
+  check_collinear_overlaps(geometry, plan.units, sink);
 
   std::vector<const Opening*> sound;  // openings whose own numbers are fine
   for (const auto& o : plan.openings) {

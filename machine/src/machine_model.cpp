@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/machine/urdf_adapter.hpp"
 
@@ -15,21 +16,33 @@ MachineModel MachineModel::defaults() {
   m.x = {0.0, 50.0, 0.5};
   m.y = {0.0, 50.0, 0.5};
   m.z = {0.0, 10.0, 0.1};
+  m.lift_height_m = m.lift_time_s * m.z.speed_m_s;
   return m;
 }
 
 namespace {
 
-double positive(const Field& field) {
-  const double value = field.as_number();
-  if (value <= 0.0) field.fail("must be positive, got " + field.node().text);
-  return value;
-}
+// Plausible ranges (docs/formats.md): beyond them a value is a typo, not a machine.
+const Range kDepositionSpeed_m_s = Range::above(0.0, 2.0);
+const Range kTravelSpeed_m_s = Range::above(0.0, 10.0);
+const Range kAccelDelay_s = Range::closed(0.0, 60.0);
+const Range kLiftHeight_m = Range::closed(0.0, 5.0);
+const Range kLiftTime_s = Range::closed(0.0, 600.0);
+const Range kIdleLimit_s = Range::above(0.0, 86'400.0);
+const Range kNozzleWidth_m = Range::closed(0.005, 1.0);
+// URDF joints.
+const Range kAxisPosition_m = Range::closed(-1000.0, 1000.0);
+const Range kAxisSpeed_m_s = Range::above(0.0, 10.0);
+const Range kRotationSpeed_rad_s = Range::above(0.0, 20.0);
+const Range kStopper_rad = Range::closed(-20.0 * M_PI, 20.0 * M_PI);
 
-double non_negative(const Field& field) {
-  const double value = field.as_number();
-  if (value < 0.0) field.fail("must be zero or more, got " + field.node().text);
-  return value;
+// A URDF value out of range: the URDF and the joint's element are named.
+void check_joint_value(const Field& field, const std::string& urdf_file, const JointInfo& j,
+                       const char* attribute, double value, const Range& range, const char* unit) {
+  if (!range.contains(value))
+    throw InputError(urdf_file, 0, "joint[" + j.name + "].limit." + attribute,
+                     "must be " + range.describe(unit) + ", got " + plain_number(value) + " " +
+                         unit + " (joint used as " + field.path() + " in " + field.file() + ")");
 }
 
 std::string joint_list(const UrdfInfo& urdf) {
@@ -60,8 +73,9 @@ AxisLimits read_axis(const Field& field, const UrdfInfo& urdf, const std::string
   if (norm <= 0.0 || std::abs(j.axis[axis]) / norm < 0.999)
     field.fail(label + " does not move along " + std::string(1, "xyz"[axis]) +
                " (check its <axis>)");
-  if (j.velocity <= 0.0)
-    field.fail(label + " has velocity limit " + std::to_string(j.velocity) + ", expected > 0");
+  check_joint_value(field, urdf_file, j, "velocity", j.velocity, kAxisSpeed_m_s, "m/s");
+  check_joint_value(field, urdf_file, j, "lower", j.lower, kAxisPosition_m, "m");
+  check_joint_value(field, urdf_file, j, "upper", j.upper, kAxisPosition_m, "m");
   if (j.upper <= j.lower) field.fail(label + " has an empty travel range (upper <= lower)");
   return AxisLimits{j.lower, j.upper, j.velocity};
 }
@@ -78,6 +92,7 @@ MachineModel load_machine(const fs::path& profile_path) {
 
   MachineModel m;
   m.source_file = profile_path.string();
+  m.files_read.push_back(profile_path);
   m.name = map.required("name").as_string();
 
   const Field urdf_field = map.required("urdf");
@@ -88,6 +103,7 @@ MachineModel load_machine(const fs::path& profile_path) {
     urdf_field.fail("URDF file '" + urdf_field.as_string() + "' not found (looked for " +
                     urdf_path.string() + ")");
   const UrdfInfo urdf = read_urdf(urdf_path.string());
+  m.files_read.push_back(urdf_path);
 
   MapReader joints(map.required("joints"), {"x", "y", "z", "nozzle"});
   joints.reject_unknown();
@@ -101,10 +117,14 @@ MachineModel load_machine(const fs::path& profile_path) {
     if (j.type != "revolute" && j.type != "continuous")
       field.fail(label + " is " + j.type +
                  ", expected revolute (its limits are the stopper) or continuous");
-    if (!j.has_limits || j.velocity <= 0.0)
-      field.fail(label + " needs a <limit> with velocity > 0 (the nozzle's rotation speed)");
+    if (!j.has_limits)
+      field.fail(label + " needs a <limit> with a velocity (the nozzle's rotation speed)");
+    check_joint_value(field, urdf_path.string(), j, "velocity", j.velocity, kRotationSpeed_rad_s,
+                      "rad/s");
     m.rotation_speed_rad_s = j.velocity;
     if (j.type == "revolute") {
+      check_joint_value(field, urdf_path.string(), j, "lower", j.lower, kStopper_rad, "rad");
+      check_joint_value(field, urdf_path.string(), j, "upper", j.upper, kStopper_rad, "rad");
       if (!(j.lower <= 0.0 && j.upper >= 0.0) || j.upper - j.lower < 2.0 * M_PI - 1e-9)
         field.fail(label +
                    " must span at least one full turn around 0 (lower <= 0 <= upper, upper - lower "
@@ -117,12 +137,14 @@ MachineModel load_machine(const fs::path& profile_path) {
     }
   }
 
-  m.deposition_speed_m_s = positive(map.required("deposition_speed_m_s"));
-  m.travel_speed_m_s = positive(map.required("travel_speed_m_s"));
+  m.deposition_speed_m_s =
+      map.required("deposition_speed_m_s").as_number_in(kDepositionSpeed_m_s, "m/s");
+  m.travel_speed_m_s = map.required("travel_speed_m_s").as_number_in(kTravelSpeed_m_s, "m/s");
   m.rotate_while_moving = map.required("rotate_while_moving").as_bool();
-  m.accel_delay_s = non_negative(map.required("accel_delay_s"));
-  m.nozzle_idle_limit_s = positive(map.required("nozzle_idle_limit_s"));
-  if (auto width = map.optional("nozzle_width_m")) m.nozzle_width_m = positive(*width);
+  m.accel_delay_s = map.required("accel_delay_s").as_number_in(kAccelDelay_s, "s");
+  m.nozzle_idle_limit_s = map.required("nozzle_idle_limit_s").as_number_in(kIdleLimit_s, "s");
+  if (auto width = map.optional("nozzle_width_m"))
+    m.nozzle_width_m = width->as_number_in(kNozzleWidth_m, "m");
 
   // Lift either from a height (the z joint's speed gives the time) or from two times.
   const auto height = map.optional("lift_height_m");
@@ -132,11 +154,13 @@ MachineModel load_machine(const fs::path& profile_path) {
     (lift ? *lift : *lower)
         .fail("give either lift_height_m or lift_time_s and lower_time_s, not both");
   if (height) {
-    const double h = non_negative(*height);
-    m.lift_time_s = m.lower_time_s = h / m.z.speed_m_s;
+    m.lift_height_m = height->as_number_in(kLiftHeight_m, "m");
+    m.lift_time_s = m.lower_time_s = m.lift_height_m / m.z.speed_m_s;
   } else if (lift && lower) {
-    m.lift_time_s = non_negative(*lift);
-    m.lower_time_s = non_negative(*lower);
+    m.lift_time_s = lift->as_number_in(kLiftTime_s, "s");
+    m.lower_time_s = lower->as_number_in(kLiftTime_s, "s");
+    // The z joint at its velocity limit, for as long as the faster of the two.
+    m.lift_height_m = m.z.speed_m_s * std::min(m.lift_time_s, m.lower_time_s);
   } else {
     root.fail("missing lift: give lift_height_m, or lift_time_s and lower_time_s");
   }

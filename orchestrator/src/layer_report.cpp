@@ -1,24 +1,20 @@
 #include "ccbuild/orchestrator/layer_report.hpp"
 
 #include <cmath>
-#include <cstdio>
-#include <sstream>
+
+#include "ccbuild/common/format.hpp"
+#include "report_common.hpp"
+#include "svg.hpp"
 
 namespace ccbuild::orchestrator {
-namespace {
 
-std::string number(double v, int decimals = 3) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, v);
-  return text;
+using detail::json;
+using detail::rounded;
+
+std::string ReportContext::where() const {
+  return layer ? "floor " + std::to_string(floor) + " layer " + std::to_string(*layer)
+               : "all walls whole";
 }
-
-// Rounded for stable, readable JSON: micrometres and microseconds are plenty.
-double rounded(double v) {
-  return std::round(v * 1e6) / 1e6;
-}
-
-}  // namespace
 
 std::string signed_step(const floors::Layer& layer, const planner::Step& step) {
   const auto& s = layer.segments[step.segment];
@@ -38,140 +34,130 @@ std::string signed_sequence(const floors::Layer& layer, const planner::Sequence&
   return text;
 }
 
-nlohmann::ordered_json layer_plan_json(const floors::Layer& layer, const planner::LayerPlan& plan) {
-  using json = nlohmann::ordered_json;
+nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floors::Layer& layer,
+                                       const machine::MachineModel& machine,
+                                       const planner::LayerPlan& plan) {
   const auto& e = plan.evaluation;
-  json out;
+  json out = detail::header_json(context, layer, "ccbuild-layer-plan-1");
+  out["machine"] = detail::machine_json(machine);
+  out["pieces"] = detail::pieces_json(layer);
+  out["nozzles"] = 1;
   out["algorithm"] = planner::to_string(plan.algorithm);
   out["metric"] = planner::to_string(plan.metric);
   out["objective"] = planner::to_string(plan.objective);
   out["closed"] = plan.path.closed;
-  if (!plan.path.closed)
-    out["start"] = {rounded(plan.path.start_m.x()), rounded(plan.path.start_m.y())};
-  out["walls"] = layer.segments.size();
-  out["airtime_distance"] = rounded(e.airtime_distance_m);
+  out["start_m"] = plan.path.closed ? json(nullptr) : detail::point_json(plan.path.start_m);
+  out["piece_count"] = layer.segments.size();
+  out["airtime_distance_m"] = rounded(e.airtime_distance_m);
   out["airtime_s"] = rounded(e.airtime_s);
   out["deposition_s"] = rounded(e.deposition_s);
   out["layer_time_s"] = rounded(e.layer_time_s);
-  out["lower_bound_distance"] = rounded(plan.lower_bound_m);
-  out["lower_bound_source"] = plan.lower_bound_source;
+  out["lower_bound_distance_m"] = rounded(plan.lower_bound_m);
+  out["lower_bound_source"] = planner::to_string(plan.lower_bound_source);
   const double gap = plan.gap();
-  out["gap"] = std::isnan(gap) ? json(nullptr) : json(rounded(gap));
+  out["gap_fraction"] = std::isnan(gap) ? json(nullptr) : json(rounded(gap));
   out["solve_s"] = rounded(plan.solve_s);
   out["stopped_by"] = planner::to_string(plan.stop);
   out["kicks"] = plan.kicks;
   out["max_idle_s"] = rounded(e.max_idle_s);
+  out["idle_limit_s"] = rounded(machine.nozzle_idle_limit_s);
   out["idle_limit_violations"] = e.idle_limit_violations;
-  out["lifts"] = e.lift_count;
+  out["lift_count"] = e.lift_count;
   out["total_rotation_rad"] = rounded(e.total_rotation_rad);
-  json sequence = json::array(), pieces = json::array();
-  for (const auto& step : plan.sequence) {
-    const auto& s = layer.segments[step.segment];
-    sequence.push_back(step.reversed ? -s.wall_id : s.wall_id);
-    pieces.push_back(s.piece);
-  }
-  out["sequence"] = sequence;
-  out["sequence_pieces"] = pieces;
+  out["sequence"] = detail::sequence_json(layer, plan.sequence);
   json moves = json::array();
   for (const auto& m : e.moves) {
-    moves.push_back({{"from", {rounded(m.from_m.x()), rounded(m.from_m.y())}},
-                     {"to", {rounded(m.to_m.x()), rounded(m.to_m.y())}},
-                     {"distance", rounded(m.distance_m)},
+    moves.push_back({{"from_m", detail::point_json(m.from_m)},
+                     {"to_m", detail::point_json(m.to_m)},
+                     {"distance_m", rounded(m.distance_m)},
                      {"time_s", rounded(m.time_s)},
                      {"lifted", m.lifted},
                      {"rotation_rad", rounded(m.rotation_rad)}});
   }
   out["moves"] = moves;
-  out["length_unit"] = "m";
+  out["waypoints"] = detail::waypoints_json(plan.waypoints);
   return out;
 }
 
-std::string layer_plan_svg(const floors::Layer& layer, const planner::LayerPlan& plan,
-                           const std::string& title) {
-  Eigen::Vector2d lo = layer.points.empty() ? Eigen::Vector2d::Zero() : layer.points[0];
-  Eigen::Vector2d hi = lo;
-  for (const auto& p : layer.points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
+std::string layer_plan_svg(const ReportContext& context, const floors::Layer& layer,
+                           const planner::LayerPlan& plan) {
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  detail::extend(lo, hi, layer);
   if (!plan.path.closed) {
     lo = lo.cwiseMin(plan.path.start_m);
     hi = hi.cwiseMax(plan.path.start_m);
   }
-  const double extent = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1e-3});
-  const double size_px = 1000.0, margin = 40.0;
-  const double scale = (size_px - 2 * margin) / extent;
-  const double width = (hi.x() - lo.x()) * scale + 2 * margin;
-  const double height = (hi.y() - lo.y()) * scale + 2 * margin + 30;
-  auto X = [&](double x) { return number(margin + (x - lo.x()) * scale, 1); };
-  auto Y = [&](double y) { return number(30 + margin + (hi.y() - y) * scale, 1); };  // y up
-  const double font = std::clamp(extent * scale / 80.0, 7.0, 14.0);
-
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(width, 0) << "\" height=\""
-      << number(height, 0) << "\" viewBox=\"0 0 " << number(width, 0) << " " << number(height, 0)
-      << "\">\n";
-  svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const double margin_left = 70.0, top = 70.0;
+  const detail::PlanView view = detail::plan_view(lo, hi, margin_left, top, 860.0);
+  const double width = std::max(720.0, margin_left + view.width_px() + 60.0);
+  const double bottom = top + view.height_px();
+  const double legend_top = bottom + 72.0;
+  svg::Document doc(width, legend_top + 100.0);
   const auto& e = plan.evaluation;
-  svg << "<text x=\"10\" y=\"20\" font-family=\"sans-serif\" font-size=\"14\">" << title << " — "
-      << planner::to_string(plan.algorithm) << ", airtime " << number(e.airtime_distance_m, 2)
-      << " m / " << number(e.airtime_s, 1) << " s, layer " << number(e.layer_time_s, 1)
-      << " s</text>\n";
-  // Walls, each with an arrow at its middle pointing the way it is deposited.
-  std::ostringstream arrows;
-  svg << "<g stroke=\"#333\" stroke-width=\"3\" fill=\"none\">\n";
+  const double u = floors::meters_per(context.unit);
+  const std::string unit = floors::to_string(context.unit);
+  doc.text(10, 22, svg::fit(context.file + ", " + context.where(), width - 20, 15, true), 15,
+           "id=\"title\" font-weight=\"bold\"");
+  doc.text(10, 42,
+           svg::fit(printf_string("one nozzle, %s %s, %s objective: airtime %.2f %s / %.1f s, "
+                                  "deposition %.1f s, layer %.1f s, %d lifts",
+                                  planner::to_string(plan.algorithm).c_str(),
+                                  planner::to_string(plan.metric).c_str(),
+                                  planner::to_string(plan.objective).c_str(),
+                                  e.airtime_distance_m / u, unit.c_str(), e.airtime_s,
+                                  e.deposition_s, e.layer_time_s, e.lift_count),
+                    width - 20, 12),
+           12, "id=\"subtitle\"");
+  detail::draw_axes(doc, view, context.unit);
+  const double font = std::clamp(view.scale_px_per_m * 0.35, 8.0, 12.0);
+  // Walls light, so the air moves drawn over them stay visible along them.
+  std::string walls =
+      "<g id=\"walls\" stroke=\"#b8b8b8\" stroke-width=\"5\" stroke-linecap=\"round\">\n";
+  std::string arrows = "<g id=\"arrows\">\n";
   for (const auto& step : plan.sequence) {
     const auto& s = layer.segments[step.segment];
     Eigen::Vector2d a = layer.start_m(s), b = layer.end_m(s);
     if (step.reversed) std::swap(a, b);
-    svg << "<line x1=\"" << X(a.x()) << "\" y1=\"" << Y(a.y()) << "\" x2=\"" << X(b.x())
-        << "\" y2=\"" << Y(b.y()) << "\"/>\n";
-    // An arrowhead at the middle, pointing the way the wall is deposited (y is up).
-    const Eigen::Vector2d d = (b - a).normalized();
-    const Eigen::Vector2d m = 0.5 * (a + b);
-    const double size = 7.0 / scale;
-    const Eigen::Vector2d tip = m + d * size, n(-d.y(), d.x());
-    const Eigen::Vector2d left = m - d * size + n * size * 0.7,
-                          right = m - d * size - n * size * 0.7;
-    arrows << "<polygon points=\"" << X(tip.x()) << "," << Y(tip.y()) << " " << X(left.x()) << ","
-           << Y(left.y()) << " " << X(right.x()) << "," << Y(right.y()) << "\"/>\n";
+    walls += "<line x1=\"" + svg::px(view.X(a.x())) + "\" y1=\"" + svg::px(view.Y(a.y())) +
+             "\" x2=\"" + svg::px(view.X(b.x())) + "\" y2=\"" + svg::px(view.Y(b.y())) + "\"/>\n";
+    arrows += detail::arrowhead(view, a, b, "#333");
   }
-  svg << "</g>\n<g fill=\"#333\">\n" << arrows.str() << "</g>\n";
-  // Air moves, dashed and numbered in order; lifted moves in red.
-  svg << "<g fill=\"none\" stroke-width=\"1.2\" stroke-dasharray=\"5,4\">\n";
-  int number_of_move = 0;
+  doc.raw(walls + "</g>\n" + arrows + "</g>\n<g id=\"wall-ids\">\n");
+  for (const auto& step : plan.sequence) {
+    const auto& s = layer.segments[step.segment];
+    detail::wall_label(doc, view, layer.start_m(s), layer.end_m(s),
+                       signed_step(layer, {step.segment, false}), "#555", font);
+  }
+  doc.raw(
+      "</g>\n<g id=\"air-moves\" fill=\"none\" stroke-width=\"1.6\" stroke-dasharray=\"5,4\">\n");
   for (const auto& m : e.moves) {
-    ++number_of_move;
     if (m.distance_m <= 1e-9) continue;
     const char* colour = m.lifted ? "#d62728" : "#1f77b4";
-    if (plan.metric == planner::Metric::kRectilinear) {
-      svg << "<polyline stroke=\"" << colour << "\" points=\"" << X(m.from_m.x()) << ","
-          << Y(m.from_m.y()) << " " << X(m.to_m.x()) << "," << Y(m.from_m.y()) << " "
-          << X(m.to_m.x()) << "," << Y(m.to_m.y()) << "\"/>";
-    } else {
-      svg << "<line stroke=\"" << colour << "\" x1=\"" << X(m.from_m.x()) << "\" y1=\""
-          << Y(m.from_m.y()) << "\" x2=\"" << X(m.to_m.x()) << "\" y2=\"" << Y(m.to_m.y())
-          << "\"/>";
-    }
-    const Eigen::Vector2d mid = 0.5 * (m.from_m + m.to_m);
-    svg << "<text x=\"" << X(mid.x()) << "\" y=\"" << Y(mid.y())
-        << "\" font-family=\"sans-serif\" font-size=\"" << number(font, 1) << "\" fill=\"" << colour
-        << "\" stroke=\"none\">" << number_of_move << "</text>\n";
+    std::string points = svg::px(view.X(m.from_m.x())) + "," + svg::px(view.Y(m.from_m.y())) + " ";
+    if (plan.metric == planner::Metric::kRectilinear)
+      points += svg::px(view.X(m.to_m.x())) + "," + svg::px(view.Y(m.from_m.y())) + " ";
+    points += svg::px(view.X(m.to_m.x())) + "," + svg::px(view.Y(m.to_m.y()));
+    doc.raw("<polyline stroke=\"" + std::string(colour) + "\" points=\"" + points + "\"/>\n");
   }
-  svg << "</g>\n";
+  doc.raw("</g>\n");
   const Eigen::Vector2d start =
       plan.path.closed && !plan.sequence.empty()
           ? (plan.sequence.front().reversed
                  ? layer.end_m(layer.segments[plan.sequence.front().segment])
                  : layer.start_m(layer.segments[plan.sequence.front().segment]))
           : plan.path.start_m;
-  svg << "<circle cx=\"" << X(start.x()) << "\" cy=\"" << Y(start.y())
-      << "\" r=\"7\" fill=\"#2ca02c\" fill-opacity=\"0.8\"/><text x=\"" << X(start.x()) << "\" y=\""
-      << Y(start.y())
-      << "\" dx=\"9\" dy=\"-9\" font-family=\"sans-serif\" font-size=\"12\" "
-         "fill=\"#2ca02c\">start</text>\n";
-  svg << "</svg>\n";
-  return svg.str();
+  doc.raw("<circle id=\"start\" cx=\"" + svg::px(view.X(start.x())) + "\" cy=\"" +
+          svg::px(view.Y(start.y())) + "\" r=\"7\" fill=\"#2ca02c\" fill-opacity=\"0.85\"/>\n");
+  detail::draw_scale_bar(doc, view, margin_left, bottom + 46.0, context.unit);
+  const double legend_height =
+      doc.legend(10, legend_top, width - 20,
+                 {{"line", "#b8b8b8",
+                   "wall (arrow: deposition direction; 12 = wall id, 12:2 = its 2nd piece)"},
+                  {"dashed", "#1f77b4", "air move"},
+                  {"dashed", "#d62728", "air move lifted over built walls"},
+                  {"dot", "#2ca02c", plan.path.closed ? "start and end of the tour" : "start"}});
+  doc.set_height(legend_top + legend_height + 10.0);
+  return doc.str();
 }
 
 }  // namespace ccbuild::orchestrator

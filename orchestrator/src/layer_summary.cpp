@@ -7,7 +7,7 @@ namespace ccbuild::orchestrator {
 BuildingSummary summarize_building(const floors::Building& building,
                                    const floors::SliceOptions& options) {
   BuildingSummary summary;
-  std::map<std::uint64_t, int> labels;
+  std::map<floors::GeometryKey, int> labels;
   for (const auto& floor : building.floors) {
     FloorSummary fs;
     fs.floor_index = floor.index;
@@ -19,12 +19,12 @@ BuildingSummary summarize_building(const floors::Building& building,
     fs.anchor_count = static_cast<int>(floor.anchors.size());
     const auto layers = floors::slice_floor(floor, building.layer_height_m, options);
     fs.layer_count = static_cast<int>(layers.size());
-    std::set<std::uint64_t> distinct;
+    std::set<int> distinct;
     for (const auto& layer : layers) {
-      distinct.insert(layer.geometry_hash);
       const auto [it, fresh] =
-          labels.emplace(layer.geometry_hash, static_cast<int>(labels.size()) + 1);
-      if (!fs.runs.empty() && fs.runs.back().geometry_hash == layer.geometry_hash) {
+          labels.emplace(floors::GeometryKey(layer), static_cast<int>(labels.size()) + 1);
+      distinct.insert(it->second);
+      if (!fs.runs.empty() && fs.runs.back().geometry_label == it->second) {
         fs.runs.back().last_layer = layer.index;
         continue;
       }

@@ -95,7 +95,7 @@ class ConnectedBoundSolver {
       for (auto& m : members) add_cut(std::move(m), 2.0, false);
     }
     if (lp_.solve_after_rows() != detail::LinearProgram::Status::kOptimal) {
-      out.stopped_by = "lp-failed";
+      out.stopped_by = BoundStop::kLpFailed;
       return out;
     }
     // Pricing makes the bound valid on the complete graph; it runs every few rounds and
@@ -119,47 +119,47 @@ class ConnectedBoundSolver {
       return true;
     };
     if (!price_and_certify()) {
-      out.stopped_by = "lp-failed";
+      out.stopped_by = BoundStop::kLpFailed;
       return out;
     }
     double lp_at_last_check = lp_.objective();
     bool priced_last = true;
     for (out.rounds = 1;; ++out.rounds) {
       if (stop_.should_stop()) {
-        out.stopped_by = stop_.cancelled() ? "cancelled" : "time-limit";
+        out.stopped_by = stop_.cancelled() ? BoundStop::kCancelled : BoundStop::kTimeLimit;
         break;
       }
       if (out.rounds > limits_.max_rounds) {
-        out.stopped_by = "round-limit";
+        out.stopped_by = BoundStop::kRoundLimit;
         break;
       }
       const int added = separate();
       out.cuts += added;
       if (added == 0) {
-        out.stopped_by = "no-violated-cuts";
+        out.stopped_by = BoundStop::kNoViolatedCuts;
         break;
       }
       if (lp_.solve_after_rows() != detail::LinearProgram::Status::kOptimal) {
-        out.stopped_by = "lp-failed";
+        out.stopped_by = BoundStop::kLpFailed;
         return out;
       }
       priced_last = false;
       if (out.rounds % limits_.pricing_interval == 0) {
         if (!price_and_certify()) {
-          out.stopped_by = "lp-failed";
+          out.stopped_by = BoundStop::kLpFailed;
           return out;
         }
         priced_last = true;
         // The last rounds add little: stop when they raised the LP by too little.
         const double lp = lp_.objective();
         if (lp - lp_at_last_check < limits_.stall_fraction * std::max(lp, 1e-9)) {
-          out.stopped_by = "stalled";
+          out.stopped_by = BoundStop::kStalled;
           break;
         }
         lp_at_last_check = lp;
       }
     }
-    if (!priced_last && !price_and_certify()) out.stopped_by = "lp-failed";
+    if (!priced_last && !price_and_certify()) out.stopped_by = BoundStop::kLpFailed;
     out.columns = lp_.columns();
     out.rows = lp_.rows();
     return out;
@@ -167,8 +167,7 @@ class ConnectedBoundSolver {
 
  private:
   double cost(int u, int v) const {
-    const Vec2 d = positions_[v] - positions_[u];
-    return metric_ == Metric::kEuclidean ? d.norm() : std::abs(d.x()) + std::abs(d.y());
+    return metric_distance_m(metric_, positions_[u], positions_[v]);
   }
 
   static std::uint64_t key(int u, int v) {

@@ -63,18 +63,24 @@ namespace {
 constexpr double kCoincident_m = 1e-9;
 
 void require_positive(double value, const char* field) {
-  if (!(value > 0.0)) throw InputError("", 0, field, "must be positive for planning");
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw InputError("", 0, field, "must be positive and finite for planning");
 }
 }  // namespace
 
-CostModel::CostModel(const floors::Layer& layer, const machine::MachineModel& machine,
-                     Metric metric)
-    : layer_(&layer), machine_(machine), metric_(metric), index_(std::make_unique<Index>()) {
-  require_positive(machine_.deposition_speed_m_s, "deposition_speed_m_s");
-  require_positive(machine_.travel_speed_m_s, "travel_speed_m_s");
-  require_positive(machine_.x.speed_m_s, "x axis speed");
-  require_positive(machine_.y.speed_m_s, "y axis speed");
-  require_positive(machine_.rotation_speed_rad_s, "rotation speed");
+CostModel::CostModel(std::shared_ptr<const floors::Layer> shared,
+                     const machine::MachineModel& machine, Metric metric)
+    : layer_(std::move(shared)),
+      machine_(machine),
+      metric_(metric),
+      index_(std::make_unique<Index>()) {
+  CCBUILD_CHECK(layer_ != nullptr, "a cost model has a layer");
+  const floors::Layer& layer = *layer_;
+  require_positive(machine_.deposition_speed_m_s, "MachineModel::deposition_speed_m_s");
+  require_positive(machine_.travel_speed_m_s, "MachineModel::travel_speed_m_s");
+  require_positive(machine_.x.speed_m_s, "MachineModel::x.speed_m_s");
+  require_positive(machine_.y.speed_m_s, "MachineModel::y.speed_m_s");
+  require_positive(machine_.rotation_speed_rad_s, "MachineModel::rotation_speed_rad_s");
   std::vector<std::pair<Vec2, Vec2>> segments;
   segments.reserve(layer.segments.size());
   for (const auto& s : layer.segments) segments.emplace_back(layer.start_m(s), layer.end_m(s));
@@ -91,12 +97,15 @@ CostModel::CostModel(const floors::Layer& layer, const machine::MachineModel& ma
   }
 }
 
+CostModel::CostModel(const floors::Layer& layer, const machine::MachineModel& machine,
+                     Metric metric)
+    : CostModel(std::make_shared<const floors::Layer>(layer), machine, metric) {}
+
 CostModel::~CostModel() = default;
 CostModel::CostModel(CostModel&&) noexcept = default;
 
 double CostModel::distance_m(const Vec2& a, const Vec2& b) const {
-  const Vec2 d = b - a;
-  return metric_ == Metric::kEuclidean ? d.norm() : std::abs(d.x()) + std::abs(d.y());
+  return metric_distance_m(metric_, a, b);
 }
 
 double CostModel::travel_s(const Vec2& a, const Vec2& b) const {
@@ -108,13 +117,9 @@ double CostModel::travel_s(const Vec2& a, const Vec2& b) const {
 
 double CostModel::move_time_s(const Vec2& a, const Vec2& b, double rotation_rad,
                               bool lifted) const {
-  const double rotation_s = std::abs(rotation_rad) / machine_.rotation_speed_rad_s;
-  if (distance_m(a, b) <= kCoincident_m) return rotation_s;
-  const double motion_s = travel_s(a, b) + machine_.accel_delay_s;
-  double time =
-      machine_.rotate_while_moving ? std::max(motion_s, rotation_s) : motion_s + rotation_s;
-  if (lifted) time += machine_.lift_time_s + machine_.lower_time_s;
-  return time;
+  const bool coincident = distance_m(a, b) <= kCoincident_m;
+  const double motion_s = coincident ? 0.0 : travel_s(a, b) + machine_.accel_delay_s;
+  return combine_move_s(motion_s, turn_s(rotation_rad), lifted && !coincident);
 }
 
 bool CostModel::path_crosses(const Vec2& a, const Vec2& b, int segment) const {

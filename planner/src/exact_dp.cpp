@@ -58,13 +58,8 @@ std::optional<Sequence> exact_sequence(const CostModel& model, const std::vector
       }
     }
   }
-  const double lift_s = machine.lift_time_s + machine.lower_time_s;
   auto move_time = [&](int ab, double turn, bool lifted) {
-    const double rotation_s = std::abs(turn) / machine.rotation_speed_rad_s;
-    if (dist[ab] <= 1e-9) return rotation_s;
-    const double t =
-        machine.rotate_while_moving ? std::max(motion[ab], rotation_s) : motion[ab] + rotation_s;
-    return lifted ? t + lift_s : t;
+    return model.combine_move_s(motion[ab], model.turn_s(turn), lifted && dist[ab] > 1e-9);
   };
   // Turn from (state a, winding ka) to state b, and the winding after it.
   std::vector<double> turn(S * K * S, 0.0);
@@ -95,13 +90,9 @@ std::optional<Sequence> exact_sequence(const CostModel& model, const std::vector
       if (a / 2 == b / 2) continue;
       const int ab = a * S + b;
       double c = dist[ab];
-      if (timed) {
-        const double turn_s =
-            std::abs(wrap_angle(heading[b] - heading[a])) / machine.rotation_speed_rad_s;
-        c = dist[ab] <= 1e-9 ? turn_s
-                             : (machine.rotate_while_moving ? std::max(motion[ab], turn_s)
-                                                            : motion[ab] + turn_s);
-      }
+      if (timed)
+        c = model.combine_move_s(motion[ab], model.turn_s(wrap_angle(heading[b] - heading[a])),
+                                 false);
       cheapest_in[b / 2] = std::min(cheapest_in[b / 2], c);
     }
   }

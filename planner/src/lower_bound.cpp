@@ -16,8 +16,7 @@ using detail::Vec2;
 constexpr double kUnitsPerMetre = 1e5;  // 10 micrometres
 
 std::int64_t cost_units(const Vec2& a, const Vec2& b, Metric metric) {
-  const Vec2 d = b - a;
-  const double m = metric == Metric::kEuclidean ? d.norm() : std::abs(d.x()) + std::abs(d.y());
+  const double m = metric_distance_m(metric, a, b);
   return static_cast<std::int64_t>(std::floor(m * kUnitsPerMetre));  // round down: stays a bound
 }
 
@@ -173,9 +172,7 @@ MatchingBound min_weight_matching(const std::vector<Vec2>& terminals, Metric met
       const int a = u == W ? -1 : u, b = v == W ? -1 : v;
       result.pairs.emplace_back(a < 0 ? b : a, a < 0 ? -1 : b);
       if (a >= 0 && b >= 0) {
-        const Vec2 d = terminals[b] - terminals[a];
-        result.matching_cost_m +=
-            metric == Metric::kEuclidean ? d.norm() : std::abs(d.x()) + std::abs(d.y());
+        result.matching_cost_m += metric_distance_m(metric, terminals[a], terminals[b]);
       }
     }
   }
@@ -192,9 +189,31 @@ std::optional<BoundKind> parse_bound(const std::string& text) {
   return std::nullopt;
 }
 
-std::string LayerBound::source() const {
-  return to_string(connected && connected->lower_bound_m > matching_m ? BoundKind::kConnected
-                                                                      : BoundKind::kMatching);
+std::string to_string(BoundSource source) {
+  return source == BoundSource::kConnected ? "connected" : "matching";
+}
+
+std::string to_string(BoundStop stop) {
+  switch (stop) {
+    case BoundStop::kNoViolatedCuts:
+      return "no-violated-cuts";
+    case BoundStop::kStalled:
+      return "stalled";
+    case BoundStop::kRoundLimit:
+      return "round-limit";
+    case BoundStop::kTimeLimit:
+      return "time-limit";
+    case BoundStop::kCancelled:
+      return "cancelled";
+    case BoundStop::kLpFailed:
+      return "lp-failed";
+  }
+  return "?";
+}
+
+BoundSource LayerBound::source() const {
+  return connected && connected->lower_bound_m > matching_m ? BoundSource::kConnected
+                                                            : BoundSource::kMatching;
 }
 
 LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path,

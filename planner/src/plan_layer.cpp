@@ -8,6 +8,7 @@
 
 #include "cc_tsp.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/planner/timeline.hpp"
 #include "search_internal.hpp"
 
 namespace ccbuild::planner {
@@ -141,15 +142,23 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   const int n = static_cast<int>(layer.segments.size());
   if (n == 0)
     throw InputError("", 0, "layer", "has no walls to plan (every wall is inside an opening?)");
-  if (!(options.time_limit_s > 0.0)) throw InputError("", 0, "--time-limit", "must be positive");
+  if (!(options.time_limit_s > 0.0) || std::isnan(options.time_limit_s))
+    throw InputError("", 0, "PlanOptions::time_limit_s", "must be positive");
+  if ((options.max_kicks && *options.max_kicks < 0) ||
+      (options.polish_kicks && *options.polish_kicks < 0))
+    throw InputError("", 0,
+                     options.max_kicks && *options.max_kicks < 0 ? "PlanOptions::max_kicks"
+                                                                 : "PlanOptions::polish_kicks",
+                     "must be zero or more");
   const PathSpec& path = options.path;
   if (path.first) {
-    if (path.closed) throw InputError("", 0, "--first-wall", "needs an open path (--start-vertex)");
+    if (path.closed)
+      throw InputError("", 0, "PathSpec::first", "needs an open path (a start point)");
     if (path.first->segment < 0 || path.first->segment >= n)
-      throw InputError("", 0, "--first-wall", "is not a wall of this layer");
+      throw InputError("", 0, "PathSpec::first", "is not a wall of this layer");
   }
   if (options.algorithm == Algorithm::kExact && n > kExactMaxSegments)
-    throw InputError("", 0, "--algorithm",
+    throw InputError("", 0, "PlanOptions::algorithm",
                      "exact handles layers of at most " + std::to_string(kExactMaxSegments) +
                          " walls; this layer has " + std::to_string(n) + " (use cc-tsp)");
 
@@ -211,6 +220,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   CCBUILD_CHECK(covers_every_segment_once(plan.sequence, layer.segments.size()),
                 "the planned sequence deposits every wall exactly once");
   plan.evaluation = model.evaluate(plan.sequence, path);
+  plan.waypoints = waypoints_of(model, plan.sequence, path, plan.evaluation, layer.z_top_m);
   if (options.objective == Objective::kDistance &&
       plan.evaluation.airtime_distance_m <= plan.lower_bound_m + 1e-9)
     plan.stop = StopReason::kProvenOptimal;

@@ -50,46 +50,155 @@ Timeline timeline_of(const CostModel& model, const Sequence& sequence, const Pat
   return timeline_of(model, sequence, path, model.evaluate(sequence, path), wait_before_step_s);
 }
 
-Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
-                     const Evaluation& e, const std::vector<double>& wait_before_step_s) {
+namespace {
+
+// Walks a path as the cost model times it and reports every breakpoint of its motion:
+// visit(waypoint, position_break) where `position_break` is false only for a turn that
+// ends while the nozzle travels on in a straight line, which a position timeline can
+// leave out.
+template <class Visit>
+void walk_path(const CostModel& model, const Sequence& sequence, const PathSpec& path,
+               const Evaluation& e, double z_m, double start_s,
+               const std::vector<double>& wait_before_step_s, Visit&& visit) {
   const auto& machine = model.machine();
-  Timeline t;
-  const Eigen::Vector2d start =
+  const auto& layer = model.layer();
+  Waypoint at;
+  at.t_s = start_s;
+  at.position_m =
       path.closed && !sequence.empty() ? model.step_start_m(sequence.front()) : path.start_m;
-  t.append(0.0, start);
+  at.z_m = z_m;
+  at.heading_rad = sequence.empty() ? 0.0 : model.heading_rad(sequence.front());
+  visit(at, true);
+  auto emit = [&](double duration_s, bool position_break) {
+    at.t_s += std::max(0.0, duration_s);
+    at.extruding = false;
+    at.wall = 0;
+    at.piece = 0;
+    visit(at, position_break);
+  };
   auto air_move = [&](const Move& m) {
-    const double lift = m.lifted ? machine.lift_time_s : 0.0;
-    const double lower = m.lifted ? machine.lower_time_s : 0.0;
-    if (m.distance_m <= 1e-9) {
-      t.hold(m.time_s);  // a turn on the spot
+    const double heading0 = at.heading_rad;
+    if (m.distance_m <= 1e-9) {  // a turn on the spot
+      if (m.time_s > 0.0) {
+        at.heading_rad = heading0 + m.rotation_rad;
+        emit(m.time_s, true);
+      }
       return;
     }
+    const double lift = m.lifted ? machine.lift_time_s : 0.0;
+    const double lower = m.lifted ? machine.lower_time_s : 0.0;
     const double motion = m.travel_s + machine.accel_delay_s;
-    const double turn_first = machine.rotate_while_moving ? 0.0 : m.rotation_s;
-    t.hold(lift + turn_first);
-    if (model.metric() == Metric::kRectilinear) {
-      // x first, then y, each for its share of the motion time.
-      const Eigen::Vector2d corner(m.to_m.x(), m.from_m.y());
-      const double tx = std::abs(m.to_m.x() - m.from_m.x()) / machine.x.speed_m_s;
-      const double ty = std::abs(m.to_m.y() - m.from_m.y()) / machine.y.speed_m_s;
-      const double share = tx + ty > 0.0 ? tx / (tx + ty) : 1.0;
-      t.move_to(corner, motion * share);
-      t.move_to(m.to_m, motion * (1.0 - share));
-    } else {
-      t.move_to(m.to_m, motion);
+    if (lift > 0.0) {
+      at.z_m = z_m + machine.lift_height_m;
+      emit(lift, true);
     }
-    t.hold(m.time_s - lift - turn_first - motion - lower);  // rest of a longer turn
-    t.hold(lower);
+    // The turn overlaps the motion from its start, or comes before it.
+    double turned_s = 0.0;
+    if (!machine.rotate_while_moving && m.rotation_s > 0.0) {
+      at.heading_rad = heading0 + m.rotation_rad;
+      turned_s = m.rotation_s;
+      emit(m.rotation_s, true);
+    }
+    // Breakpoints inside the motion: the rectilinear corner, the end of an overlapping
+    // turn, the arrival.
+    const Eigen::Vector2d from = m.from_m, to = m.to_m;
+    const bool two_legs = model.metric() == Metric::kRectilinear &&
+                          std::abs(to.x() - from.x()) > 1e-12 &&
+                          std::abs(to.y() - from.y()) > 1e-12;
+    const Eigen::Vector2d corner(to.x(), from.y());
+    double corner_s = motion;
+    if (two_legs) {
+      const double tx = std::abs(to.x() - from.x()) / machine.x.speed_m_s;
+      const double ty = std::abs(to.y() - from.y()) / machine.y.speed_m_s;
+      corner_s = motion * (tx / (tx + ty));
+    }
+    auto position_at = [&](double s) -> Eigen::Vector2d {
+      if (s >= motion) return to;
+      if (two_legs) {
+        if (s <= corner_s) return from + (corner - from) * (s / corner_s);
+        return corner + (to - corner) * ((s - corner_s) / (motion - corner_s));
+      }
+      return from + (to - from) * (s / motion);
+    };
+    const bool turning = machine.rotate_while_moving && m.rotation_s > 0.0;
+    auto heading_at = [&](double s) {
+      if (!turning) return heading0 + (turned_s > 0.0 ? m.rotation_rad : 0.0);
+      return heading0 + m.rotation_rad * std::min(1.0, s / m.rotation_s);
+    };
+    std::vector<std::pair<double, bool>> breaks;  // (time into the motion, position break)
+    if (two_legs) breaks.emplace_back(corner_s, true);
+    if (turning && m.rotation_s < motion) breaks.emplace_back(m.rotation_s, false);
+    breaks.emplace_back(motion, true);
+    std::sort(breaks.begin(), breaks.end());
+    double done = 0.0;
+    for (const auto& [s, position_break] : breaks) {
+      if (s <= done && s < motion) continue;
+      at.position_m = position_at(s);
+      at.heading_rad = heading_at(s);
+      emit(s - done, position_break);
+      done = s;
+    }
+    at.position_m = to;
+    // The rest of a turn longer than the travel.
+    const double rest = m.time_s - lift - turned_s - motion - lower;
+    if (rest > 1e-12) {
+      at.heading_rad = heading0 + m.rotation_rad;
+      emit(rest, true);
+    }
+    at.heading_rad = heading0 + m.rotation_rad;
+    if (lower > 0.0) {
+      at.z_m = z_m;
+      emit(lower, true);
+    }
   };
   // Moves come one before each step (a closed tour's first move is its closing move).
   std::size_t move = 0;
   for (std::size_t k = 0; k < sequence.size(); ++k) {
-    if (k < wait_before_step_s.size()) t.hold(wait_before_step_s[k]);
+    if (k < wait_before_step_s.size() && wait_before_step_s[k] > 0.0)
+      emit(wait_before_step_s[k], true);
     if (k > 0 || !path.closed) air_move(e.moves[move++]);
-    const double length = model.layer().segments[sequence[k].segment].length_m;
-    t.move_to(model.step_end_m(sequence[k]), length / machine.deposition_speed_m_s);
+    const Step& step = sequence[k];
+    const auto& segment = layer.segments[step.segment];
+    // This breakpoint begins the wall: it says what is deposited until the next one.
+    at.extruding = true;
+    at.wall = segment.wall_id;
+    at.piece = segment.piece + 1;
+    visit(at, true);
+    at.position_m = model.step_end_m(step);
+    emit(segment.length_m / machine.deposition_speed_m_s, true);
   }
   if (path.closed && !sequence.empty()) air_move(e.moves[move++]);
+}
+
+}  // namespace
+
+std::vector<Waypoint> waypoints_of(const CostModel& model, const Sequence& sequence,
+                                   const PathSpec& path, const Evaluation& evaluation, double z_m,
+                                   double start_s, const std::vector<double>& wait_before_step_s) {
+  std::vector<Waypoint> out;
+  walk_path(model, sequence, path, evaluation, z_m, start_s, wait_before_step_s,
+            [&](const Waypoint& w, bool) {
+              // A wall's first breakpoint replaces the arrival at its start (same time,
+              // same place): one waypoint per breakpoint.
+              if (!out.empty() && w.extruding && out.back().t_s == w.t_s && !out.back().extruding)
+                out.back() = w;
+              else
+                out.push_back(w);
+            });
+  return out;
+}
+
+Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
+                     const Evaluation& e, const std::vector<double>& wait_before_step_s) {
+  Timeline t;
+  walk_path(model, sequence, path, e, 0.0, 0.0, wait_before_step_s,
+            [&](const Waypoint& w, bool position_break) {
+              // A turn ending mid-travel lies on a straight stretch of the position curve,
+              // and a repeated point adds nothing: leaving them out changes nothing.
+              if (!position_break) return;
+              if (!t.empty() && w.t_s == t.end_s() && w.position_m == t.positions().back()) return;
+              t.append(w.t_s, w.position_m);
+            });
   return t;
 }
 
@@ -115,7 +224,7 @@ std::optional<Conflict> first_conflict(const Timeline& left, const Timeline& rig
   double previous_t = 0.0, previous_gap = 0.0;
   for (std::size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
-    const double l = Timeline::rail(left.at(t), axis), r = Timeline::rail(right.at(t), axis);
+    const double l = rail_coordinate(left.at(t), axis), r = rail_coordinate(right.at(t), axis);
     const double gap = r - l;
     if (gap < gantry_width_m - kTolerance) {
       double when = t;
@@ -125,8 +234,8 @@ std::optional<Conflict> first_conflict(const Timeline& left, const Timeline& rig
             previous_t + (previous_gap - gantry_width_m) / (previous_gap - gap) * (t - previous_t);
         when = std::clamp(when, previous_t, t);
       }
-      return Conflict{when, Timeline::rail(left.at(when), axis),
-                      Timeline::rail(right.at(when), axis)};
+      return Conflict{when, rail_coordinate(left.at(when), axis),
+                      rail_coordinate(right.at(when), axis)};
     }
     previous_t = t;
     previous_gap = gap;
@@ -137,7 +246,7 @@ std::optional<Conflict> first_conflict(const Timeline& left, const Timeline& rig
 double min_gap_m(const Timeline& left, const Timeline& right, RailAxis axis) {
   double gap = std::numeric_limits<double>::infinity();
   for (double t : merged_times(left, right))
-    gap = std::min(gap, Timeline::rail(right.at(t), axis) - Timeline::rail(left.at(t), axis));
+    gap = std::min(gap, rail_coordinate(right.at(t), axis) - rail_coordinate(left.at(t), axis));
   return gap;
 }
 

@@ -27,8 +27,8 @@ TEST(Cli, ValidateJsonAgreesWithTheModel) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["floors"].size(), 5u);
   EXPECT_EQ(j["units"], "ft");
-  EXPECT_EQ(j["totals"]["layers"], 125);
-  EXPECT_GE(j["floors"][0]["walls"].get<int>(), 180);
+  EXPECT_EQ(j["totals"]["layer_count"], 125);
+  EXPECT_GE(j["floors"][0]["wall_count"].get<int>(), 180);
 }
 
 TEST(Cli, ValidatePlanInEachEncoding) {
@@ -37,9 +37,9 @@ TEST(Cli, ValidatePlanInEachEncoding) {
     ASSERT_EQ(r.exit_code, 0) << file << ": " << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["kind"], "plan");
-    EXPECT_EQ(j["totals"]["walls"], 7);
-    EXPECT_EQ(j["totals"]["openings"], 2);
-    EXPECT_EQ(j["totals"]["layers"], 30);  // default 3 m floor of 0.1 m layers
+    EXPECT_EQ(j["totals"]["wall_count"], 7);
+    EXPECT_EQ(j["totals"]["opening_count"], 2);
+    EXPECT_EQ(j["totals"]["layer_count"], 30);  // default 3 m floor of 0.1 m layers
   }
 }
 
@@ -62,6 +62,13 @@ TEST(Cli, BuildingLargerThanTheMachineReachIsRejected) {
   EXPECT_TRUE(contains(r.err, "tiny_gantry.yaml"));
   EXPECT_TRUE(
       contains(r.err, "the building is 6.00 m x 4.00 m but the machine reaches 5.00 m x 29.00 m"));
+  // Every command checks it, not only validate.
+  for (const char* command : {"layers", "plan-layer", "sweep"}) {
+    const auto other =
+        run_ccbuild(std::string(command) + " tests/data/buildings/too_big_for_machine.yaml");
+    EXPECT_EQ(other.exit_code, 2) << command;
+    EXPECT_TRUE(contains(other.err, "but the machine reaches")) << command;
+  }
 }
 
 TEST(Cli, LayersListsRunsPerFloor) {

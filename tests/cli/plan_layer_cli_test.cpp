@@ -16,17 +16,18 @@ using testing::contains;
 using testing::run_ccbuild;
 
 TEST(PlanLayerCli, ReferenceExampleInText) {
-  const auto r =
-      run_ccbuild("plan-layer tests/data/plans/paper_example1.txt --start-vertex 1 --first-wall 1");
+  // The papers' examples are in feet; lengths are printed in the plan's unit.
+  const auto r = run_ccbuild(
+      "plan-layer tests/data/plans/paper_example1.txt --units ft --start-vertex 1 --first-wall 1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(contains(r.out, "airtime       25.000 m"));
-  EXPECT_TRUE(contains(r.out, "lower bound   25.000 m (matching), gap 0.00%"));
+  EXPECT_TRUE(contains(r.out, "airtime       25.000 ft"));
+  EXPECT_TRUE(contains(r.out, "lower bound   25.000 ft (matching), gap 0.00%"));
   EXPECT_TRUE(contains(r.out, "sequence      1 "));
 }
 
 TEST(PlanLayerCli, TimeObjectiveSaysItsGapIsInDistance) {
   const auto r = run_ccbuild(
-      "plan-layer tests/data/plans/paper_example2.txt --start-vertex 1 --first-wall 1 "
+      "plan-layer tests/data/plans/paper_example2.txt --units ft --start-vertex 1 --first-wall 1 "
       "--objective time");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "in distance (time objective)")) << r.out;
@@ -34,23 +35,59 @@ TEST(PlanLayerCli, TimeObjectiveSaysItsGapIsInDistance) {
 
 TEST(PlanLayerCli, JsonCarriesEveryRequiredField) {
   const auto r = run_ccbuild(
-      "plan-layer tests/data/plans/paper_example2.txt --start-vertex 1 --first-wall 1 "
+      "plan-layer tests/data/plans/paper_example2.txt --units ft --start-vertex 1 --first-wall 1 "
       "--metric rectilinear --objective time --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key :
-       {"algorithm", "metric", "objective", "airtime_distance", "airtime_s", "deposition_s",
-        "layer_time_s", "lower_bound_distance", "solve_s", "sequence", "moves", "max_idle_s"})
+  for (const char* key : {"format",
+                          "file",
+                          "floor",
+                          "layer",
+                          "z_bottom_m",
+                          "z_top_m",
+                          "seed",
+                          "machine",
+                          "pieces",
+                          "nozzles",
+                          "algorithm",
+                          "metric",
+                          "objective",
+                          "closed",
+                          "start_m",
+                          "piece_count",
+                          "airtime_distance_m",
+                          "airtime_s",
+                          "deposition_s",
+                          "layer_time_s",
+                          "lower_bound_distance_m",
+                          "lower_bound_source",
+                          "gap_fraction",
+                          "solve_s",
+                          "stopped_by",
+                          "kicks",
+                          "max_idle_s",
+                          "idle_limit_s",
+                          "idle_limit_violations",
+                          "lift_count",
+                          "total_rotation_rad",
+                          "sequence",
+                          "moves",
+                          "waypoints"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["metric"], "rectilinear");
-  EXPECT_EQ(j["sequence"].size(), 8u);
-  EXPECT_EQ(j["sequence"][0], 1);
+  EXPECT_TRUE(j["layer"].is_null());  // a lone plan with every wall whole
+  ASSERT_EQ(j["sequence"].size(), 8u);
+  EXPECT_EQ(j["sequence"][0]["wall"], 1);
+  EXPECT_EQ(j["sequence"][0]["piece"], 1);
+  EXPECT_EQ(j["sequence"][0]["reversed"], false);
   EXPECT_EQ(j["moves"].size(), 8u);
   EXPECT_NEAR(j["layer_time_s"].get<double>(),
               j["airtime_s"].get<double>() + j["deposition_s"].get<double>(), 1e-5);
   const auto& move = j["moves"][1];
-  for (const char* key : {"from", "to", "distance", "time_s", "lifted", "rotation_rad"})
+  for (const char* key : {"from_m", "to_m", "distance_m", "time_s", "lifted", "rotation_rad"})
     EXPECT_TRUE(move.contains(key));
+  // The waypoints end when the layer does.
+  EXPECT_NEAR(j["waypoints"].back()["t_s"].get<double>(), j["layer_time_s"].get<double>(), 1e-5);
 }
 
 TEST(PlanLayerCli, SameSeedSameJson) {
@@ -68,9 +105,28 @@ TEST(PlanLayerCli, BuildingLayerWithCutWalls) {
   const auto r = run_ccbuild("plan-layer config/buildings/house.yaml --floor 0 --layer 12 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["sequence"].size(), j["walls"].get<std::size_t>());
-  EXPECT_EQ(j["sequence_pieces"].size(), j["walls"].get<std::size_t>());
-  EXPECT_LE(j["lower_bound_distance"].get<double>(), j["airtime_distance"].get<double>() + 1e-9);
+  EXPECT_EQ(j["sequence"].size(), j["piece_count"].get<std::size_t>());
+  EXPECT_EQ(j["pieces"].size(), j["piece_count"].get<std::size_t>());
+  EXPECT_EQ(j["floor"], 0);
+  EXPECT_EQ(j["layer"], 12);
+  EXPECT_NEAR(j["z_bottom_m"].get<double>(), 1.2, 1e-9);
+  EXPECT_LE(j["lower_bound_distance_m"].get<double>(),
+            j["airtime_distance_m"].get<double>() + 1e-9);
+  // Pieces are numbered from 1 in the JSON as in the text ("12:2").
+  const auto text = run_ccbuild("plan-layer config/buildings/house.yaml --floor 0 --layer 12");
+  std::size_t cut = 0;
+  for (const auto& step : j["sequence"]) {
+    const auto id = step["wall"].get<long>();
+    const auto piece = step["piece"].get<int>();
+    EXPECT_GE(piece, 1);
+    std::string signed_id = step["reversed"].get<bool>() ? "-" : "";
+    signed_id += std::to_string(id);
+    signed_id += ":";
+    signed_id += std::to_string(piece);
+    if (contains(text.out, " " + signed_id + " ") || contains(text.out, " " + signed_id + "\n"))
+      ++cut;
+  }
+  EXPECT_GT(cut, 10u);  // layer 12 cuts many walls at doors and windows
 }
 
 TEST(PlanLayerCli, SvgIsWrittenWholeAndNotOverwrittenUnasked) {
@@ -110,7 +166,9 @@ TEST(PlanLayerCli, BadInputExitsTwoWithAReason) {
       {"plan-layer tests/data/plans/cottage.yaml --start-vertex 1 --first-wall 42",
        "wall 42 is not in this layer"},
       {"plan-layer tests/data/plans/cottage.yaml --metric manhattan", "manhattan"},
-      {"plan-layer tests/data/plans/cottage.yaml --time-limit -1", "--time-limit"},
+      {"plan-layer tests/data/plans/cottage.yaml --time-limit -1",
+       "--time-limit: must be more than 0 and at most 86400 s, got -1"},
+      {"plan-layer tests/data/plans/cottage.yaml --time-limit nan", "expected a number"},
       {"plan-layer config/buildings/apartment.yaml --algorithm exact",
        "exact handles layers of at most"},
       {"plan-layer config/buildings/house.yaml --layer 99", "no layer 99"},

@@ -25,10 +25,22 @@ TEST(Building, FloorsStackAndKeepTheirOwnOpenings) {
   EXPECT_DOUBLE_EQ(upper[0].z_bottom_m, 3.0);
 }
 
-TEST(Building, LooksLikeBuildingTellsFilesApart) {
-  EXPECT_TRUE(looks_like_building(data("buildings/cottage.yaml")));
-  EXPECT_FALSE(looks_like_building(data("plans/cottage.yaml")));
-  EXPECT_FALSE(looks_like_building(data("plans/cottage.txt")));
+TEST(Building, OneReadTellsBuildingsFromPlans) {
+  const BuildingOrPlan building =
+      load_building_or_plan(data("buildings/cottage.yaml"), LengthUnit::kMeter);
+  EXPECT_TRUE(building.is_building);
+  ASSERT_EQ(building.building.floors.size(), 2u);
+  // The building file and the plan it names (read once, though two floors use it).
+  ASSERT_EQ(building.building.files_read.size(), 2u);
+  EXPECT_EQ(building.building.files_read[1].filename(), "cottage.yaml");
+  for (const char* file : {"plans/cottage.yaml", "plans/cottage.json", "plans/cottage.txt"}) {
+    const BuildingOrPlan plan = load_building_or_plan(data(file), LengthUnit::kFoot);
+    EXPECT_FALSE(plan.is_building) << file;
+    EXPECT_EQ(plan.plan.walls.size(), 7u) << file;
+  }
+  // The table text has no units key: the caller's unit holds.
+  EXPECT_EQ(load_building_or_plan(data("plans/cottage.txt"), LengthUnit::kFoot).plan.units,
+            LengthUnit::kFoot);
 }
 
 TEST(Material, StandardMixLoadsAndInterpolates) {

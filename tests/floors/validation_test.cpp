@@ -127,9 +127,9 @@ INSTANTIATE_TEST_SUITE_P(
     Fixtures, BrokenBuildingFile,
     ::testing::Values(
         BrokenBuilding{"negative_height.yaml", 7, "floors[0].height",
-                       "floor height must be positive"},
+                       "must be more than 0 and at most 100 m, got -3 m"},
         BrokenBuilding{"zero_layer_height.yaml", 2, "layer_height",
-                       "layer height must be positive"},
+                       "must be from 0.001 to 1 m, got 0 m"},
         BrokenBuilding{"wrong_units.yaml", 1, "units", "expected 'm' or 'ft', got 'feet'"},
         BrokenBuilding{"missing_plan.yaml", 6, "floors[0].plan",
                        "plan file 'plans/nowhere.yaml' not found"},

@@ -62,7 +62,7 @@ TEST(MachineModel, NegativeSpeedIsRejected) {
       expect_input_error([] { load_machine(data("machines/negative_speed.yaml")); });
   EXPECT_EQ(e.first().line, 4);
   EXPECT_EQ(e.first().field, "deposition_speed_m_s");
-  EXPECT_TRUE(contains(e.what(), "must be positive"));
+  EXPECT_TRUE(contains(e.what(), "must be more than 0 and at most 2 m/s, got -0.2 m/s"));
 }
 
 }  // namespace

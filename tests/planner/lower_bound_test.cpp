@@ -106,7 +106,8 @@ TEST(ConnectedBound, SeesTheGapBetweenSeparateRooms) {
     EXPECT_NEAR(closed.matching_m, 0.0, 1e-9);
     ASSERT_TRUE(closed.connected && closed.connected->certified);
     EXPECT_NEAR(closed.distance_m, 12.0, 1e-6);
-    EXPECT_EQ(closed.source(), "connected");
+    EXPECT_EQ(closed.source(), BoundSource::kConnected);
+    EXPECT_EQ(to_string(closed.source()), "connected");
     const LayerBound open = airtime_lower_bound(layer, metric, PathSpec::open_from({0, 0}));
     EXPECT_NEAR(open.distance_m, 10.0, 1e-6);
     // The matching-only bound is what it was.
@@ -170,7 +171,8 @@ TEST(ConnectedBound, StoppedAtOnceIsStillValid) {
   const ConnectedBound stopped = connected_airtime_bound(
       layer, Metric::kEuclidean, PathSpec::closed_tour(), {}, StopCondition(0.0));
   EXPECT_TRUE(stopped.certified);
-  EXPECT_EQ(stopped.stopped_by, "time-limit");
+  EXPECT_EQ(stopped.stopped_by, BoundStop::kTimeLimit);
+  EXPECT_EQ(to_string(stopped.stopped_by), "time-limit");
   EXPECT_LE(stopped.lower_bound_m, plan.evaluation.airtime_distance_m + 1e-6);
   const ConnectedBound full =
       connected_airtime_bound(layer, Metric::kEuclidean, PathSpec::closed_tour());
@@ -186,7 +188,7 @@ TEST(ConnectedBound, SkippedWhenTheTimeLeftCannotHoldItsFirstSolve) {
   const LayerBound late = airtime_lower_bound(layer, Metric::kEuclidean, PathSpec::closed_tour(),
                                               BoundKind::kConnected, StopCondition(0.0));
   EXPECT_FALSE(late.connected.has_value());
-  EXPECT_EQ(late.source(), "matching");
+  EXPECT_EQ(late.source(), BoundSource::kMatching);
   EXPECT_DOUBLE_EQ(late.distance_m, in_time.matching_m);
 }
 

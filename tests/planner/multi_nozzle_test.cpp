@@ -51,7 +51,7 @@ double gap_at_breakpoints(const Timeline& left, const Timeline& right, RailAxis 
   double gap = std::numeric_limits<double>::infinity();
   for (const Timeline* curve : {&left, &right})
     for (double t : curve->times())
-      gap = std::min(gap, Timeline::rail(right.at(t), axis) - Timeline::rail(left.at(t), axis));
+      gap = std::min(gap, rail_coordinate(right.at(t), axis) - rail_coordinate(left.at(t), axis));
   return gap;
 }
 
@@ -60,12 +60,12 @@ double gap_at_breakpoints(const Timeline& left, const Timeline& right, RailAxis 
 void expect_sound(const floors::Layer& layer, const MultiNozzlePlan& plan,
                   const MultiNozzleOptions& o,
                   const machine::MachineModel& machine = machine::MachineModel::defaults()) {
-  ASSERT_TRUE(plan.collision_free) << plan.failure;
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
   const double w = o.gantry_width_m;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& p : layer.points) {
-    lo = std::min(lo, Timeline::rail(p, o.rail_axis));
-    hi = std::max(hi, Timeline::rail(p, o.rail_axis));
+    lo = std::min(lo, rail_coordinate(p, o.rail_axis));
+    hi = std::max(hi, rail_coordinate(p, o.rail_axis));
   }
   double built = 0.0;
   for (const auto& stage : plan.stages) {
@@ -86,8 +86,8 @@ void expect_sound(const floors::Layer& layer, const MultiNozzlePlan& plan,
     for (const auto& nozzle : stage.nozzles) {
       const int k = nozzle.nozzle;
       for (const auto& p : nozzle.timeline.positions()) {
-        EXPECT_GE(Timeline::rail(p, o.rail_axis), mid - half + k * w - 1e-9);
-        EXPECT_LE(Timeline::rail(p, o.rail_axis), mid + half - (n - 1 - k) * w + 1e-9);
+        EXPECT_GE(rail_coordinate(p, o.rail_axis), mid - half + k * w - 1e-9);
+        EXPECT_LE(rail_coordinate(p, o.rail_axis), mid + half - (n - 1 - k) * w + 1e-9);
       }
       EXPECT_TRUE(covers_every_segment_once(nozzle.sequence, nozzle.layer.segments.size()));
       built += nozzle.layer.total_length_m();
@@ -108,10 +108,9 @@ MultiNozzlePlan plan_simple(const floors::Layer& layer, const MultiNozzleOptions
   return plan_layer_multi(layer, testing::simple_machine(), o);
 }
 
-const std::string& only_attempt(const MultiNozzlePlan& plan) {
-  static const std::string none = "(no attempt)";
-  if (plan.stages.size() != 1 || plan.stages[0].attempts.size() != 1) return none;
-  return plan.stages[0].attempts[0];
+std::string only_attempt(const MultiNozzlePlan& plan) {
+  if (plan.stages.size() != 1 || plan.stages[0].attempts.size() != 1) return "(no attempt)";
+  return plan.stages[0].attempts[0].to_string();
 }
 
 // Two nozzles, border at x = 9 (the middle of 0.5 .. 17.5; the sections' CC-TSP times,
@@ -162,8 +161,8 @@ floors::Layer light_left_buffer(const std::array<double, 3>& left_walls_x) {
 std::pair<double, double> rail_extent(const NozzlePath& n, RailAxis axis) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& p : n.layer.points) {
-    lo = std::min(lo, Timeline::rail(p, axis));
-    hi = std::max(hi, Timeline::rail(p, axis));
+    lo = std::min(lo, rail_coordinate(p, axis));
+    hi = std::max(hi, rail_coordinate(p, axis));
   }
   return {lo, hi};
 }
@@ -188,11 +187,12 @@ TEST(MultiNozzle, SectionMethodsFailWhenTheLayoutIsTooShortForTheGantries) {
                         MultiMethod::kBufferZonePathCycling, MultiMethod::kAuxBufferZone}) {
     const MultiNozzlePlan plan =
         plan_layer_multi(layer, machine::MachineModel::defaults(), options(m, 3.5));
-    EXPECT_FALSE(plan.collision_free) << to_string(m);
+    EXPECT_FALSE(plan.status) << to_string(m);
     ASSERT_EQ(plan.stages.size(), 1u);
     ASSERT_EQ(plan.stages[0].attempts.size(), 1u);
-    EXPECT_TRUE(contains(plan.stages[0].attempts[0], to_string(m) + ": "))
-        << plan.stages[0].attempts[0];
+    EXPECT_TRUE(contains(plan.stages[0].attempts[0].to_string(), to_string(m) + ": "))
+        << plan.stages[0].attempts[0].to_string();
+    EXPECT_FALSE(plan.stages[0].attempts[0].status);
   }
 }
 
@@ -215,8 +215,9 @@ TEST(MultiNozzle, DelayFailsWhenNoTurnsAndNoParkingArePossible) {
   machine.x = {0.0, 5.0, 0.5};  // rails barely longer than the room: nowhere to park
   const MultiNozzlePlan plan =
       plan_layer_multi(narrow_room(), machine, options(MultiMethod::kDelay, 3.5));
-  EXPECT_FALSE(plan.collision_free);
-  EXPECT_TRUE(contains(plan.stages[0].attempts[0], "no room to park"));
+  EXPECT_FALSE(plan.status);
+  EXPECT_TRUE(contains(plan.stages[0].attempts[0].to_string(), "no room to park"));
+  EXPECT_EQ(plan.status.code(), PlanStatus::Code::kCollision);
 }
 
 TEST(MultiNozzle, DelayWaitsWhenPathsWouldMeet) {
@@ -226,7 +227,7 @@ TEST(MultiNozzle, DelayWaitsWhenPathsWouldMeet) {
   const auto layer = testing::layer_from_walls({{0, 0, 4.9, 0}, {10, 1, 5.1, 1}});
   const MultiNozzlePlan cycling = plan_layer_multi(layer, machine::MachineModel::defaults(),
                                                    options(MultiMethod::kPathCycling, 2.0));
-  EXPECT_FALSE(cycling.collision_free);
+  EXPECT_FALSE(cycling.status);
   const auto o = options(MultiMethod::kDelay, 2.0);
   const MultiNozzlePlan plan = plan_layer_multi(layer, machine::MachineModel::defaults(), o);
   expect_sound(layer, plan, o);
@@ -263,9 +264,10 @@ TEST(MultiNozzle, PathCyclingFailsWhereBufferZonePathCyclingSucceeds) {
   // 3 m from it.
   const auto layer = rungs_and_two_walls(18.0);
   const MultiNozzlePlan cycling = plan_simple(layer, options(MultiMethod::kPathCycling, 2.0));
-  EXPECT_FALSE(cycling.collision_free);
-  EXPECT_TRUE(contains(only_attempt(cycling),
-                       "path-cycling: no combination of start points is collision-free"));
+  EXPECT_FALSE(cycling.status);
+  EXPECT_TRUE(
+      contains(only_attempt(cycling),
+               "path-cycling: collision: no combination of start points is collision-free"));
   const auto o = options(MultiMethod::kBufferZonePathCycling, 2.0);
   const MultiNozzlePlan plan = plan_simple(layer, o);
   expect_sound(layer, plan, o, testing::simple_machine());
@@ -282,8 +284,9 @@ TEST(MultiNozzle, BufferZonePathCyclingFailsWhenTheBufferHoldsHalfTheWork) {
   // succeeds: the two tours are the same snake 8 m apart, in step, never closer than 8 m.
   const auto layer = comb();
   const MultiNozzlePlan bz = plan_simple(layer, options(MultiMethod::kBufferZonePathCycling, 4.4));
-  EXPECT_FALSE(bz.collision_free);
-  EXPECT_TRUE(contains(only_attempt(bz), "bz-path-cycling: buffer zone of section 2 holds"));
+  EXPECT_FALSE(bz.status);
+  EXPECT_TRUE(contains(only_attempt(bz),
+                       "bz-path-cycling: not-applicable: buffer zone of section 2 holds"));
   EXPECT_TRUE(contains(only_attempt(bz), "(must be under half)"));
   const auto o = options(MultiMethod::kPathCycling, 4.4);
   const MultiNozzlePlan cycling = plan_simple(layer, o);
@@ -320,8 +323,8 @@ TEST(MultiNozzle, GlobalPathCyclingFailsWhereIndividualPathCyclingSucceeds) {
   auto o = options(MultiMethod::kGlobalPathCycling, 2.0);
   o.rail_axis = RailAxis::kY;
   const MultiNozzlePlan global = plan_simple(layer, o);
-  EXPECT_FALSE(global.collision_free);
-  EXPECT_TRUE(contains(only_attempt(global), "global-path-cycling: no combination"));
+  EXPECT_FALSE(global.status);
+  EXPECT_TRUE(contains(only_attempt(global), "global-path-cycling: collision: no combination"));
   EXPECT_TRUE(contains(only_attempt(global), "short of a gantry width apart along the rails"));
   o.method = MultiMethod::kPathCycling;
   const MultiNozzlePlan individual = plan_simple(layer, o);
@@ -351,10 +354,11 @@ TEST(MultiNozzle, AuxBufferZoneFailsWhenNoAuxiliaryZoneFits) {
   // the lighter buffer. Path cycling succeeds: the left nozzle starts on its far wall.
   const auto layer = light_left_buffer({8.5, 9, 9.5});
   const MultiNozzlePlan aux = plan_simple(layer, options(MultiMethod::kAuxBufferZone, 2.0));
-  EXPECT_FALSE(aux.collision_free);
-  EXPECT_TRUE(contains(only_attempt(aux),
-                       "aux-buffer-zone: section 1 has no room for an auxiliary zone long "
-                       "enough (buffer 12.0 s against its neighbour's 36.0 s)"));
+  EXPECT_FALSE(aux.status);
+  EXPECT_TRUE(
+      contains(only_attempt(aux),
+               "aux-buffer-zone: not-applicable: section 1 has no room for an auxiliary zone long "
+               "enough (buffer 12.0 s against its neighbour's 36.0 s)"));
   const auto o = options(MultiMethod::kPathCycling, 2.0);
   expect_sound(layer, plan_simple(layer, o), o, testing::simple_machine());
 }
@@ -395,15 +399,14 @@ TEST(MultiNozzle, AutoSaysWhenDelayWouldHaveBeenFaster) {
   // finish sooner: auto keeps the papers' plan and says so.
   const floors::Layer layer = testing::floor_plan_layer(4, 5);
   const MultiNozzlePlan plan = plan_simple(layer, options(MultiMethod::kAuto, 3.0));
-  ASSERT_TRUE(plan.collision_free);
+  ASSERT_TRUE(plan.status);
   const Stage& stage = plan.stages[0];
   EXPECT_EQ(stage.method, MultiMethod::kPathCycling);
   ASSERT_TRUE(stage.faster_delay_s);
   EXPECT_LT(*stage.faster_delay_s, stage.time_s);
-  ASSERT_EQ(stage.attempts.size(), 2u);
-  EXPECT_EQ(stage.attempts[0], "path-cycling: collision-free");
-  EXPECT_TRUE(contains(stage.attempts[1], "delay: would take"));
-  EXPECT_TRUE(contains(stage.attempts[1], "not used: auto keeps the papers' order"));
+  ASSERT_EQ(stage.attempts.size(), 1u);
+  EXPECT_EQ(stage.attempts[0].to_string(), "path-cycling: solved");
+  EXPECT_TRUE(contains(stage.faster_delay_detail, "delay (")) << stage.faster_delay_detail;
   // Delay on its own returns that faster plan.
   const MultiNozzlePlan delay = plan_simple(layer, options(MultiMethod::kDelay, 3.0));
   EXPECT_NEAR(delay.layer_time_s, *stage.faster_delay_s, 1e-9);
@@ -431,7 +434,7 @@ TEST(MultiNozzle, EveryReturnedPlanPassesTheExactCheck) {
         o.planning.max_kicks = 60;
         o.rail_axis = seed % 2 ? RailAxis::kX : RailAxis::kY;
         const MultiNozzlePlan plan = plan_layer_multi(layer, machine::MachineModel::defaults(), o);
-        if (!plan.collision_free) continue;
+        if (!plan.status) continue;
         SCOPED_TRACE("seed " + std::to_string(seed) + " " + to_string(methods[m]) + ", " +
                      std::to_string(nozzles) + " nozzles, " + std::to_string(width) + " m");
         expect_sound(layer, plan, o);
@@ -484,8 +487,10 @@ TEST(MultiNozzle, ImpossibleParametersAreInputErrors) {
   const auto machine = machine::MachineModel::defaults();
   auto o = options(MultiMethod::kAuto, 1.0);
   o.nozzles = 1;
-  EXPECT_TRUE(contains(expect_input_error([&] { plan_layer_multi(layer, machine, o); }).what(),
-                       "at least 2"));
+  const InputError one = expect_input_error([&] { plan_layer_multi(layer, machine, o); });
+  EXPECT_TRUE(contains(one.what(), "must be from 2 to 16"));
+  // The planner names its own options; the CLI maps them to flags.
+  EXPECT_EQ(one.first().field, "MultiNozzleOptions::nozzles");
   o = options(MultiMethod::kAuto, 0.0);
   EXPECT_TRUE(contains(expect_input_error([&] { plan_layer_multi(layer, machine, o); }).what(),
                        "must be positive"));
@@ -510,6 +515,26 @@ TEST(MultiNozzle, ImpossibleParametersAreInputErrors) {
   o.platform_width_m = -1.0;
   EXPECT_TRUE(contains(expect_input_error([&] { plan_layer_multi(layer, machine, o); }).what(),
                        "must be positive"));
+}
+
+TEST(MultiNozzle, GantriesFitOnlyWithRoomToSpare) {
+  // Three gantries 2 m wide need their centres 2 m apart: a platform of exactly 4 m has
+  // no room left and is refused; a hair wider is accepted (the plan may still fail).
+  const auto layer = two_far_rooms();
+  const auto machine = machine::MachineModel::defaults();
+  auto o = options(MultiMethod::kDelay, 2.0, 3);
+  o.platform_width_m = 4.0;
+  const InputError exact = expect_input_error([&] { plan_layer_multi(layer, machine, o); });
+  EXPECT_EQ(exact.first().field, "MultiNozzleOptions::platform_width_m");
+  o.platform_width_m = 4.0 + 1e-6;
+  EXPECT_NO_THROW(plan_layer_multi(layer, machine, o));
+  // The same on the rails: 16 gantries 50/15 m apart need exactly the defaults' 50 m.
+  auto w = options(MultiMethod::kDelay, 2.0, 16);
+  w.gantry_width_m = 50.0 / 15.0;
+  const InputError rails = expect_input_error([&] { plan_layer_multi(layer, machine, w); });
+  EXPECT_EQ(rails.first().field, "MultiNozzleOptions::nozzles");
+  w.gantry_width_m = 50.0 / 15.0 - 1e-6;
+  EXPECT_NO_THROW(plan_layer_multi(layer, machine, w));
 }
 
 }  // namespace

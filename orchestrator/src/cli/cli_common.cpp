@@ -1,48 +1,123 @@
 #include "cli_common.hpp"
 
+#include <charconv>
+#include <cmath>
+#include <map>
+
 #include "ccbuild/common/input_error.hpp"
 
 namespace ccbuild::cli {
 
-void add_plan_input_options(CLI::App& command, PlanInputOptions& options) {
+CLI::Validator integer_in(std::int64_t min, std::int64_t max) {
+  const std::string range = "from " + std::to_string(min) + " to " + std::to_string(max);
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        std::int64_t value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
+          return "expected a whole number " + range + ", got '" + text + "'";
+        if (ec == std::errc::result_out_of_range || value < min || value > max)
+          return "must be " + range + ", got " + text;
+        return "";
+      },
+      "INTEGER " + range);
+}
+
+CLI::Validator unsigned_integer() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+          return "expected a whole number from 0 to 18446744073709551615, got '" + text + "'";
+        return "";
+      },
+      "INTEGER from 0 to 2^64 - 1");
+}
+
+CLI::Validator number_in(const Range& range, const std::string& unit) {
+  const std::string said = range.describe(unit);
+  return CLI::Validator(
+      [range, said](std::string& text) -> std::string {
+        double value = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
+            !std::isfinite(value))
+          return "expected a number " + said + ", got '" + text + "'";
+        if (!range.contains(value)) return "must be " + said + ", got " + text;
+        return "";
+      },
+      "NUMBER " + said);
+}
+
+void add_input_options(CLI::App& command, InputOptions& options) {
   command
       .add_option("--units", options.units,
                   "Length unit of a plan file that does not say its own `units` (m or ft)")
       ->check(CLI::IsMember({"m", "ft"}))
       ->capture_default_str();
-  command.add_option(
-      "--floor-height", options.floor_height,
-      "For a plan file: the floor height in --units (default 3 m); openings must fit under it");
+  command
+      .add_option("--floor-height", options.floor_height,
+                  "For a plan file: the floor height in --units (default 3 m); openings must fit "
+                  "under it")
+      ->check(number_in(Range::above(0.0, 1000.0), "(in --units)"));
   command
       .add_option("--layer-height", options.layer_height,
                   "For a plan file: the layer height in --units")
-      ->check(CLI::PositiveNumber)
+      ->check(number_in(Range::above(0.0, 100.0), "(in --units)"))
       ->capture_default_str();
+  command.add_option(
+      "--machine", options.machine,
+      "Machine profile (default: the building's, or the bundled config/machines/cc-gantry.yaml)");
+  command.add_option("--material", options.material,
+                     "Material profile (default: the building's, or the bundled "
+                     "config/materials/standard-mix.yaml)");
 }
 
-LoadedInput load_input(const std::filesystem::path& file, const PlanInputOptions& options) {
+orchestrator::Project open_input(const std::string& file, const InputOptions& options) {
   std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) throw InputError(file.string(), 0, "", "file not found");
-  LoadedInput input;
-  if (floors::looks_like_building(file)) {
-    input.is_building = true;
-    input.building = floors::load_building(file);
-    return input;
-  }
-  const floors::LengthUnit unit = *floors::parse_length_unit(options.units);
-  const double scale = floors::meters_per(unit);
-  floors::Floor floor;
-  floor.name = file.stem().string();
-  floor.plan = floors::load_plan(file, unit);
-  floor.height_m = options.floor_height ? *options.floor_height * scale : 3.0;
-  if (floor.height_m <= 0.0) throw InputError("", 0, "--floor-height", "must be positive");
-  if (options.floor_height) floors::validate_plan(floor.plan, floor.height_m);
-  input.building.name = floor.name;
-  input.building.source_file = file.string();
-  input.building.units = unit;
-  input.building.layer_height_m = options.layer_height * scale;
-  input.building.floors.push_back(std::move(floor));
-  return input;
+  if (!std::filesystem::exists(file, ec)) throw InputError(file, 0, "", "file not found");
+  orchestrator::ProjectOptions project;
+  project.plan_unit = *floors::parse_length_unit(options.units);  // CLI11 checked it
+  const double scale = floors::meters_per(project.plan_unit);
+  project.plan_floor_height_m = options.floor_height ? *options.floor_height * scale : 3.0;
+  project.plan_layer_height_m = options.layer_height * scale;
+  project.machine_profile = options.machine;
+  project.material_profile = options.material;
+  return orchestrator::open_project(file, project);
+}
+
+double length_flag(const std::string& text, const char* flag, floors::LengthUnit unit,
+                   double max_m) {
+  const auto value = floors::parse_length_m(text, unit);
+  if (!value)
+    throw InputError("", 0, flag, "expected a length such as 1.5, 1.5m or 5ft, got '" + text + "'");
+  const Range range = Range::above(0.0, max_m);
+  if (!range.contains(*value))
+    throw InputError("", 0, flag,
+                     "must be " +
+                         range.describe(floors::to_string(unit), floors::meters_per(unit)) +
+                         ", got '" + text + "'");
+  return *value;
+}
+
+std::string flag_for_field(const std::string& field) {
+  static const std::map<std::string, std::string> flags = {
+      {"PlanOptions::time_limit_s", "--time-limit"},
+      {"PlanOptions::max_kicks", "--max-kicks"},
+      {"PlanOptions::algorithm", "--algorithm"},
+      {"PathSpec::first", "--first-wall"},
+      {"MultiNozzleOptions::nozzles", "--nozzles"},
+      {"MultiNozzleOptions::gantry_width_m", "--gantry-width"},
+      {"MultiNozzleOptions::rail_axis", "--rail-axis"},
+      {"MultiNozzleOptions::platform_width_m", "--platform-width"},
+      {"floor_height", "--floor-height"},
+      {"layer_height", "--layer-height"},
+      {"floor", "--floor"},
+      {"layer", "--layer"},
+  };
+  const auto it = flags.find(field);
+  return it == flags.end() ? field : it->second;
 }
 
 }  // namespace ccbuild::cli

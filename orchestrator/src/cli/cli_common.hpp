@@ -1,43 +1,56 @@
 #pragma once
-// Shared pieces of the ccbuild subcommands: exit codes, number formatting, and loading
-// whatever FILE the user named (a building or a single plan).
+// Shared pieces of the ccbuild subcommands: exit codes, flag validators that refuse what
+// does not fit (overflowing integers, NaN, out-of-range numbers), the options every
+// command that reads FILE shares, and opening it through the building-level API.
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 
 #include "ccbuild/common/format.hpp"
-#include "ccbuild/floors/building.hpp"
-#include "ccbuild/floors/plan.hpp"
+#include "ccbuild/orchestrator/project.hpp"
 
 namespace ccbuild::cli {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitNo = 1;  ///< the run worked; the answer is "no" (infeasible, collision)
 inline constexpr int kExitBadInput = 2;  ///< bad input or usage
+inline constexpr int kExitInternal = 3;  ///< a bug in ccbuild
 
 using ::ccbuild::printf_string;
 
-/// Options every command that reads a single plan shares.
-struct PlanInputOptions {
+/// A whole number from `min` to `max`, written in decimal (no overflow, no wrap-around).
+CLI::Validator integer_in(std::int64_t min, std::int64_t max);
+/// The same for unsigned 64-bit values (seeds).
+CLI::Validator unsigned_integer();
+/// A finite decimal number inside `range` (in `unit`).
+CLI::Validator number_in(const Range& range, const std::string& unit);
+
+/// Options every command that reads FILE shares.
+struct InputOptions {
   std::string units = "m";             ///< for plan files without their own `units`
   std::optional<double> floor_height;  ///< in `units`
   double layer_height = 0.1;           ///< in `units`
+  std::string machine;                 ///< --machine: overrides the building's
+  std::string material;                ///< --material: overrides the building's
 };
 
-/// Adds --units, --floor-height, --layer-height to a command that accepts plan files.
-void add_plan_input_options(CLI::App& command, PlanInputOptions& options);
+/// Adds --units, --floor-height, --layer-height (for plan files) and --machine,
+/// --material to a command.
+void add_input_options(CLI::App& command, InputOptions& options);
 
-/// A building file, or a single plan turned into a one-floor building.
-struct LoadedInput {
-  bool is_building = false;
-  floors::Building building;  ///< for a plan: one floor named after the file
-};
+/// Opens FILE through the building-level API with these options. Throws InputError.
+orchestrator::Project open_input(const std::string& file, const InputOptions& options);
 
-/// Loads FILE as a building when it has `floors:`, else as a plan. A plan becomes a
-/// building of one floor (height --floor-height, default 3 m) with no profiles.
-/// Throws InputError.
-LoadedInput load_input(const std::filesystem::path& file, const PlanInputOptions& options);
+/// A length flag: "5ft", "1.5m", or a bare number in `unit`; positive and finite, at
+/// most `max_m`. Throws InputError naming `flag`.
+double length_flag(const std::string& text, const char* flag, floors::LengthUnit unit,
+                   double max_m = 1000.0);
+
+/// The flag a library error's field stands for ("PlanOptions::time_limit_s" ->
+/// "--time-limit"); the field itself when no flag does.
+std::string flag_for_field(const std::string& field);
 
 }  // namespace ccbuild::cli

@@ -7,6 +7,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/orchestrator/layer_summary.hpp"
+#include "ccbuild/orchestrator/project.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -17,12 +18,12 @@ struct LayersOptions {
   std::string file;
   std::optional<int> floor;
   bool json = false;
-  PlanInputOptions plan;
+  InputOptions input;
 };
 
 void run_layers(const LayersOptions& options, int& exit_code) {
-  const LoadedInput input = load_input(options.file, options.plan);
-  const floors::Building& b = input.building;
+  const orchestrator::Project project = open_input(options.file, options.input);
+  const floors::Building& b = project.building;
   if (options.floor && (*options.floor < 0 || *options.floor >= static_cast<int>(b.floors.size())))
     throw InputError("", 0, "--floor",
                      printf_string("no floor %d; %s has floors 0 to %zu", *options.floor,
@@ -33,24 +34,24 @@ void run_layers(const LayersOptions& options, int& exit_code) {
     nlohmann::ordered_json out;
     out["file"] = options.file;
     out["layer_height_m"] = b.layer_height_m;
-    out["distinct_geometries"] = summary.distinct_geometries;
+    out["distinct_geometry_count"] = summary.distinct_geometries;
     out["floors"] = nlohmann::ordered_json::array();
     for (const auto& f : summary.floors) {
       if (options.floor && f.floor_index != *options.floor) continue;
-      nlohmann::ordered_json floor = {{"index", f.floor_index},
+      nlohmann::ordered_json floor = {{"floor", f.floor_index},
                                       {"name", f.name},
                                       {"height_m", f.height_m},
                                       {"base_elevation_m", f.base_elevation_m},
-                                      {"layers", f.layer_count},
-                                      {"distinct_geometries", f.distinct_geometries},
+                                      {"layer_count", f.layer_count},
+                                      {"distinct_geometry_count", f.distinct_geometries},
                                       {"runs", nlohmann::ordered_json::array()}};
       for (const auto& r : f.runs) {
         floor["runs"].push_back({{"first_layer", r.first_layer},
                                  {"last_layer", r.last_layer},
                                  {"geometry", "G" + std::to_string(r.geometry_label)},
                                  {"geometry_hash", floors::hash_to_hex(r.geometry_hash)},
-                                 {"walls", r.wall_count},
-                                 {"segments", r.segment_count},
+                                 {"wall_count", r.wall_count},
+                                 {"piece_count", r.segment_count},
                                  {"wall_length_m", r.wall_length_m}});
       }
       out["floors"].push_back(floor);
@@ -60,25 +61,28 @@ void run_layers(const LayersOptions& options, int& exit_code) {
     return;
   }
 
-  std::cout << printf_string("%s: layers of %.3f m, %d distinct geometries in all\n",
-                             options.file.c_str(), b.layer_height_m, summary.distinct_geometries);
+  std::cout << printf_string("%s: layers of %s, %d distinct geometries in all\n",
+                             options.file.c_str(), project.length(b.layer_height_m).c_str(),
+                             summary.distinct_geometries);
   for (const auto& f : summary.floors) {
     if (options.floor && f.floor_index != *options.floor) continue;
     std::cout << "\n"
               << printf_string(
-                     "floor %d '%s': %.3f m high from %.3f m, %d layers, %d distinct geometries\n",
-                     f.floor_index, f.name.c_str(), f.height_m, f.base_elevation_m, f.layer_count,
+                     "floor %d '%s': %s high from %s, %d layers, %d distinct geometries\n",
+                     f.floor_index, f.name.c_str(), project.length(f.height_m).c_str(),
+                     project.length(f.base_elevation_m).c_str(), f.layer_count,
                      f.distinct_geometries);
-    std::cout << printf_string("  %-13s %-9s %-16s %6s %9s %12s\n", "layers", "geometry", "hash",
-                               "walls", "segments", "wall length");
+    std::cout << printf_string("  %-13s %-9s %-16s %6s %7s %14s\n", "layers", "geometry", "hash",
+                               "walls", "pieces", "wall length");
     for (const auto& r : f.runs) {
       const std::string range =
           r.first_layer == r.last_layer
               ? std::to_string(r.first_layer)
               : std::to_string(r.first_layer) + "-" + std::to_string(r.last_layer);
-      std::cout << printf_string("  %-13s G%-8d %-16s %6d %9d %10.2f m\n", range.c_str(),
+      std::cout << printf_string("  %-13s G%-8d %-16s %6d %7d %14s\n", range.c_str(),
                                  r.geometry_label, floors::hash_to_hex(r.geometry_hash).c_str(),
-                                 r.wall_count, r.segment_count, r.wall_length_m);
+                                 r.wall_count, r.segment_count,
+                                 project.length(r.wall_length_m, 2).c_str());
     }
   }
   exit_code = kExitOk;
@@ -94,14 +98,15 @@ void add_layers_command(CLI::App& app, int& exit_code) {
       "layers "
       "that share one geometry (G1, G2, ... are numbered across the building, so a label seen "
       "twice is the same geometry and is planned once).\n"
-      "A wall cut by an opening counts once in `walls` and once per piece in `segments`.\n"
+      "A wall cut by an opening counts once in `walls` and once per piece in `pieces`.\n"
       "Examples:\n"
       "  ccbuild layers config/buildings/apartment.yaml --floor 4\n"
       "  ccbuild layers config/buildings/house.yaml --json");
   command->add_option("FILE", options->file, "Building file or floor plan")->required();
-  command->add_option("--floor", options->floor, "Only this floor (0 = ground)");
-  command->add_flag("--json", options->json, "Print one JSON object");
-  add_plan_input_options(*command, options->plan);
+  command->add_option("--floor", options->floor, "Only this floor (0 = ground)")
+      ->check(integer_in(0, 100000));
+  command->add_flag("--json", options->json, "Print one JSON object (errors too)");
+  add_input_options(*command, options->input);
   command->callback([options, &exit_code] { run_layers(*options, exit_code); });
 }
 

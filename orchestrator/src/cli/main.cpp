@@ -1,25 +1,144 @@
 // ccbuild: plans, schedules and runs the construction of buildings by Contour Crafting.
+//
+// Exit codes always hold (as VROOM's main does it): 0 success, 1 the answer is "no",
+// 2 bad input or usage (InputError, CLI11's parse errors), 3 anything else (a broken
+// invariant, an unexpected exception, even a crash), each with a message.
+
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstring>
+#include <exception>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "ccbuild/common/input_error.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
+namespace {
+using namespace ccbuild::cli;
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// The closest of `names` to `word`, when it is a near miss.
+std::string closest(const std::string& word, const std::vector<std::string>& names) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(3, word.size() / 3 + 1);
+  for (const auto& name : names) {
+    const std::size_t d = edit_distance(word, name);
+    if (d < best_distance) {
+      best_distance = d;
+      best = name;
+    }
+  }
+  return best;
+}
+
+// "did you mean" for words CLI11 did not expect: flags against the options of the
+// command in use, other words against the commands.
+std::string suggestion(const CLI::App& app, const std::string& message) {
+  const std::string marker = "not expected: ";
+  const auto at = message.find(marker);
+  if (at == std::string::npos) return "";
+  std::istringstream words(message.substr(at + marker.size()));
+  std::string word;
+  words >> word;
+  const CLI::App* command = &app;
+  for (const CLI::App* sub : app.get_subcommands()) command = sub;
+  std::vector<std::string> names;
+  if (!word.empty() && word[0] == '-') {
+    const std::string flag = word.substr(0, word.find('='));
+    for (const CLI::Option* o : command->get_options())
+      for (const auto& n : o->get_lnames()) names.push_back("--" + n);
+    const std::string best = closest(flag, names);
+    return best.empty() ? "" : "did you mean '" + best + "'?";
+  }
+  if (command == &app) {
+    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+    const std::string best = closest(word, names);
+    if (!best.empty()) return "did you mean '" + best + "'?";
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    return "the commands are: " + list;
+  }
+  return "";
+}
+
+void print_json_error(const std::string& kind, int exit_code,
+                      const std::vector<ccbuild::Diagnostic>& diagnostics) {
+  nlohmann::ordered_json out;
+  out["error"]["kind"] = kind;
+  out["error"]["exit_code"] = exit_code;
+  out["error"]["diagnostics"] = nlohmann::ordered_json::array();
+  for (const auto& d : diagnostics)
+    out["error"]["diagnostics"].push_back(
+        {{"file", d.file}, {"line", d.line}, {"field", d.field}, {"message", d.message}});
+  std::cout << out.dump(2) << "\n";
+}
+
+// The last line of defence: a crash or a terminate still ends with exit code 3 and a
+// message, never a bare signal (signal handlers may only use async-signal-safe calls).
+extern "C" void on_fatal_signal(int signal_number) {
+  const char* text = "ccbuild: internal error: fatal signal (a bug in ccbuild; please report it)\n";
+  if (signal_number == SIGSEGV)
+    text = "ccbuild: internal error: segmentation fault (a bug in ccbuild; please report it)\n";
+  if (signal_number == SIGABRT)
+    text = "ccbuild: internal error: aborted (a bug in ccbuild; please report it)\n";
+  const ssize_t ignored = ::write(STDERR_FILENO, text, std::strlen(text));
+  (void)ignored;
+  ::_exit(kExitInternal);
+}
+
+void install_last_resorts() {
+  std::set_terminate([] {
+    std::fputs("ccbuild: internal error: unhandled exception (a bug in ccbuild)\n", stderr);
+    std::_Exit(kExitInternal);
+  });
+  // A separate stack, so that even a stack overflow reaches the handler.
+  static char alternate_stack[64 * 1024];
+  stack_t ss{};
+  ss.ss_sp = alternate_stack;
+  ss.ss_size = sizeof alternate_stack;
+  ::sigaltstack(&ss, nullptr);
+  struct sigaction action {};
+  action.sa_handler = on_fatal_signal;
+  action.sa_flags = SA_ONSTACK;
+  sigemptyset(&action.sa_mask);
+  for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::sigaction(s, &action, nullptr);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  using namespace ccbuild::cli;
+  install_last_resorts();
   CLI::App app(
       "ccbuild plans, schedules and runs the construction of buildings by a Contour Crafting "
       "machine.\n"
       "Lengths inside are metres; files may say `units: ft`.\n"
-      "Exit codes: 0 success; 1 the run worked but the answer is no (e.g. infeasible); 2 bad input "
-      "or usage; 3 internal error.\n"
+      "Exit codes: 0 success; 1 the run worked but the answer is no (e.g. no collision-free "
+      "plan); 2 bad input or usage; 3 internal error.\n"
       "Run `ccbuild COMMAND --help` for a command's options and examples.",
       "ccbuild");
   app.set_version_flag("--version", "ccbuild 0.1.0");
   app.require_subcommand(1, 1);
   app.fallthrough(false);
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& error) { return std::string(error.what()); });
 
   int exit_code = kExitOk;
   add_validate_command(app, exit_code);
@@ -27,18 +146,48 @@ int main(int argc, char** argv) {
   add_plan_layer_command(app, exit_code);
   add_sweep_command(app, exit_code);
 
+  bool json = false;
+  for (int k = 1; k < argc; ++k)
+    if (std::strcmp(argv[k], "--json") == 0) json = true;
+
   try {
+    // A hidden switch that proves a broken invariant ends as exit code 3 with a message.
+    if (const char* probe = std::getenv("CCBUILD_SELFTEST_INTERNAL_CHECK");
+        probe && std::strcmp(probe, "1") == 0)
+      CCBUILD_CHECK(false, "self-test of the internal-error path");
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    const int code = app.exit(error);
-    return code == 0 ? kExitOk : kExitBadInput;
-  } catch (const ccbuild::InputError& error) {
-    for (const auto& d : error.diagnostics())
-      std::cerr << "ccbuild: error: " << d.to_string() << "\n";
+    if (error.get_exit_code() == 0) {  // --help, --version
+      app.exit(error);
+      return kExitOk;
+    }
+    std::string message = error.what();
+    const std::string hint = suggestion(app, message);
+    std::cerr << "ccbuild: error: " << message << (hint.empty() ? "" : "; " + hint) << "\n"
+              << "Run 'ccbuild --help' or 'ccbuild COMMAND --help' for usage.\n";
+    if (json)
+      print_json_error("usage", kExitBadInput,
+                       {{"", 0, "", message + (hint.empty() ? "" : "; " + hint)}});
     return kExitBadInput;
+  } catch (const ccbuild::InputError& error) {
+    std::vector<ccbuild::Diagnostic> diagnostics = error.diagnostics();
+    for (auto& d : diagnostics) {
+      if (d.file.empty()) d.field = flag_for_field(d.field);
+      std::cerr << "ccbuild: error: " << d.to_string() << "\n";
+    }
+    if (json) print_json_error("input", kExitBadInput, diagnostics);
+    return kExitBadInput;
+  } catch (const ccbuild::InternalError& error) {
+    std::cerr << "ccbuild: internal error: " << error.what() << " (a bug in ccbuild)\n";
+    if (json) print_json_error("internal", kExitInternal, {{"", 0, "", error.what()}});
+    return kExitInternal;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "ccbuild: internal error: out of memory\n";
+    return kExitInternal;
   } catch (const std::exception& error) {
     std::cerr << "ccbuild: internal error: " << error.what() << "\n";
-    return 3;
+    if (json) print_json_error("internal", kExitInternal, {{"", 0, "", error.what()}});
+    return kExitInternal;
   }
   return exit_code;
 }

@@ -11,6 +11,7 @@
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/orchestrator/layer_report.hpp"
 #include "ccbuild/orchestrator/multi_report.hpp"
+#include "ccbuild/orchestrator/project.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
 #include "cli_common.hpp"
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 
 struct PlanLayerOptions {
   std::string file;
-  PlanInputOptions plan;
+  InputOptions input;
   int floor = 0;
   std::optional<int> layer;
   std::string metric = "euclidean";
@@ -34,7 +35,6 @@ struct PlanLayerOptions {
   double time_limit_s = 30.0;
   std::uint64_t seed = 1;
   std::optional<long> max_kicks;
-  std::string machine;
   bool json = false;
   std::string svg;
   bool force = false;
@@ -46,60 +46,56 @@ struct PlanLayerOptions {
   std::string platform_width;
 };
 
-// What the JSON answer was computed from.
-nlohmann::ordered_json annotated(nlohmann::ordered_json out, const PlanLayerOptions& o,
-                                 const std::string& where) {
-  out["file"] = o.file;
-  out["layer"] = where;
-  out["seed"] = o.seed;
-  return out;
-}
-
-// A length flag: "5ft", "1.5m", or a bare number in the input's own unit.
-double length_option(const std::string& text, const char* flag, floors::LengthUnit unit) {
-  const auto value = floors::parse_length_m(text, unit);
-  if (!value)
-    throw InputError("", 0, flag, "expected a length such as 1.5, 1.5m or 5ft, got '" + text + "'");
-  return *value;
-}
-
-void print_multi(const PlanLayerOptions& o, const std::string& where, const floors::Layer& layer,
+void print_multi(const PlanLayerOptions& o, const orchestrator::Project& project,
+                 const orchestrator::ReportContext& context, const floors::Layer& layer,
                  const planner::MultiNozzlePlan& plan, const planner::MultiNozzleOptions& options) {
+  auto L = [&](double m) { return project.length(m, 3); };
   std::cout << printf_string(
-      "%s, %s: %zu walls, %d nozzles on %s rails, gantries %.3f m wide%s\n", o.file.c_str(),
-      where.c_str(), layer.segments.size(), options.nozzles, o.rail_axis.c_str(),
-      options.gantry_width_m,
-      options.platform_width_m
-          ? printf_string(", platform %.3f m", *options.platform_width_m).c_str()
-          : "");
-  if (plan.collision_free) {
+      "%s, %s: %zu walls, %d nozzles on %s rails, gantries %s wide%s\n", o.file.c_str(),
+      context.where().c_str(), layer.segments.size(), options.nozzles, o.rail_axis.c_str(),
+      L(options.gantry_width_m).c_str(),
+      options.platform_width_m ? (", platform " + L(*options.platform_width_m)).c_str() : "");
+  std::cout << printf_string("  %-13s %s\n", "machine", project.machine_origin.c_str());
+  if (plan.status) {
     std::cout << printf_string("  %-13s %.2f s; one nozzle %.2f s: %.1f%% saved\n", "layer time",
                                plan.layer_time_s, plan.single_nozzle_time_s,
                                100.0 * (1.0 - plan.layer_time_s / plan.single_nozzle_time_s));
     std::cout << printf_string("  %-13s %.2f s (busy time summed over nozzles)\n", "machine time",
                                plan.machine_time_s);
-    std::cout << printf_string("  %-13s %.3f m (gantry width %.3f m): collision-free\n", "min gap",
-                               plan.min_gap_m, options.gantry_width_m);
+    std::cout << printf_string("  %-13s %s (gantry width %s): collision-free\n", "min gap",
+                               L(plan.min_gap_m).c_str(), L(options.gantry_width_m).c_str());
     if (plan.platform_travel_s > 0)
       std::cout << printf_string("  %-13s %.2f s\n", "platform", plan.platform_travel_s);
   } else {
-    std::cout << printf_string("  %-13s none found: %s\n", "plan", plan.failure.c_str());
+    std::cout << printf_string("  %-13s none found (%s): %s\n", "plan",
+                               planner::to_string(plan.status.code()).c_str(),
+                               plan.status.reason().c_str());
   }
   for (std::size_t k = 0; k < plan.stages.size(); ++k) {
     const auto& stage = plan.stages[k];
     if (plan.stages.size() > 1)
-      std::cout << printf_string("  stage %zu       %s %.3f-%.3f m, %.2f s\n", k + 1,
-                                 o.rail_axis.c_str(), stage.from_m, stage.to_m, stage.time_s);
+      std::cout << (stage.status
+                        ? printf_string("  stage %zu       %s %s to %s, from %.2f s for %.2f s\n",
+                                        k + 1, o.rail_axis.c_str(), L(stage.from_m).c_str(),
+                                        L(stage.to_m).c_str(), stage.start_s, stage.time_s)
+                        : printf_string("  stage %zu       %s %s to %s: no plan\n", k + 1,
+                                        o.rail_axis.c_str(), L(stage.from_m).c_str(),
+                                        L(stage.to_m).c_str()));
     std::cout << printf_string("  %-13s %s\n", "method",
-                               stage.nozzles.empty() ? "none" : stage.method_detail.c_str());
+                               stage.status ? stage.method_detail.c_str() : "none");
     for (const auto& attempt : stage.attempts)
-      std::cout << printf_string("  %-13s %s\n", "", attempt.c_str());
+      std::cout << printf_string("  %-13s %s\n", "", attempt.to_string().c_str());
+    if (stage.faster_delay_s)
+      std::cout << printf_string(
+          "  %-13s delay would take %.1f s against %.1f s (%s); not used: auto keeps the "
+          "papers' order\n",
+          "", *stage.faster_delay_s, stage.time_s, stage.faster_delay_detail.c_str());
     for (const auto& n : stage.nozzles) {
       std::cout << printf_string(
-          "  nozzle %-6d section %s %.3f-%.3f m, %zu walls, start offset %d, busy %.2f s, waits "
+          "  nozzle %-6d section %s %s to %s, %zu walls, start offset %d, busy %.2f s, waits "
           "%.2f s\n",
-          n.nozzle + 1, o.rail_axis.c_str(), n.section_from_m, n.section_to_m, n.sequence.size(),
-          n.start_offset, n.busy_s, n.wait_s);
+          n.nozzle + 1, o.rail_axis.c_str(), L(n.section_from_m).c_str(), L(n.section_to_m).c_str(),
+          n.sequence.size(), n.start_offset, n.busy_s, n.wait_s);
       if (!n.sequence.empty())
         std::cout << printf_string("  %-13s %s\n", "",
                                    orchestrator::signed_sequence(n.layer, n.sequence).c_str());
@@ -107,175 +103,153 @@ void print_multi(const PlanLayerOptions& o, const std::string& where, const floo
   }
 }
 
-machine::MachineModel load_machine_for(const PlanLayerOptions& options, const LoadedInput& input,
-                                       std::string& description) {
-  fs::path profile;
-  if (!options.machine.empty()) {
-    profile = options.machine;
-  } else if (input.is_building) {
-    profile = input.building.machine_profile;
-  } else {
-    profile = fs::path(CCBUILD_CONFIG_DIR) / "machines" / "cc-gantry.yaml";
-    std::error_code ec;
-    if (!fs::exists(profile, ec)) {
-      description = "built-in defaults (no --machine given)";
-      return machine::MachineModel::defaults();
-    }
+void print_single(const PlanLayerOptions& o, const orchestrator::Project& project,
+                  const orchestrator::ReportContext& context, const floors::Layer& layer,
+                  const planner::LayerPlan& plan) {
+  const auto& e = plan.evaluation;
+  const machine::MachineModel& machine = project.machine_model();
+  auto L = [&](double m) { return project.length(m); };
+  std::cout << printf_string("%s, %s: %zu walls\n", o.file.c_str(), context.where().c_str(),
+                             layer.segments.size());
+  std::cout << printf_string("  %-13s %s, %s metric, %s objective, %s\n", "algorithm",
+                             o.algorithm.c_str(), o.metric.c_str(), o.objective.c_str(),
+                             plan.path.closed ? "closed tour" : "open path from the start vertex");
+  std::cout << printf_string("  %-13s %s\n", "machine", project.machine_origin.c_str());
+  std::cout << printf_string("  %-13s %s, %.2f s (%d lifts, %.1f turns of the nozzle)\n", "airtime",
+                             L(e.airtime_distance_m).c_str(), e.airtime_s, e.lift_count,
+                             e.total_rotation_rad / (2 * M_PI));
+  std::cout << printf_string("  %-13s %.2f s\n", "deposition", e.deposition_s);
+  std::cout << printf_string("  %-13s %.2f s\n", "layer time", e.layer_time_s);
+  const double gap = plan.gap();
+  std::cout << printf_string(
+      "  %-13s %s (%s), gap %s\n", "lower bound", L(plan.lower_bound_m).c_str(),
+      planner::to_string(plan.lower_bound_source).c_str(),
+      std::isnan(gap) ? "n/a (bound is 0)"
+      : plan.objective == planner::Objective::kTime
+          // The bound is on distance; the fastest tour may travel further to avoid lifts.
+          ? printf_string("%.2f%% in distance (time objective)", 100.0 * gap).c_str()
+          : printf_string("%.2f%%", 100.0 * gap).c_str());
+  std::cout << printf_string(
+      "  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
+      machine.nozzle_idle_limit_s,
+      e.idle_limit_violations
+          ? printf_string(": %d move(s) over the limit", e.idle_limit_violations).c_str()
+          : "");
+  std::cout << printf_string(
+      "  %-13s %.3f s, %s%s\n", "solve", plan.solve_s, planner::to_string(plan.stop).c_str(),
+      plan.kicks ? printf_string(" after %ld kicks", plan.kicks).c_str() : "");
+  std::cout << printf_string("  %-13s %s\n", "sequence",
+                             orchestrator::signed_sequence(layer, plan.sequence).c_str());
+  if (!o.svg.empty()) std::cout << printf_string("  %-13s %s\n", "drawing", o.svg.c_str());
+}
+
+// The layer step a --first-wall names: a wall cut by an opening starts with its first
+// piece (its last when reversed).
+planner::Step first_step(const floors::Layer& layer, std::int64_t signed_id,
+                         const std::string& where) {
+  const std::int64_t id = signed_id < 0 ? -signed_id : signed_id;
+  const bool reversed = signed_id < 0;
+  int chosen = -1;
+  for (int s = 0; s < static_cast<int>(layer.segments.size()); ++s) {
+    if (layer.segments[s].wall_id != id) continue;
+    if (chosen < 0 || reversed) chosen = s;
+    if (!reversed) break;
   }
-  machine::MachineModel m = machine::load_machine(profile);
-  description = m.name + " (" + profile.string() + ")";
-  return m;
+  if (chosen < 0)
+    throw InputError("", 0, "--first-wall",
+                     printf_string("wall %lld is not in this layer (%s)",
+                                   static_cast<long long>(id), where.c_str()));
+  return planner::Step{chosen, reversed};
 }
 
 void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
-  const auto algorithm = planner::parse_algorithm(o.algorithm);
-  const auto metric = planner::parse_metric(o.metric);
-  const auto objective = planner::parse_objective(o.objective);
-  if (!o.svg.empty()) check_output_path(o.svg, o.force, {o.file});
-  const LoadedInput input = load_input(o.file, o.plan);
-  const floors::Building& b = input.building;
-  if (o.floor < 0 || o.floor >= static_cast<int>(b.floors.size()))
-    throw InputError("", 0, "--floor",
-                     printf_string("no floor %d; %s has floors 0 to %zu", o.floor, o.file.c_str(),
-                                   b.floors.size() - 1));
-  const floors::Floor& floor = b.floors[o.floor];
-  floors::Layer layer;
-  std::string where;
-  if (input.is_building || o.layer) {
-    const auto layers = floors::slice_floor(floor, b.layer_height_m);
-    const int k = o.layer.value_or(0);
-    if (k < 0 || k >= static_cast<int>(layers.size()))
-      throw InputError("", 0, "--layer",
-                       printf_string("no layer %d; floor %d has layers 0 to %zu", k, o.floor,
-                                     layers.size() - 1));
-    layer = layers[k];
-    where = printf_string("floor %d layer %d", o.floor, k);
-  } else {
-    layer = floors::plan_as_layer(floor.plan);
-    where = "all walls whole";
-  }
+  const orchestrator::Project project = open_input(o.file, o.input);
+  // Refuse a drawing path that would replace any file this run reads, before planning.
+  const auto inputs = project.files_read();
+  if (!o.svg.empty()) check_output_path(o.svg, o.force, inputs);
+  const floors::Building& b = project.building;
+  const floors::Layer layer = orchestrator::layer_of(project, o.floor, o.layer);
+  orchestrator::ReportContext context;
+  context.file = o.file;
+  context.floor = o.floor;
+  context.layer = project.is_building || o.layer ? std::optional<int>(layer.index) : std::nullopt;
+  context.seed = o.seed;
+  context.unit = b.units;
 
-  std::string machine_description;
-  const machine::MachineModel machine = load_machine_for(o, input, machine_description);
-
-  planner::PlanOptions options;
-  options.algorithm = *algorithm;
-  options.metric = *metric;
-  options.objective = *objective;
+  orchestrator::LayerPlanRequest request;
+  request.nozzles = o.nozzles;
+  planner::PlanOptions& options = request.planning;
+  options.algorithm = *planner::parse_algorithm(o.algorithm);  // CLI11 checked the names
+  options.metric = *planner::parse_metric(o.metric);
+  options.objective = *planner::parse_objective(o.objective);
   options.time_limit_s = o.time_limit_s;
   options.seed = o.seed;
   options.max_kicks = o.max_kicks;
-  options.bound = *planner::parse_bound(o.bound);  // CLI11 checked the name
+  options.bound = *planner::parse_bound(o.bound);
   if (o.first_wall && !o.start_vertex)
     throw InputError("", 0, "--first-wall", "needs --start-vertex");
   if (o.start_vertex) {
-    const floors::Vertex* v = floor.plan.find_vertex(*o.start_vertex);
+    if (o.nozzles >= 2)
+      throw InputError("", 0, "--start-vertex", "multi-nozzle paths are closed tours");
+    const floors::Vertex* v = b.floors[o.floor].plan.find_vertex(*o.start_vertex);
     if (v == nullptr)
       throw InputError("", 0, "--start-vertex",
-                       printf_string("vertex %lld is not in the plan", (long long)*o.start_vertex));
+                       printf_string("vertex %lld is not in the plan of floor %d",
+                                     static_cast<long long>(*o.start_vertex), o.floor));
     options.path = planner::PathSpec::open_from(v->position_m);
-    if (o.first_wall) {
-      const std::int64_t id = std::llabs(*o.first_wall);
-      const bool reversed = *o.first_wall < 0;
-      // A wall cut by an opening starts with its first piece (its last when reversed).
-      int chosen = -1;
-      for (int s = 0; s < static_cast<int>(layer.segments.size()); ++s) {
-        const auto& seg = layer.segments[s];
-        if (seg.wall_id != id) continue;
-        if (chosen < 0 || reversed) chosen = s;
-        if (!reversed) break;
-      }
-      if (chosen < 0)
-        throw InputError(
-            "", 0, "--first-wall",
-            printf_string("wall %lld is not in this layer (%s)", (long long)id, where.c_str()));
-      options.path.first = planner::Step{chosen, reversed};
-    }
+    if (o.first_wall) options.path.first = first_step(layer, *o.first_wall, context.where());
   }
-
   if (o.nozzles >= 2) {
-    if (o.start_vertex)
-      throw InputError("", 0, "--start-vertex", "multi-nozzle paths are closed tours");
     if (o.gantry_width.empty())
-      throw InputError("", 0, "--gantry-width", "is required with --nozzles");
-    planner::MultiNozzleOptions multi;
+      throw InputError("", 0, "--gantry-width", "is required with --nozzles 2 or more");
+    planner::MultiNozzleOptions& multi = request.multi;
     multi.nozzles = o.nozzles;
-    multi.gantry_width_m = length_option(o.gantry_width, "--gantry-width", b.units);
+    multi.message_unit = b.units;
+    multi.gantry_width_m = length_flag(o.gantry_width, "--gantry-width", b.units);
     multi.rail_axis = o.rail_axis == "y" ? planner::RailAxis::kY : planner::RailAxis::kX;
     multi.method = *planner::parse_multi_method(o.method);
     if (!o.platform_width.empty())
-      multi.platform_width_m = length_option(o.platform_width, "--platform-width", b.units);
+      multi.platform_width_m = length_flag(o.platform_width, "--platform-width", b.units);
     multi.planning = options;
-    const planner::MultiNozzlePlan plan = planner::plan_layer_multi(layer, machine, multi);
+  } else if (!o.gantry_width.empty() || !o.platform_width.empty()) {
+    throw InputError("", 0, o.gantry_width.empty() ? "--platform-width" : "--gantry-width",
+                     "applies only with --nozzles 2 or more");
+  }
+
+  const orchestrator::LayerPlanResult result = orchestrator::plan_layer(project, layer, request);
+  if (result.multi) {
+    const auto& plan = *result.multi;
     if (!o.svg.empty())
-      write_file_atomically(o.svg, orchestrator::multi_plan_svg(plan, multi, o.file + ", " + where),
-                            o.force, {o.file});
-    if (o.json) {
-      std::cout << annotated(orchestrator::multi_plan_json(plan, multi), o, where).dump(2) << "\n";
-    } else {
-      print_multi(o, where, layer, plan, multi);
-    }
-    exit_code = plan.collision_free ? kExitOk : kExitNo;
-    return;
-  }
-  if (o.nozzles < 1) throw InputError("", 0, "--nozzles", "must be at least 1");
-
-  const planner::LayerPlan plan = planner::plan_layer(layer, machine, options);
-  const auto& e = plan.evaluation;
-  if (!o.svg.empty())
-    write_file_atomically(o.svg, orchestrator::layer_plan_svg(layer, plan, o.file + ", " + where),
-                          o.force, {o.file});
-
-  if (o.json) {
-    auto out = annotated(orchestrator::layer_plan_json(layer, plan), o, where);
-    out["idle_limit_s"] = machine.nozzle_idle_limit_s;
-    std::cout << out.dump(2) << "\n";
+      write_file_atomically(o.svg,
+                            orchestrator::multi_plan_svg(context, layer, plan, request.multi),
+                            o.force, inputs);
+    if (o.json)
+      std::cout << orchestrator::multi_plan_json(context, layer, project.machine_model(), plan,
+                                                 request.multi)
+                       .dump(2)
+                << "\n";
+    else
+      print_multi(o, project, context, layer, plan, request.multi);
+    exit_code = plan.status ? kExitOk : kExitNo;
   } else {
-    const double unit = floors::meters_per(b.units);
-    auto length = [&](double m) {
-      std::string text = printf_string("%.3f m", m);
-      if (b.units == floors::LengthUnit::kFoot) text += printf_string(" (%.3f ft)", m / unit);
-      return text;
-    };
-    std::cout << printf_string("%s, %s: %zu walls\n", o.file.c_str(), where.c_str(),
-                               layer.segments.size());
-    std::cout << printf_string(
-        "  %-13s %s, %s metric, %s objective, %s\n", "algorithm", o.algorithm.c_str(),
-        o.metric.c_str(), o.objective.c_str(),
-        plan.path.closed ? "closed tour" : "open path from the start vertex");
-    std::cout << printf_string("  %-13s %s\n", "machine", machine_description.c_str());
-    std::cout << printf_string("  %-13s %s, %.2f s (%d lifts, %.1f turns of the nozzle)\n",
-                               "airtime", length(e.airtime_distance_m).c_str(), e.airtime_s,
-                               e.lift_count, e.total_rotation_rad / (2 * M_PI));
-    std::cout << printf_string("  %-13s %.2f s\n", "deposition", e.deposition_s);
-    std::cout << printf_string("  %-13s %.2f s\n", "layer time", e.layer_time_s);
-    const double gap = plan.gap();
-    std::cout << printf_string(
-        "  %-13s %s (%s), gap %s\n", "lower bound", length(plan.lower_bound_m).c_str(),
-        plan.lower_bound_source.c_str(),
-        std::isnan(gap) ? "n/a (bound is 0)"
-        : plan.objective == planner::Objective::kTime
-            // The bound is on distance; the fastest tour may travel further to avoid lifts.
-            ? printf_string("%.2f%% in distance (time objective)", 100.0 * gap).c_str()
-            : printf_string("%.2f%%", 100.0 * gap).c_str());
-    std::cout << printf_string(
-        "  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
-        machine.nozzle_idle_limit_s,
-        e.idle_limit_violations
-            ? printf_string(": %d move(s) over the limit", e.idle_limit_violations).c_str()
-            : "");
-    std::cout << printf_string(
-        "  %-13s %.3f s, %s%s\n", "solve", plan.solve_s, planner::to_string(plan.stop).c_str(),
-        plan.kicks ? printf_string(" after %ld kicks", plan.kicks).c_str() : "");
-    std::cout << printf_string("  %-13s %s\n", "sequence",
-                               orchestrator::signed_sequence(layer, plan.sequence).c_str());
-    if (!o.svg.empty()) std::cout << printf_string("  %-13s %s\n", "drawing", o.svg.c_str());
+    const auto& plan = *result.single;
+    if (!o.svg.empty())
+      write_file_atomically(o.svg, orchestrator::layer_plan_svg(context, layer, plan), o.force,
+                            inputs);
+    if (o.json)
+      std::cout
+          << orchestrator::layer_plan_json(context, layer, project.machine_model(), plan).dump(2)
+          << "\n";
+    else
+      print_single(o, project, context, layer, plan);
+    exit_code = kExitOk;
   }
-  if (e.idle_limit_violations > 0)
+  if (result.idle_limit_violations() > 0)
     std::cerr << printf_string(
-        "ccbuild: warning: %d air move(s) exceed the nozzle idle limit of %.0f s\n",
-        e.idle_limit_violations, machine.nozzle_idle_limit_s);
-  exit_code = kExitOk;
+        "ccbuild: warning: %d air move(s) exceed the nozzle idle limit of %.0f s (longest "
+        "%.1f s): the concrete may set in the nozzle\n",
+        result.idle_limit_violations(), project.machine_model().nozzle_idle_limit_s,
+        result.max_idle_s());
 }
 
 }  // namespace
@@ -296,15 +270,20 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       "  ccbuild plan-layer plan.yaml --algorithm nearest --metric rectilinear --json\n"
       "  ccbuild plan-layer config/buildings/apartment.yaml --layer 10 --nozzles 2 --gantry-width "
       "5ft --svg two.svg\n"
+      "The JSON (docs/json.md) holds every nozzle's timed path as waypoints, complete enough "
+      "to re-check coverage, speeds and gantry gaps without ccbuild.\n"
       "Exit code 1 when no collision-free multi-nozzle plan was found (the reasons are printed).");
   command->add_option("PLAN", o->file, "Floor plan (YAML, JSON, table text) or building file")
       ->required();
   command->add_option("--floor", o->floor, "Floor of a building (0 = ground)")
+      ->check(integer_in(0, 100000))
       ->capture_default_str();
-  command->add_option(
-      "--layer", o->layer,
-      "Layer within the floor (default 0); for a plan file, slices it with --floor-height and "
-      "--layer-height instead of planning whole walls");
+  command
+      ->add_option(
+          "--layer", o->layer,
+          "Layer within the floor (default 0); for a plan file, slices it with --floor-height "
+          "and --layer-height instead of planning whole walls")
+      ->check(integer_in(0, 10000000));
   command
       ->add_option("--metric", o->metric,
                    "Air moves: euclidean (straight) or rectilinear (x, then y)")
@@ -329,30 +308,35 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
                    "weaker)")
       ->check(CLI::IsMember({"connected", "matching"}))
       ->capture_default_str();
-  command->add_option("--start-vertex", o->start_vertex,
-                      "Plan an open path starting at this plan vertex (default: a closed tour)");
-  command->add_option(
-      "--first-wall", o->first_wall,
-      "With --start-vertex: deposit this wall first (negative: from its end vertex)");
-  command->add_option("--time-limit", o->time_limit_s, "Bound on the whole run, set-up included, s")
-      ->check(CLI::PositiveNumber)
+  command
+      ->add_option("--start-vertex", o->start_vertex,
+                   "Plan an open path starting at this plan vertex (default: a closed tour)")
+      ->check(integer_in(1, 999999999));
+  command
+      ->add_option("--first-wall", o->first_wall,
+                   "With --start-vertex: deposit this wall first (negative: from its end vertex)")
+      ->check(integer_in(-999999999, 999999999));
+  command
+      ->add_option("--time-limit", o->time_limit_s,
+                   "Bound on the whole run, set-up included, s (the answer is the best found)")
+      ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();
   command->add_option("--seed", o->seed, "Random seed: the same seed and inputs give the same plan")
+      ->check(unsigned_integer())
       ->capture_default_str();
   command
       ->add_option("--max-kicks", o->max_kicks,
                    "Kicks of the chained search (default: from the layer size)")
-      ->check(CLI::NonNegativeNumber);
-  command->add_option(
-      "--machine", o->machine,
-      "Machine profile (default: the building's, or config/machines/cc-gantry.yaml)");
-  command->add_flag("--json", o->json, "Print one JSON object instead of text");
+      ->check(integer_in(0, 1000000000));
+  command->add_flag("--json", o->json, "Print one JSON object instead of text (errors too)");
   command->add_option("--svg", o->svg, "Also draw the plan into this SVG file");
-  command->add_flag("--force", o->force, "Overwrite an existing --svg file");
+  command->add_flag("--force", o->force,
+                    "Overwrite an existing --svg file (never one this run reads)");
   command
       ->add_option(
           "--nozzles", o->nozzles,
           "Nozzles on common rails (2 or more: sections, collision-free paths, x/t checks)")
+      ->check(integer_in(1, planner::kMaxNozzles))
       ->capture_default_str();
   command->add_option("--gantry-width", o->gantry_width,
                       "With --nozzles: closest two gantry centres may come, e.g. 1.5m or 5ft "
@@ -374,7 +358,7 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       "--platform-width", o->platform_width,
       "With --nozzles: an overhead platform this long along the rails; longer layouts are built in "
       "platform-wide stages");
-  add_plan_input_options(*command, o->plan);
+  add_input_options(*command, o->input);
   command->callback([o, &exit_code] { run_plan_layer(*o, exit_code); });
 }
 

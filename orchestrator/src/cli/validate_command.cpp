@@ -5,9 +5,6 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "ccbuild/common/input_error.hpp"
-#include "ccbuild/floors/material.hpp"
-#include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/orchestrator/layer_summary.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -18,36 +15,24 @@ namespace {
 struct ValidateOptions {
   std::string file;
   bool json = false;
-  PlanInputOptions plan;
+  InputOptions input;
 };
 
 void run_validate(const ValidateOptions& options, int& exit_code) {
-  const LoadedInput input = load_input(options.file, options.plan);
-  const floors::Building& b = input.building;
-  std::optional<floors::MaterialProfile> material;
-  std::optional<machine::MachineModel> machine;
-  if (input.is_building) {
-    material = floors::load_material_profile(b.material_profile);
-    machine = machine::load_machine(b.machine_profile);
-  }
-  // The building must fit inside the machine's reach (its extent against the URDF axis
-  // ranges; where the site origin lies is not modelled, so lengths are compared).
-  Eigen::Vector2d lo(1e18, 1e18), hi(-1e18, -1e18);
-  for (const auto& floor : b.floors)
+  // Opening checks everything: the files, the profiles, and that the machine reaches it.
+  const orchestrator::Project project = open_input(options.file, options.input);
+  const floors::Building& b = project.building;
+  const machine::MachineModel& machine = project.machine_model();
+  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+  double top_m = 0.0;
+  for (const auto& floor : b.floors) {
     for (const auto& v : floor.plan.vertices) {
       lo = lo.cwiseMin(v.position_m);
       hi = hi.cwiseMax(v.position_m);
     }
-  const Eigen::Vector2d extent = hi - lo;
-  if (machine) {
-    const double reach_x = machine->x.max_m - machine->x.min_m,
-                 reach_y = machine->y.max_m - machine->y.min_m;
-    if (extent.x() > reach_x || extent.y() > reach_y)
-      throw InputError(
-          b.machine_profile.string(), 0, "",
-          printf_string("the building is %.2f m x %.2f m but the machine reaches %.2f m x %.2f m",
-                        extent.x(), extent.y(), reach_x, reach_y));
+    top_m = std::max(top_m, floor.base_elevation_m + floor.height_m);
   }
+  const Eigen::Vector2d extent = hi - lo;
   const orchestrator::BuildingSummary summary = orchestrator::summarize_building(b);
   int walls = 0, openings = 0, anchors = 0;
   for (const auto& f : summary.floors) {
@@ -55,63 +40,65 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     openings += f.opening_count;
     anchors += f.anchor_count;
   }
+  const double reach_x = machine.x.max_m - machine.x.min_m;
+  const double reach_y = machine.y.max_m - machine.y.min_m;
+  const double reach_z = machine.z.max_m - machine.z.min_m;
 
   if (options.json) {
     nlohmann::ordered_json out;
     out["file"] = options.file;
-    out["kind"] = input.is_building ? "building" : "plan";
+    out["kind"] = project.is_building ? "building" : "plan";
     out["valid"] = true;
     out["name"] = b.name;
     out["units"] = floors::to_string(b.units);
     out["layer_height_m"] = b.layer_height_m;
-    if (material)
-      out["material"] = {{"name", material->name}, {"file", b.material_profile.string()}};
-    if (machine) out["machine"] = {{"name", machine->name}, {"file", b.machine_profile.string()}};
-    out["extent_m"] = {extent.x(), extent.y()};
+    out["material"] = {{"name", project.material.name}, {"origin", project.material_origin}};
+    out["machine"] = {{"name", machine.name},
+                      {"origin", project.machine_origin},
+                      {"reach_m", {reach_x, reach_y, reach_z}}};
+    out["extent_m"] = {extent.x(), extent.y(), top_m};
     out["floors"] = nlohmann::ordered_json::array();
     for (const auto& f : summary.floors) {
-      out["floors"].push_back({{"index", f.floor_index},
+      out["floors"].push_back({{"floor", f.floor_index},
                                {"name", f.name},
                                {"height_m", f.height_m},
-                               {"walls", f.wall_count},
-                               {"openings", f.opening_count},
-                               {"anchors", f.anchor_count},
-                               {"layers", f.layer_count},
-                               {"distinct_geometries", f.distinct_geometries}});
+                               {"base_elevation_m", f.base_elevation_m},
+                               {"wall_count", f.wall_count},
+                               {"opening_count", f.opening_count},
+                               {"anchor_count", f.anchor_count},
+                               {"layer_count", f.layer_count},
+                               {"distinct_geometry_count", f.distinct_geometries}});
     }
-    out["totals"] = {{"floors", summary.floors.size()},
-                     {"walls", walls},
-                     {"openings", openings},
-                     {"anchors", anchors},
-                     {"layers", summary.total_layers},
-                     {"distinct_geometries", summary.distinct_geometries}};
+    out["totals"] = {{"floor_count", summary.floors.size()},
+                     {"wall_count", walls},
+                     {"opening_count", openings},
+                     {"anchor_count", anchors},
+                     {"layer_count", summary.total_layers},
+                     {"distinct_geometry_count", summary.distinct_geometries}};
     std::cout << out.dump(2) << "\n";
     exit_code = kExitOk;
     return;
   }
 
-  std::cout << options.file << ": valid " << (input.is_building ? "building" : "plan") << "\n";
+  auto L = [&](double m) { return project.length(m, 2); };
+  std::cout << options.file << ": valid " << (project.is_building ? "building" : "plan") << "\n";
   if (!b.name.empty()) std::cout << printf_string("  %-10s %s\n", "name", b.name.c_str());
   std::cout << printf_string("  %-10s %s in the file, metres inside\n", "units",
                              floors::to_string(b.units).c_str());
-  std::cout << printf_string("  %-10s %.3f m\n", "layer", b.layer_height_m);
-  if (material)
-    std::cout << printf_string("  %-10s %s (%s)\n", "material", material->name.c_str(),
-                               b.material_profile.c_str());
-  if (machine)
-    std::cout << printf_string(
-        "  %-10s %s (%s); the building's %.2f m x %.2f m is within its %.2f m x %.2f m reach\n",
-        "machine", machine->name.c_str(), b.machine_profile.c_str(), extent.x(), extent.y(),
-        machine->x.max_m - machine->x.min_m, machine->y.max_m - machine->y.min_m);
-  else
-    std::cout << printf_string("  %-10s %.2f m x %.2f m\n", "extent", extent.x(), extent.y());
+  std::cout << printf_string("  %-10s %s\n", "layer", project.length(b.layer_height_m).c_str());
+  std::cout << printf_string("  %-10s %s\n", "material", project.material_origin.c_str());
+  std::cout << printf_string("  %-10s %s\n", "machine", project.machine_origin.c_str());
+  std::cout << printf_string("  %-10s %s x %s, %s tall; the machine reaches %s x %s x %s\n", "size",
+                             L(extent.x()).c_str(), L(extent.y()).c_str(), L(top_m).c_str(),
+                             L(reach_x).c_str(), L(reach_y).c_str(), L(reach_z).c_str());
   std::cout << "\n"
-            << printf_string("  %-5s %-16s %9s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
+            << printf_string("  %-5s %-16s %12s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
                              "walls", "openings", "anchors", "layers", "geometries");
   for (const auto& f : summary.floors) {
-    std::cout << printf_string("  %-5d %-16s %7.3f m %6d %9d %8d %7d %11d\n", f.floor_index,
-                               f.name.c_str(), f.height_m, f.wall_count, f.opening_count,
-                               f.anchor_count, f.layer_count, f.distinct_geometries);
+    std::cout << printf_string("  %-5d %-16s %12s %6d %9d %8d %7d %11d\n", f.floor_index,
+                               f.name.c_str(), project.length(f.height_m).c_str(), f.wall_count,
+                               f.opening_count, f.anchor_count, f.layer_count,
+                               f.distinct_geometries);
   }
   std::cout << "\n"
             << printf_string(
@@ -131,7 +118,10 @@ void add_validate_command(CLI::App& app, int& exit_code) {
       "Check a building file (and the material and machine profiles it names) or a single floor "
       "plan, and summarise it.\n"
       "Every problem found is reported with its file, line and field; the exit code is 2 when "
-      "anything is wrong.\n"
+      "anything is wrong, and with --json the problems are printed as JSON on stdout too.\n"
+      "Besides the files themselves it checks that the machine can build the building: its "
+      "footprint and height within the machine's reach, and no wall thicker than the nozzle "
+      "lays in one pass.\n"
       "Examples:\n"
       "  ccbuild validate config/buildings/house.yaml\n"
       "  ccbuild validate plan.txt --units ft --floor-height 10 --layer-height 0.5");
@@ -140,8 +130,9 @@ void add_validate_command(CLI::App& app, int& exit_code) {
                    "Building file (YAML/JSON with `floors:`) or floor plan "
                    "(YAML, JSON or the table text format)")
       ->required();
-  command->add_flag("--json", options->json, "Print the summary as one JSON object");
-  add_plan_input_options(*command, options->plan);
+  command->add_flag("--json", options->json,
+                    "Print the summary (or the errors) as one JSON object");
+  add_input_options(*command, options->input);
   command->callback([options, &exit_code] { run_validate(*options, exit_code); });
 }
 

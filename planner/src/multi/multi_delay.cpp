@@ -15,9 +15,9 @@ namespace {
 // two nozzles hold before the step it was on (or a few steps earlier), for the shortest
 // hold after which it can finish that step without meeting either neighbour; failing
 // that, the shortest hold that at least moves the conflict later.
-std::optional<std::vector<NozzlePath>> with_waits(const StageContext& ctx, const Sections& s,
-                                                  const std::vector<int>& cycles,
-                                                  std::string& detail) {
+MethodResult with_waits(const StageContext& ctx, const Sections& s,
+                        const std::vector<int>& cycles) {
+  MethodResult out;
   const int n = ctx.options.nozzles;
   const RailAxis axis = ctx.options.rail_axis;
   const double w = ctx.options.gantry_width_m;
@@ -48,16 +48,21 @@ std::optional<std::vector<NozzlePath>> with_waits(const StageContext& ctx, const
     int pair = 0;
     const auto conflict = earliest(paths, pair);
     if (!conflict) {
-      std::string problem;
-      auto ok = checked(ctx, paths, problem);
-      if (ok) {
+      MethodResult result = checked(ctx, paths);
+      if (result.status) {
         double total = 0.0;
-        for (const auto& p : paths) total += p.wait_s;
-        detail = "delay (" + std::to_string(round) + " waits, " + seconds(total) + " in all)";
+        for (const auto& p : result.paths) total += p.wait_s;
+        result.detail =
+            "delay (" + std::to_string(round) + " waits, " + seconds(total) + " in all)";
       }
-      return ok;
+      return result;
     }
-    if (conflict->time_s <= 1e-9) return std::nullopt;  // they start too close
+    if (conflict->time_s <= 1e-9) {
+      out.status = {PlanStatus::Code::kCollision, "nozzles " + std::to_string(pair + 1) + " and " +
+                                                      std::to_string(pair + 2) +
+                                                      " start closer than a gantry width"};
+      return out;
+    }
     struct Hold {
       double s = std::numeric_limits<double>::infinity();
       int nozzle = -1;
@@ -105,26 +110,37 @@ std::optional<std::vector<NozzlePath>> with_waits(const StageContext& ctx, const
       }
     }
     const Hold& chosen = finishes.nozzle >= 0 ? finishes : later;
-    if (chosen.nozzle < 0) return std::nullopt;
+    if (chosen.nozzle < 0) {
+      out.status = {PlanStatus::Code::kCollision,
+                    "no wait moves the conflict of nozzles " + std::to_string(pair + 1) + " and " +
+                        std::to_string(pair + 2) + " at t = " + seconds(conflict->time_s)};
+      return out;
+    }
     waits[chosen.nozzle][chosen.step] += chosen.s;
     auto rebuilt = build_paths(ctx, s.cut, {s.works[chosen.nozzle]}, {cycles[chosen.nozzle]},
                                {waits[chosen.nozzle]});
     rebuilt[0].nozzle = chosen.nozzle;
     paths[chosen.nozzle] = std::move(rebuilt[0]);
-    if (paths[chosen.nozzle].finish_s > one_after_another_s) return std::nullopt;
+    if (paths[chosen.nozzle].finish_s > one_after_another_s) {
+      out.status = {PlanStatus::Code::kCollision,
+                    "waits would make the stage longer than the nozzles' work done one after "
+                    "another"};
+      return out;
+    }
   }
-  return std::nullopt;
+  out.status = stop_status(ctx, "placing waits");
+  if (out.status) out.status = {PlanStatus::Code::kSearchExhausted, "400 waits did not suffice"};
+  return out;
 }
 
 }  // namespace
 
-std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std::string& why,
-                                                    int& vertices, std::string& detail) {
+MethodResult delay_method(const StageContext& ctx) {
   const int n = ctx.options.nozzles;
   const RailAxis axis = ctx.options.rail_axis;
   const double w = ctx.options.gantry_width_m;
   const Sections& s = sections_of(ctx);
-  vertices = static_cast<int>(s.cut.layer.points.size());
+  const int vertices = static_cast<int>(s.cut.layer.points.size());
   // Where a nozzle may rest while its neighbours work anywhere in their sections: a
   // gantry width clear of each neighbouring section. Start each tour there (nearest the
   // middle of that interval), so a nozzle holding at its start, or finished there, is
@@ -155,20 +171,23 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
   }
 
   // The alternatives; the fastest collision-free one is returned.
-  std::optional<std::vector<NozzlePath>> fastest;
-  auto consider = [&](std::optional<std::vector<NozzlePath>> paths, std::string what) {
-    if (paths && (!fastest || stage_time_s(*paths) < stage_time_s(*fastest))) {
-      fastest = std::move(paths);
-      detail = std::move(what);
+  std::optional<MethodResult> fastest;
+  auto consider = [&](MethodResult result, std::string what) {
+    if (!result.status) return;
+    if (!fastest || stage_time_s(result.paths) < stage_time_s(fastest->paths)) {
+      if (!what.empty()) result.detail = std::move(what);
+      fastest = std::move(result);
     }
   };
+  if (PlanStatus late = stop_status(ctx, "iterative dividing"); !late) {
+    MethodResult out;
+    out.status = std::move(late);
+    out.vertices = vertices;
+    return out;
+  }
 
   // 1. Waits.
-  {
-    std::string what;
-    auto paths = with_waits(ctx, s, cycles, what);
-    consider(std::move(paths), what);
-  }
+  consider(with_waits(ctx, s, cycles), "");
 
   // 2. Turns: even-numbered nozzles work while odd ones hold at their start points, then
   //    the other way round. Safe when every holding nozzle rests a gantry width clear of
@@ -182,8 +201,7 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
       turn[k].assign(s.works[k].working.size(), 0.0);
       if (k % 2 == 1 && !turn[k].empty()) turn[k][0] = even_finish;
     }
-    std::string problem;
-    consider(checked(ctx, build_paths(ctx, s.cut, s.works, cycles, turn), problem),
+    consider(checked(ctx, build_paths(ctx, s.cut, s.works, cycles, turn)),
              "delay (odd nozzles wait for even ones: " + seconds(even_finish) + ")");
   }
 
@@ -210,6 +228,7 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
       }
       if (!fits) continue;
       if (!planned) {
+        if (ctx.stop.should_stop()) break;
         PlanOptions o = ctx.options.planning;
         o.algorithm = Algorithm::kCcTsp;
         o.path = PathSpec::closed_tour();
@@ -218,19 +237,27 @@ std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std
         planned = true;
       }
       works[j] = all;
-      std::string problem;
-      if (auto ok = checked(ctx, build_paths(ctx, whole, works, std::vector<int>(n, 0)), problem)) {
-        consider(std::move(ok),
+      MethodResult alone = checked(ctx, build_paths(ctx, whole, works, std::vector<int>(n, 0)));
+      if (alone.status) {
+        consider(std::move(alone),
                  "delay (nozzle " + std::to_string(j + 1) + " alone, the others parked)");
         break;
       }
     }
   }
-  if (fastest) return fastest;
-  why =
-      "no waits resolve the conflicts, no turns are safe (a nozzle cannot rest a gantry width "
-      "clear of its neighbours' sections), and the rails leave no room to park";
-  return std::nullopt;
+  if (fastest) {
+    fastest->vertices = vertices;
+    return std::move(*fastest);
+  }
+  MethodResult out;
+  out.vertices = vertices;
+  out.status = stop_status(ctx, "the delay method");
+  if (out.status)
+    out.status = {PlanStatus::Code::kCollision,
+                  "no waits resolve the conflicts, no turns are safe (a nozzle cannot rest a "
+                  "gantry width clear of its neighbours' sections), and the rails leave no room "
+                  "to park"};
+  return out;
 }
 
 }  // namespace ccbuild::planner::detail

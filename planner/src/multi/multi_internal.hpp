@@ -12,6 +12,11 @@
 
 namespace ccbuild::planner::detail {
 
+/// A length for reasons and errors, in the user's unit: "2.80 m", "9.19 ft".
+inline std::string length(const MultiNozzleOptions& options, double value_m) {
+  return floors::length_text(value_m, options.message_unit, 2);
+}
+
 /// Everything a method needs about one stage.
 struct StageContext {
   const machine::MachineModel& machine;
@@ -27,8 +32,6 @@ struct StageContext {
   mutable std::shared_ptr<const struct Sections> sections;
 };
 
-double rail_coordinate(const Eigen::Vector2d& p, RailAxis axis);
-
 /// A layer cut across the rail axis at `cuts` (ascending): every wall crossing a cut is
 /// split there. `band[s]` is the band (0 .. cuts.size()) segment s lies in; a wall on a
 /// cut line belongs to the band below it.
@@ -42,7 +45,9 @@ CutLayer cut_layer(const floors::Layer& layer, RailAxis axis, const std::vector<
 
 /// A closed CC-TSP tour of some segments of `layer` (indices into `layer`), with the
 /// stage's planning options, at most `max_kicks` kicks (unset: the default budget) and
-/// `polish_kicks` of exact-time polish (unset: the options', else a short one).
+/// `polish_kicks` of exact-time polish (unset: the options', else a short one). Once the
+/// stage's time is up, the segments in their given order (no search), so that what is
+/// left of the call ends at once.
 Sequence closed_tour(const floors::Layer& layer, const std::vector<int>& segments,
                      const StageContext& ctx, std::optional<long> max_kicks = std::nullopt,
                      std::optional<long> polish_kicks = std::nullopt);
@@ -116,26 +121,34 @@ std::vector<NozzlePath> build_paths(const StageContext& ctx, const CutLayer& cut
 /// (empty when none) and the smallest gap.
 std::string verify(const StageContext& ctx, const std::vector<NozzlePath>& paths, double& min_gap);
 
-/// `paths` when they pass verify(); otherwise nullopt, with the problem in `why`.
-std::optional<std::vector<NozzlePath>> checked(const StageContext& ctx,
-                                               std::vector<NozzlePath> paths, std::string& why);
+/// What a method (or a step of one) came to: paths that passed verify() when solved.
+struct MethodResult {
+  PlanStatus status;
+  std::vector<NozzlePath> paths;
+  int vertices = 0;    ///< points of the stage's walls after the method's cuts
+  std::string detail;  ///< how it succeeded, e.g. "delay (3 waits, 12.0 s in all)"
+};
 
-/// Finds one cycle per nozzle so that all adjacent pairs are collision-free: nozzle after
+/// Solved with `paths` when they pass verify(); otherwise a collision with the problem.
+MethodResult checked(const StageContext& ctx, std::vector<NozzlePath> paths);
+
+/// kTimeLimit or kCancelled when the stage's stop condition says so, else solved.
+PlanStatus stop_status(const StageContext& ctx, const std::string& during);
+
+/// One cycle per nozzle so that all adjacent pairs are collision-free: nozzle after
 /// nozzle, backtracking when one has no cycle left that fits its left neighbour.
-std::optional<std::vector<int>> compatible_cycles(const StageContext& ctx, const CutLayer& cut,
-                                                  const std::vector<NozzleWork>& works,
-                                                  std::string& why);
+struct CycleSearch {
+  PlanStatus status;
+  std::vector<int> cycles;
+};
+CycleSearch compatible_cycles(const StageContext& ctx, const CutLayer& cut,
+                              const std::vector<NozzleWork>& works);
 
-/// The methods: each returns paths that passed verify(), or nullopt with `why`.
-std::optional<std::vector<NozzlePath>> path_cycling(const StageContext& ctx, std::string& why,
-                                                    int& vertices);
-std::optional<std::vector<NozzlePath>> global_path_cycling(const StageContext& ctx,
-                                                           std::string& why, int& vertices);
-std::optional<std::vector<NozzlePath>> buffer_zone_path_cycling(const StageContext& ctx,
-                                                                std::string& why, int& vertices);
-std::optional<std::vector<NozzlePath>> aux_buffer_zone(const StageContext& ctx, std::string& why,
-                                                       int& vertices);
-std::optional<std::vector<NozzlePath>> delay_method(const StageContext& ctx, std::string& why,
-                                                    int& vertices, std::string& detail);
+/// The methods: each returns paths that passed verify(), or a status that says why not.
+MethodResult path_cycling(const StageContext& ctx);
+MethodResult global_path_cycling(const StageContext& ctx);
+MethodResult buffer_zone_path_cycling(const StageContext& ctx);
+MethodResult aux_buffer_zone(const StageContext& ctx);
+MethodResult delay_method(const StageContext& ctx);
 
 }  // namespace ccbuild::planner::detail

@@ -82,13 +82,22 @@ Zoned zoned_sections(const StageContext& ctx, const Division& division,
 
 }  // namespace
 
-std::optional<std::vector<NozzlePath>> path_cycling(const StageContext& ctx, std::string& why,
-                                                    int& vertices) {
+MethodResult path_cycling(const StageContext& ctx) {
   const Sections& s = sections_of(ctx);
-  vertices = static_cast<int>(s.cut.layer.points.size());
-  const auto cycles = compatible_cycles(ctx, s.cut, s.works, why);
-  if (!cycles) return std::nullopt;
-  return checked(ctx, build_paths(ctx, s.cut, s.works, *cycles), why);
+  MethodResult out;
+  out.vertices = static_cast<int>(s.cut.layer.points.size());
+  if (PlanStatus late = stop_status(ctx, "iterative dividing"); !late) {
+    out.status = std::move(late);
+    return out;
+  }
+  CycleSearch search = compatible_cycles(ctx, s.cut, s.works);
+  if (!search.status) {
+    out.status = std::move(search.status);
+    return out;
+  }
+  MethodResult result = checked(ctx, build_paths(ctx, s.cut, s.works, search.cycles));
+  result.vertices = out.vertices;
+  return result;
 }
 
 namespace {
@@ -267,18 +276,23 @@ constexpr long kSplitBudget = 4'000'000;  // pieces timed per enumeration
 
 }  // namespace
 
-std::optional<std::vector<NozzlePath>> global_path_cycling(const StageContext& ctx,
-                                                           std::string& why, int& vertices) {
+MethodResult global_path_cycling(const StageContext& ctx) {
   const int n = ctx.options.nozzles;
   const double w = ctx.options.gantry_width_m;
   const CutLayer cut = cut_layer(ctx.layer, ctx.options.rail_axis, {});
-  vertices = static_cast<int>(cut.layer.points.size());
+  MethodResult out;
+  out.vertices = static_cast<int>(cut.layer.points.size());
   std::vector<int> all(cut.layer.segments.size());
   std::iota(all.begin(), all.end(), 0);
   const Sequence tour = closed_tour(cut.layer, all, ctx);
   if (static_cast<int>(tour.size()) < n) {
-    why = "the layer has fewer walls (" + std::to_string(tour.size()) + ") than nozzles";
-    return std::nullopt;
+    out.status = {PlanStatus::Code::kNotApplicable,
+                  "the layer has fewer walls (" + std::to_string(tour.size()) + ") than nozzles"};
+    return out;
+  }
+  if (PlanStatus late = stop_status(ctx, "the layer's tour"); !late) {
+    out.status = std::move(late);
+    return out;
   }
   const CostModel model(cut.layer, ctx.machine, ctx.options.planning.metric);
   const TourPieces tp(tour, model, ctx.options.rail_axis);
@@ -305,11 +319,12 @@ std::optional<std::vector<NozzlePath>> global_path_cycling(const StageContext& c
     if (static_cast<int>(ranked.size()) > kSplitsToCycle) ranked.pop_back();
   });
   if (ranked.empty()) {  // only when the enumeration ran out of budget first
-    why = "no cut of the tour into " + std::to_string(n) + " balanced pieces was found";
-    return std::nullopt;
+    out.status = {PlanStatus::Code::kSearchExhausted,
+                  "no cut of the tour into " + std::to_string(n) + " balanced pieces was found"};
+    return out;
   }
   // 3. Path cycling on the pieces, the best-ranked split first.
-  std::string first_why;
+  PlanStatus first_failure;
   for (const TourSplit& split : ranked) {
     std::vector<NozzleWork> works;
     for (std::size_t k = 0; k < split.pieces.size(); ++k) {
@@ -322,39 +337,58 @@ std::optional<std::vector<NozzlePath>> global_path_cycling(const StageContext& c
       std::tie(work.from_m, work.to_m) = split.extents[k];
       works.push_back(std::move(work));
     }
-    std::string reason;
-    if (const auto cycles = compatible_cycles(ctx, cut, works, reason))
-      if (auto paths = checked(ctx, build_paths(ctx, cut, works, *cycles), reason)) return paths;
-    if (first_why.empty()) {
-      first_why = reason;
-      if (split.shortfall_m > 1e-9)
-        first_why += "; the best split's pieces are " + metres(split.shortfall_m, 2) +
-                     " short of a gantry width apart along the rails";
+    CycleSearch search = compatible_cycles(ctx, cut, works);
+    PlanStatus status = std::move(search.status);
+    if (status) {
+      MethodResult result = checked(ctx, build_paths(ctx, cut, works, search.cycles));
+      if (result.status) {
+        result.vertices = out.vertices;
+        return result;
+      }
+      status = std::move(result.status);
     }
-    if (ctx.stop.should_stop()) break;
+    if (first_failure) {
+      std::string reason = status.reason();
+      if (split.shortfall_m > 1e-9)
+        reason += "; the best split's pieces are " + length(ctx.options, split.shortfall_m) +
+                  " short of a gantry width apart along the rails";
+      first_failure = {status.code(), reason};
+    }
+    if (PlanStatus late = stop_status(ctx, "global path cycling"); !late) {
+      out.status = std::move(late);
+      return out;
+    }
   }
-  why = first_why + " (" + std::to_string(ranked.size()) + " balanced splits of the tour tried)";
-  return std::nullopt;
+  out.status = {first_failure.code(), first_failure.reason() + " (" +
+                                          std::to_string(ranked.size()) +
+                                          " balanced splits of the tour tried)"};
+  return out;
 }
 
-std::optional<std::vector<NozzlePath>> buffer_zone_path_cycling(const StageContext& ctx,
-                                                                std::string& why, int& vertices) {
+MethodResult buffer_zone_path_cycling(const StageContext& ctx) {
   const int n = ctx.options.nozzles;
   const double buffer = ctx.options.buffer_width_factor * ctx.options.gantry_width_m;
   const Division& division = divide(ctx);
+  MethodResult out;
   // A buffer zone at every inner border, on the right-hand section's side.
   std::vector<std::vector<double>> widths(n);
   for (int k = 1; k < n; ++k) {
     const double section = (k == n - 1 ? ctx.to_m : division.cuts[k]) - division.cuts[k - 1];
     if (section <= buffer) {
-      why = "section " + std::to_string(k + 1) + " (" + metres(section, 2) +
-            ") is not wider than its buffer zone (" + metres(buffer, 2) + ")";
-      return std::nullopt;
+      out.status = {PlanStatus::Code::kNotApplicable, "section " + std::to_string(k + 1) + " (" +
+                                                          length(ctx.options, section) +
+                                                          ") is not wider than its buffer zone (" +
+                                                          length(ctx.options, buffer) + ")"};
+      return out;
     }
     widths[k] = {buffer};
   }
   const Zoned z = zoned_sections(ctx, division, widths, {"buffer"});
-  vertices = static_cast<int>(z.cut.layer.points.size());
+  out.vertices = static_cast<int>(z.cut.layer.points.size());
+  if (PlanStatus late = stop_status(ctx, "the zones' tours"); !late) {
+    out.status = std::move(late);
+    return out;
+  }
   // The buffer must hold less than half the section's work.
   for (int k = 1; k < n; ++k) {
     const double b = z.zone_time_s[k][0];
@@ -365,18 +399,24 @@ std::optional<std::vector<NozzlePath>> buffer_zone_path_cycling(const StageConte
                                              .layer_time_s
                                        : 0.0;
     if (b >= 0.5 * whole && whole > 0.0) {
-      why = "buffer zone of section " + std::to_string(k + 1) + " holds " + seconds(b) +
-            " of its " + seconds(whole) + " of work (must be under half)";
-      return std::nullopt;
+      out.status = {PlanStatus::Code::kNotApplicable,
+                    "buffer zone of section " + std::to_string(k + 1) + " holds " + seconds(b) +
+                        " of its " + seconds(whole) + " of work (must be under half)"};
+      return out;
     }
   }
-  const auto cycles = compatible_cycles(ctx, z.cut, z.works, why);
-  if (!cycles) return std::nullopt;
-  return checked(ctx, build_paths(ctx, z.cut, z.works, *cycles), why);
+  CycleSearch search = compatible_cycles(ctx, z.cut, z.works);
+  if (!search.status) {
+    out.status = std::move(search.status);
+    return out;
+  }
+  MethodResult result = checked(ctx, build_paths(ctx, z.cut, z.works, search.cycles));
+  result.vertices = out.vertices;
+  return result;
 }
 
-std::optional<std::vector<NozzlePath>> aux_buffer_zone(const StageContext& ctx, std::string& why,
-                                                       int& vertices) {
+MethodResult aux_buffer_zone(const StageContext& ctx) {
+  MethodResult out;
   const int n = ctx.options.nozzles;
   const double w = ctx.options.gantry_width_m;
   const double buffer = ctx.options.buffer_width_factor * w;
@@ -386,9 +426,11 @@ std::optional<std::vector<NozzlePath>> aux_buffer_zone(const StageContext& ctx, 
   borders.push_back(ctx.to_m);
   for (int k = 0; k < n; ++k) {
     if (borders[k + 1] - borders[k] <= buffer + w) {
-      why = "section " + std::to_string(k + 1) + " (" + metres(borders[k + 1] - borders[k], 2) +
-            ") is too narrow for a buffer zone and a gantry";
-      return std::nullopt;
+      out.status = {PlanStatus::Code::kNotApplicable,
+                    "section " + std::to_string(k + 1) + " (" +
+                        length(ctx.options, borders[k + 1] - borders[k]) +
+                        ") is too narrow for a buffer zone and a gantry"};
+      return out;
     }
   }
   // Every section gets a buffer zone at its left border. Where a nozzle would finish
@@ -404,18 +446,27 @@ std::optional<std::vector<NozzlePath>> aux_buffer_zone(const StageContext& ctx, 
     while (!enough) {
       aux += 0.25 * w;
       if (borders[k] + buffer + aux >= borders[k + 1] - w) {
-        why = "section " + std::to_string(k + 1) +
-              " has no room for an auxiliary zone long enough (buffer " + seconds(own) +
-              " against its neighbour's " + seconds(next) + ")";
-        return std::nullopt;
+        out.status = {PlanStatus::Code::kNotApplicable,
+                      "section " + std::to_string(k + 1) +
+                          " has no room for an auxiliary zone long enough (buffer " + seconds(own) +
+                          " against its neighbour's " + seconds(next) + ")"};
+        return out;
+      }
+      if (PlanStatus late = stop_status(ctx, "sizing the auxiliary zones"); !late) {
+        out.status = std::move(late);
+        return out;
       }
       widths[k] = {buffer, aux};
       z = zoned_sections(ctx, division, widths, {"buffer", "auxiliary"});
       enough = z.zone_time_s[k][0] + z.zone_time_s[k][1] > z.zone_time_s[k + 1][0];
     }
   }
-  vertices = static_cast<int>(z.cut.layer.points.size());
-  return checked(ctx, build_paths(ctx, z.cut, z.works, std::vector<int>(n, 0)), why);
+  MethodResult result = checked(ctx, build_paths(ctx, z.cut, z.works, std::vector<int>(n, 0)));
+  result.vertices = static_cast<int>(z.cut.layer.points.size());
+  if (!result.status) {
+    if (PlanStatus late = stop_status(ctx, "the zones' tours"); !late) result.status = late;
+  }
+  return result;
 }
 
 }  // namespace ccbuild::planner::detail

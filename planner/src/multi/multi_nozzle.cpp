@@ -35,9 +35,30 @@ std::optional<MultiMethod> parse_multi_method(const std::string& text) {
   return std::nullopt;
 }
 
+std::string MethodAttempt::to_string() const {
+  return planner::to_string(method) + ": " + status.to_string();
+}
+
 namespace {
 
-using detail::rail_coordinate;
+detail::MethodResult run_method(MultiMethod method, const detail::StageContext& ctx) {
+  switch (method) {
+    case MultiMethod::kPathCycling:
+      return detail::path_cycling(ctx);
+    case MultiMethod::kGlobalPathCycling:
+      return detail::global_path_cycling(ctx);
+    case MultiMethod::kBufferZonePathCycling:
+      return detail::buffer_zone_path_cycling(ctx);
+    case MultiMethod::kAuxBufferZone:
+      return detail::aux_buffer_zone(ctx);
+    case MultiMethod::kDelay:
+      return detail::delay_method(ctx);
+    case MultiMethod::kAuto:
+      break;
+  }
+  CCBUILD_CHECK(false, "auto is not a method of its own");
+  return {};
+}
 
 // Plans one stage with the chosen method (auto: the papers' order, then delay).
 Stage plan_stage(detail::StageContext& ctx) {
@@ -50,38 +71,27 @@ Stage plan_stage(detail::StageContext& ctx) {
              MultiMethod::kAuxBufferZone, MultiMethod::kDelay};
   else
     order = {ctx.options.method};
+  stage.status = {PlanStatus::Code::kNotApplicable, "no method was tried"};
   for (MultiMethod method : order) {
-    std::string why, detail;
-    int vertices = 0;
-    std::optional<std::vector<NozzlePath>> paths;
-    switch (method) {
-      case MultiMethod::kPathCycling:
-        paths = detail::path_cycling(ctx, why, vertices);
+    // A method started after the time limit would only report it again.
+    if (!stage.attempts.empty()) {
+      if (PlanStatus late = detail::stop_status(ctx, "the methods before it"); !late) {
+        stage.attempts.push_back({method, late});
+        stage.status = std::move(late);
         break;
-      case MultiMethod::kGlobalPathCycling:
-        paths = detail::global_path_cycling(ctx, why, vertices);
-        break;
-      case MultiMethod::kBufferZonePathCycling:
-        paths = detail::buffer_zone_path_cycling(ctx, why, vertices);
-        break;
-      case MultiMethod::kAuxBufferZone:
-        paths = detail::aux_buffer_zone(ctx, why, vertices);
-        break;
-      case MultiMethod::kDelay:
-        paths = detail::delay_method(ctx, why, vertices, detail);
-        break;
-      case MultiMethod::kAuto:
-        break;
+      }
     }
-    if (!paths) {
-      stage.attempts.push_back(to_string(method) + ": " + why);
+    detail::MethodResult result = run_method(method, ctx);
+    stage.attempts.push_back({method, result.status});
+    if (!result.status) {
+      stage.status = std::move(result.status);
       continue;
     }
+    stage.status = PlanStatus::solved();
     stage.method = method;
-    stage.method_detail = detail.empty() ? to_string(method) : detail;
-    stage.attempts.push_back(to_string(method) + ": collision-free");
-    stage.nozzles = std::move(*paths);
-    stage.vertex_count = vertices;
+    stage.method_detail = result.detail.empty() ? to_string(method) : result.detail;
+    stage.nozzles = std::move(result.paths);
+    stage.vertex_count = result.vertices;
     double gap = 0.0;
     const std::string problem = detail::verify(ctx, stage.nozzles, gap);
     CCBUILD_CHECK(problem.empty(), "a returned multi-nozzle plan passes the exact check");
@@ -91,22 +101,36 @@ Stage plan_stage(detail::StageContext& ctx) {
     // faster than the papers' method it used.
     if (ctx.options.method == MultiMethod::kAuto && method != MultiMethod::kDelay &&
         !ctx.stop.should_stop()) {
-      std::string delay_why, delay_detail;
-      int delay_vertices = 0;
-      if (const auto alternative =
-              detail::delay_method(ctx, delay_why, delay_vertices, delay_detail)) {
-        const double t = detail::stage_time_s(*alternative);
+      const detail::MethodResult alternative = detail::delay_method(ctx);
+      if (alternative.status) {
+        const double t = detail::stage_time_s(alternative.paths);
         if (t < stage.time_s - 1e-6) {
           stage.faster_delay_s = t;
-          stage.attempts.push_back("delay: would take " + seconds(t) + " against " +
-                                   seconds(stage.time_s) + " (" + delay_detail +
-                                   "); not used: auto keeps the papers' order");
+          stage.faster_delay_detail = alternative.detail;
         }
       }
     }
     return stage;
   }
   return stage;
+}
+
+// The stage's waypoints in layer time, one list per nozzle.
+void add_waypoints(Stage& stage, const machine::MachineModel& machine, Metric metric, double z_m) {
+  for (auto& nozzle : stage.nozzles) {
+    if (nozzle.sequence.empty()) {
+      Waypoint parked;
+      parked.t_s = stage.start_s;
+      parked.position_m = nozzle.timeline.positions().front();
+      parked.z_m = z_m;
+      nozzle.waypoints = {parked};
+      continue;
+    }
+    const CostModel model(nozzle.layer, machine, metric);
+    nozzle.waypoints =
+        waypoints_of(model, nozzle.sequence, PathSpec::closed_tour(), nozzle.evaluation, z_m,
+                     stage.start_s, nozzle.wait_before_step_s);
+  }
 }
 
 }  // namespace
@@ -119,11 +143,18 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   options.planning.bound = BoundKind::kMatching;
   const int n = options.nozzles;
   const double w = options.gantry_width_m;
-  if (n < 2) throw InputError("", 0, "--nozzles", "must be at least 2 for multi-nozzle planning");
-  if (!(w > 0.0)) throw InputError("", 0, "--gantry-width", "must be positive");
-  if (!(options.buffer_width_factor > 1.0))
-    throw InputError("", 0, "buffer_width_factor", "must exceed 1");
-  if (layer.segments.empty()) throw InputError("", 0, "layer", "has no walls to plan");
+  if (n < 2 || n > kMaxNozzles)
+    throw InputError("", 0, "MultiNozzleOptions::nozzles",
+                     "must be from 2 to " + std::to_string(kMaxNozzles) +
+                         " for multi-nozzle planning, got " + std::to_string(n));
+  if (!(w > 0.0) || !std::isfinite(w))
+    throw InputError("", 0, "MultiNozzleOptions::gantry_width_m", "must be positive");
+  if (!(options.buffer_width_factor > 1.0) || !std::isfinite(options.buffer_width_factor))
+    throw InputError("", 0, "MultiNozzleOptions::buffer_width_factor", "must exceed 1");
+  if (!(options.planning.time_limit_s > 0.0))
+    throw InputError("", 0, "PlanOptions::time_limit_s", "must be positive");
+  if (layer.segments.empty())
+    throw InputError("", 0, "layer", "has no walls to plan (every wall is inside an opening?)");
   const RailAxis axis = options.rail_axis;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& p : layer.points) {
@@ -131,25 +162,29 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
     hi = std::max(hi, rail_coordinate(p, axis));
   }
   // The rails: as long as the machine's axis along them, centred on the layout.
-  const auto& rail_joint = axis == RailAxis::kX ? machine.x : machine.y;
+  const auto& rail_joint = rail_axis_limits(machine, axis);
   const double rails = rail_joint.max_m - rail_joint.min_m;
+  // Gantries fit when their centres can stand a gantry width apart: n - 1 gaps.
   if ((n - 1) * w >= rails)
-    throw InputError("", 0, "--nozzles",
-                     std::to_string(n) + " gantries " + metres(w, 2) +
-                         " wide do not fit on the machine's " + metres(rails, 2) + " of rails");
+    throw InputError("", 0, "MultiNozzleOptions::nozzles",
+                     std::to_string(n) + " gantries " + detail::length(options, w) +
+                         " wide do not fit on the machine's " + detail::length(options, rails) +
+                         " of rails");
   if (hi - lo > rails)
-    throw InputError("", 0, "--rail-axis",
-                     "the layout is " + metres(hi - lo, 2) + " long along " + to_string(axis) +
-                         " but the rails reach " + metres(rails, 2) +
-                         "; use --platform-width or a machine with longer rails");
+    throw InputError("", 0, "MultiNozzleOptions::rail_axis",
+                     "the layout is " + detail::length(options, hi - lo) + " long along " +
+                         to_string(axis) + " but the rails reach " +
+                         detail::length(options, rails) +
+                         "; use a platform or a machine with longer rails");
   const double rail_mid = 0.5 * (lo + hi);
   if (options.platform_width_m) {
     const double p = *options.platform_width_m;
-    if (!(p > 0.0)) throw InputError("", 0, "--platform-width", "must be positive");
+    if (!(p > 0.0) || !std::isfinite(p))
+      throw InputError("", 0, "MultiNozzleOptions::platform_width_m", "must be positive");
     if ((n - 1) * w >= p)
-      throw InputError("", 0, "--platform-width",
-                       std::to_string(n) + " gantries " + metres(w, 2) + " wide do not fit on a " +
-                           metres(p, 2) + " platform");
+      throw InputError("", 0, "MultiNozzleOptions::platform_width_m",
+                       std::to_string(n) + " gantries " + detail::length(options, w) +
+                           " wide do not fit on a " + detail::length(options, p) + " platform");
   }
 
   const StopCondition stop(options.planning.time_limit_s, options.planning.cancel);
@@ -160,7 +195,8 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
     PlanOptions single = options.planning;
     single.algorithm = Algorithm::kCcTsp;
     single.path = PathSpec::closed_tour();
-    single.time_limit_s = std::max(0.05, std::min(single.time_limit_s, stop.remaining_s()));
+    // The reference takes a share of the time, not all of it.
+    single.time_limit_s = std::max(0.01, 0.25 * stop.remaining_s());
     plan.single_nozzle_time_s = plan_layer(layer, machine, single).evaluation.layer_time_s;
   }
 
@@ -176,7 +212,7 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   for (std::size_t k = 1; k < strips.size(); ++k) strip_cuts.push_back(strips[k].first);
   const detail::CutLayer by_strip = detail::cut_layer(layer, axis, strip_cuts);
 
-  plan.collision_free = true;
+  plan.status = PlanStatus::solved();
   plan.min_gap_m = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < strips.size(); ++k) {
     const std::vector<int> segments = by_strip.segments_in(static_cast<int>(k));
@@ -194,26 +230,32 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
       ctx.rail_max_m = rail_mid + 0.5 * rails;
     }
     Stage stage = plan_stage(ctx);
-    if (stage.nozzles.empty()) {
-      plan.collision_free = false;
-      plan.failure = "stage " + std::to_string(k + 1) + " (" + metres(strips[k].first, 2) + " to " +
-                     metres(strips[k].second, 2) + "): no method found a collision-free plan";
+    if (!stage.status) {
+      if (plan.status)
+        plan.status = {
+            stage.status.code(),
+            "stage " + std::to_string(k + 1) + " (" + detail::length(options, strips[k].first) +
+                " to " + detail::length(options, strips[k].second) +
+                "): no method found a collision-free plan; the last: " + stage.status.reason()};
     } else {
-      plan.layer_time_s += stage.time_s;
-      plan.vertex_count += stage.vertex_count;
-      plan.min_gap_m = std::min(plan.min_gap_m, stage.min_gap_m);
-      for (const auto& nozzle : stage.nozzles) plan.machine_time_s += nozzle.busy_s;
       if (!plan.stages.empty()) {
         // The platform moves from one stage's middle to the next along the rails.
         const double distance = 0.5 * (stage.from_m + stage.to_m) -
                                 0.5 * (plan.stages.back().from_m + plan.stages.back().to_m);
-        const double speed = axis == RailAxis::kX ? machine.x.speed_m_s : machine.y.speed_m_s;
-        plan.platform_travel_s += std::abs(distance) / speed + machine.accel_delay_s;
+        const double speed = rail_axis_limits(machine, axis).speed_m_s;
+        const double travel_s = std::abs(distance) / speed + machine.accel_delay_s;
+        plan.platform_travel_s += travel_s;
+        plan.layer_time_s += travel_s;
       }
+      stage.start_s = plan.layer_time_s;
+      add_waypoints(stage, machine, options.planning.metric, layer.z_top_m);
+      plan.layer_time_s += stage.time_s;
+      plan.vertex_count += stage.vertex_count;
+      plan.min_gap_m = std::min(plan.min_gap_m, stage.min_gap_m);
+      for (const auto& nozzle : stage.nozzles) plan.machine_time_s += nozzle.busy_s;
     }
     plan.stages.push_back(std::move(stage));
   }
-  plan.layer_time_s += plan.platform_travel_s;
   return plan;
 }
 

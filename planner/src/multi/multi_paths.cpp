@@ -27,9 +27,7 @@ Eigen::Vector2d park_point(const StageContext& ctx, double rail_at) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  Eigen::Vector2d c = 0.5 * (lo + hi);
-  (ctx.options.rail_axis == RailAxis::kX ? c.x() : c.y()) = rail_at;
-  return c;
+  return with_rail_coordinate(0.5 * (lo + hi), ctx.options.rail_axis, rail_at);
 }
 
 // When each step's wait begins, from the timing of the cost model.
@@ -110,8 +108,8 @@ std::string verify(const StageContext& ctx, const std::vector<NozzlePath>& paths
     min_gap = std::min(min_gap, min_gap_m(paths[k].timeline, paths[k + 1].timeline, axis));
     if (const auto c = first_conflict(paths[k].timeline, paths[k + 1].timeline, axis, w))
       return "nozzles " + std::to_string(k + 1) + " and " + std::to_string(k + 2) +
-             " collide at t = " + seconds(c->time_s) + " (rail positions " + metres(c->left_m, 2) +
-             " and " + metres(c->right_m, 2) + ")";
+             " collide at t = " + seconds(c->time_s) + " (rail positions " +
+             length(ctx.options, c->left_m) + " and " + length(ctx.options, c->right_m) + ")";
   }
   // Each gantry must stay where the others leave it room on the rails.
   for (int k = 0; k < n; ++k) {
@@ -119,16 +117,23 @@ std::string verify(const StageContext& ctx, const std::vector<NozzlePath>& paths
     for (const auto& p : paths[k].timeline.positions()) {
       const double r = rail_coordinate(p, axis);
       if (r < lo - 1e-9 || r > hi + 1e-9)
-        return "nozzle " + std::to_string(k + 1) + " would need rail position " + metres(r, 2) +
-               ", outside its reach " + metres(lo, 2) + " to " + metres(hi, 2);
+        return "nozzle " + std::to_string(k + 1) + " would need rail position " +
+               length(ctx.options, r) + ", outside its reach " + length(ctx.options, lo) + " to " +
+               length(ctx.options, hi);
     }
   }
   return "";
 }
 
-std::optional<std::vector<int>> compatible_cycles(const StageContext& ctx, const CutLayer& cut,
-                                                  const std::vector<NozzleWork>& works,
-                                                  std::string& why) {
+PlanStatus stop_status(const StageContext& ctx, const std::string& during) {
+  if (ctx.stop.cancelled()) return {PlanStatus::Code::kCancelled, "cancelled during " + during};
+  if (ctx.stop.should_stop())
+    return {PlanStatus::Code::kTimeLimit, "the time limit came during " + during};
+  return PlanStatus::solved();
+}
+
+CycleSearch compatible_cycles(const StageContext& ctx, const CutLayer& cut,
+                              const std::vector<NozzleWork>& works) {
   const int n = static_cast<int>(works.size());
   std::vector<std::unique_ptr<SectionModel>> sections;
   std::vector<Sequence> prefix(n), working(n);
@@ -157,17 +162,16 @@ std::optional<std::vector<int>> compatible_cycles(const StageContext& ctx, const
   for (int k = 0; k < n; ++k) dead[k].assign(count[k], 0);
   std::vector<int> choice(n, 0);
   long checks = 0;
-  bool out_of_budget = false;
+  bool out_of_budget = false, out_of_time = false;
   // Can nozzles k+1.. be placed, given nozzle k uses cycle c? Results depend only on
   // (k, c) because only neighbours can collide, so failures are remembered.
   std::function<bool(int, int)> extend = [&](int k, int c) -> bool {
     if (k == n - 1) return true;
     for (int c2 = 0; c2 < count[k + 1]; ++c2) {
       if (dead[k + 1][c2]) continue;
-      if (++checks > ctx.options.max_cycle_checks || (checks % 64 == 0 && ctx.stop.should_stop())) {
-        out_of_budget = true;
-        return false;
-      }
+      if (++checks > ctx.options.max_cycle_checks) out_of_budget = true;
+      if (checks % 16 == 0 && ctx.stop.should_stop()) out_of_time = true;
+      if (out_of_budget || out_of_time) return false;
       if (first_conflict(timeline(k, c), timeline(k + 1, c2), ctx.options.rail_axis,
                          ctx.options.gantry_width_m))
         continue;
@@ -175,29 +179,36 @@ std::optional<std::vector<int>> compatible_cycles(const StageContext& ctx, const
         choice[k + 1] = c2;
         return true;
       }
-      if (out_of_budget) return false;
+      if (out_of_budget || out_of_time) return false;
     }
     dead[k][c] = 1;
     return false;
   };
-  for (int c0 = 0; c0 < count[0] && !out_of_budget; ++c0) {
+  for (int c0 = 0; c0 < count[0] && !out_of_budget && !out_of_time; ++c0) {
     if (extend(0, c0)) {
       choice[0] = c0;
-      return choice;
+      return {PlanStatus::solved(), choice};
     }
   }
-  why = out_of_budget ? "gave up after " + std::to_string(checks) + " cycle pairs"
-                      : "no combination of start points is collision-free (" +
-                            std::to_string(checks) + " cycle pairs checked)";
-  return std::nullopt;
+  const std::string checked_pairs = std::to_string(checks) + " cycle pairs checked";
+  if (out_of_time) return {stop_status(ctx, "path cycling (" + checked_pairs + ")"), {}};
+  if (out_of_budget)
+    return {{PlanStatus::Code::kSearchExhausted, "gave up after " + checked_pairs}, {}};
+  return {{PlanStatus::Code::kCollision,
+           "no combination of start points is collision-free (" + checked_pairs + ")"},
+          {}};
 }
 
-std::optional<std::vector<NozzlePath>> checked(const StageContext& ctx,
-                                               std::vector<NozzlePath> paths, std::string& why) {
+MethodResult checked(const StageContext& ctx, std::vector<NozzlePath> paths) {
+  MethodResult out;
   double gap = 0.0;
-  why = verify(ctx, paths, gap);
-  if (!why.empty()) return std::nullopt;
-  return paths;
+  const std::string problem = verify(ctx, paths, gap);
+  if (!problem.empty()) {
+    out.status = {PlanStatus::Code::kCollision, problem};
+    return out;
+  }
+  out.paths = std::move(paths);
+  return out;
 }
 
 }  // namespace ccbuild::planner::detail

@@ -9,10 +9,6 @@
 
 namespace ccbuild::planner::detail {
 
-double rail_coordinate(const Eigen::Vector2d& p, RailAxis axis) {
-  return axis == RailAxis::kX ? p.x() : p.y();
-}
-
 std::vector<int> CutLayer::segments_in(int b) const {
   return segments_in(b, b);
 }
@@ -62,6 +58,13 @@ Sequence closed_tour(const floors::Layer& layer, const std::vector<int>& segment
                      const StageContext& ctx, std::optional<long> max_kicks,
                      std::optional<long> polish_kicks) {
   if (segments.empty()) return {};
+  if (ctx.stop.should_stop()) {
+    // Out of time: the walls in their given order, at once (the answer will say the
+    // time limit came first).
+    Sequence out;
+    for (int s : segments) out.push_back({s, false});
+    return out;
+  }
   const floors::Layer part = floors::sub_layer(layer, segments);
   PlanOptions o = ctx.options.planning;
   o.algorithm = Algorithm::kCcTsp;

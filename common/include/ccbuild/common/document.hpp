@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "ccbuild/common/format.hpp"
+
 namespace ccbuild {
 
 /// A node of a loaded YAML or JSON document.
@@ -62,6 +64,11 @@ class Field {
 
   /// A finite decimal number (rejects NaN, infinities and text).
   double as_number() const;
+  /// A number in the file's unit (`si_per_unit` SI units per file unit, `unit` its name)
+  /// whose SI value lies in `range_si`; returns the SI value. Out of range throws an
+  /// InputError that states the range in the file's unit.
+  double as_number_in(const Range& range_si, const std::string& unit = "",
+                      double si_per_unit = 1.0) const;
   /// A positive integer identifier (1, 2, ...).
   std::int64_t as_positive_id() const;
   /// A non-negative integer.

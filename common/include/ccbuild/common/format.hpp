@@ -8,6 +8,27 @@ namespace ccbuild {
 /// printf into a std::string.
 std::string printf_string(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
 
+/// A number as people write it: up to 6 significant digits, no exponent between 1e-4
+/// and 1e9 ("0.15", "2400", "1e+308"); "NaN", "infinity" or "-infinity" otherwise.
+std::string plain_number(double value);
+
+/// A plausible range of values, closed unless an end is said to be open.
+struct Range {
+  double min = 0.0;
+  double max = 0.0;
+  bool min_open = false;  ///< min itself is outside
+  bool max_open = false;
+
+  static Range closed(double min, double max) { return {min, max, false, false}; }
+  /// (min, max]: for quantities that must be positive.
+  static Range above(double min, double max) { return {min, max, true, false}; }
+
+  bool contains(double value) const;
+  /// As people say it: "from 0 to 60 s", "more than 0 and at most 2 m/s". `per_unit`
+  /// converts the ends into `unit` (the ends divided by it).
+  std::string describe(const std::string& unit, double per_unit = 1.0) const;
+};
+
 /// "4.500 m" (3 decimals by default).
 std::string metres(double value_m, int decimals = 3);
 /// "12.5 s" (1 decimal by default).

@@ -1,7 +1,8 @@
 #pragma once
 // The one exception type for bad user input (a file, a flag, a message). It carries
 // where the problem is (file, line, field path) and what was expected, so the CLI can
-// print it and exit with code 2. Programmer errors use CCBUILD_CHECK instead.
+// print it and exit with code 2. Programmer errors use CCBUILD_CHECK instead, which
+// throws InternalError (the CLI prints it and exits with code 3).
 
 #include <stdexcept>
 #include <string>
@@ -47,6 +48,12 @@ class DiagnosticSink {
   std::vector<Diagnostic> diagnostics_;
 };
 
+/// A broken invariant: a bug in ccbuild, never the user's input. Thrown by CCBUILD_CHECK.
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
 namespace detail {
 [[noreturn]] void check_failed(const char* condition, const char* file, int line,
                                const std::string& message);
@@ -54,8 +61,9 @@ namespace detail {
 
 }  // namespace ccbuild
 
-/// Always-on invariant check (also in Release): aborts with a message. For programmer
-/// errors only; bad user input throws ccbuild::InputError.
+/// Always-on invariant check (also in Release): throws ccbuild::InternalError naming the
+/// source line and the condition. For programmer errors only; bad user input throws
+/// ccbuild::InputError.
 #define CCBUILD_CHECK(condition, message)                                                         \
   do {                                                                                            \
     if (!(condition)) ::ccbuild::detail::check_failed(#condition, __FILE__, __LINE__, (message)); \

@@ -41,15 +41,34 @@ struct Building {
   std::filesystem::path machine_profile;
   SourceRef material_source;
   SourceRef machine_source;
+  /// Every file read to build this model (the building file and its plans), so that no
+  /// output is ever written over one of them.
+  std::vector<std::filesystem::path> files_read;
 };
 
 /// Loads and validates a building file (YAML or JSON) and the plans it references
 /// (paths relative to the building file). Does not open the material and machine
 /// profiles; their owners load them (load_material_profile, machine::load_machine).
-/// Throws InputError naming file, line and field for every problem found.
+/// Every number is checked against its plausible range (limits.hpp) and the building's
+/// layers against limits::kMaxLayers. Throws InputError naming file, line and field for
+/// every problem found.
 Building load_building(const std::filesystem::path& path);
 
-/// True when the file's root is a building (has `floors`) rather than a single plan.
-bool looks_like_building(const std::filesystem::path& path);
+/// A user's FILE: a building (its root has `floors:`), or a single floor plan.
+struct BuildingOrPlan {
+  bool is_building = false;
+  Building building;  ///< when is_building
+  FloorPlan plan;     ///< otherwise: read and not yet validated against a floor height
+};
+
+/// Reads and parses `path` once and loads whatever it is. A plan's lengths are in its own
+/// `units` key when it has one, else in `plan_unit`. Throws InputError.
+BuildingOrPlan load_building_or_plan(const std::filesystem::path& path, LengthUnit plan_unit);
+
+/// A building of one floor holding `plan`, for tools that work on a single plan: checks
+/// the heights (metres) against their ranges (InputError on field `floor_height` or
+/// `layer_height`, in the plan's unit) and validates the plan under that floor height.
+Building building_from_plan(FloorPlan plan, std::string name, double floor_height_m,
+                            double layer_height_m);
 
 }  // namespace ccbuild::floors

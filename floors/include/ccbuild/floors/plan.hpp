@@ -56,6 +56,7 @@ struct FloorPlan {
   std::vector<Wall> walls;
   std::vector<Opening> openings;
   std::string source_file;
+  LengthUnit units = LengthUnit::kMeter;  ///< the unit the file used: messages speak it
 
   const Vertex* find_vertex(std::int64_t id) const;
   const Wall* find_wall(std::int64_t id) const;
@@ -82,6 +83,11 @@ PlanFormat detect_plan_format(const std::filesystem::path& path, const std::stri
 /// Throws InputError naming file, line and field for anything malformed or invalid.
 FloorPlan load_plan(const std::filesystem::path& path, LengthUnit default_unit = LengthUnit::kMeter,
                     PlanFormat format = PlanFormat::kAuto);
+
+/// Reads a plan from text already loaded from `path` (format kAuto: detect_plan_format).
+/// Does not validate. Throws InputError naming file, line and field.
+FloorPlan plan_from_text(const std::string& text, const std::filesystem::path& path,
+                         LengthUnit default_unit, PlanFormat format = PlanFormat::kAuto);
 
 /// Parses the table format (`vertices` lines `id x y`, then `walls` lines `id a b`,
 /// optionally `openings` lines `wall offset width sill head`). Does not validate.

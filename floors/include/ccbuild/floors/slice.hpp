@@ -5,7 +5,10 @@
 // segments that remember their origin; endpoints closer than a tolerance are merged.
 
 #include <Eigen/Core>
+#include <array>
+#include <compare>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +35,8 @@ struct Layer {
   std::vector<Eigen::Vector2d> points;
   std::vector<LayerSegment> segments;
   /// Same value for layers with the same geometry (segments as point pairs, quantised
-  /// to 1 micrometre, order-independent); wall ids do not enter it.
+  /// to 1 micrometre, order-independent); wall ids do not enter it. For display and
+  /// quick lookups only: equal hashes are not proof, equal GeometryKeys are.
   std::uint64_t geometry_hash = 0;
 
   double total_length_m() const;
@@ -63,7 +67,8 @@ Layer layer_from_pieces(const std::vector<PieceSpec>& pieces, const SliceOptions
 Layer sub_layer(const Layer& layer, const std::vector<int>& segments);
 
 /// Number of layers of a floor: ceil(height / layer height), with a relative tolerance
-/// so that 3.0 / 0.1 is 30 and not 31.
+/// so that 3.0 / 0.1 is 30 and not 31, and 2.7 / 0.03 is 90. Throws InternalError when
+/// the count would not be plausible (loaders check heights against limits.hpp first).
 int layer_count(double floor_height_m, double layer_height_m);
 
 /// All layers of one floor of a building.
@@ -76,6 +81,49 @@ Layer slice_plan_at(const FloorPlan& plan, double z_bottom_m, double z_top_m,
 
 /// Turns a plan into one layer with every wall whole (openings ignored).
 Layer plan_as_layer(const FloorPlan& plan, const SliceOptions& options = {});
+
+/// The canonical form of a layer's geometry: every segment as its two end points
+/// quantised to 1 micrometre, the pair in order, the list sorted. Layers with equal keys
+/// deposit the same pieces at the same places, whatever their wall ids, directions and
+/// order; unlike the 64-bit hash, equality of keys is proof of that.
+class GeometryKey {
+ public:
+  using QuantisedSegment = std::array<std::int64_t, 4>;  ///< x0, y0, x1, y1 in micrometres
+
+  GeometryKey() = default;
+  explicit GeometryKey(const Layer& layer);
+
+  std::uint64_t hash() const { return hash_; }  ///< the same as Layer::geometry_hash
+  std::size_t size() const { return segments_.size(); }
+  const std::vector<QuantisedSegment>& segments() const { return segments_; }
+
+  friend bool operator==(const GeometryKey& a, const GeometryKey& b) {
+    return a.hash_ == b.hash_ && a.segments_ == b.segments_;
+  }
+  friend std::strong_ordering operator<=>(const GeometryKey& a, const GeometryKey& b) {
+    return a.segments_ <=> b.segments_;
+  }
+
+ private:
+  std::vector<QuantisedSegment> segments_;
+  std::uint64_t hash_ = 0;
+};
+
+/// For std::unordered_map keyed by geometry.
+struct GeometryKeyHash {
+  std::size_t operator()(const GeometryKey& key) const { return key.hash(); }
+};
+
+/// Where a segment of one layer is in another layer of the same geometry.
+struct SegmentMatch {
+  int segment = 0;        ///< index into the other layer's segments
+  bool reversed = false;  ///< the other layer's segment runs the opposite way
+};
+
+/// For each segment of `from`, the segment of `to` at the same place (1 micrometre),
+/// so that a plan of one can be replayed on the other; nullopt when their geometries
+/// differ.
+std::optional<std::vector<SegmentMatch>> match_segments(const Layer& from, const Layer& to);
 
 /// Computes the geometry hash of a layer's segments (see Layer::geometry_hash).
 std::uint64_t geometry_hash(const Layer& layer);

@@ -20,6 +20,9 @@ constexpr double meters_per(LengthUnit unit) {
 std::optional<LengthUnit> parse_length_unit(const std::string& text);
 std::string to_string(LengthUnit unit);
 
+/// A length for messages, in the user's unit: "3.000 m", "9.843 ft".
+std::string length_text(double value_m, LengthUnit unit, int decimals = 3);
+
 /// Parses a length with an optional unit suffix ("40ft", "12.5 m", "3"); a bare number
 /// is in `default_unit`. Returns metres, nullopt when the text is not such a length.
 std::optional<double> parse_length_m(const std::string& text, LengthUnit default_unit);

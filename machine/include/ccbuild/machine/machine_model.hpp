@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace ccbuild::machine {
 
@@ -18,6 +19,8 @@ struct AxisLimits {
 struct MachineModel {
   std::string name = "default";
   std::string source_file;  ///< profile the model was loaded from, empty for defaults
+  /// Every file read to build the model (profile, URDF), so no output overwrites them.
+  std::vector<std::filesystem::path> files_read;
 
   // --- Kinematics (URDF) ---
   AxisLimits x;  ///< the layout's x (along the rails by default)
@@ -33,6 +36,7 @@ struct MachineModel {
   double travel_speed_m_s = 0.5;       ///< straight-line (euclidean) air moves
   bool rotate_while_moving = true;     ///< then a move costs max(travel, rotation), else the sum
   double accel_delay_s = 0.5;          ///< acceleration + deceleration per air move
+  double lift_height_m = 0.1;          ///< how far the nozzle rises over deposited walls
   double lift_time_s = 2.0;            ///< raising the nozzle over deposited walls
   double lower_time_s = 2.0;           ///< lowering it back
   double nozzle_idle_limit_s = 600.0;  ///< longest idle (air) move before concrete clogs
@@ -43,9 +47,10 @@ struct MachineModel {
 };
 
 /// Loads a machine profile (YAML or JSON) and the URDF it names (path relative to the
-/// profile). Throws InputError naming the profile or URDF file, the line or field, and
-/// what was expected: missing joints, wrong joint types, non-positive speeds, a URDF
-/// urdfdom cannot parse.
+/// profile). Every number, in the profile and in the URDF's joint limits, must lie in
+/// its plausible range (docs/formats.md). Throws InputError naming the profile or URDF
+/// file, the line or field, and what was expected: missing joints, wrong joint types,
+/// numbers out of range, a URDF urdfdom cannot parse or that is nested too deep.
 MachineModel load_machine(const std::filesystem::path& profile_path);
 
 }  // namespace ccbuild::machine

@@ -1,26 +1,45 @@
 #pragma once
-// Reports of a planned layer: signed wall sequences, JSON, SVG drawings.
+// Reports of a planned layer: signed wall sequences, JSON (docs/json.md), SVG drawings.
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "ccbuild/floors/slice.hpp"
+#include "ccbuild/floors/units.hpp"
+#include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
 
 namespace ccbuild::orchestrator {
 
+/// Where a report's plan came from, and the unit its drawings speak.
+struct ReportContext {
+  std::string file;          ///< the user's FILE
+  int floor = 0;             ///< 0 = ground
+  std::optional<int> layer;  ///< unset: a lone plan with every wall whole
+  std::uint64_t seed = 1;
+  floors::LengthUnit unit = floors::LengthUnit::kMeter;  ///< of ticks, scale bar, titles
+  /// "floor 0 layer 12", or "all walls whole".
+  std::string where() const;
+};
+
 /// "12" for a whole wall traversed in its own direction, "-12" reversed; a wall cut into
-/// pieces by openings shows the piece, 1-based: "12:2", "-12:1".
+/// pieces shows the piece, 1-based, as the JSON does: "12:2", "-12:1".
 std::string signed_step(const floors::Layer& layer, const planner::Step& step);
 /// The whole sequence, space-separated.
 std::string signed_sequence(const floors::Layer& layer, const planner::Sequence& sequence);
 
-/// The plan as one JSON object (lengths in m, times in s, angles in rad).
-nlohmann::ordered_json layer_plan_json(const floors::Layer& layer, const planner::LayerPlan& plan);
+/// The plan as one JSON object (docs/json.md): where it came from, the machine's limits,
+/// the layer's pieces, the results, the sequence, the air moves and the waypoints.
+nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floors::Layer& layer,
+                                       const machine::MachineModel& machine,
+                                       const planner::LayerPlan& plan);
 
-/// An SVG drawing: walls with arrows in the deposition direction, air moves dashed and
-/// numbered (lifted ones in red), the start marked.
-std::string layer_plan_svg(const floors::Layer& layer, const planner::LayerPlan& plan,
-                           const std::string& title);
+/// An SVG drawing: axes and a scale bar in the user's unit, walls labelled with their
+/// ids and arrowed in the deposition direction, air moves dashed on top (lifted ones
+/// red), the start marked, a legend.
+std::string layer_plan_svg(const ReportContext& context, const floors::Layer& layer,
+                           const planner::LayerPlan& plan);
 
 }  // namespace ccbuild::orchestrator

@@ -1,18 +1,28 @@
 #pragma once
-// Reports of a multi-nozzle layer plan: JSON, and an SVG with the sections, each
-// nozzle's path, and the x/t curves of all nozzles on a time axis.
+// Reports of a multi-nozzle layer plan: JSON (docs/json.md), and an SVG with the
+// sections, each nozzle's path and order, and the x/t curves of all nozzles over the
+// whole layer (every platform stage) on a time axis.
 
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "ccbuild/orchestrator/layer_report.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 
 namespace ccbuild::orchestrator {
 
-nlohmann::ordered_json multi_plan_json(const planner::MultiNozzlePlan& plan,
+/// The plan as one JSON object: where it came from, the machine's limits, the layer's
+/// pieces, the status and totals, and per stage and nozzle its sequence, waits and
+/// waypoints (in layer time).
+nlohmann::ordered_json multi_plan_json(const ReportContext& context, const floors::Layer& layer,
+                                       const machine::MachineModel& machine,
+                                       const planner::MultiNozzlePlan& plan,
                                        const planner::MultiNozzleOptions& options);
 
-std::string multi_plan_svg(const planner::MultiNozzlePlan& plan,
-                           const planner::MultiNozzleOptions& options, const std::string& title);
+/// The drawing. Without a plan it shows the layer and every method's reason instead of
+/// paths and chart.
+std::string multi_plan_svg(const ReportContext& context, const floors::Layer& layer,
+                           const planner::MultiNozzlePlan& plan,
+                           const planner::MultiNozzleOptions& options);
 
 }  // namespace ccbuild::orchestrator

@@ -20,6 +20,7 @@
 //   costs only the rotation, if the heading changes.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -65,11 +66,21 @@ struct PathState {
   int steps = 0;                     ///< steps deposited so far
 };
 
-/// Cost model of one layer for one machine. Cheap to copy the results out of; holds a
-/// spatial index of the layer's walls for the crossing tests.
+/// Cost model of one layer for one machine. Holds a spatial index of the layer's walls
+/// for the crossing tests, and shares ownership of the layer (and copies the machine),
+/// so it never refers to an object its caller may destroy.
+///
+/// Thread safety: a CostModel is not thread-safe. evaluate() and the crossing queries
+/// fill caches inside it, so each thread needs its own CostModel. Distinct CostModels
+/// (even of one shared layer) may be used on different threads at once: they share no
+/// mutable state, and neither does any other function of the planner.
 class CostModel {
  public:
-  /// Throws InputError when the machine's speeds are not positive.
+  /// Throws InputError (field `MachineModel::...`) when the machine's speeds are not
+  /// positive; InternalError when `layer` is null.
+  CostModel(std::shared_ptr<const floors::Layer> layer, const machine::MachineModel& machine,
+            Metric metric);
+  /// The same, on a copy of `layer`.
   CostModel(const floors::Layer& layer, const machine::MachineModel& machine, Metric metric);
   ~CostModel();
   CostModel(CostModel&&) noexcept;
@@ -96,6 +107,17 @@ class CostModel {
   /// the rule above, for optimisers that approximate.
   double move_time_s(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double rotation_rad,
                      bool lifted) const;
+  /// Time of a turn by `rotation_rad` (either sign) at the nozzle's rotation speed, s.
+  double turn_s(double rotation_rad) const {
+    return std::abs(rotation_rad) / machine_.rotation_speed_rad_s;
+  }
+  /// The move-time rule from its parts, s: `motion_s` is travel plus the acceleration
+  /// delay (0 between coincident points), `turn_s` the turn's time; rotation overlaps
+  /// motion or adds to it as the machine says, and a lift adds lift and lower times.
+  double combine_move_s(double motion_s, double turn_s, bool lifted) const {
+    const double t = machine_.rotate_while_moving ? std::max(motion_s, turn_s) : motion_s + turn_s;
+    return lifted ? t + machine_.lift_time_s + machine_.lower_time_s : t;
+  }
   /// True when travelling a -> b (in this metric's path shape) crosses segment `index`.
   bool path_crosses(const Eigen::Vector2d& a, const Eigen::Vector2d& b, int segment) const;
   /// Segments whose walls the path a -> b crosses, whatever has been deposited. Results
@@ -134,6 +156,7 @@ class CostModel {
   }
 
   const floors::Layer& layer() const { return *layer_; }
+  const std::shared_ptr<const floors::Layer>& shared_layer() const { return layer_; }
   const machine::MachineModel& machine() const { return machine_; }
   Metric metric() const { return metric_; }
   double deposition_s() const { return deposition_s_; }
@@ -143,7 +166,7 @@ class CostModel {
   template <class Deposited>
   Move make_move(const PathState& state, int to_point, double rotation_rad, int next_step,
                  Deposited&& deposited) const;
-  const floors::Layer* layer_;
+  std::shared_ptr<const floors::Layer> layer_;
   machine::MachineModel machine_;
   Metric metric_;
   double deposition_s_ = 0.0;
@@ -159,7 +182,7 @@ Move CostModel::make_move(const PathState& state, int to_point, double rotation_
   m.to_m = layer_->points[to_point];
   m.distance_m = distance_m(m.from_m, m.to_m);
   m.rotation_rad = rotation_rad;
-  m.rotation_s = std::abs(rotation_rad) / machine_.rotation_speed_rad_s;
+  m.rotation_s = turn_s(rotation_rad);
   m.next_step = next_step;
   if (m.distance_m > 1e-9) {
     m.travel_s = travel_s(m.from_m, m.to_m);

@@ -64,6 +64,18 @@ struct ConnectedBoundLimits {
   int max_parity_tree_nodes = 4000;
 };
 
+/// Why the connected bound's cutting planes stopped.
+enum class BoundStop {
+  kNoViolatedCuts,  ///< the LP solution violates no cut found: the bound is final
+  kStalled,         ///< rounds stopped raising the bound (ConnectedBoundLimits::stall_fraction)
+  kRoundLimit,      ///< ConnectedBoundLimits::max_rounds
+  kTimeLimit,
+  kCancelled,
+  kLpFailed,  ///< GLPK failed; the bound falls back to what was certified before
+};
+/// "no-violated-cuts", "stalled", "round-limit", "time-limit", "cancelled", "lp-failed".
+std::string to_string(BoundStop stop);
+
 struct ConnectedBound {
   double lower_bound_m = 0.0;  ///< certified: a dual solution feasible on the complete graph
   double lp_value_m = 0.0;     ///< the last LP's value on its candidate pairs
@@ -72,8 +84,7 @@ struct ConnectedBound {
   int cuts = 0;  ///< cuts added beyond the initial ones
   int columns = 0;
   int rows = 0;
-  std::string
-      stopped_by;  ///< no-violated-cuts, stalled, round-limit, time-limit, cancelled, lp-failed
+  BoundStop stopped_by = BoundStop::kNoViolatedCuts;
 };
 
 /// The connected bound: air moves and walls together are connected and every point has
@@ -101,6 +112,11 @@ std::string to_string(BoundKind kind);
 /// "matching" or "connected"; nullopt for anything else.
 std::optional<BoundKind> parse_bound(const std::string& text);
 
+/// Which bound a reported value is.
+enum class BoundSource { kMatching, kConnected };
+/// "matching" or "connected".
+std::string to_string(BoundSource source);
+
 struct LayerBound {
   double distance_m = 0.0;  ///< lower bound on the airtime distance of `path` on the layer
   double matching_m = 0.0;  ///< the matching bound
@@ -110,8 +126,8 @@ struct LayerBound {
   /// not a layer point) and their matching, for constructing a tour from it.
   std::vector<int> terminals;
   MatchingBound matching;
-  /// Which bound `distance_m` is: "matching" or "connected".
-  std::string source() const;
+  /// Which bound `distance_m` is.
+  BoundSource source() const;
 };
 
 /// The lower bound on the airtime distance of `path` (closed tour, or open path from

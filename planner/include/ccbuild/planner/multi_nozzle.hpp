@@ -33,6 +33,7 @@
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
+#include "ccbuild/planner/status.hpp"
 #include "ccbuild/planner/timeline.hpp"
 
 namespace ccbuild::planner {
@@ -47,6 +48,9 @@ enum class MultiMethod {
 };
 std::string to_string(MultiMethod method);
 std::optional<MultiMethod> parse_multi_method(const std::string& text);
+
+/// Most nozzles on one set of rails.
+inline constexpr int kMaxNozzles = 16;
 
 struct MultiNozzleOptions {
   int nozzles = 2;
@@ -69,6 +73,9 @@ struct MultiNozzleOptions {
   /// The same layer's single-nozzle layer time when the caller already has it (several
   /// configurations of one layer); unset: planned here, for the comparison.
   std::optional<double> single_nozzle_time_s;
+  /// The unit lengths are given in in reasons and errors (planning itself is in metres):
+  /// the user's own.
+  floors::LengthUnit message_unit = floors::LengthUnit::kMeter;
 };
 
 /// One nozzle's share of one stage.
@@ -83,22 +90,35 @@ struct NozzlePath {
   std::vector<double> wait_before_step_s;
   std::vector<double> step_start_s;  ///< when each step's wait (then air move) begins
   Evaluation evaluation;             ///< exact, without waits
-  Timeline timeline;                 ///< with waits
-  double finish_s = 0.0;             ///< when it is done (waits included)
+  Timeline timeline;                 ///< with waits, from the stage's start (t = 0)
+  /// Every breakpoint of its motion with waits, in layer time (the stage's start_s on).
+  std::vector<Waypoint> waypoints;
+  double finish_s = 0.0;  ///< when it is done (waits included), from the stage's start
   double wait_s = 0.0;
   double busy_s = 0.0;  ///< finish - waits
+};
+
+/// One method tried on a stage, and what came of it.
+struct MethodAttempt {
+  MultiMethod method = MultiMethod::kAuto;
+  PlanStatus status;
+  /// "path-cycling: solved", "bz-path-cycling: not-applicable: section 2 (...) is ...".
+  std::string to_string() const;
 };
 
 /// One platform position (the whole layer when there is no platform).
 struct Stage {
   double from_m = 0.0;  ///< extent along the rails
   double to_m = 0.0;
+  double start_s = 0.0;  ///< when it begins in layer time (earlier stages and platform moves)
+  PlanStatus status;     ///< solved when a method found a checked plan; else the last failure
   MultiMethod method = MultiMethod::kAuto;  ///< the method that produced this stage's plan
   std::string method_detail;                ///< e.g. "delay (odd/even turns)"
-  std::vector<std::string> attempts;        ///< each method tried, and why it failed
+  std::vector<MethodAttempt> attempts;      ///< each method tried, in order
   /// auto only: when it used one of the papers' methods and delay would have finished the
-  /// stage sooner, delay's time (also said in `attempts`); auto still keeps the papers' plan.
+  /// stage sooner, delay's time and how; auto still keeps the papers' plan.
   std::optional<double> faster_delay_s;
+  std::string faster_delay_detail;
   std::vector<NozzlePath> nozzles;
   double time_s = 0.0;     ///< until the last nozzle finishes
   double min_gap_m = 0.0;  ///< smallest gap between adjacent gantries
@@ -106,8 +126,9 @@ struct Stage {
 };
 
 struct MultiNozzlePlan {
-  bool collision_free = false;  ///< a plan was found (and checked) for every stage
-  std::string failure;          ///< why not, when not
+  /// Solved when every stage has a checked, collision-free plan; otherwise the first
+  /// stage without one says why (kTimeLimit when the time limit came first).
+  PlanStatus status;
   std::vector<Stage> stages;
   double platform_travel_s = 0.0;
   double layer_time_s = 0.0;    ///< stages + platform travel
@@ -117,10 +138,12 @@ struct MultiNozzlePlan {
   double single_nozzle_time_s = 0.0;  ///< the same layer planned for one nozzle
 };
 
-/// Plans a layer for several nozzles. Throws InputError for parameters that cannot work:
-/// fewer than 2 nozzles, non-positive widths, more nozzles than fit on the machine's rails,
-/// a platform narrower than the nozzles need. An answer without a collision-free plan
-/// (the method failed) is a value: collision_free = false with the reason.
+/// Plans a layer for several nozzles, within `options.planning.time_limit_s` for the
+/// whole call (once it has passed, the remaining work is cut short and the answer says
+/// so). Throws InputError, naming the MultiNozzleOptions field, for parameters that
+/// cannot work: fewer than 2 nozzles, non-positive widths, more nozzles than fit on the
+/// machine's rails, a layout longer than the rails, a platform narrower than the nozzles
+/// need. An answer without a collision-free plan is a value: a PlanStatus that says why.
 MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::MachineModel& machine,
                                  const MultiNozzleOptions& options);
 

@@ -12,6 +12,7 @@
 #include "ccbuild/planner/cost_model.hpp"
 #include "ccbuild/planner/lower_bound.hpp"
 #include "ccbuild/planner/termination.hpp"
+#include "ccbuild/planner/timeline.hpp"
 #include "ccbuild/planner/tool_path.hpp"
 
 namespace ccbuild::planner {
@@ -56,10 +57,11 @@ struct LayerPlan {
   Metric metric = Metric::kEuclidean;
   Objective objective = Objective::kDistance;
   PathSpec path;
-  Sequence sequence;               ///< every segment of the layer exactly once
-  Evaluation evaluation;           ///< exact (CostModel::evaluate)
-  double lower_bound_m = 0.0;      ///< valid bound on airtime distance (see lower_bound.hpp)
-  std::string lower_bound_source;  ///< "matching" or "connected": which bound it is
+  Sequence sequence;                ///< every segment of the layer exactly once
+  Evaluation evaluation;            ///< exact (CostModel::evaluate)
+  std::vector<Waypoint> waypoints;  ///< the timed path (timeline.hpp), at the layer's top
+  double lower_bound_m = 0.0;       ///< valid bound on airtime distance (see lower_bound.hpp)
+  BoundSource lower_bound_source = BoundSource::kMatching;  ///< which bound it is
   int odd_points = 0;
   double solve_s = 0.0;  ///< wall-clock time of the whole run
   StopReason stop = StopReason::kFinished;
@@ -69,8 +71,10 @@ struct LayerPlan {
   double gap() const;
 };
 
-/// Plans a layer. Throws InputError for options that do not fit the layer (exact on a
-/// large layer, a first wall that is not in it, a layer without walls).
+/// Plans a layer, within `options.time_limit_s` for the whole call. Throws InputError,
+/// naming the PlanOptions or PathSpec field, for options that do not fit the layer (exact
+/// on a large layer, a first wall that is not in it, a non-positive time limit), and for
+/// a layer without walls (field `layer`).
 LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& machine,
                      const PlanOptions& options);
 

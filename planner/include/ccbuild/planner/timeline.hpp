@@ -1,5 +1,7 @@
 #pragma once
-// Where a nozzle is over time, and the exact collision check between two gantries on
+// Where a nozzle is over time: its waypoints (every breakpoint of its motion, for the
+// schedule, the dispatcher and independent checks), the timeline of its position along
+// the rails derived from them, and the exact collision check between two gantries on
 // common rails.
 //
 // A timeline is piecewise linear: breakpoints (t, position), straight between them,
@@ -16,6 +18,7 @@
 // breakpoint of either curve is therefore exact; sampling at fixed times is not.
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -26,6 +29,21 @@ namespace ccbuild::planner {
 
 enum class RailAxis { kX, kY };
 std::string to_string(RailAxis axis);
+
+/// A point's coordinate along the rails, m: the one place that says which axis it is.
+inline double rail_coordinate(const Eigen::Vector2d& p, RailAxis axis) {
+  return axis == RailAxis::kX ? p.x() : p.y();
+}
+/// `p` moved to rail coordinate `rail_m`, its other coordinate kept.
+inline Eigen::Vector2d with_rail_coordinate(Eigen::Vector2d p, RailAxis axis, double rail_m) {
+  (axis == RailAxis::kX ? p.x() : p.y()) = rail_m;
+  return p;
+}
+/// The machine axis the rails run along (its range is the rails' length).
+inline const machine::AxisLimits& rail_axis_limits(const machine::MachineModel& machine,
+                                                   RailAxis axis) {
+  return axis == RailAxis::kX ? machine.x : machine.y;
+}
 
 class Timeline {
  public:
@@ -43,19 +61,44 @@ class Timeline {
   const std::vector<Eigen::Vector2d>& positions() const { return position_m_; }
   /// Position at `time_s` (the first position before the start, the last after the end).
   Eigen::Vector2d at(double time_s) const;
-  /// The rail coordinate of position `i`.
-  static double rail(const Eigen::Vector2d& p, RailAxis axis) {
-    return axis == RailAxis::kX ? p.x() : p.y();
-  }
 
  private:
   std::vector<double> time_s_;
   std::vector<Eigen::Vector2d> position_m_;
 };
 
+/// One breakpoint of a nozzle's timed path. Between two consecutive waypoints the nozzle
+/// moves in a straight line at constant speed: position, height and heading all change
+/// linearly with time. It deposits wall `wall` (piece `piece`) from one waypoint to the
+/// next when the first of the two says `extruding`.
+struct Waypoint {
+  double t_s = 0.0;                                      ///< layer time
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  ///< layout coordinates
+  double z_m = 0.0;          ///< nozzle height: the layer's top, higher while lifted
+  double heading_rad = 0.0;  ///< cumulative heading (the stopper counts whole turns)
+  bool extruding = false;
+  std::int64_t wall = 0;  ///< when extruding: the wall's id (else 0)
+  int piece = 0;          ///< when extruding: 1-based piece of the wall (else 0)
+};
+
+/// The waypoints of a sequence on a layer, timed exactly as the cost model times it
+/// (see below), from `start_s` at the path's start, at nozzle height `z_m` (lifts rise
+/// by the machine's lift height). `wait_before_step_s[k]` (if given) holds the nozzle
+/// before step k's air move. A closed tour includes its closing move.
+///
+/// An air move: lift (z rises, if lifted); turn first when the machine cannot rotate
+/// while moving; travel at constant speed for travel + acceleration delay (rectilinear:
+/// x, then y, each for its share of the time), turning meanwhile when it can; finish a
+/// turn longer than the travel; lower. A wall: at the deposition speed along the wall.
+std::vector<Waypoint> waypoints_of(const CostModel& model, const Sequence& sequence,
+                                   const PathSpec& path, const Evaluation& evaluation, double z_m,
+                                   double start_s = 0.0,
+                                   const std::vector<double>& wait_before_step_s = {});
+
 /// The timeline of a sequence on a layer, as the cost model times it, starting at t = 0
-/// at the path's start. `wait_before_step_s[k]` (if given) holds the nozzle before step
-/// k's air move. A closed tour includes its closing move.
+/// at the path's start: waypoints_of's positions (the same timing). `wait_before_step_s[k]`
+/// (if given) holds the nozzle before step k's air move. A closed tour includes its
+/// closing move.
 Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
                      const std::vector<double>& wait_before_step_s = {});
 /// The same, reusing the sequence's evaluation (waits change the timing, not the moves).

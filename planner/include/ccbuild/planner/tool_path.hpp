@@ -3,6 +3,7 @@
 // in a direction, and how the path starts and ends.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,13 @@ enum class Metric { kEuclidean, kRectilinear };
 /// What the optimiser minimises: airtime distance only (as in the papers' examples), or
 /// the full time model (travel, rotation with the stopper, accel delays, lifts).
 enum class Objective { kDistance, kTime };
+
+/// The length of an air move between `a` and `b` in `metric`, m: straight-line, or
+/// |dx| + |dy|. The one definition every cost, bound and check uses.
+inline double metric_distance_m(Metric metric, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  return metric == Metric::kEuclidean ? d.norm() : std::abs(d.x()) + std::abs(d.y());
+}
 
 std::string to_string(Metric metric);
 std::string to_string(Objective objective);

@@ -1,0 +1,36 @@
+#pragma once
+// Plausible ranges of every number in building and plan files, and limits on counts, in
+// SI. A value outside them is a typo or an attack, not a building: it is an input error
+// naming the field and the range (in the file's own unit). docs/formats.md lists them.
+
+#include <cstdint>
+
+#include "ccbuild/common/format.hpp"
+
+namespace ccbuild::floors::limits {
+
+/// Coordinates of plan vertices: within 100 km of the plan's origin.
+inline const Range kCoordinate_m = Range::closed(-100'000.0, 100'000.0);
+/// Wall thickness, when given.
+inline const Range kWallThickness_m = Range::above(0.0, 5.0);
+/// Openings and anchors: along a wall (their fit on the wall is checked separately).
+inline const Range kAlongWall_m = Range::closed(0.0, 200'000.0);
+inline const Range kOpeningWidth_m = Range::above(0.0, 200'000.0);
+/// Sill and head, above the floor's base.
+inline const Range kOpeningHeight_m = Range::closed(0.0, 100.0);
+/// Floor-to-floor height.
+inline const Range kFloorHeight_m = Range::above(0.0, 100.0);
+/// Layer height: printed layers are millimetres to centimetres thick.
+inline const Range kLayerHeight_m = Range::closed(0.001, 1.0);
+
+/// Ids of vertices and walls: 1 to this.
+inline constexpr std::int64_t kMaxId = 999'999'999;
+inline constexpr int kMaxFloors = 500;
+inline constexpr std::size_t kMaxVertices = 200'000;
+inline constexpr std::size_t kMaxWalls = 100'000;
+inline constexpr std::size_t kMaxOpenings = 100'000;
+inline constexpr std::size_t kMaxAnchors = 10'000;  ///< per floor
+/// Layers of a whole building (floors x ceil(height / layer height)).
+inline constexpr long kMaxLayers = 100'000;
+
+}  // namespace ccbuild::floors::limits

@@ -1,0 +1,260 @@
+#include "ccbuild/orchestrator/project.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+
+namespace ccbuild::orchestrator {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The bundled profiles, for a lone plan that names none.
+fs::path bundled(const char* relative) {
+  return fs::path(CCBUILD_CONFIG_DIR) / relative;
+}
+
+// The material used when neither the user nor a building names one and the bundled
+// profile is missing (an installed binary without its config folder).
+floors::MaterialProfile default_material() {
+  floors::MaterialProfile m;
+  m.name = "built-in default mix";
+  m.density_kg_m3 = 2200.0;
+  m.min_layer_interval_s = 180.0;
+  m.max_layer_interval_s = 2400.0;
+  m.strength_curve = {{0.0, 0.005}, {3600.0, 0.08}, {86'400.0, 6.0}, {604'800.0, 20.0}};
+  return m;
+}
+
+}  // namespace
+
+std::vector<fs::path> Project::files_read() const {
+  std::vector<fs::path> out = building.files_read;
+  if (machine) out.insert(out.end(), machine->files_read.begin(), machine->files_read.end());
+  if (!material.source_file.empty()) out.emplace_back(material.source_file);
+  if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+  return out;
+}
+
+std::string Project::length(double value_m, int decimals) const {
+  return floors::length_text(value_m, building.units, decimals);
+}
+
+Project open_project(const fs::path& file, const ProjectOptions& options) {
+  Project project;
+  project.file = file;
+  floors::BuildingOrPlan input = floors::load_building_or_plan(file, options.plan_unit);
+  project.is_building = input.is_building;
+  if (input.is_building) {
+    project.building = std::move(input.building);
+  } else {
+    project.building =
+        floors::building_from_plan(std::move(input.plan), file.stem().string(),
+                                   options.plan_floor_height_m, options.plan_layer_height_m);
+  }
+  const floors::Building& b = project.building;
+
+  fs::path machine_path = options.machine_profile;
+  std::string machine_why = "(--machine)";
+  if (machine_path.empty() && project.is_building) {
+    machine_path = b.machine_profile;
+    machine_why = "(the building's)";
+  }
+  if (machine_path.empty()) {
+    machine_path = bundled("machines/cc-gantry.yaml");
+    machine_why = "(bundled default)";
+  }
+  std::error_code ec;
+  if (options.machine_profile.empty() && !project.is_building && !fs::exists(machine_path, ec)) {
+    project.machine =
+        std::make_shared<const machine::MachineModel>(machine::MachineModel::defaults());
+    project.machine_origin = "built-in defaults";
+  } else {
+    project.machine =
+        std::make_shared<const machine::MachineModel>(machine::load_machine(machine_path));
+    project.machine_origin =
+        project.machine->name + ", " + machine_path.string() + " " + machine_why;
+  }
+
+  fs::path material_path = options.material_profile;
+  std::string material_why = "(--material)";
+  if (material_path.empty() && project.is_building) {
+    material_path = b.material_profile;
+    material_why = "(the building's)";
+  }
+  if (material_path.empty()) {
+    material_path = bundled("materials/standard-mix.yaml");
+    material_why = "(bundled default)";
+  }
+  if (options.material_profile.empty() && !project.is_building && !fs::exists(material_path, ec)) {
+    project.material = default_material();
+    project.material_origin = "built-in defaults";
+  } else {
+    project.material = floors::load_material_profile(material_path);
+    project.material_origin =
+        project.material.name + ", " + material_path.string() + " " + material_why;
+  }
+  check_fit(project);
+  return project;
+}
+
+void check_fit(const Project& project) {
+  const floors::Building& b = project.building;
+  const machine::MachineModel& m = *project.machine;
+  const std::string where = m.source_file.empty() ? std::string("built-in machine") : m.source_file;
+  auto L = [&](double value_m) { return project.length(value_m, 2); };
+  // Footprint against the x and y travel (where the site origin lies is not modelled, so
+  // lengths are compared).
+  Eigen::Vector2d lo(std::numeric_limits<double>::infinity(),
+                     std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  for (const auto& floor : b.floors)
+    for (const auto& v : floor.plan.vertices) {
+      lo = lo.cwiseMin(v.position_m);
+      hi = hi.cwiseMax(v.position_m);
+    }
+  const Eigen::Vector2d extent = (hi - lo).cwiseMax(Eigen::Vector2d::Zero());
+  const double reach_x = m.x.max_m - m.x.min_m, reach_y = m.y.max_m - m.y.min_m;
+  if (extent.x() > reach_x || extent.y() > reach_y)
+    throw InputError(where, 0, "",
+                     "the building is " + L(extent.x()) + " x " + L(extent.y()) +
+                         " but the machine reaches " + L(reach_x) + " x " + L(reach_y) +
+                         " (its x and y joints' ranges)");
+  // Height: the top layer is printed at the top of the building, and the nozzle must
+  // still lift over the walls there.
+  double top_m = 0.0;
+  for (const auto& floor : b.floors)
+    top_m = std::max(top_m, floor.base_elevation_m + floor.height_m);
+  const double reach_z = m.z.max_m - m.z.min_m;
+  if (top_m + m.lift_height_m > reach_z + 1e-9)
+    throw InputError(where, 0, "",
+                     "the building is " + L(top_m) + " tall, and the nozzle lifts " +
+                         L(m.lift_height_m) +
+                         " over its walls, but the machine's z joint reaches " + L(reach_z) +
+                         "; this machine cannot build it");
+  // One pass per wall: a wall thicker than the nozzle lays cannot be printed as planned.
+  DiagnosticSink sink;
+  for (const auto& floor : b.floors)
+    for (const auto& wall : floor.plan.walls) {
+      if (wall.thickness_m && *wall.thickness_m > m.nozzle_width_m + 1e-9)
+        sink.add({wall.source.file, wall.source.line,
+                  wall.source.path.empty() ? "thickness" : wall.source.path + ".thickness",
+                  "wall " + std::to_string(wall.id) + " is " + project.length(*wall.thickness_m) +
+                      " thick, but the nozzle of " + m.name + " lays " +
+                      project.length(m.nozzle_width_m) +
+                      " in one pass and ccbuild plans one pass per wall: draw it as parallel "
+                      "walls a nozzle width apart, or use a machine with a wider nozzle "
+                      "(nozzle_width_m)"});
+    }
+  sink.throw_if_any();
+}
+
+floors::Layer layer_of(const Project& project, int floor, std::optional<int> layer) {
+  const floors::Building& b = project.building;
+  if (floor < 0 || floor >= static_cast<int>(b.floors.size()))
+    throw InputError("", 0, "floor",
+                     "no floor " + std::to_string(floor) + "; " + project.file.string() +
+                         " has floors 0 to " + std::to_string(b.floors.size() - 1));
+  const floors::Floor& f = b.floors[floor];
+  if (!project.is_building && !layer) return floors::plan_as_layer(f.plan);
+  const int count = floors::layer_count(f.height_m, b.layer_height_m);
+  const int k = layer.value_or(0);
+  if (k < 0 || k >= count)
+    throw InputError("", 0, "layer",
+                     "no layer " + std::to_string(k) + "; floor " + std::to_string(floor) +
+                         " has layers 0 to " + std::to_string(count - 1));
+  const double z0 = k * b.layer_height_m;
+  const double z1 = std::min((k + 1) * b.layer_height_m, f.height_m);
+  floors::Layer out = floors::slice_plan_at(f.plan, z0, z1);
+  out.floor_index = f.index;
+  out.index = k;
+  out.z_bottom_m = f.base_elevation_m + z0;
+  out.z_top_m = f.base_elevation_m + z1;
+  return out;
+}
+
+std::vector<DistinctLayer> distinct_layers(const Project& project, std::optional<int> floor,
+                                           std::optional<int> layer) {
+  const floors::Building& b = project.building;
+  if (floor && (*floor < 0 || *floor >= static_cast<int>(b.floors.size())))
+    throw InputError("", 0, "floor",
+                     "no floor " + std::to_string(*floor) + "; " + project.file.string() +
+                         " has floors 0 to " + std::to_string(b.floors.size() - 1));
+  std::vector<DistinctLayer> out;
+  std::map<floors::GeometryKey, std::size_t> index;
+  for (const auto& f : b.floors) {
+    if (floor && f.index != *floor) continue;
+    std::vector<floors::Layer> layers;
+    if (!project.is_building && !layer)
+      layers.push_back(floors::plan_as_layer(f.plan));
+    else
+      layers = floors::slice_floor(f, b.layer_height_m);
+    for (auto& l : layers) {
+      if (layer && l.index != *layer) continue;
+      if (l.segments.empty()) continue;
+      const LayerRef ref{f.index, l.index};
+      floors::GeometryKey key(l);
+      auto [it, fresh] = index.try_emplace(key, out.size());
+      if (fresh) {
+        DistinctLayer d;
+        d.key = std::move(key);
+        d.label = static_cast<int>(out.size()) + 1;
+        d.layer = std::move(l);
+        out.push_back(std::move(d));
+      }
+      out[it->second].where.push_back(ref);
+    }
+  }
+  if (layer && out.empty())
+    throw InputError("", 0, "layer",
+                     "no layer " + std::to_string(*layer) + " with walls on the floors selected");
+  return out;
+}
+
+double LayerPlanResult::layer_time_s() const {
+  if (single) return single->evaluation.layer_time_s;
+  if (multi) return multi->layer_time_s;
+  return 0.0;
+}
+
+double LayerPlanResult::max_idle_s() const {
+  double idle = 0.0;
+  if (single) idle = single->evaluation.max_idle_s;
+  if (multi)
+    for (const auto& stage : multi->stages)
+      for (const auto& n : stage.nozzles) idle = std::max(idle, n.evaluation.max_idle_s);
+  return idle;
+}
+
+int LayerPlanResult::idle_limit_violations() const {
+  int count = 0;
+  if (single) count = single->evaluation.idle_limit_violations;
+  if (multi)
+    for (const auto& stage : multi->stages)
+      for (const auto& n : stage.nozzles) count += n.evaluation.idle_limit_violations;
+  return count;
+}
+
+LayerPlanResult plan_layer(const Project& project, const floors::Layer& layer,
+                           const LayerPlanRequest& request) {
+  LayerPlanResult out;
+  out.nozzles = request.nozzles;
+  if (request.nozzles < 1)
+    throw InputError("", 0, "MultiNozzleOptions::nozzles", "must be at least 1");
+  if (request.nozzles == 1) {
+    out.single = planner::plan_layer(layer, *project.machine, request.planning);
+    out.status = planner::PlanStatus::solved();
+    return out;
+  }
+  planner::MultiNozzleOptions multi = request.multi;
+  multi.nozzles = request.nozzles;
+  out.multi = planner::plan_layer_multi(layer, *project.machine, multi);
+  out.status = out.multi->status;
+  return out;
+}
+
+}  // namespace ccbuild::orchestrator
