@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -280,6 +281,14 @@ std::string index_path(const std::string& parent, std::size_t index) {
   return parent + "[" + std::to_string(index) + "]";
 }
 
+namespace {
+std::atomic<std::size_t> files_read{0};
+}  // namespace
+
+std::size_t text_files_read() {
+  return files_read.load();
+}
+
 std::string read_text_file(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -301,17 +310,21 @@ std::string read_text_file(const std::filesystem::path& path) {
                          std::to_string(limits::kMaxInputFileBytes / (1024 * 1024)) + " MiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "", "cannot open file (permissions?)");
+  // In chunks, never past the limit even if the file grows while it is read.
   std::string text;
-  text.resize(static_cast<std::size_t>(limits::kMaxInputFileBytes) + 1);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!ec) text.reserve(static_cast<std::size_t>(size));
+  char chunk[64 * 1024];
+  while (in && text.size() <= limits::kMaxInputFileBytes) {
+    in.read(chunk, sizeof chunk);
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+  }
   if (in.bad()) throw InputError(path.string(), 0, "", "cannot read file");
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  // The file may have grown since it was measured.
   if (text.size() > limits::kMaxInputFileBytes)
     throw InputError(path.string(), 0, "",
                      "is larger than " +
                          std::to_string(limits::kMaxInputFileBytes / (1024 * 1024)) +
                          " MiB, the most ccbuild reads");
+  ++files_read;
   return text;
 }
 

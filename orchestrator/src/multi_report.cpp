@@ -194,7 +194,9 @@ std::string multi_plan_svg(const ReportContext& context, const floors::Layer& la
         const auto a = n.layer.start_m(seg), b = n.layer.end_m(seg);
         detail::wall_label(doc, view, a, b, signed_step(n.layer, {n.sequence[k].segment, false}),
                            "#444", font);
-        detail::wall_label(doc, view, b, a, "#" + std::to_string(k + 1), c, font * 0.9);
+        std::string order = "#";  // built so ("#" + number trips a GCC 12 false warning)
+        order += std::to_string(k + 1);
+        detail::wall_label(doc, view, b, a, order, c, font * 0.9);
       }
       doc.raw("</g>\n");
       // Air moves: where the waypoints do not extrude.
@@ -217,12 +219,25 @@ std::string multi_plan_svg(const ReportContext& context, const floors::Layer& la
       }
     }
   }
-  for (int k = 0; k < options.nozzles; ++k)
-    legend.push_back({"line", colour(k), "nozzle " + std::to_string(k + 1)});
-  legend.push_back({"band", colour(0), "its section"});
-  legend.push_back({"dashed", "#555", "air move"});
-  legend.push_back({"dot", "#555", "start"});
-  legend.push_back({"line", "#d0d0d0", "wall (arrow: direction; 12 = wall id, #3 = 3rd built)"});
+  if (solved) {
+    for (int k = 0; k < options.nozzles; ++k)
+      legend.push_back({"line", colour(k), "nozzle " + std::to_string(k + 1)});
+    legend.push_back({"band", colour(0), "its section"});
+    legend.push_back({"dashed", "#555", "air move"});
+    legend.push_back({"dot", "#555", "start"});
+    legend.push_back({"line", "#d0d0d0", "wall (arrow: direction; 12 = wall id, #3 = 3rd built)"});
+  } else {
+    // No paths to draw: the walls with their ids, and (below) why there is no plan.
+    doc.raw("<g class=\"wall-ids\">\n");
+    for (std::size_t s = 0; s < layer.segments.size(); ++s) {
+      const auto& seg = layer.segments[s];
+      detail::wall_label(doc, view, layer.start_m(seg), layer.end_m(seg),
+                         signed_step(layer, {static_cast<int>(s), false}), "#444", font);
+    }
+    doc.raw("</g>\n");
+    legend.push_back({"line", "#d0d0d0", "wall to build (12 = wall id, 12:2 = its 2nd piece)"});
+    legend.push_back({"line", "#d62728", "no collision-free plan: the methods' reasons below the plan"});
+  }
   detail::draw_scale_bar(doc, view, margin_left, plan_bottom + 46.0, context.unit);
 
   double y = plan_bottom + 72.0;

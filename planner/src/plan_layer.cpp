@@ -50,6 +50,18 @@ std::string to_string(StopReason reason) {
   return "?";
 }
 
+Sequence map_sequence(const Sequence& sequence, const std::vector<floors::SegmentMatch>& matches) {
+  Sequence out;
+  out.reserve(sequence.size());
+  for (const Step& step : sequence) {
+    CCBUILD_CHECK(step.segment >= 0 && step.segment < static_cast<int>(matches.size()),
+                  "a mapped step names a segment of the planned layer");
+    const floors::SegmentMatch& m = matches[step.segment];
+    out.push_back({m.segment, step.reversed != m.reversed});
+  }
+  return out;
+}
+
 double LayerPlan::gap() const {
   const double airtime = evaluation.airtime_distance_m;
   if (lower_bound_m <= 1e-12)

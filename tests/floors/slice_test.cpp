@@ -44,6 +44,12 @@ TEST(Slice, LayerCountIsCeilingOfHeightOverLayerHeight) {
   EXPECT_EQ(layer_count(3.0, 0.7), 5);
   EXPECT_EQ(layer_count(0.2, 0.5), 1);
   EXPECT_EQ(layer_count(10 * 0.3048, 0.4 * 0.3048), 25);
+  // 2.7 / 0.03 is 90.00000000000001 in floating point: still 90 layers, and a hair more
+  // than a whole number of layers is one more.
+  EXPECT_EQ(layer_count(2.7, 0.03), 90);
+  EXPECT_EQ(layer_count(2.7 + 1e-6, 0.03), 91);
+  EXPECT_EQ(layer_count(0.03, 0.03), 1);
+  EXPECT_EQ(layer_count(0.029, 0.03), 1);
 }
 
 TEST(Slice, DoorAndWindowCutTheRightLayers) {

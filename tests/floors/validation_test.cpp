@@ -2,6 +2,10 @@
 // field) and say what was expected.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/plan.hpp"
@@ -151,6 +155,103 @@ TEST(Validation, OpeningAboveTheFloorIsNamedInThePlanFile) {
   EXPECT_EQ(e.first().line, 20);
   EXPECT_TRUE(contains(e.what(), "floor 'low'"));
   EXPECT_TRUE(contains(e.what(), "is above the floor height (2.000 m)"));
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
+
+namespace ccbuild::floors {
+namespace {
+using testing::contains;
+using testing::expect_input_error;
+
+// A plan of one 6 m wall along x, with one opening, in metres.
+FloorPlan one_wall(double offset, double width, double sill, double head) {
+  FloorPlan plan;
+  plan.vertices = {{1, {0.0, 0.0}, {}}, {2, {6.0, 0.0}, {}}};
+  plan.walls = {{1, 1, 2, std::nullopt, {}}};
+  plan.openings = {{"W", 1, offset, width, sill, head, {}}};
+  return plan;
+}
+
+TEST(Boundaries, OpeningsAtTheirLimits) {
+  // Exactly as long as the wall from its offset: fits.
+  EXPECT_NO_THROW(validate_plan(one_wall(5.0, 1.0, 0.9, 2.1), 3.0));
+  // A millimetre more does not.
+  EXPECT_TRUE(
+      contains(expect_input_error([] { validate_plan(one_wall(5.001, 1.0, 0.9, 2.1)); }).what(),
+               "does not fit on its wall"));
+  // Sill equal to head is an opening of no height: refused, as is sill above head.
+  EXPECT_TRUE(
+      contains(expect_input_error([] { validate_plan(one_wall(1.0, 1.0, 1.2, 1.2)); }).what(),
+               "sill (1.200 m) must be below head (1.200 m)"));
+  EXPECT_NO_THROW(validate_plan(one_wall(1.0, 1.0, 1.2, 1.2 + 1e-3)));
+  // Head exactly at the floor height fits under it; above does not.
+  EXPECT_NO_THROW(validate_plan(one_wall(1.0, 1.0, 0.0, 3.0), 3.0));
+  EXPECT_TRUE(contains(
+      expect_input_error([] { validate_plan(one_wall(1.0, 1.0, 0.0, 3.001), 3.0); }).what(),
+      "is above the floor height"));
+}
+
+TEST(Boundaries, RangesIncludeTheirEndsAndNoMore) {
+  const FloorPlan plan = one_wall(1.0, 1.0, 0.9, 2.1);
+  // Layer heights from 1 mm to 1 m, floors above 0 up to 100 m.
+  EXPECT_NO_THROW(building_from_plan(plan, "p", 3.0, 0.001));
+  EXPECT_NO_THROW(building_from_plan(plan, "p", 3.0, 1.0));
+  const InputError thin = expect_input_error([&] { building_from_plan(plan, "p", 3.0, 0.000999); });
+  EXPECT_EQ(thin.first().field, "layer_height");
+  EXPECT_TRUE(contains(thin.what(), "must be from 0.001 to 1 m, got 0.000999 m"));
+  EXPECT_EQ(expect_input_error([&] { building_from_plan(plan, "p", 3.0, 1.0001); }).first().field,
+            "layer_height");
+  EXPECT_NO_THROW(building_from_plan(plan, "p", 100.0, 1.0));
+  EXPECT_EQ(expect_input_error([&] { building_from_plan(plan, "p", 100.001, 1.0); }).first().field,
+            "floor_height");
+  // A feet plan hears its ranges in feet.
+  FloorPlan feet = plan;
+  feet.units = LengthUnit::kFoot;
+  EXPECT_TRUE(contains(expect_input_error([&] { building_from_plan(feet, "p", 3.0, 1e-4); }).what(),
+                       "must be from 0.003281 to 3.28084 ft, got 0.000328 ft"));
+  // The layer budget: 100,000 layers are planned, one more is refused.
+  EXPECT_NO_THROW(building_from_plan(plan, "p", 100.0, 0.001));  // exactly 100,000 layers
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_budget_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  auto building = [&](double second_floor_m) {
+    const std::string config = testing::source_path("config").string();
+    std::ofstream(dir / "b.yaml") << "units: m\nlayer_height: 0.001\nmaterial: " << config
+                                  << "/materials/standard-mix.yaml\nmachine: " << config
+                                  << "/machines/cc-gantry.yaml\nfloors:\n  - {height: 50, plan: "
+                                  << testing::data("plans/cottage.yaml")
+                                  << "}\n  - {height: " << second_floor_m
+                                  << ", plan: " << testing::data("plans/cottage.yaml") << "}\n";
+    return (dir / "b.yaml").string();
+  };
+  EXPECT_NO_THROW(load_building(building(50.0)));
+  const InputError over = expect_input_error([&] { load_building(building(50.001)); });
+  EXPECT_TRUE(contains(over.what(), "100001 layers of 0.001 m make this building")) << over.what();
+  EXPECT_EQ(over.first().field, "layer_height");
+  EXPECT_EQ(over.first().line, 2);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Boundaries, CoordinatesAndIdsAtTheirLimits) {
+  auto table = [](const std::string& x, const std::string& id) {
+    return "vertices\n" + id + " 0 0\n2 " + x + " 0\nwalls\n1 " + id + " 2\n";
+  };
+  EXPECT_NO_THROW(validate_plan(parse_plan_table(table("100000", "1"), "t", LengthUnit::kMeter)));
+  EXPECT_TRUE(contains(expect_input_error([&] {
+                         parse_plan_table(table("100000.001", "1"), "t", LengthUnit::kMeter);
+                       }).what(),
+                       "must be from -100000 to 100000 m, got 100000.001 m"));
+  EXPECT_NO_THROW(parse_plan_table(table("5", "999999999"), "t", LengthUnit::kMeter));
+  EXPECT_TRUE(contains(expect_input_error([&] {
+                         parse_plan_table(table("5", "1000000000"), "t", LengthUnit::kMeter);
+                       }).what(),
+                       "ids are 1 to 999999999"));
+  EXPECT_TRUE(contains(expect_input_error([&] {
+                         parse_plan_table(table("5", "0"), "t", LengthUnit::kMeter);
+                       }).what(),
+                       "expected a positive integer id, got '0'"));
 }
 
 }  // namespace

@@ -123,6 +123,34 @@ TEST(CostModel, TouchingAtTheMovesOwnEndsIsNotCrossing) {
       line_model.evaluate({{0, true}, {1, false}}, PathSpec::open_from({4, 0})).moves[1].lifted);
 }
 
+TEST(CostModel, ArrivingAtABuiltWallsEndIsNotCrossing) {
+  // A: (0,0) -> (4,0), built first. B: (8,3) -> (8,6). C starts where A ends, at (4,0).
+  // The move from B's end (8,6) to C's start (4,0) touches the built wall A only at its
+  // own arrival point: not lifted, in either metric (rectilinear: (8,6) -> (4,6) ->
+  // (4,0), its second leg arriving at A's end).
+  const auto layer = layer_from_walls({{0, 0, 4, 0}, {8, 3, 8, 6}, {4, 0, 4, -3}});
+  for (Metric metric : {Metric::kEuclidean, Metric::kRectilinear}) {
+    const CostModel model(layer, simple_machine(), metric);
+    const Evaluation e =
+        model.evaluate({{0, false}, {1, false}, {2, false}}, PathSpec::open_from({0, 0}));
+    ASSERT_EQ(e.moves.size(), 3u);
+    EXPECT_FALSE(e.moves[1].lifted) << to_string(metric);  // departs from A's end
+    EXPECT_FALSE(e.moves[2].lifted) << to_string(metric);  // arrives at A's end
+    EXPECT_EQ(e.lift_count, 0);
+  }
+  // Passing through a built wall's end on the way is touching it: lifted.
+  const auto through = layer_from_walls({{0, 0, 4, 0}, {4, 2, 6, 2}, {4, -2, 6, -2}});
+  const CostModel model(through, simple_machine(), Metric::kEuclidean);
+  const Evaluation e =
+      model.evaluate({{0, false}, {1, false}, {2, true}}, PathSpec::open_from({0, 0}));
+  // (6,2) -> (6,-2) does not touch A; build C reversed so the move is (6,2) -> (6,-2).
+  EXPECT_FALSE(e.moves[2].lifted);
+  const Evaluation via =
+      model.evaluate({{0, false}, {1, true}, {2, false}}, PathSpec::open_from({0, 0}));
+  // (4,2) -> (4,-2) runs through (4,0), where A ends.
+  EXPECT_TRUE(via.moves[2].lifted);
+}
+
 TEST(CostModel, ClosingMoveReturnsAndUnwinds) {
   // Square walked anticlockwise and closed: the nozzle has turned +270 degrees over the
   // three corners, then must come back to its first heading: -270 degrees at the close.

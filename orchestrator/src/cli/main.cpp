@@ -12,6 +12,7 @@
 #include <exception>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "ccbuild/common/input_error.hpp"
 #include "cli_common.hpp"
@@ -49,32 +50,32 @@ std::string closest(const std::string& word, const std::vector<std::string>& nam
   return best;
 }
 
-// "did you mean" for words CLI11 did not expect: flags against the options of the
-// command in use, other words against the commands.
-std::string suggestion(const CLI::App& app, const std::string& message) {
+// "did you mean" for what CLI11 did not take: flags against the options of the command
+// in use, a first word against the commands.
+std::string suggestion(const CLI::App& app, const std::string& message, int argc, char** argv) {
+  const CLI::App* command = &app;
+  for (const CLI::App* sub : app.get_subcommands()) command = sub;
+  std::vector<std::string> commands;
+  for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+  if (command == &app) {
+    if (argc < 2 || argv[1][0] == '-') return "";
+    const std::string best = closest(argv[1], commands);
+    if (!best.empty()) return "did you mean '" + best + "'?";
+    std::string list;
+    for (const auto& n : commands) list += (list.empty() ? "" : ", ") + n;
+    return "the commands are: " + list;
+  }
   const std::string marker = "not expected: ";
   const auto at = message.find(marker);
   if (at == std::string::npos) return "";
   std::istringstream words(message.substr(at + marker.size()));
-  std::string word;
-  words >> word;
-  const CLI::App* command = &app;
-  for (const CLI::App* sub : app.get_subcommands()) command = sub;
   std::vector<std::string> names;
-  if (!word.empty() && word[0] == '-') {
-    const std::string flag = word.substr(0, word.find('='));
-    for (const CLI::Option* o : command->get_options())
-      for (const auto& n : o->get_lnames()) names.push_back("--" + n);
-    const std::string best = closest(flag, names);
-    return best.empty() ? "" : "did you mean '" + best + "'?";
-  }
-  if (command == &app) {
-    for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
-    const std::string best = closest(word, names);
+  for (const CLI::Option* o : command->get_options())
+    for (const auto& n : o->get_lnames()) names.push_back("--" + n);
+  for (std::string word; words >> word;) {
+    if (word.size() < 2 || word[0] != '-') continue;
+    const std::string best = closest(word.substr(0, word.find('=')), names);
     if (!best.empty()) return "did you mean '" + best + "'?";
-    std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    return "the commands are: " + list;
   }
   return "";
 }
@@ -162,7 +163,7 @@ int main(int argc, char** argv) {
       return kExitOk;
     }
     std::string message = error.what();
-    const std::string hint = suggestion(app, message);
+    const std::string hint = suggestion(app, message, argc, argv);
     std::cerr << "ccbuild: error: " << message << (hint.empty() ? "" : "; " + hint) << "\n"
               << "Run 'ccbuild --help' or 'ccbuild COMMAND --help' for usage.\n";
     if (json)

@@ -40,8 +40,12 @@ Document parse_json(const std::string& text, const std::string& file);
 /// Reads a file and parses it as JSON when it ends in `.json`, else as YAML. Throws
 /// InputError when the file cannot be read or does not parse.
 Document load_document(const std::filesystem::path& path);
-/// Reads a whole file. Throws InputError naming the file when it cannot be read.
+/// Reads a whole file. Throws InputError naming the file when it cannot be read, is not a
+/// regular file (a FIFO, a device), or is larger than limits::kMaxInputFileBytes.
 std::string read_text_file(const std::filesystem::path& path);
+/// How many files read_text_file has read in this process: lets tests prove that each
+/// input file is read once.
+std::size_t text_files_read();
 
 /// A view of one node with its path in the document, for typed, validated reads. All
 /// accessors throw InputError naming file, line and path, and saying what was expected.

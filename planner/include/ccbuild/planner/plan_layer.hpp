@@ -71,6 +71,12 @@ struct LayerPlan {
   double gap() const;
 };
 
+/// A sequence planned on one layer, replayed on another layer of the same geometry:
+/// `matches` from floors::match_segments(planned layer, other layer). Each step goes to
+/// the matching segment, in the direction that visits the same points in the same order,
+/// so the replay costs exactly what the plan did.
+Sequence map_sequence(const Sequence& sequence, const std::vector<floors::SegmentMatch>& matches);
+
 /// Plans a layer, within `options.time_limit_s` for the whole call. Throws InputError,
 /// naming the PlanOptions or PathSpec field, for options that do not fit the layer (exact
 /// on a large layer, a first wall that is not in it, a non-positive time limit), and for

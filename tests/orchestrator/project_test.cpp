@@ -1,0 +1,129 @@
+// The building-level API: every file read once, the machine and material resolved the
+// same way for every command, the fit checks at their boundaries, distinct layers.
+
+#include "ccbuild/orchestrator/project.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "ccbuild/common/document.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::orchestrator {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+using testing::expect_input_error;
+
+TEST(Project, EveryFileIsReadOnce) {
+  const std::size_t before = text_files_read();
+  const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
+  // house.yaml, its two plans, the material, the machine profile and its URDF.
+  EXPECT_EQ(text_files_read() - before, 6u);
+  const auto files = house.files_read();
+  std::set<std::string> names;
+  for (const auto& f : files) names.insert(f.filename().string());
+  EXPECT_EQ(names,
+            (std::set<std::string>{"house.yaml", "ground.yaml", "upper.json", "standard-mix.yaml",
+                                   "cc-gantry.yaml", "cc_gantry.urdf"}));
+  // A plan shared by two floors is read once too.
+  const std::size_t again = text_files_read();
+  open_project(testing::data("buildings/cottage.yaml"));
+  EXPECT_EQ(text_files_read() - again, 5u);
+}
+
+TEST(Project, ALonePlanGetsTheBundledMachineAndMaterial) {
+  const Project plan = open_project(testing::data("plans/cottage.yaml"));
+  EXPECT_FALSE(plan.is_building);
+  EXPECT_EQ(plan.machine_model().name, "CC gantry, single nozzle");
+  EXPECT_TRUE(contains(plan.machine_origin, "(bundled default)"));
+  EXPECT_EQ(plan.material.name, "Standard CC mix");
+  // The same machine a building names: the same numbers in every command.
+  const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
+  EXPECT_EQ(plan.machine_model().travel_speed_m_s, house.machine_model().travel_speed_m_s);
+  EXPECT_EQ(plan.machine_model().x.max_m, house.machine_model().x.max_m);
+  // Overrides win, and a broken material fails every command that opens the file.
+  ProjectOptions o;
+  o.material_profile = testing::data("hostile/absurd_material.yaml");
+  EXPECT_TRUE(contains(
+      expect_input_error([&] { open_project(testing::data("plans/cottage.yaml"), o); }).what(),
+      "strength_mpa"));
+}
+
+// A one-wall plan `length` long along x, `height` m tall, on a tiny machine.
+std::string fit_case(const fs::path& dir, double length_m, double floor_m, double thickness_m) {
+  std::ofstream(dir / "plan.yaml")
+      << "units: m\nvertices:\n  - {id: 1, x: 0, y: 0}\n  - {id: 2, x: " << length_m
+      << ", y: 0}\nwalls:\n  - {id: 1, start: 1, end: 2, "
+      << "thickness: " << thickness_m << "}\n";
+  std::ofstream(dir / "b.yaml")
+      << "units: m\nlayer_height: 0.5\nmaterial: "
+      << testing::source_path("config/materials/standard-mix.yaml").string()
+      << "\nmachine: " << testing::data("machines/tiny_gantry.yaml")
+      << "\nfloors:\n  - {height: " << floor_m << ", plan: plan.yaml}\n";
+  return (dir / "b.yaml").string();
+}
+
+TEST(Project, TheMachineMustReachEveryWallAndTheTop) {
+  // tiny_gantry: 5 m of x travel, z 0..18 m, lifts 0.15 m, nozzle 0.15 m.
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_fit_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  EXPECT_NO_THROW(open_project(fit_case(dir, 5.0, 3.0, 0.15)));  // equal to the reach: fits
+  EXPECT_TRUE(
+      contains(expect_input_error([&] { open_project(fit_case(dir, 5.001, 3.0, 0.15)); }).what(),
+               "the building is 5.00 m x 0.00 m but the machine reaches 5.00 m"));
+  EXPECT_NO_THROW(open_project(fit_case(dir, 5.0, 17.85, 0.15)));  // 17.85 + 0.15 lift = 18
+  EXPECT_TRUE(
+      contains(expect_input_error([&] { open_project(fit_case(dir, 5.0, 17.86, 0.15)); }).what(),
+               "machine's z joint reaches 18.00 m"));
+  const InputError thick =
+      expect_input_error([&] { open_project(fit_case(dir, 5.0, 3.0, 0.151)); });
+  EXPECT_TRUE(contains(thick.what(), "wall 1 is 0.151 m thick"));
+  EXPECT_EQ(thick.first().field, "walls[0].thickness");
+  EXPECT_EQ(thick.first().line, 6);
+  fs::remove_all(dir);
+}
+
+TEST(Project, DistinctLayersAreProvenEqualAndCoverTheBuilding) {
+  const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
+  const auto distinct = distinct_layers(house);
+  EXPECT_EQ(distinct.size(), 6u);
+  int layers = 0;
+  for (const auto& d : distinct) {
+    layers += static_cast<int>(d.where.size());
+    for (const auto& ref : d.where) {
+      const auto layer = layer_of(house, ref.floor, ref.layer);
+      EXPECT_EQ(floors::GeometryKey(layer), d.key);
+      EXPECT_TRUE(floors::match_segments(d.layer, layer));
+    }
+  }
+  EXPECT_EQ(layers, 60);
+  EXPECT_EQ(expect_input_error([&] { layer_of(house, 2, 0); }).first().field, "floor");
+  EXPECT_EQ(expect_input_error([&] { layer_of(house, 1, 30); }).first().field, "layer");
+  EXPECT_NO_THROW(layer_of(house, 1, 29));
+}
+
+TEST(Project, PlansALayerWithOneNozzleOrSeveral) {
+  const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
+  const floors::Layer layer = layer_of(house, 0, 12);
+  LayerPlanRequest one;
+  one.planning.max_kicks = 100;
+  const LayerPlanResult single = plan_layer(house, layer, one);
+  ASSERT_TRUE(single.single);
+  EXPECT_TRUE(single.status);
+  LayerPlanRequest two = one;
+  two.nozzles = 2;
+  two.multi.gantry_width_m = 1.5;
+  two.multi.planning = one.planning;
+  const LayerPlanResult multi = plan_layer(house, layer, two);
+  ASSERT_TRUE(multi.multi);
+  EXPECT_EQ(static_cast<bool>(multi.status), static_cast<bool>(multi.multi->status));
+  if (multi.status) EXPECT_LT(multi.layer_time_s(), single.layer_time_s());
+}
+
+}  // namespace
+}  // namespace ccbuild::orchestrator
