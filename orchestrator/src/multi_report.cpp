@@ -236,7 +236,8 @@ std::string multi_plan_svg(const ReportContext& context, const floors::Layer& la
     }
     doc.raw("</g>\n");
     legend.push_back({"line", "#d0d0d0", "wall to build (12 = wall id, 12:2 = its 2nd piece)"});
-    legend.push_back({"line", "#d62728", "no collision-free plan: the methods' reasons below the plan"});
+    legend.push_back(
+        {"line", "#d62728", "no collision-free plan: the methods' reasons below the plan"});
   }
   detail::draw_scale_bar(doc, view, margin_left, plan_bottom + 46.0, context.unit);
 

@@ -256,3 +256,35 @@ TEST(Boundaries, CoordinatesAndIdsAtTheirLimits) {
 
 }  // namespace
 }  // namespace ccbuild::floors
+
+namespace ccbuild::floors {
+namespace {
+
+TEST(Boundaries, AnchorsFromOneEndOfTheirWallToTheOther) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_anchor_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  auto building = [&](const std::string& offset) {
+    const std::string config = testing::source_path("config").string();
+    std::ofstream(dir / "b.yaml")
+        << "units: m\nlayer_height: 0.5\nmaterial: " << config
+        << "/materials/standard-mix.yaml\nmachine: " << config
+        << "/machines/cc-gantry.yaml\nfloors:\n  - height: 3\n    plan:\n      vertices: [{id: 1, "
+           "x: 0, y: 0}, {id: 2, x: 6, y: 0}]\n      walls: [{id: 1, start: 1, end: 2}]\n    "
+           "anchors: [{id: A1, wall: 1, offset: "
+        << offset << "}]\n";
+    return (dir / "b.yaml").string();
+  };
+  EXPECT_NO_THROW(load_building(building("0")));
+  EXPECT_NO_THROW(load_building(building("6")));  // at the wall's end vertex
+  const InputError past = testing::expect_input_error([&] { load_building(building("6.001")); });
+  EXPECT_TRUE(testing::contains(past.what(), "offset 6.001 m is off wall 1 (length 6.000 m)"));
+  EXPECT_EQ(past.first().field, "floors[0].anchors[0].offset");
+  EXPECT_TRUE(testing::contains(
+      testing::expect_input_error([&] { load_building(building("-0.001")); }).what(),
+      "must be from 0 to 200000 m"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
