@@ -242,21 +242,6 @@ class JsonBuilder : public nlohmann::json_sax<nlohmann::json> {
 };
 
 // -------------------------------------------------------------- helpers ------------
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string describe(const DocNode& node) {
   switch (node.kind) {
     case DocNode::Kind::kNull:
@@ -477,15 +462,7 @@ void MapReader::reject_unknown() const {
   for (const auto& [name, value] : field_.node().entries) {
     if (std::find(allowed_.begin(), allowed_.end(), name) != allowed_.end()) continue;
     std::string message = "unknown key '" + name + "'";
-    std::string best;
-    std::size_t best_distance = 3;  // suggest only near misses
-    for (const auto& candidate : allowed_) {
-      const std::size_t d = edit_distance(name, candidate);
-      if (d < best_distance) {
-        best_distance = d;
-        best = candidate;
-      }
-    }
+    const std::string best = nearest_word(name, allowed_, 3);  // only near misses
     if (!best.empty()) message += "; did you mean '" + best + "'?";
     std::string list;
     for (const auto& candidate : allowed_) list += (list.empty() ? "" : ", ") + candidate;

@@ -58,18 +58,19 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
   }
   const floors::Building& b = project.building;
 
-  fs::path machine_path = options.machine_profile;
-  std::string machine_why = "(--machine)";
-  if (machine_path.empty() && project.is_building) {
-    machine_path = b.machine_profile;
-    machine_why = "(the building's)";
-  }
-  if (machine_path.empty()) {
-    machine_path = bundled("machines/cc-gantry.yaml");
-    machine_why = "(bundled default)";
-  }
+  // --machine, else the building's, else the bundled profile (else built-in defaults
+  // when an installed binary has no config folder).
+  const auto pick = [&](const fs::path& given, const fs::path& buildings, const char* bundled_file,
+                        const char* flag) {
+    if (!given.empty())
+      return std::pair<fs::path, std::string>(given, std::string("(") + flag + ")");
+    if (project.is_building) return std::pair<fs::path, std::string>(buildings, "(the building's)");
+    return std::pair<fs::path, std::string>(bundled(bundled_file), "(bundled default)");
+  };
   std::error_code ec;
-  if (options.machine_profile.empty() && !project.is_building && !fs::exists(machine_path, ec)) {
+  const auto [machine_path, machine_why] =
+      pick(options.machine_profile, b.machine_profile, "machines/cc-gantry.yaml", "--machine");
+  if (machine_why == "(bundled default)" && !fs::exists(machine_path, ec)) {
     project.machine =
         std::make_shared<const machine::MachineModel>(machine::MachineModel::defaults());
     project.machine_origin = "built-in defaults";
@@ -79,18 +80,9 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     project.machine_origin =
         project.machine->name + ", " + machine_path.string() + " " + machine_why;
   }
-
-  fs::path material_path = options.material_profile;
-  std::string material_why = "(--material)";
-  if (material_path.empty() && project.is_building) {
-    material_path = b.material_profile;
-    material_why = "(the building's)";
-  }
-  if (material_path.empty()) {
-    material_path = bundled("materials/standard-mix.yaml");
-    material_why = "(bundled default)";
-  }
-  if (options.material_profile.empty() && !project.is_building && !fs::exists(material_path, ec)) {
+  const auto [material_path, material_why] = pick(options.material_profile, b.material_profile,
+                                                  "materials/standard-mix.yaml", "--material");
+  if (material_why == "(bundled default)" && !fs::exists(material_path, ec)) {
     project.material = default_material();
     project.material_origin = "built-in defaults";
   } else {

@@ -1,6 +1,7 @@
 #include "ccbuild/planner/timeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -125,13 +126,16 @@ void walk_path(const CostModel& model, const Sequence& sequence, const PathSpec&
       if (!turning) return heading0 + (turned_s > 0.0 ? m.rotation_rad : 0.0);
       return heading0 + m.rotation_rad * std::min(1.0, s / m.rotation_s);
     };
-    std::vector<std::pair<double, bool>> breaks;  // (time into the motion, position break)
-    if (two_legs) breaks.emplace_back(corner_s, true);
-    if (turning && m.rotation_s < motion) breaks.emplace_back(m.rotation_s, false);
-    breaks.emplace_back(motion, true);
-    std::sort(breaks.begin(), breaks.end());
+    // (time into the motion, position break): at most three, no allocation per move.
+    std::array<std::pair<double, bool>, 3> breaks;
+    std::size_t count = 0;
+    if (two_legs) breaks[count++] = {corner_s, true};
+    if (turning && m.rotation_s < motion) breaks[count++] = {m.rotation_s, false};
+    breaks[count++] = {motion, true};
+    std::sort(breaks.begin(), breaks.begin() + count);
     double done = 0.0;
-    for (const auto& [s, position_break] : breaks) {
+    for (std::size_t b = 0; b < count; ++b) {
+      const auto [s, position_break] = breaks[b];
       if (s <= done && s < motion) continue;
       at.position_m = position_at(s);
       at.heading_rad = heading_at(s);

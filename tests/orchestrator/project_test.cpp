@@ -122,7 +122,9 @@ TEST(Project, PlansALayerWithOneNozzleOrSeveral) {
   const LayerPlanResult multi = plan_layer(house, layer, two);
   ASSERT_TRUE(multi.multi);
   EXPECT_EQ(static_cast<bool>(multi.status), static_cast<bool>(multi.multi->status));
-  if (multi.status) EXPECT_LT(multi.layer_time_s(), single.layer_time_s());
+  if (multi.status) {
+    EXPECT_LT(multi.layer_time_s(), single.layer_time_s());
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <limits>
 
 #include "layouts.hpp"
@@ -535,6 +536,34 @@ TEST(MultiNozzle, GantriesFitOnlyWithRoomToSpare) {
   EXPECT_EQ(rails.first().field, "MultiNozzleOptions::nozzles");
   w.gantry_width_m = 50.0 / 15.0 - 1e-6;
   EXPECT_NO_THROW(plan_layer_multi(layer, machine, w));
+}
+
+}  // namespace
+}  // namespace ccbuild::planner
+
+namespace ccbuild::planner {
+namespace {
+
+TEST(MultiNozzle, TheTimeLimitHoldsOnLargeLayers) {
+  // 7,000 wall pieces with two nozzles once took 8 s under a 2 s limit. The limit bounds
+  // the whole call: once it passes, what is left is cut short and the answer says so.
+  // (A generous margin: this checks the contract, not the machine's speed.)
+  const floors::Layer layer =
+      floors::slice_plan_at(floors::generate_plan_with_segments(7000, 1), 1.0, 2.0);
+  auto machine = machine::MachineModel::defaults();
+  machine.x.max_m = machine.y.max_m = 1000.0;
+  MultiNozzleOptions o;
+  o.nozzles = 2;
+  o.gantry_width_m = 1.5;
+  o.planning.time_limit_s = 1.0;
+  const auto began = std::chrono::steady_clock::now();
+  const MultiNozzlePlan plan = plan_layer_multi(layer, machine, o);
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  EXPECT_LT(took_s, o.planning.time_limit_s + 2.0) << plan.status.to_string();
+  if (!plan.status) {
+    EXPECT_EQ(plan.status.code(), PlanStatus::Code::kTimeLimit);
+  }
 }
 
 }  // namespace

@@ -207,6 +207,37 @@ TEST(Seams, WaypointsAreCompleteAndWithinTheMachine) {
   }
 }
 
+TEST(Seams, WaypointsRiseOverBuiltWallsAndOnlyThere) {
+  // Wall 0 runs across the middle; building it first makes the move from wall 1 to wall 2
+  // cross it (see CostModel.LiftOnlyOverWallsAlreadyBuilt): the nozzle rises by the lift
+  // height for that move alone, at the z axis's speed, and comes back down.
+  const auto layer = testing::layer_from_walls({{0, 5, 10, 5}, {2, 2, 4, 2}, {6, 8, 8, 8}});
+  machine::MachineModel m = testing::simple_machine();
+  m.lift_height_m = 0.25;
+  m.lift_time_s = m.lower_time_s = 0.25 / m.z.speed_m_s;
+  const CostModel model(layer, m, Metric::kEuclidean);
+  const PathSpec open = PathSpec::open_from({0, 5});
+  const Sequence s{{0, false}, {1, false}, {2, false}};
+  const Evaluation e = model.evaluate(s, open);
+  ASSERT_EQ(e.lift_count, 1);
+  const auto w = waypoints_of(model, s, open, e, 1.5);
+  int raised = 0;
+  for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+    const bool up = w[k].z_m > 1.5 + 1e-12 || w[k + 1].z_m > 1.5 + 1e-12;
+    if (!up) continue;
+    ++raised;
+    EXPECT_FALSE(w[k].extruding);
+    EXPECT_LE(std::abs(w[k + 1].z_m - w[k].z_m), m.z.speed_m_s * (w[k + 1].t_s - w[k].t_s) + 1e-9);
+    // Raised only on the way from wall 1's end (4,2) to wall 2's start (6,8).
+    EXPECT_GE(w[k].position_m.y(), 2.0 - 1e-9);
+    EXPECT_LE(w[k].position_m.y(), 8.0 + 1e-9);
+  }
+  EXPECT_EQ(raised, 3);  // up, across at the top, down
+  double highest = 0.0;
+  for (const auto& p : w) highest = std::max(highest, p.z_m);
+  EXPECT_NEAR(highest, 1.75, 1e-12);
+}
+
 TEST(Seams, TimelineIsTheWaypointsPositions) {
   const floors::Layer layer = testing::floor_plan_layer(7, 2);
   const machine::MachineModel m = testing::simple_machine();
@@ -237,7 +268,9 @@ TEST(Seams, MultiNozzleWaypointsRunInLayerTimeAcrossStages) {
   double deposited = 0.0;
   for (std::size_t k = 0; k < plan.stages.size(); ++k) {
     const Stage& stage = plan.stages[k];
-    if (k > 0) EXPECT_GT(stage.start_s, plan.stages[k - 1].start_s + plan.stages[k - 1].time_s);
+    if (k > 0) {
+      EXPECT_GT(stage.start_s, plan.stages[k - 1].start_s + plan.stages[k - 1].time_s);
+    }
     for (const auto& n : stage.nozzles) {
       ASSERT_FALSE(n.waypoints.empty());
       EXPECT_NEAR(n.waypoints.front().t_s, stage.start_s, 1e-12);

@@ -55,6 +55,18 @@ TEST(XtCheck, BreakpointCheckCatchesWhatSamplingMisses) {
   EXPECT_NEAR(min_gap_m(left, right, RailAxis::kX), 0.5, 1e-12);
 }
 
+TEST(XtCheck, AGapExactlyTheWidthIsAllowedAndNoLess) {
+  // The right gantry comes to exactly a gantry width from the left one and goes back:
+  // allowed. Half a millimetre closer is a conflict, found at the moment the gap reaches
+  // the width.
+  const Timeline left = curve({{0, 0}, {10, 0}});
+  EXPECT_FALSE(first_conflict(left, curve({{0, 3}, {5, 1.0}, {10, 3}}), RailAxis::kX, 1.0));
+  const auto c = first_conflict(left, curve({{0, 3}, {5, 0.9995}, {10, 3}}), RailAxis::kX, 1.0);
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->time_s, 5.0 * 2.0 / 2.0005, 1e-9);
+  EXPECT_NEAR(min_gap_m(left, curve({{0, 3}, {5, 0.9995}, {10, 3}}), RailAxis::kX), 0.9995, 1e-12);
+}
+
 TEST(XtCheck, FinishedGantriesStayWhereTheyStopped) {
   // The left gantry stops at 8 m at t = 2 s; the right one arrives next to it much later.
   const auto c = first_conflict(curve({{0, 0}, {2, 8}}), curve({{0, 20}, {50, 20}, {60, 8.5}}),

@@ -9,6 +9,9 @@ Independent of ccbuild's code: it reads only the JSON (docs/json.md) and checks 
     for the rectilinear metric), z within the z axis speed, turns within the rotation
     speed, the cumulative heading within the stopper;
   - time never runs backwards, and the paths end within the layer time;
+  - the nozzle never travels through a wall it has already built at nozzle height: an
+    air move that crosses one is lifted above the layer (touching a wall only at the
+    move's own ends is not crossing);
   - adjacent gantries on common rails stay at least a gantry width apart at every
     breakpoint of either path (both are piecewise linear, so that is exact).
 
@@ -131,6 +134,60 @@ def check_coverage(plan, problems):
             problems.append("%s: %.6f m to its end (%.6f m) is never deposited" % (name, at, piece["length_m"]))
 
 
+def cross(ox, oy, ax, ay, bx, by):
+    return (ax - ox) * (by - oy) - (ay - oy) * (bx - ox)
+
+
+def passes_through(p, q, c, d, eps=1e-6):
+    """Does the travel p -> q meet the wall c - d anywhere but within eps of p or q?"""
+    (px, py), (qx, qy), (cx, cy), (dx, dy) = p, q, c, d
+    length = math.hypot(qx - px, qy - py)
+    if length <= eps:
+        return False
+    ux, uy = (qx - px) / length, (qy - py) / length
+    # The wall's end points and any crossing, as distances along the travel.
+    def along(x, y):
+        return (x - px) * ux + (y - py) * uy
+
+    def off(x, y):
+        return abs(-(x - px) * uy + (y - py) * ux)
+    hits = []
+    for (x, y) in ((cx, cy), (dx, dy)):
+        if off(x, y) <= eps:
+            hits.append(along(x, y))
+    wx, wy = dx - cx, dy - cy
+    denominator = (qx - px) * wy - (qy - py) * wx
+    if abs(denominator) > 1e-12:
+        t = ((cx - px) * wy - (cy - py) * wx) / denominator
+        u = ((cx - px) * (qy - py) - (cy - py) * (qx - px)) / denominator
+        if -1e-9 <= u <= 1 + 1e-9:
+            hits.append(t * length)
+    elif off(cx, cy) <= eps:  # collinear: overlapping runs
+        lo, hi = sorted((along(cx, cy), along(dx, dy)))
+        if hi > eps and lo < length - eps:
+            return True
+    return any(eps < h < length - eps for h in hits)
+
+
+def check_walls_cleared(plan, problems):
+    top = plan["z_top_m"]
+    for stage, nozzle, w in paths_of(plan):
+        built = []
+        for k in range(len(w) - 1):
+            a, b = w[k], w[k + 1]
+            p, q = (a["x_m"], a["y_m"]), (b["x_m"], b["y_m"])
+            if a["extruding"]:
+                built.append((p, q, a["wall"]))
+                continue
+            if a["z_m"] > top + POS and b["z_m"] > top + POS:
+                continue  # lifted above the walls
+            for c, d, wall in built:
+                if passes_through(p, q, c, d):
+                    problems.append("stage %d nozzle %d: travels through built wall %d at nozzle height "
+                                    "(waypoints %d-%d)" % (stage + 1, nozzle, wall, k, k + 1))
+                    break
+
+
 def rail(w, axis):
     return w["x_m"] if axis == "x" else w["y_m"]
 
@@ -176,6 +233,7 @@ def check(plan):
         return problems  # no plan to check: the JSON says why
     check_limits(plan, problems)
     check_coverage(plan, problems)
+    check_walls_cleared(plan, problems)
     check_gaps(plan, problems)
     return problems
 
@@ -203,6 +261,16 @@ def self_test(plan):
         j = moving[len(moving) // 2]
         corrupt("travelling too fast", lambda p, bw: [q.update(t_s=q["t_s"] - 0.9 * (bw[j + 1]["t_s"] - bw[j]["t_s"]))
                                                      for q in bw[j + 1:]])
+    lifted = [j for j in range(len(w) - 1) if w[j]["z_m"] > plan["z_top_m"] + POS and
+              w[j + 1]["z_m"] > plan["z_top_m"] + POS and
+              math.hypot(w[j + 1]["x_m"] - w[j]["x_m"], w[j + 1]["y_m"] - w[j]["y_m"]) > 0.1]
+    if lifted:
+        j2 = lifted[0]
+
+        def unlifted(p, bw):
+            for q in bw:  # no lift anywhere: the crossing now happens at nozzle height
+                q["z_m"] = p["z_top_m"]
+        corrupt("no lift over a built wall", unlifted)
     corrupt("turning past the stopper", lambda p, bw: bw[-1].update(heading_rad=bw[-1]["heading_rad"] + 40.0))
 
     def twice(p, bw):

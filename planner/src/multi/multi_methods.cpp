@@ -82,22 +82,32 @@ Zoned zoned_sections(const StageContext& ctx, const Division& division,
 
 }  // namespace
 
+namespace {
+
+// Path cycling proper: compatible start points for the works' tours, then the exact check.
+MethodResult cycled(const StageContext& ctx, const CutLayer& cut,
+                    const std::vector<NozzleWork>& works) {
+  CycleSearch search = compatible_cycles(ctx, cut, works);
+  MethodResult result;
+  if (!search.status)
+    result.status = std::move(search.status);
+  else
+    result = checked(ctx, build_paths(ctx, cut, works, search.cycles));
+  result.vertices = static_cast<int>(cut.layer.points.size());
+  return result;
+}
+
+}  // namespace
+
 MethodResult path_cycling(const StageContext& ctx) {
   const Sections& s = sections_of(ctx);
-  MethodResult out;
-  out.vertices = static_cast<int>(s.cut.layer.points.size());
   if (PlanStatus late = stop_status(ctx, "iterative dividing"); !late) {
+    MethodResult out;
     out.status = std::move(late);
+    out.vertices = static_cast<int>(s.cut.layer.points.size());
     return out;
   }
-  CycleSearch search = compatible_cycles(ctx, s.cut, s.works);
-  if (!search.status) {
-    out.status = std::move(search.status);
-    return out;
-  }
-  MethodResult result = checked(ctx, build_paths(ctx, s.cut, s.works, search.cycles));
-  result.vertices = out.vertices;
-  return result;
+  return cycled(ctx, s.cut, s.works);
 }
 
 namespace {
@@ -405,14 +415,7 @@ MethodResult buffer_zone_path_cycling(const StageContext& ctx) {
       return out;
     }
   }
-  CycleSearch search = compatible_cycles(ctx, z.cut, z.works);
-  if (!search.status) {
-    out.status = std::move(search.status);
-    return out;
-  }
-  MethodResult result = checked(ctx, build_paths(ctx, z.cut, z.works, search.cycles));
-  result.vertices = out.vertices;
-  return result;
+  return cycled(ctx, z.cut, z.works);
 }
 
 MethodResult aux_buffer_zone(const StageContext& ctx) {

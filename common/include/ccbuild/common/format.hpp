@@ -1,12 +1,21 @@
 #pragma once
 // Formatting numbers with their unit for messages and reports.
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 namespace ccbuild {
 
 /// printf into a std::string.
 std::string printf_string(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
+
+/// Levenshtein distance between two words (insertions, deletions, substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b);
+/// The candidate nearest to `word`, for a "did you mean"; empty when none is within
+/// `max_distance` edits (exclusive).
+std::string nearest_word(const std::string& word, const std::vector<std::string>& candidates,
+                         std::size_t max_distance);
 
 /// A number as people write it: up to 6 significant digits, no exponent between 1e-4
 /// and 1e9 ("0.15", "2400", "1e+308"); "NaN", "infinity" or "-infinity" otherwise.
