@@ -258,8 +258,9 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<PlanLayerOptions>();
   CLI::App* command = app.add_subcommand(
       "plan-layer",
-      "Plan the tool path of one layer for one nozzle (CC-TSP: each wall is two nodes joined by a "
-      "fixed edge, solved by a chained local search seeded with an Euler walk).\n"
+      "Plan the tool path of one layer: for one nozzle (CC-TSP: each wall is two nodes joined by a "
+      "fixed edge, solved by a chained local search seeded with an Euler walk), or with --nozzles "
+      "for several gantries on common rails (sections, collision-free paths, exact x/t checks).\n"
       "Prints airtime (distance and time), deposition and layer time, a lower bound on airtime "
       "distance with the gap to it, and the sequence as signed wall ids (-5: wall 5 from its end "
       "vertex to its start vertex; 5:2: the second piece of a wall cut by an opening).\n"
