@@ -5,6 +5,7 @@ Independent of ccbuild's code: it parses the SVG as XML and checks that
   - it is well-formed and every drawn element lies inside the image (titles, labels and
     tick labels included, their width estimated from their length);
   - it has a title, a legend, a scale bar, and axis ticks with labels along both axes;
+  - air moves are drawn over the walls, so one running along a wall stays visible;
   - the walls carry their ids (every wall of the plan's JSON, given as the second
     argument, is labelled), not move numbers;
   - a multi-nozzle drawing has its x/t chart, every curve inside the chart; or, when the
@@ -80,6 +81,10 @@ def check(svg_path, plan):
     for wanted in ("title", "legend", "scale-bar", "axes"):
         if wanted not in ids:
             problems.append("no %s" % wanted)
+    # Air moves are drawn over the walls, so a move along a wall stays visible.
+    order = [n.get("id") for n in root.iter() if n.get("id") in ("walls", "air-moves")]
+    if order == ["air-moves", "walls"]:
+        problems.append("the air moves are drawn under the walls (hidden where they run along one)")
     ticks = [n for n in root.iter() if n.get("class") == "tick-label"]
     if len(ticks) < 4:
         problems.append("only %d tick labels; the axes need them" % len(ticks))
