@@ -6,7 +6,9 @@
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/climbing_machine.hpp"
 #include "ccbuild/machine/urdf_adapter.hpp"
+#include "climbing_internal.hpp"
 
 namespace ccbuild::machine {
 namespace fs = std::filesystem;
@@ -40,7 +42,7 @@ const Range kStopper_rad = Range::closed(-20.0 * M_PI, 20.0 * M_PI);
 void check_joint_value(const Field& field, const std::string& urdf_file, const JointInfo& j,
                        const char* attribute, double value, const Range& range, const char* unit) {
   if (!range.contains(value))
-    throw InputError(urdf_file, 0, "joint[" + j.name + "].limit." + attribute,
+    throw InputError(urdf_file, j.line, "joint[" + j.name + "].limit." + attribute,
                      "must be " + range.describe(unit) + ", got " + plain_number(value) + " " +
                          unit + " (joint used as " + field.path() + " in " + field.file() + ")");
 }
@@ -68,8 +70,7 @@ AxisLimits read_axis(const Field& field, const UrdfInfo& urdf, const std::string
   const std::string label = "joint '" + j.name + "' in " + urdf_file;
   if (j.type != "prismatic") field.fail(label + " is " + j.type + ", expected prismatic");
   if (!j.has_limits) field.fail(label + " has no <limit>; travel range and speed come from it");
-  const double norm =
-      std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
+  const double norm = j.axis.norm();
   if (norm <= 0.0 || std::abs(j.axis[axis]) / norm < 0.999)
     field.fail(label + " does not move along " + std::string(1, "xyz"[axis]) +
                " (check its <axis>)");
@@ -83,11 +84,16 @@ AxisLimits read_axis(const Field& field, const UrdfInfo& urdf, const std::string
 }  // namespace
 
 MachineModel load_machine(const fs::path& profile_path) {
+  return load_machine_profile(profile_path).gantry;
+}
+
+MachineProfile load_machine_profile(const fs::path& profile_path) {
   const Document doc = load_document(profile_path);
   const Field root = Field::root(doc);
-  MapReader map(root, {"name", "description", "urdf", "joints", "deposition_speed_m_s",
-                       "travel_speed_m_s", "rotate_while_moving", "accel_delay_s", "lift_height_m",
-                       "lift_time_s", "lower_time_s", "nozzle_idle_limit_s", "nozzle_width_m"});
+  MapReader map(
+      root, {"name", "description", "urdf", "joints", "deposition_speed_m_s", "travel_speed_m_s",
+             "rotate_while_moving", "accel_delay_s", "lift_height_m", "lift_time_s", "lower_time_s",
+             "nozzle_idle_limit_s", "nozzle_width_m", "climbing"});
   map.reject_unknown();
 
   MachineModel m;
@@ -164,7 +170,19 @@ MachineModel load_machine(const fs::path& profile_path) {
   } else {
     root.fail("missing lift: give lift_height_m, or lift_time_s and lower_time_s");
   }
-  return m;
+  MachineProfile profile;
+  if (auto climbing = map.optional("climbing")) {
+    std::array<std::string, 4> gantry_joints;
+    for (int k = 0; k < 4; ++k)
+      gantry_joints[k] = joints.required(k == 0   ? "x"
+                                         : k == 1 ? "y"
+                                         : k == 2 ? "z"
+                                                  : "nozzle")
+                             .as_string();
+    profile.climbing = detail::read_climbing(*climbing, urdf, m, gantry_joints);
+  }
+  profile.gantry = std::move(m);
+  return profile;
 }
 
 }  // namespace ccbuild::machine

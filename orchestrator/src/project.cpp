@@ -75,8 +75,9 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
         std::make_shared<const machine::MachineModel>(machine::MachineModel::defaults());
     project.machine_origin = "built-in defaults";
   } else {
-    project.machine =
-        std::make_shared<const machine::MachineModel>(machine::load_machine(machine_path));
+    machine::MachineProfile profile = machine::load_machine_profile(machine_path);
+    project.machine = std::make_shared<const machine::MachineModel>(std::move(profile.gantry));
+    project.climber = std::move(profile.climbing);
     project.machine_origin =
         project.machine->name + ", " + machine_path.string() + " " + machine_why;
   }
@@ -122,7 +123,7 @@ void check_fit(const Project& project) {
   for (const auto& floor : b.floors)
     top_m = std::max(top_m, floor.base_elevation_m + floor.height_m);
   const double reach_z = m.z.max_m - m.z.min_m;
-  if (top_m + m.lift_height_m > reach_z + 1e-9)
+  if (!project.climber && top_m + m.lift_height_m > reach_z + 1e-9)
     throw InputError(where, 0, "",
                      "the building is " + L(top_m) + " tall, and the nozzle lifts " +
                          L(m.lift_height_m) +

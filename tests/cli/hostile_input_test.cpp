@@ -96,7 +96,7 @@ TEST(HostileInput, FixturesAreRefusedWithAReason) {
       {"validate tests/data/plans/cottage.yaml --machine tests/data/hostile/absurd_delay.yaml",
        "absurd_delay.yaml:8: accel_delay_s: must be from 0 to 60 s, got 1e308 s"},
       {"validate tests/data/plans/cottage.yaml --machine tests/data/hostile/absurd_velocity.yaml",
-       "absurd_velocity.urdf: joint[rail_x].limit.velocity: must be more than 0 and at most 10 "
+       "absurd_velocity.urdf:5: joint[rail_x].limit.velocity: must be more than 0 and at most 10 "
        "m/s, got 1e+308 m/s"},
       {"layers tests/data/plans/cottage.yaml --material tests/data/hostile/absurd_material.yaml",
        "strength_curve[1].strength_mpa: must be from 0 to 200 MPa, got 1e9 MPa"},
@@ -155,7 +155,7 @@ TEST(HostileInput, FlagsThatDoNotFitAreRefused) {
        "--gantry-width: must be more than 0 and at most 1000 m"},
       {"plan-layer tests/data/plans/cottage.yaml --lyer 3", "did you mean '--layer'?"},
       {"plan-lyaer tests/data/plans/cottage.yaml", "did you mean 'plan-layer'?"},
-      {"frobnicate", "the commands are: validate, layers, plan-layer, sweep"},
+      {"frobnicate", "the commands are: validate, layers, plan-layer, sweep, climb"},
   };
   for (const auto& c : cases) expect_refused(run_bounded(c.args), c.message, c.args);
 }

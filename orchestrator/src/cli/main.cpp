@@ -123,6 +123,7 @@ int main(int argc, char** argv) {
   add_layers_command(app, exit_code);
   add_plan_layer_command(app, exit_code);
   add_sweep_command(app, exit_code);
+  add_climb_command(app, exit_code);
 
   bool json = false;
   for (int k = 1; k < argc; ++k)

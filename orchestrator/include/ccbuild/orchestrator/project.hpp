@@ -18,6 +18,7 @@
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/floors/slice.hpp"
+#include "ccbuild/machine/climbing_machine.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
@@ -39,7 +40,10 @@ struct Project {
   std::filesystem::path file;  ///< as the user named it
   bool is_building = false;
   floors::Building building;  ///< a lone plan is a one-floor building named after its file
-  std::shared_ptr<const machine::MachineModel> machine;
+  std::shared_ptr<const machine::MachineModel> machine;  ///< the printing gantry
+  /// The climbing machine, when the profile has a `climbing:` section; null for a fixed
+  /// gantry. Its gantry is `machine`.
+  std::shared_ptr<const machine::ClimbingMachine> climber;
   std::string machine_origin;  ///< "config/machines/cc-gantry.yaml (the building's)", ...
   floors::MaterialProfile material;
   std::string material_origin;
@@ -58,7 +62,8 @@ Project open_project(const std::filesystem::path& file, const ProjectOptions& op
 
 /// The checks that the machine can build the building at all, in the building's unit:
 /// its footprint within the x and y reach, its height (plus the nozzle's lift) within the
-/// z reach, every wall no thicker than the nozzle lays in one pass. Throws InputError.
+/// z reach (a climbing machine climbs instead), every wall no thicker than the nozzle
+/// lays in one pass. Throws InputError.
 void check_fit(const Project& project);
 
 /// Where a layer is in the building.

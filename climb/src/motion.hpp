@@ -1,0 +1,34 @@
+#pragma once
+// One motion planned with OMPL in a box of joint values: RRTConnect, seeded, simplified,
+// and re-checked at four times the planner's resolution. Internal to climb/.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace ccbuild::climb::detail {
+
+struct MotionProblem {
+  std::vector<double> lower, upper;  ///< the joint box (limits, margins included)
+  std::vector<double> start, goal;
+  /// The validity of a state; must be callable from the planner's thread.
+  std::function<Verdict(const std::vector<double>&)> valid;
+  std::uint64_t seed = 1;
+  double time_s = 1.0;
+  long max_iterations = 50000;  ///< a count, so that failing does not depend on speed
+  double resolution = 0.004;    ///< of the box's diagonal, between checked states
+};
+
+struct MotionResult {
+  Verdict verdict;                        ///< ok, or why no motion was found
+  std::vector<std::vector<double>> path;  ///< from start to goal
+  double planning_s = 0.0;
+  bool timed_out = false;
+};
+
+MotionResult plan_motion(const MotionProblem& problem);
+
+}  // namespace ccbuild::climb::detail

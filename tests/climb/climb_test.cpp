@@ -1,0 +1,334 @@
+// Climbing: hand-built scenes where a unit must detour round a wall, where it is boxed
+// in, where the platform would tip; the apartment's climbs (a setback on its top floors)
+// all planned, re-checked and repeatable; stages and pipes placed as the rules say.
+
+#include "ccbuild/climb/climb.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "ccbuild/floors/slice.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::climb {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+
+const machine::ClimbingMachine& climber() {
+  static const machine::MachineProfile profile =
+      machine::load_machine_profile(testing::source_path("config/machines/cc-climber.yaml"));
+  return *profile.climbing;
+}
+
+// A one-floor building the climber straddles: a 30 m x 15.85 m rectangle (walls 1-4) and
+// `extra` walls (YAML list items), in a temporary folder.
+class Scene {
+ public:
+  explicit Scene(const std::string& extra_vertices = "", const std::string& extra_walls = "",
+                 const std::string& openings = "", double height_m = 3.0)
+      : dir_(fs::temp_directory_path() / ("ccbuild_climb_" + std::to_string(::getpid()))) {
+    fs::create_directories(dir_);
+    const std::string config = testing::source_path("config").string();
+    std::ofstream(dir_ / "b.yaml")
+        << "units: m\nlayer_height: 0.1\nmaterial: " << config
+        << "/materials/standard-mix.yaml\nmachine: " << config
+        << "/machines/cc-climber.yaml\nfloors:\n  - height: " << height_m
+        << "\n    plan:\n      vertices:\n"
+           "        - {id: 1, x: 0, y: 0}\n        - {id: 2, x: 30, y: 0}\n"
+           "        - {id: 3, x: 30, y: 15.85}\n        - {id: 4, x: 0, y: 15.85}\n"
+        << extra_vertices
+        << "      walls:\n        - {id: 1, start: 1, end: 2}\n        - {id: 2, start: 2, end: "
+           "3}\n"
+           "        - {id: 3, start: 3, end: 4}\n        - {id: 4, start: 4, end: 1}\n"
+        << extra_walls << (openings.empty() ? "" : "      openings:\n" + openings);
+    building_ = floors::load_building(dir_ / "b.yaml");
+  }
+  ~Scene() { fs::remove_all(dir_); }
+  const floors::Building& building() const { return building_; }
+
+ private:
+  fs::path dir_;
+  floors::Building building_;
+};
+
+// A pipe through wall 1 (y = 0) or wall 3 (y = 15.85) at x, height z.
+Anchor pipe(int unit, double x, double z, std::int64_t wall = 0) {
+  Anchor a;
+  a.unit = unit;
+  a.floor = 0;
+  const bool near_side = unit == 0 || unit == 1;
+  a.wall_id = wall ? wall : (near_side ? 1 : 3);
+  a.centre_m = Eigen::Vector3d(x, near_side ? 0.0 : 15.85, z);
+  a.outward = Eigen::Vector2d(0.0, near_side ? -1.0 : 1.0);
+  a.wall_thickness_m = 0.15;
+  a.id = std::string("P").append(std::to_string(unit + 1));
+  return a;
+}
+
+// Stage 0 at 3.5 m holding pipes at 0.45 m; stage 1 at 4.5 m on pipes at 1.45 m: U1
+// moves from x = `u1_from` to x = `u1_to`, the others straight up.
+std::pair<ClimbStage, ClimbStage> stages(double u1_from, double u1_to) {
+  ClimbStage from, to;
+  from.index = 0;
+  from.platform_z_m = 3.5;
+  from.last = {0, 29};
+  from.top_m = 3.0;
+  to.index = 1;
+  to.platform_z_m = 4.5;
+  const double xs[] = {u1_from, 29.6, 29.6, 0.6};
+  for (int u = 0; u < 4; ++u) {
+    from.anchors.push_back(pipe(u, xs[u], 0.45));
+    to.anchors.push_back(pipe(u, u == 0 ? u1_to : xs[u], 1.45));
+  }
+  return {from, to};
+}
+
+const ClimbPhase* phase_of(const ClimbPlan& plan, ClimbPhase::Kind kind, int unit) {
+  for (const auto& p : plan.phases)
+    if (p.kind == kind && p.unit == unit) return &p;
+  return nullptr;
+}
+
+TEST(Climb, AUnitDetoursRoundAWallInItsWay) {
+  // A fin sticks 0.7 m out of wall 1 at x = 1.2 m, up to 2 m high (an opening takes its
+  // top): U1's leg, hanging 1.15 m to 2.75 m from the ground, must go round its end.
+  const Scene scene("        - {id: 5, x: 1.2, y: 0}\n        - {id: 6, x: 1.2, y: -0.7}\n",
+                    "        - {id: 5, start: 5, end: 6}\n",
+                    "        - {wall: 5, offset: 0, width: 0.7, sill: 2.0, head: 3.0}\n");
+  const auto [from, to] = stages(0.6, 2.0);
+  const ClimbPlan plan = plan_climb(climber(), scene.building(), from, to);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  const ClimbPhase* transit = phase_of(plan, ClimbPhase::Kind::kTransit, 0);
+  ASSERT_NE(transit, nullptr);
+  EXPECT_GE(transit->path.size(), 3u);  // not the straight line
+  // The straight motion (in joint space) would have hit a wall: the same climb with it
+  // is refused.
+  ClimbPlan straight = plan;
+  for (auto& p : straight.phases)
+    if (p.kind == ClimbPhase::Kind::kTransit && p.unit == 0)
+      p.path = {p.path.front(), p.path.back()};
+  const ClimbStatus refused = verify_climb(climber(), scene.building(), from, to, straight);
+  EXPECT_EQ(refused.code(), ClimbStatus::Code::kBlocked);
+  EXPECT_TRUE(contains(refused.reason(), "phase 12 (transit): U1's link")) << refused.to_string();
+  // The motion planned without the fin goes through it: the fin made the detour.
+  const Scene bare;
+  const ClimbPlan unaware = plan_climb(climber(), bare.building(), from, to);
+  ASSERT_TRUE(unaware.status) << unaware.status.to_string();
+  const ClimbStatus through = verify_climb(climber(), scene.building(), from, to, unaware);
+  EXPECT_TRUE(contains(through.reason(), "wall 5 of floor 0")) << through.to_string();
+  // The planned one passes the independent re-check at 5 mm.
+  EXPECT_TRUE(verify_climb(climber(), scene.building(), from, to, plan))
+      << verify_climb(climber(), scene.building(), from, to, plan).to_string();
+}
+
+TEST(Climb, AUnitBoxedInIsInfeasibleWithItsReason) {
+  // The fin runs out past U1's mount: there is no way round it.
+  const Scene scene("        - {id: 5, x: 1.2, y: 0}\n        - {id: 6, x: 1.2, y: -3.0}\n",
+                    "        - {id: 5, start: 5, end: 6}\n",
+                    "        - {wall: 5, offset: 0, width: 3.0, sill: 2.0, head: 3.0}\n");
+  const auto [from, to] = stages(0.6, 2.0);
+  const ClimbPlan plan = plan_climb(climber(), scene.building(), from, to);
+  EXPECT_FALSE(plan.status);
+  EXPECT_EQ(plan.status.code(), ClimbStatus::Code::kBlocked) << plan.status.to_string();
+  EXPECT_TRUE(contains(plan.status.reason(), "transit of unit U1 to P1"))
+      << plan.status.to_string();
+  // The fin is named among what refused the planner's states.
+  EXPECT_TRUE(contains(plan.status.reason(), "refused most by")) << plan.status.to_string();
+  EXPECT_TRUE(contains(plan.status.reason(), "wall 5 of floor 0")) << plan.status.to_string();
+  // What was planned before it is kept, and nothing after it.
+  ASSERT_FALSE(plan.phases.empty());
+  EXPECT_EQ(plan.phases.back().kind, ClimbPhase::Kind::kRelease);
+}
+
+TEST(Climb, ATransferThatWouldTipThePlatformIsRefused) {
+  // Demand 3 m of stability margin: no place of the gantry gives it with one unit away.
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_tip_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ifstream in(testing::source_path("config/machines/cc-climber.yaml"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("urdf: cc_climber.urdf"), 21,
+               "urdf: " + testing::source_path("config/machines/cc_climber.urdf").string());
+  text.replace(text.find("stability_margin_m: 0.3"), 23, "stability_margin_m: 3.0");
+  std::ofstream(dir / "tippy.yaml") << text;
+  const auto tippy = machine::load_machine_profile(dir / "tippy.yaml");
+  fs::remove_all(dir);
+  const Scene scene;
+  const auto [from, to] = stages(0.6, 0.6);
+  const ClimbPlan plan = plan_climb(*tippy.climbing, scene.building(), from, to);
+  EXPECT_EQ(plan.status.code(), ClimbStatus::Code::kUnstable) << plan.status.to_string();
+  EXPECT_TRUE(contains(plan.status.reason(), "with the gantry as counterweight"));
+  // The default margin is met by moving the gantry: every transfer is preceded by it.
+  const ClimbPlan fine = plan_climb(climber(), scene.building(), from, to);
+  ASSERT_TRUE(fine.status) << fine.status.to_string();
+  int balances = 0;
+  for (const auto& p : fine.phases) balances += p.kind == ClimbPhase::Kind::kBalance;
+  EXPECT_EQ(balances, 4);
+}
+
+class Apartment : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    building_ = new floors::Building(
+        floors::load_building(testing::source_path("config/buildings/apartment.yaml")));
+    stages_ = new StagePlan(climb_stages(*building_, climber()));
+  }
+  static void TearDownTestSuite() {
+    delete building_;
+    delete stages_;
+  }
+  static floors::Building* building_;
+  static StagePlan* stages_;
+};
+floors::Building* Apartment::building_ = nullptr;
+StagePlan* Apartment::stages_ = nullptr;
+
+TEST_F(Apartment, EveryClimbPlansAndPassesTheFineReCheck) {
+  ASSERT_TRUE(stages_->status) << stages_->status.to_string();
+  const auto& stages = stages_->stages;
+  ASSERT_EQ(stages.size(), 5u);
+  EXPECT_EQ(stages.back().last.floor, 4);  // the whole building is printed
+  for (std::size_t k = 0; k + 1 < stages.size(); ++k) {
+    const ClimbPlan plan = plan_climb(climber(), *building_, stages[k], stages[k + 1]);
+    ASSERT_TRUE(plan.status) << "climb " << k << ": " << plan.status.to_string();
+    EXPECT_EQ(plan.phases.size(), 18u);  // park, 4 x (balance, release, transit, insert), lift
+    const ClimbStatus checked = verify_climb(climber(), *building_, stages[k], stages[k + 1], plan);
+    EXPECT_TRUE(checked) << "climb " << k << ": " << checked.to_string();
+    // Lifts at the loaded stroke speed: 20 to 30 minutes, as climbing formwork.
+    const ClimbPhase& lift = plan.phases.back();
+    EXPECT_EQ(lift.kind, ClimbPhase::Kind::kLift);
+    EXPECT_GE(lift.duration_s, 20 * 60.0);
+    EXPECT_LE(lift.duration_s, 30 * 60.0);
+    EXPECT_EQ(
+        lift.strokes,
+        static_cast<int>(std::ceil((stages[k + 1].platform_z_m - stages[k].platform_z_m) / 0.5)));
+  }
+}
+
+TEST_F(Apartment, TheSetbackIsClimbedWithSwingAndReach) {
+  // The top floors end at 96 ft: U2 and U3 move from pipes at 97 ft to pipes at 94 ft.
+  const auto& stages = stages_->stages;
+  ASSERT_EQ(stages.size(), 5u);
+  const ClimbStage& from = stages[3];
+  const ClimbStage& to = stages[4];
+  EXPECT_NEAR(from.anchors[1].centre_m.x() - to.anchors[1].centre_m.x(), 3 * 0.3048, 1e-6);
+  const ClimbPlan plan = plan_climb(climber(), *building_, from, to);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  const ClimbPhase* transit = phase_of(plan, ClimbPhase::Kind::kTransit, 1);
+  ASSERT_NE(transit, nullptr);
+  // Swing and reach change on the way (joints: swing, reach, wrist, stroke).
+  EXPECT_GT(std::abs(transit->path.back()[0] - transit->path.front()[0]), 0.1);
+  EXPECT_GT(std::abs(transit->path.back()[1] - transit->path.front()[1]), 0.1);
+}
+
+TEST_F(Apartment, TheSameSeedGivesTheSameMotions) {
+  const auto& stages = stages_->stages;
+  ASSERT_GE(stages.size(), 5u);
+  const ClimbPlan a = plan_climb(climber(), *building_, stages[3], stages[4], {7, 10.0});
+  const ClimbPlan b = plan_climb(climber(), *building_, stages[3], stages[4], {7, 10.0});
+  ASSERT_EQ(a.phases.size(), b.phases.size());
+  for (std::size_t k = 0; k < a.phases.size(); ++k) EXPECT_EQ(a.phases[k].path, b.phases[k].path);
+  EXPECT_EQ(a.duration_s, b.duration_s);
+}
+
+TEST_F(Apartment, PipesAreAsLowAsTheLegsAllowAndOnSolidWall) {
+  const auto& stages = stages_->stages;
+  const machine::ClimbingMachine& m = climber();
+  const auto& stroke = m.robot->joint_info(m.units[0].joints[3]);
+  const double foot_at_zero =
+      m.robot->link_poses(Eigen::Isometry3d::Identity(), m.robot->zero())[m.units[0].foot_link]
+          .translation()
+          .z();
+  const double layer = building_->layer_height_m;
+  for (std::size_t k = 1; k < stages.size(); ++k) {
+    // The lowest a pipe may be: the legs at full stroke after the lift.
+    const double low =
+        stages[k].platform_z_m + foot_at_zero - (stroke.upper - m.stroke_end_margin_m);
+    for (const auto& a : stages[k].anchors) {
+      EXPECT_GE(a.centre_m.z(), low - 1e-9) << a.id;
+      EXPECT_LT(a.centre_m.z() - layer, low) << a.id << ": a layer lower would do";
+      // Cast in a layer printed before the climb.
+      const auto& last = stages[k - 1].last;
+      EXPECT_TRUE(a.floor < last.floor || (a.floor == last.floor && a.layer <= last.layer));
+    }
+  }
+}
+
+TEST(Climb, TheDefaultRuleKeepsPipesClearOfAWindowAbove) {
+  // A 6 m storey, one climb; windows (sills at 2 m) in walls 1 and 4 up to 1.5 m from
+  // their corner, right where U1's nearest pipe would be: the pipe goes 0.3 m past the
+  // window's edge.
+  const Scene scene("", "",
+                    "        - {wall: 1, offset: 0.3, width: 1.2, sill: 2.0, head: 3.0}\n"
+                    "        - {wall: 4, offset: 14.35, width: 1.2, sill: 2.0, head: 3.0}\n",
+                    6.0);
+  const StagePlan plan = climb_stages(scene.building(), climber());
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  ASSERT_GE(plan.stages.size(), 2u);
+  const Anchor& u1 = plan.stages[1].anchors[0];
+  EXPECT_EQ(u1.wall_id, 1);
+  EXPECT_LT(u1.centre_m.z(), 2.0);  // below the sill: the layer itself is solid there
+  EXPECT_GE(u1.centre_m.x(), 1.5 + 0.3 - 1e-9);
+  EXPECT_LT(u1.centre_m.x(), 1.5 + 0.3 + 0.05);  // the nearest allowed, on the 5 cm grid
+}
+
+TEST(Climb, TheDefaultRuleKeepsPipesOnSolidWallAwayFromEnds) {
+  // The apartment without anchor points: the rule places them. (A copy of config/, with
+  // the anchors taken out of the building file.)
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_rule_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(testing::source_path("config"), dir / "config", fs::copy_options::recursive);
+  const fs::path file = dir / "config" / "buildings" / "apartment.yaml";
+  std::ifstream in(file);
+  std::string kept, line;
+  while (std::getline(in, line))
+    if (line.find("anchors:") == std::string::npos && line.rfind("      - {id: A", 0) != 0)
+      kept += line + "\n";
+  in.close();
+  std::ofstream(file) << kept;
+  const floors::Building bare = floors::load_building(file);
+  fs::remove_all(dir);
+  for (const auto& f : bare.floors) ASSERT_TRUE(f.anchors.empty());
+  const StagePlan plan = climb_stages(bare, climber());
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  int checked = 0;
+  for (const auto& stage : plan.stages) {
+    for (const auto& a : stage.anchors) {
+      if (a.floor < 0) continue;
+      EXPECT_TRUE(a.by_default_rule);
+      // On a piece of that layer, at least 0.3 m from its ends (wall ends, corners,
+      // openings' edges).
+      const auto layers = floors::slice_floor(bare.floors[a.floor], bare.layer_height_m);
+      const floors::Layer& layer = layers[a.layer];
+      bool on_solid = false;
+      for (const auto& s : layer.segments) {
+        if (s.wall_id != a.wall_id) continue;
+        const Eigen::Vector2d p = layer.start_m(s), q = layer.end_m(s);
+        const double t = (a.centre_m.head<2>() - p).dot((q - p).normalized());
+        const double off = std::abs((q - p).normalized().x() * (a.centre_m.y() - p.y()) -
+                                    (q - p).normalized().y() * (a.centre_m.x() - p.x()));
+        if (off < 1e-6 && t >= 0.3 - 1e-9 && t <= s.length_m - 0.3 + 1e-9) on_solid = true;
+      }
+      EXPECT_TRUE(on_solid) << a.id;
+      // And clear of every opening's width on that wall, windows above it included.
+      const floors::FloorPlan& plan = bare.floors[a.floor].plan;
+      const double along =
+          (a.centre_m.head<2>() - plan.wall_start_m(*plan.find_wall(a.wall_id))).norm();
+      for (const auto& o : plan.openings)
+        if (o.wall_id == a.wall_id)
+          EXPECT_TRUE(along <= o.offset_m - 0.3 + 1e-9 ||
+                      along >= o.offset_m + o.width_m + 0.3 - 1e-9)
+              << a.id << " under opening " << o.id;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 16);  // 4 climbs, 4 pipes each
+}
+
+}  // namespace
+}  // namespace ccbuild::climb
