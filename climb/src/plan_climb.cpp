@@ -345,6 +345,11 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
     {
       const std::vector<int> joints{m.gantry_joints[0], m.gantry_joints[1]};
       const Counterweight best = counterweight(group, moved, q[joints[0]], q[joints[1]]);
+      if (!std::isfinite(best.margin))
+        return fail(ClimbStatus::Code::kUnstable,
+                    "moving " + names +
+                        ": the pins left holding lie in a line, no polygon to "
+                        "stand on");
       if (best.margin < m.stability_margin_m)
         return fail(ClimbStatus::Code::kUnstable,
                     "moving " + names +

@@ -222,6 +222,8 @@ Verdict Scene::check(const std::vector<double>& q, const Eigen::Isometry3d& plat
   if (!support.empty()) {
     const Eigen::Vector3d com = robot.centre_of_mass(poses);
     const double inside = inside_hull_m(com.head<2>(), support);
+    if (!std::isfinite(inside))
+      return {false, "unstable: the holding pins lie in a line, no polygon to stand on"};
     if (inside < machine_.stability_margin_m)
       return {false,
               "unstable: the centre of mass is " +

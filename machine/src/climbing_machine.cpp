@@ -58,6 +58,14 @@ struct Reader {
                        "limits the wrong way round: lower " + plain_number(info.lower) +
                            " is above upper " + plain_number(info.upper) + " (the " + role +
                            " of " + field.path() + ")");
+    const bool revolute = info.type == "revolute";
+    const Range range =
+        revolute ? Range::closed(-20.0 * M_PI, 20.0 * M_PI) : Range::closed(-100.0, 100.0);
+    for (const double limit : {info.lower, info.upper})
+      if (!range.contains(limit))
+        throw InputError(file(), info.line, "joint[" + name + "].limit",
+                         "must be " + range.describe(revolute ? "rad" : "m") + ", got " +
+                             plain_number(limit) + " (the " + role + ")");
     if (!(info.velocity > 0.0) || info.velocity > 20.0)
       throw InputError(file(), info.line, "joint[" + name + "].limit.velocity",
                        "must be more than 0 and at most 20, got " + plain_number(info.velocity));
@@ -138,9 +146,9 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
     ClimbingUnit unit;
     unit.name = um.required("name").as_string();
     const Eigen::Vector3d z = Eigen::Vector3d::UnitZ(), x = Eigen::Vector3d::UnitX();
-    unit.joints = {reader.joint(um.required("swing"), "swing", {"revolute", "continuous"}, z),
+    unit.joints = {reader.joint(um.required("swing"), "swing", {"revolute"}, z),
                    reader.joint(um.required("reach"), "reach", {"prismatic"}, x),
-                   reader.joint(um.required("wrist"), "wrist", {"revolute", "continuous"}, z),
+                   reader.joint(um.required("wrist"), "wrist", {"revolute"}, z),
                    reader.joint(um.required("stroke"), "stroke", {"prismatic"}, -z),
                    reader.joint(um.required("pin"), "pin", {"prismatic"}, x)};
     // A chain: each joint's child link is the next one's parent.
@@ -182,8 +190,9 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
 
   if (auto v = map.optional("units_per_transfer")) {
     m.units_per_transfer = static_cast<int>(v->as_count());
-    if (m.units_per_transfer < 1 || m.units_per_transfer > static_cast<int>(m.units.size()) - 2)
-      v->fail("must be from 1 to " + std::to_string(m.units.size() - 2) +
+    if (m.units_per_transfer < 1 || m.units_per_transfer > static_cast<int>(m.units.size()) - 3)
+      v->fail("must be from 1 to " + std::to_string(m.units.size() - 3) + " for " +
+              std::to_string(m.units.size()) + " units" +
               " (at least 3 units hold the platform while the others move)");
   }
   m.nozzle_reach_below_m = map.required("nozzle_reach_below_m").as_number_in(kReach_m, "m");

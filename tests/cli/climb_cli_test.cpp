@@ -172,6 +172,16 @@ TEST(ClimberFixtures, TwoUnitsAreNotEnough) {
   expect_refused(b.climb(), "a climbing machine has 3 to 16 units, got 2");
 }
 
+TEST(ClimberFixtures, TooManyUnitsMovingAtOnce) {
+  // Two of four moving leave two pins: a line, no support polygon.
+  BrokenClimber b;
+  b.edit_profile("units_per_transfer: 1 ", "units_per_transfer: 2 ");
+  expect_refused(b.climb(), b.profile_path() +
+                                ":27: climbing.units_per_transfer: must be from 1 "
+                                "to 1 for 4 units (at least 3 units hold the "
+                                "platform while the others move)");
+}
+
 TEST(ClimberFixtures, ANumberOutOfItsRange) {
   BrokenClimber b;
   b.edit_profile("anchor_strength_mpa: 10 ", "anchor_strength_mpa: 1000 ");

@@ -67,15 +67,22 @@ def check_climb(c, stages, machine, urdf, problems):
     units = [u["name"] for u in machine["units"]]
     strokes = {u["stroke"] for u in machine["units"]}
     kinds = [(p["kind"], p["unit"]) for p in phases]
-    expected = [("park", None)]
     seen = [p["unit"] for p in phases if p["kind"] == "transit"]
     if sorted(seen) != sorted(units):
         problems.append("%s: units transferred %s, expected each of %s once" % (where, seen, units))
+    # park, then groups (balance for the group's first unit, then release, transit,
+    # insert of each of its units), then lift.
+    expected = [("park", None)]
     for u in seen:
-        expected += [("balance", u), ("release", u), ("transit", u), ("insert", u)]
+        if len(expected) < len(kinds) and kinds[len(expected)] == ("balance", u):
+            expected.append(("balance", u))
+        expected += [("release", u), ("transit", u), ("insert", u)]
+        if len(expected) >= len(kinds):
+            break
     expected.append(("lift", None))
-    if kinds != expected:
-        problems.append("%s: phases %s, expected %s" % (where, kinds, expected))
+    if kinds != expected or kinds[1][0] != "balance":
+        problems.append("%s: phases %s, expected park, then balance before each group of "
+                        "release, transit, insert, then lift" % (where, kinds))
     total = sum(p["duration_s"] for p in phases)
     if abs(total - c["duration_s"]) > TIME * (len(phases) + 1):
         problems.append("%s: duration %g is not its phases' sum %g" % (where, c["duration_s"], total))
