@@ -76,12 +76,22 @@ class Climber {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - began_).count();
   }
 
+  // The answer for a motion not started: the climb's planning time is spent.
+  MotionResult out_of_time() const {
+    MotionResult r;
+    r.timed_out = true;
+    r.verdict = {false, "the climb's planning time (" + printf_string("%g", deadline_s_) +
+                            " s) ran out before this motion"};
+    return r;
+  }
+
   // Plans a motion of `joints` (robot joint indices) from q's values to `goal`, the
   // platform at `platform`, checking `moving` links and statics over `support`.
   MotionResult move_joints(const std::vector<int>& joints, const std::vector<double>& goal,
                            std::vector<double>& q, const Eigen::Isometry3d& platform,
                            const std::vector<int>& moving,
                            const std::vector<Eigen::Vector2d>& support) {
+    if (elapsed_s() >= deadline_s_) return out_of_time();
     MotionProblem p;
     for (int j : joints) {
       const auto& info = m_.robot->joint_info(j);
@@ -94,7 +104,7 @@ class Climber {
     }
     p.goal = goal;
     p.seed = mix(options_.seed, mix(static_cast<std::uint64_t>(stage_), ++motions_));
-    p.time_s = std::max(0.01, deadline_s_ - elapsed_s());
+    p.time_s = deadline_s_ - elapsed_s();
     std::vector<double> work = q;
     p.valid = [&, joints](const std::vector<double>& s) {
       for (std::size_t k = 0; k < joints.size(); ++k) work[joints[k]] = s[k];
@@ -405,7 +415,7 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
     p.start = {0.0, 0.0, from.platform_z_m};
     p.goal = {0.0, 0.0, to.platform_z_m};
     p.seed = mix(options.seed, mix(static_cast<std::uint64_t>(from.index), 1000));
-    p.time_s = std::max(0.01, options.time_limit_s - climber.elapsed_s());
+    p.time_s = options.time_limit_s - climber.elapsed_s();
     std::vector<Eigen::Vector2d> support;
     for (const auto& a : to.anchors) support.push_back(a.centre_m.head<2>());
     std::vector<int> all(robot.link_count()), unit_links;
@@ -433,7 +443,7 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
       return scene.check(work, Eigen::Isometry3d(Eigen::Translation3d(s[0], s[1], s[2])), all,
                          unit_links, support);
     };
-    const MotionResult r = detail::plan_motion(p);
+    const MotionResult r = p.time_s > 0 ? detail::plan_motion(p) : climber.out_of_time();
     ClimbPhase phase;
     phase.kind = ClimbPhase::Kind::kLift;
     phase.joints = {"platform_x", "platform_y", "platform_z"};

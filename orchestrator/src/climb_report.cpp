@@ -241,12 +241,24 @@ std::string climb_report_svg(const Project& project, const ClimbReport& report) 
             "\" r=\"7\" fill=\"#333\"/>\n");
     doc.text(view.X(mount.x()) + 9, view.Y(mount.y()) + 4, m->units[k].name, 12);
   }
+  // Each unit's mount (the swing's axis) in plan, at the platform's frame height.
+  auto mount_of = [&](int u) {
+    const int turret = m->robot->link(m->robot->joint_info(m->units[u].joints[0]).child_link);
+    return Eigen::Vector3d(zero_poses[turret].translation());
+  };
   doc.raw("</g>\n<g id=\"anchors\">\n");
   for (const auto& s : report.stages.stages)
-    for (const auto& a : s.anchors)
+    for (const auto& a : s.anchors) {
+      // The leg's reach in plan: from its mount to the pipe.
+      const Eigen::Vector3d mount = mount_of(a.unit);
+      doc.raw("<line class=\"leg\" x1=\"" + svg::px(view.X(mount.x())) + "\" y1=\"" +
+              svg::px(view.Y(mount.y())) + "\" x2=\"" + svg::px(view.X(a.centre_m.x())) +
+              "\" y2=\"" + svg::px(view.Y(a.centre_m.y())) + "\" stroke=\"" + palette[s.index % 7] +
+              "\" stroke-width=\"1.5\"/>\n");
       doc.raw("<circle cx=\"" + svg::px(view.X(a.centre_m.x())) + "\" cy=\"" +
               svg::px(view.Y(a.centre_m.y())) + "\" r=\"4\" fill=\"" + palette[s.index % 7] +
               "\"/>\n");
+    }
   doc.raw("</g>\n");
   const double plan_bottom = top + view.height_px();
   detail::draw_scale_bar(doc, view, left, plan_bottom + 46.0, unit);
@@ -261,7 +273,7 @@ std::string climb_report_svg(const Project& project, const ClimbReport& report) 
   auto EZ = [&](double z) { return e_top + e_height - (z - z_lo) / (z_top - z_lo) * e_height; };
   doc.text(left, e_top - 10,
            "elevation: x (" + u + ") against height (" + u +
-               "); floors grey, the platform at each stage, its pipes",
+               "); floors grey, the platform at each stage, its legs and pipes",
            12, "id=\"elevation-title\"");
   std::string e = "<g id=\"elevation\">\n<rect x=\"" + svg::px(left) + "\" y=\"" + svg::px(e_top) +
                   "\" width=\"" + svg::px(view.width_px()) + "\" height=\"" + svg::px(e_height) +
@@ -285,9 +297,16 @@ std::string climb_report_svg(const Project& project, const ClimbReport& report) 
     e += "<text x=\"" + svg::px(EX(hi.x()) + 4) + "\" y=\"" + svg::px(EZ(s.platform_z_m) + 4) +
          "\" font-family=\"sans-serif\" font-size=\"11\" fill=\"" + c + "\">" +
          svg::escape("stage " + std::to_string(s.index)) + "</text>\n";
-    for (const auto& a : s.anchors)
+    for (const auto& a : s.anchors) {
+      // The leg hanging from the platform to its pin.
+      const Eigen::Vector3d mount = mount_of(a.unit);
+      e += "<line class=\"leg\" x1=\"" + svg::px(EX(mount.x())) + "\" y1=\"" +
+           svg::px(EZ(s.platform_z_m + mount.z())) + "\" x2=\"" + svg::px(EX(a.centre_m.x())) +
+           "\" y2=\"" + svg::px(EZ(a.centre_m.z())) + "\" stroke=\"" + c +
+           "\" stroke-width=\"1.5\"/>\n";
       e += "<circle cx=\"" + svg::px(EX(a.centre_m.x())) + "\" cy=\"" +
            svg::px(EZ(a.centre_m.z())) + "\" r=\"4\" fill=\"" + c + "\"/>\n";
+    }
   }
   const auto z_ticks = svg::ticks(z_lo / per, z_top / per, 6);
   const double z_step = z_ticks.size() > 1 ? z_ticks[1] - z_ticks[0] : 1.0;
@@ -301,8 +320,8 @@ std::string climb_report_svg(const Project& project, const ClimbReport& report) 
                                                 {"dot", "#333", "climbing unit"},
                                                 {"line", "#888", "walls (top floor dark)"}};
   for (const auto& s : report.stages.stages)
-    legend.push_back(
-        {"dot", palette[s.index % 7], "stage " + std::to_string(s.index) + ": its pipes"});
+    legend.push_back({"dot", palette[s.index % 7],
+                      "stage " + std::to_string(s.index) + ": its pipes and the legs to them"});
   const double legend_top = e_top + e_height + 30.0;
   const double legend_height = doc.legend(10, legend_top, width - 20, legend);
   doc.set_height(legend_top + legend_height + 10.0);

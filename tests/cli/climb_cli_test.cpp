@@ -242,6 +242,16 @@ TEST(ClimbCommand, AnUnstableMachineIsAnAnswerWithItsReason) {
   EXPECT_TRUE(contains(r.out, "with the gantry as counterweight anywhere on its rails")) << r.out;
 }
 
+TEST(ClimbCommand, TheTimeLimitHolds) {
+  // 10 ms cannot plan a climb (about 0.6 s here): the answer says so, it does not run on.
+  const auto r = run_ccbuild(
+      "climb config/buildings/apartment.yaml --machine config/machines/cc-climber.yaml --floor 2 "
+      "--time-limit 0.01");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.out, "NOT feasible: time-limit: ")) << r.out;
+  EXPECT_TRUE(contains(r.out, "the climb's planning time (0.01 s) ran out")) << r.out;
+}
+
 TEST(ClimbCommand, AFixedGantryNeedsNoClimbs) {
   const auto r = run_ccbuild("climb config/buildings/house.yaml");
   EXPECT_EQ(r.exit_code, 0) << r.err;
