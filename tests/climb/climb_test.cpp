@@ -319,11 +319,12 @@ TEST(Climb, TheDefaultRuleKeepsPipesOnSolidWallAwayFromEnds) {
       const floors::FloorPlan& plan = bare.floors[a.floor].plan;
       const double along =
           (a.centre_m.head<2>() - plan.wall_start_m(*plan.find_wall(a.wall_id))).norm();
-      for (const auto& o : plan.openings)
-        if (o.wall_id == a.wall_id)
-          EXPECT_TRUE(along <= o.offset_m - 0.3 + 1e-9 ||
-                      along >= o.offset_m + o.width_m + 0.3 - 1e-9)
-              << a.id << " under opening " << o.id;
+      for (const auto& o : plan.openings) {
+        if (o.wall_id != a.wall_id) continue;
+        EXPECT_TRUE(along <= o.offset_m - 0.3 + 1e-9 ||
+                    along >= o.offset_m + o.width_m + 0.3 - 1e-9)
+            << a.id << " under opening " << o.id;
+      }
       ++checked;
     }
   }
