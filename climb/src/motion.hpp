@@ -1,6 +1,14 @@
 #pragma once
 // One motion planned with OMPL in a box of joint values: RRTConnect, seeded, simplified,
 // and re-checked at four times the planner's resolution. Internal to climb/.
+//
+// Why RRTConnect: each motion is a single query between two known joint states in one to
+// four dimensions, mostly free space with a few walls in the way; growing trees from both
+// ends connects such queries in a handful of samples, and OMPL's shortcutting then removes
+// the random detours. An asymptotically optimal planner (RRT*, BIT*) would spend its whole
+// budget improving paths that the simplifier already makes nearly straight, and a climb
+// must plan within a second; PRM's roadmap would pay off only over many queries in one
+// unchanging scene, while every climb sees a new set of walls.
 
 #include <cstdint>
 #include <functional>
