@@ -209,6 +209,39 @@ TEST_F(Apartment, EveryClimbPlansAndPassesTheFineReCheck) {
   }
 }
 
+TEST_F(Apartment, TheReCheckRefusesAPathBeyondALimitOrThroughAWall) {
+  const auto& stages = stages_->stages;
+  ASSERT_GE(stages.size(), 2u);
+  const ClimbPlan plan = plan_climb(climber(), *building_, stages[1], stages[2]);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  const machine::ClimbingMachine& m = climber();
+  // A release that draws U1's pin 1 cm further back than its joint allows (away from the
+  // wall: nothing else is wrong with it).
+  ClimbPlan beyond = plan;
+  for (auto& p : beyond.phases)
+    if (p.kind == ClimbPhase::Kind::kRelease && p.unit == 0)
+      p.path.insert(p.path.end() - 1, {-0.01});
+  const ClimbStatus refused = verify_climb(m, *building_, stages[1], stages[2], beyond);
+  EXPECT_FALSE(refused);
+  EXPECT_TRUE(contains(refused.reason(), "joint u1_pin_slide leaves its limits"))
+      << refused.to_string();
+  // To its very end (0) is within.
+  ClimbPlan at_end = plan;
+  for (auto& p : at_end.phases)
+    if (p.kind == ClimbPhase::Kind::kRelease && p.unit == 0) p.path.insert(p.path.end() - 1, {0.0});
+  EXPECT_TRUE(verify_climb(m, *building_, stages[1], stages[2], at_end));
+  // The stroke run down to the ground: the foot goes through the floor's walls or beyond
+  // the stroke's margin, either way refused.
+  ClimbPlan down = plan;
+  for (auto& p : down.phases)
+    if (p.kind == ClimbPhase::Kind::kTransit && p.unit == 0) {
+      std::vector<double> mid = p.path.front();
+      mid[3] = m.robot->joint_info(m.units[0].joints[3]).upper;
+      p.path.insert(p.path.begin() + 1, mid);
+    }
+  EXPECT_FALSE(verify_climb(m, *building_, stages[1], stages[2], down));
+}
+
 TEST_F(Apartment, TheSetbackIsClimbedWithSwingAndReach) {
   // The top floors end at 96 ft: U2 and U3 move from pipes at 97 ft to pipes at 94 ft.
   const auto& stages = stages_->stages;
