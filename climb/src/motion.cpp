@@ -58,13 +58,9 @@ double distance(const std::vector<double>& a, const std::vector<double>& b) {
   return std::sqrt(d);
 }
 
-// What a refusal names: the obstacle a link touches ("wall 5 of floor 0"), or the whole
-// reason when it is not a contact (a limit, stability).
-std::string obstacle_of(const std::string& why) {
-  const auto touches = why.find(" touches ");
-  if (touches != std::string::npos) return why.substr(touches + 9);
-  if (why.rfind("unstable", 0) == 0) return "the stability margin";
-  return why.substr(0, why.find(" at platform "));  // a leg's stroke, wherever it is
+// What a refusal is grouped by: its obstacle, or its whole reason (a limit).
+const std::string& obstacle_of(const Verdict& v) {
+  return v.obstacle.empty() ? v.why : v.obstacle;
 }
 
 // The first invalid state between a and b at steps of `step`; ok when there is none. With
@@ -82,15 +78,16 @@ Verdict first_invalid(const MotionProblem& p, const std::vector<double>& a,
     Verdict v;
     for (std::size_t k = 0; k < a.size() && v.ok; ++k)
       if (s[k] < p.lower[k] - 1e-9 || s[k] > p.upper[k] + 1e-9)
-        v = {false, "joint " + std::to_string(k) + " leaves its limits"};
+        v = Verdict::refused("joint " + std::to_string(k) + " leaves its limits");
     if (v.ok) v = p.valid(s);
     if (v.ok) continue;
     if (!all) return v;
     // One cause per obstacle: a leg sliding along a wall touches it with several links.
-    const std::string obstacle = obstacle_of(v.why);
+    const std::string& obstacle = obstacle_of(v);
     if (std::find(seen.begin(), seen.end(), obstacle) != seen.end()) continue;
     seen.push_back(obstacle);
     out.ok = false;
+    out.unstable = out.unstable || v.unstable;
     out.why += (out.why.empty() ? "" : "; then ") + v.why;
     if (++reasons == 3) break;
   }
@@ -135,15 +132,15 @@ MotionResult plan_motion(const MotionProblem& p) {
   for (const auto* which : {&p.start, &p.goal}) {
     for (std::size_t k = 0; k < n; ++k)
       if ((*which)[k] < p.lower[k] - 1e-9 || (*which)[k] > p.upper[k] + 1e-9) {
-        out.verdict = {false, std::string(which == &p.start ? "the start" : "the goal") +
-                                  " is outside the joints' limits (joint " + std::to_string(k) +
-                                  ")"};
+        out.verdict =
+            Verdict::refused(std::string(which == &p.start ? "the start" : "the goal") +
+                             " is outside the joints' limits (joint " + std::to_string(k) + ")");
         return finish(out);
       }
     Verdict v = p.valid(*which);
     if (!v.ok) {
-      out.verdict = {false, std::string(which == &p.start ? "the start" : "the goal") +
-                                " is not valid: " + v.why};
+      out.verdict =
+          v.within(std::string(which == &p.start ? "the start" : "the goal") + " is not valid: ");
       return finish(out);
     }
   }
@@ -163,7 +160,7 @@ MotionResult plan_motion(const MotionProblem& p) {
   std::map<std::string, long> refusals;
   si->setStateValidityChecker([&](const ob::State* state) {
     const Verdict v = p.valid(values(state, n));
-    if (!v.ok) ++refusals[obstacle_of(v.why)];
+    if (!v.ok) ++refusals[obstacle_of(v)];
     return v.ok;
   });
   si->setStateValidityCheckingResolution(p.resolution);
@@ -191,12 +188,13 @@ MotionResult plan_motion(const MotionProblem& p) {
   const ob::PlannerStatus status = planner->solve(ptc);
   if (status != ob::PlannerStatus::EXACT_SOLUTION) {
     const Verdict direct = first_invalid(p, p.start, p.goal, step / 4, true);
-    out.verdict = {
-        false, std::string(out.timed_out ? "no motion within the time"
-                                         : "no motion within " + std::to_string(p.max_iterations) +
-                                               " planner iterations") +
-                   (direct.ok ? "" : "; the direct motion is blocked: " + direct.why) +
-                   most_refused(refusals)};
+    out.verdict = Verdict::refused(
+        std::string(out.timed_out ? "no motion within the time"
+                                  : "no motion within " + std::to_string(p.max_iterations) +
+                                        " planner iterations") +
+            (direct.ok ? "" : "; the direct motion is blocked: " + direct.why) +
+            most_refused(refusals),
+        "", direct.unstable);
     return finish(out);
   }
   auto& path = *pdef->getSolutionPath()->as<og::PathGeometric>();
@@ -208,7 +206,7 @@ MotionResult plan_motion(const MotionProblem& p) {
   for (std::size_t k = 0; k + 1 < out.path.size(); ++k) {
     const Verdict v = first_invalid(p, out.path[k], out.path[k + 1], step / 4);
     if (!v.ok) {
-      out.verdict = {false, "the planned motion fails the finer re-check: " + v.why};
+      out.verdict = v.within("the planned motion fails the finer re-check: ");
       out.path.clear();
       return finish(out);
     }

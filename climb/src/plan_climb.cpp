@@ -61,6 +61,24 @@ PinTarget target(const machine::ClimbingMachine& m, const Anchor& a) {
   return t;
 }
 
+// Every unit's leg following its pin in `pins` (in that order), the platform at
+// `platform`: the units' joints written into `q`. Refused when a leg would leave its
+// usable range (or cannot reach its pin at all).
+Verdict legs_follow(const machine::ClimbingMachine& m, const std::vector<PinTarget>& pins,
+                    const Eigen::Isometry3d& platform, std::vector<double>& q) {
+  for (std::size_t u = 0; u < pins.size(); ++u) {
+    const int unit = static_cast<int>(u);
+    const auto pose =
+        m.unit_ik(unit, platform, q, pins[u].foot, pins[u].direction, pins[u].engaged_m);
+    if (!pose || !m.unit_within_limits(unit, *pose)) {
+      const std::string leg = "unit " + m.units[u].name + "'s leg would leave its stroke";
+      return Verdict::refused(leg + " at platform " + metres(platform.translation().z(), 2), leg);
+    }
+    m.set_unit(unit, *pose, q);
+  }
+  return {};
+}
+
 class Climber {
  public:
   Climber(const machine::ClimbingMachine& m, const Scene& scene, const ClimbOptions& options,
@@ -80,8 +98,8 @@ class Climber {
   MotionResult out_of_time() const {
     MotionResult r;
     r.timed_out = true;
-    r.verdict = {false, "the climb's planning time (" + printf_string("%g", deadline_s_) +
-                            " s) ran out before this motion"};
+    r.verdict = Verdict::refused("the climb's planning time (" + printf_string("%g", deadline_s_) +
+                                 " s) ran out before this motion");
     return r;
   }
 
@@ -94,12 +112,9 @@ class Climber {
     if (elapsed_s() >= deadline_s_) return out_of_time();
     MotionProblem p;
     for (int j : joints) {
-      const auto& info = m_.robot->joint_info(j);
-      double margin = 0.0;
-      for (const auto& u : m_.units)
-        if (u.joints[3] == j) margin = m_.stroke_end_margin_m;
-      p.lower.push_back(info.lower + margin);
-      p.upper.push_back(info.upper - margin);
+      const auto [lower, upper] = m_.usable_range(j);
+      p.lower.push_back(lower);
+      p.upper.push_back(upper);
       p.start.push_back(q[j]);
     }
     p.goal = goal;
@@ -235,9 +250,9 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
     return true;
   };
   auto blocked = [&](const MotionResult& r) {
-    return r.timed_out                                           ? ClimbStatus::Code::kTimeLimit
-           : r.verdict.why.find("unstable") != std::string::npos ? ClimbStatus::Code::kUnstable
-                                                                 : ClimbStatus::Code::kBlocked;
+    return r.timed_out          ? ClimbStatus::Code::kTimeLimit
+           : r.verdict.unstable ? ClimbStatus::Code::kUnstable
+                                : ClimbStatus::Code::kBlocked;
   };
 
   // 1. Park: the nozzle up, clear of the walls.
@@ -425,16 +440,8 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
     std::vector<double> work = q;
     std::vector<PinTarget> pins;
     for (const auto& a : to.anchors) pins.push_back(target(m, a));
-    auto follow = [&](const std::vector<double>& s, std::vector<double>& out) -> Verdict {
-      const Eigen::Isometry3d at(Eigen::Translation3d(s[0], s[1], s[2]));
-      for (int u = 0; u < units; ++u) {
-        const auto pose = m.unit_ik(u, at, out, pins[u].foot, pins[u].direction, pins[u].engaged_m);
-        if (!pose || !m.unit_within_limits(u, *pose))
-          return {false, "unit " + m.units[u].name + "'s leg would leave its stroke at platform " +
-                             metres(s[2], 2)};
-        m.set_unit(u, *pose, out);
-      }
-      return {};
+    auto follow = [&](const std::vector<double>& s, std::vector<double>& out) {
+      return legs_follow(m, pins, Eigen::Isometry3d(Eigen::Translation3d(s[0], s[1], s[2])), out);
     };
     p.valid = [&](const std::vector<double>& s) {
       Verdict v = follow(s, work);
@@ -508,11 +515,8 @@ ClimbStatus verify_climb(const machine::ClimbingMachine& m, const floors::Buildi
   }
   std::vector<int> all(robot.link_count());
   for (int l = 0; l < robot.link_count(); ++l) all[l] = l;
-  auto limit_margin = [&](int j) {
-    for (const auto& unit : m.units)
-      if (unit.joints[3] == j) return m.stroke_end_margin_m;
-    return 0.0;
-  };
+  std::vector<PinTarget> lift_pins;
+  for (const auto& a : to.anchors) lift_pins.push_back(target(m, a));
   for (std::size_t p = 0; p < plan.phases.size(); ++p) {
     const ClimbPhase& phase = plan.phases[p];
     const std::string where = "phase " + std::to_string(p + 1) + " (" + to_string(phase.kind) + ")";
@@ -550,28 +554,20 @@ ClimbStatus verify_climb(const machine::ClimbingMachine& m, const floors::Buildi
         for (std::size_t j = 0; j < a.size(); ++j) s[j] = a[j] + f * (b[j] - a[j]);
         if (phase.kind == ClimbPhase::Kind::kLift) {
           platform = Eigen::Isometry3d(Eigen::Translation3d(s[0], s[1], s[2]));
-          for (int u = 0; u < units; ++u) {
-            const PinTarget t = target(m, to.anchors[u]);
-            const auto pose = m.unit_ik(u, platform, q, t.foot, t.direction, t.engaged_m);
-            if (!pose || !m.unit_within_limits(u, *pose))
-              return {ClimbStatus::Code::kBlocked,
-                      where + ": unit " + m.units[u].name + " leaves its limits"};
-            m.set_unit(u, *pose, q);
-          }
+          const Verdict v = legs_follow(m, lift_pins, platform, q);
+          if (!v.ok) return {ClimbStatus::Code::kBlocked, where + ": " + v.why};
         } else {
           for (std::size_t j = 0; j < joints.size(); ++j) {
-            const auto& info = robot.joint_info(joints[j]);
-            const double margin = limit_margin(joints[j]);
-            if (s[j] < info.lower + margin - 1e-9 || s[j] > info.upper - margin + 1e-9)
+            const auto [lower, upper] = m.usable_range(joints[j]);
+            if (s[j] < lower - 1e-9 || s[j] > upper + 1e-9)
               return {ClimbStatus::Code::kBlocked,
-                      where + ": joint " + info.name + " leaves its limits"};
+                      where + ": joint " + robot.joint_info(joints[j]).name + " leaves its limits"};
             q[joints[j]] = s[j];
           }
         }
         const Verdict v = scene.check(q, platform, moving, self, support);
         if (!v.ok)
-          return {v.why.find("unstable") != std::string::npos ? ClimbStatus::Code::kUnstable
-                                                              : ClimbStatus::Code::kBlocked,
+          return {v.unstable ? ClimbStatus::Code::kUnstable : ClimbStatus::Code::kBlocked,
                   where + ": " + v.why};
       }
     }

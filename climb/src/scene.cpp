@@ -23,9 +23,6 @@ Eigen::Isometry3d wall_pose(const WallBox& w) {
 
 // What the broad-phase callback needs to know about the link it tests.
 struct CollisionQuery {
-  const Scene* scene = nullptr;
-  int link = -1;
-  Eigen::Isometry3d link_pose = Eigen::Isometry3d::Identity();
   bool hit = false;
   int box = -1;
   std::function<bool(int box)> ignore;
@@ -131,7 +128,8 @@ Scene::Scene(const machine::ClimbingMachine& machine, std::vector<WallBox> walls
           geometry = std::make_shared<fcl::Sphered>(shape.size.x());
           break;
       }
-      link_shapes_[l].push_back({geometry, shape.origin});
+      link_shapes_[l].push_back(
+          {std::make_unique<fcl::CollisionObjectd>(geometry, shape.origin), shape.origin});
     }
   assembly_.assign(robot.link_count(), 0);
   for (int l : machine_.gantry_links) assembly_[l] = 1;
@@ -174,32 +172,34 @@ bool Scene::pin_in_pipe(int link, const Eigen::Isometry3d& pose, int box) const 
   return false;
 }
 
+void Scene::place(int link, const Eigen::Isometry3d& pose) const {
+  for (const auto& shape : link_shapes_[link]) {
+    shape.object->setTransform(pose * shape.origin);
+    shape.object->computeAABB();
+  }
+}
+
 Verdict Scene::check(const std::vector<double>& q, const Eigen::Isometry3d& platform,
                      const std::vector<int>& moving, const std::vector<int>& self_moving,
                      const std::vector<Eigen::Vector2d>& support) const {
   const machine::Kinematics& robot = *machine_.robot;
   const auto poses = robot.link_poses(platform, q);
   for (int link : moving) {
+    place(link, poses[link]);
     for (const auto& shape : link_shapes_[link]) {
-      fcl::CollisionObjectd object(shape.geometry, poses[link] * shape.origin);
-      object.computeAABB();
       CollisionQuery query;
-      query.scene = this;
-      query.link = link;
       if (pin_link_unit_[link] >= 0)
         query.ignore = [&](int box) { return pin_in_pipe(link, poses[link], box); };
-      manager_->collide(&object, &query, on_pair);
-      if (query.hit) return {false, describe_link(link) + " touches " + describe_wall(query.box)};
+      manager_->collide(shape.object.get(), &query, on_pair);
+      if (query.hit) {
+        const std::string wall = describe_wall(query.box);
+        return Verdict::refused(describe_link(link) + " touches " + wall, wall);
+      }
     }
   }
   // The machine itself: only links of other assemblies, and not a link's own parent.
   if (!self_moving.empty()) {
-    std::vector<std::vector<fcl::CollisionObjectd>> objects(robot.link_count());
-    for (int l = 0; l < robot.link_count(); ++l)
-      for (const auto& shape : link_shapes_[l]) {
-        objects[l].emplace_back(shape.geometry, poses[l] * shape.origin);
-        objects[l].back().computeAABB();
-      }
+    for (int l = 0; l < robot.link_count(); ++l) place(l, poses[l]);
     for (int link : self_moving)
       for (int other = 0; other < robot.link_count(); ++other) {
         if (assembly_[other] == assembly_[link] || robot.parent_link(link) == other ||
@@ -208,14 +208,15 @@ Verdict Scene::check(const std::vector<double>& q, const Eigen::Isometry3d& plat
         if (other < link &&
             std::find(self_moving.begin(), self_moving.end(), other) != self_moving.end())
           continue;  // that pair was tested from the other side
-        for (const auto& a : objects[link])
-          for (const auto& b : objects[other]) {
-            if (!a.getAABB().overlap(b.getAABB())) continue;
+        for (const auto& a : link_shapes_[link])
+          for (const auto& b : link_shapes_[other]) {
+            if (!a.object->getAABB().overlap(b.object->getAABB())) continue;
             fcl::CollisionRequestd request;
             fcl::CollisionResultd result;
-            if (fcl::collide(&a, &b, request, result) > 0)
-              return {false,
-                      describe_link(link) + " touches the machine's " + describe_link(other)};
+            if (fcl::collide(a.object.get(), b.object.get(), request, result) > 0) {
+              const std::string part = "the machine's " + describe_link(other);
+              return Verdict::refused(describe_link(link) + " touches " + part, part);
+            }
           }
       }
   }
@@ -223,13 +224,15 @@ Verdict Scene::check(const std::vector<double>& q, const Eigen::Isometry3d& plat
     const Eigen::Vector3d com = robot.centre_of_mass(poses);
     const double inside = inside_hull_m(com.head<2>(), support);
     if (!std::isfinite(inside))
-      return {false, "unstable: the holding pins lie in a line, no polygon to stand on"};
+      return Verdict::refused("unstable: the holding pins lie in a line, no polygon to stand on",
+                              "the stability margin", true);
     if (inside < machine_.stability_margin_m)
-      return {false,
-              "unstable: the centre of mass is " +
-                  (inside < 0 ? metres(-inside, 2) + " outside" : metres(inside, 2) + " inside") +
-                  " the holding pins' polygon (the margin is " +
-                  metres(machine_.stability_margin_m, 2) + ")"};
+      return Verdict::refused(
+          "unstable: the centre of mass is " +
+              (inside < 0 ? metres(-inside, 2) + " outside" : metres(inside, 2) + " inside") +
+              " the holding pins' polygon (the margin is " +
+              metres(machine_.stability_margin_m, 2) + ")",
+          "the stability margin", true);
   }
   return {};
 }
@@ -240,19 +243,11 @@ double Scene::clearance(const std::vector<double>& q, const Eigen::Isometry3d& p
   DistanceQuery query;
   for (int link : moving) {
     if (pin_link_unit_[link] >= 0) continue;  // a pin goes into its wall
-    for (const auto& shape : link_shapes_[link]) {
-      fcl::CollisionObjectd object(shape.geometry, poses[link] * shape.origin);
-      object.computeAABB();
-      manager_->distance(&object, &query, on_distance);
-    }
+    place(link, poses[link]);
+    for (const auto& shape : link_shapes_[link])
+      manager_->distance(shape.object.get(), &query, on_distance);
   }
   return query.best;
-}
-
-double Scene::stability(const std::vector<double>& q, const Eigen::Isometry3d& platform,
-                        const std::vector<Eigen::Vector2d>& support) const {
-  const auto poses = machine_.robot->link_poses(platform, q);
-  return inside_hull_m(machine_.robot->centre_of_mass(poses).head<2>(), support);
 }
 
 double inside_hull_m(const Eigen::Vector2d& p, std::vector<Eigen::Vector2d> points) {

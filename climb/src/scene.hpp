@@ -34,6 +34,20 @@ std::vector<WallBox> walls_built(const floors::Building& building, LayerRef last
 struct Verdict {
   bool ok = true;
   std::string why;
+  /// What refused it, to group refusals by: "wall 5 of floor 0", "the machine's link u2_boom",
+  /// "the stability margin"; empty when `why` says it all.
+  std::string obstacle;
+  bool unstable = false;  ///< refused by statics, not by a contact or a limit
+
+  static Verdict refused(std::string why, std::string obstacle = "", bool unstable = false) {
+    return {false, std::move(why), std::move(obstacle), unstable};
+  }
+  /// The same refusal, its words put in context ("lift: " + why).
+  Verdict within(const std::string& context) const {
+    Verdict out = *this;
+    out.why = context + why;
+    return out;
+  }
 };
 
 /// Collision and statics checks of the machine among the walls. Not thread-safe (it
@@ -59,20 +73,21 @@ class Scene {
   /// The smallest distance from a link in `moving` to a wall, m.
   double clearance(const std::vector<double>& q, const Eigen::Isometry3d& platform,
                    const std::vector<int>& moving) const;
-  /// How far inside the hull of `support` the centre of mass is (negative: outside), m.
-  double stability(const std::vector<double>& q, const Eigen::Isometry3d& platform,
-                   const std::vector<Eigen::Vector2d>& support) const;
 
   /// "wall 17 of floor 1" for a wall box.
   std::string describe_wall(int box) const;
   std::string describe_link(int link) const;
 
  private:
+  // A link's collision shape as an FCL object, created once and moved to each pose
+  // checked (hence not thread-safe).
   struct Shape {
-    std::shared_ptr<fcl::CollisionGeometryd> geometry;
+    std::unique_ptr<fcl::CollisionObjectd> object;
     Eigen::Isometry3d origin;
   };
   bool pin_in_pipe(int link, const Eigen::Isometry3d& pose, int box) const;
+  /// Moves `link`'s shapes to `pose` (world).
+  void place(int link, const Eigen::Isometry3d& pose) const;
 
   const machine::ClimbingMachine& machine_;
   std::vector<WallBox> walls_;

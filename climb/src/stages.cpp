@@ -49,9 +49,8 @@ struct Leg {
 Leg leg_of(const machine::ClimbingMachine& m, int u) {
   const machine::Kinematics& robot = *m.robot;
   const auto poses = robot.link_poses(Eigen::Isometry3d::Identity(), robot.zero());
-  const auto& stroke = robot.joint_info(m.units[u].joints[3]);
-  return {poses[m.units[u].foot_link].translation().z(), stroke.lower + m.stroke_end_margin_m,
-          stroke.upper - m.stroke_end_margin_m};
+  const auto [stroke_min_m, stroke_max_m] = m.usable_range(m.units[u].joints[3]);
+  return {poses[m.units[u].foot_link].translation().z(), stroke_min_m, stroke_max_m};
 }
 
 // A place a unit's pin could go: a point on a wall's centre line, and the wall.

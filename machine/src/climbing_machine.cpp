@@ -270,11 +270,18 @@ UnitPose ClimbingMachine::get_unit(int u, const std::vector<double>& q) const {
   return pose;
 }
 
+std::pair<double, double> ClimbingMachine::usable_range(int joint) const {
+  const JointInfo& j = robot->joint_info(joint);
+  double margin = 0.0;
+  for (const auto& unit : units)
+    if (unit.joints[3] == joint) margin = stroke_end_margin_m;
+  return {j.lower + margin, j.upper - margin};
+}
+
 bool ClimbingMachine::unit_within_limits(int u, const UnitPose& pose) const {
   for (int k = 0; k < 5; ++k) {
-    const JointInfo& j = robot->joint_info(units[u].joints[k]);
-    const double margin = k == 3 ? stroke_end_margin_m : 0.0;
-    if (pose[k] < j.lower + margin - 1e-12 || pose[k] > j.upper - margin + 1e-12) return false;
+    const auto [lower, upper] = usable_range(units[u].joints[k]);
+    if (pose[k] < lower - 1e-12 || pose[k] > upper + 1e-12) return false;
   }
   return true;
 }

@@ -1,24 +1,47 @@
 #!/usr/bin/env bash
-# Runs `ccbuild plan-layer ARGS --json --svg` and re-checks both outputs with the
-# independent checkers (check_plan.py, check_svg.py), including the plan checker's
-# self-test (it must catch planted corruptions of this very plan).
-# Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT ARGS...
+# Runs `ccbuild COMMAND ARGS --json --svg` and re-checks both outputs with the independent
+# checkers: for plan-layer check_plan.py and check_svg.py, for climb check_climbs.py and
+# the SVG parsed as XML with its groups present; with each JSON checker's self-test (it
+# must catch planted corruptions of this very output) when the run succeeded.
+# Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT plan-layer|climb ARGS...
 set -euo pipefail
-ccbuild=$1 python=$2 expected=$3
-shift 3
+ccbuild=$1 python=$2 expected=$3 command=$4
+shift 4
 here=$(cd "$(dirname "$0")" && pwd)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 set +e
-"$ccbuild" plan-layer "$@" --json --svg "$out/plan.svg" > "$out/plan.json"
+"$ccbuild" "$command" "$@" --json --svg "$out/out.svg" > "$out/out.json"
 code=$?
 set -e
 if [ "$code" -ne "$expected" ]; then
-  echo "ccbuild plan-layer $*: exit $code, expected $expected" >&2
+  echo "ccbuild $command $*: exit $code, expected $expected" >&2
   exit 1
 fi
-"$python" "$here/check_plan.py" "$out/plan.json"
-"$python" "$here/check_svg.py" "$out/plan.svg" "$out/plan.json"
+case "$command" in
+  plan-layer)
+    "$python" "$here/check_plan.py" "$out/out.json"
+    "$python" "$here/check_svg.py" "$out/out.svg" "$out/out.json"
+    checker=check_plan.py
+    ;;
+  climb)
+    "$python" "$here/check_climbs.py" "$out/out.json"
+    "$python" - "$out/out.svg" <<'PY'
+import sys
+import xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+ids = {e.get("id") for e in root.iter() if e.get("id")}
+missing = {"title", "walls", "elevation"} - ids
+if missing:
+    sys.exit("check_outputs: the climbs' SVG lacks %s" % sorted(missing))
+PY
+    checker=check_climbs.py
+    ;;
+  *)
+    echo "check_outputs.sh: no checker for '$command'" >&2
+    exit 2
+    ;;
+esac
 if [ "$expected" -eq 0 ]; then
-  "$python" "$here/check_plan.py" --self-test "$out/plan.json"
+  "$python" "$here/$checker" --self-test "$out/out.json"
 fi

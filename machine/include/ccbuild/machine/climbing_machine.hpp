@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ccbuild/machine/kinematics.hpp"
@@ -75,8 +76,10 @@ struct ClimbingMachine {
   std::optional<UnitPose> unit_ik(int u, const Eigen::Isometry3d& platform,
                                   const std::vector<double>& q, const Eigen::Vector3d& foot_m,
                                   const Eigen::Vector2d& pin_direction, double pin_m) const;
-  /// True when every joint of `pose` is within its URDF limits, the stroke within them by
-  /// stroke_end_margin_m.
+  /// The range a joint may use: its URDF limits, a unit's stroke within them by
+  /// stroke_end_margin_m (m or rad).
+  std::pair<double, double> usable_range(int joint) const;
+  /// True when every joint of `pose` is within its usable range.
   bool unit_within_limits(int u, const UnitPose& pose) const;
   /// Writes `pose` into the joint vector `q`.
   void set_unit(int u, const UnitPose& pose, std::vector<double>& q) const;
