@@ -10,7 +10,7 @@
 
 namespace ccbuild::climb {
 
-std::string to_string(ClimbStatus::Code code) {
+std::string to_string(ClimbCode code) {
   switch (code) {
     case ClimbStatus::Code::kFeasible:
       return "feasible";
@@ -24,11 +24,6 @@ std::string to_string(ClimbStatus::Code code) {
       return "time-limit";
   }
   return "?";
-}
-
-std::string ClimbStatus::to_string() const {
-  const std::string name = climb::to_string(code_);
-  return reason_.empty() ? name : name + ": " + reason_;
 }
 
 namespace {

@@ -384,9 +384,9 @@ double Field::as_number() const {
 double Field::as_number_in(const Range& range_si, const std::string& unit,
                            double si_per_unit) const {
   const double value = as_number() * si_per_unit;
-  if (!range_si.contains(value))
-    fail("must be " + range_si.describe(unit, si_per_unit) + ", got " + node_->text +
-         (unit.empty() ? "" : " " + unit));
+  const std::string wrong =
+      range_si.violation(value, node_->text + (unit.empty() ? "" : " " + unit), unit, si_per_unit);
+  if (!wrong.empty()) fail(wrong);
   return value;
 }
 

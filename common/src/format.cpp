@@ -92,6 +92,11 @@ std::string Range::describe(const std::string& unit, double per_unit) const {
          (max_open ? " and less than " : " and at most ") + hi + suffix;
 }
 
+std::string Range::violation(double value, const std::string& got, const std::string& unit,
+                             double per_unit) const {
+  return contains(value) ? "" : "must be " + describe(unit, per_unit) + ", got " + got;
+}
+
 std::string metres(double value_m, int decimals) {
   return printf_string("%.*f m", decimals, value_m);
 }

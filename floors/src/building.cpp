@@ -28,7 +28,8 @@ fs::path resolve_reference(const Field& field, const fs::path& base, SourceRef& 
 }
 
 void check_anchors(const Floor& floor, const std::string& context, DiagnosticSink& sink) {
-  auto metres = [&](double value_m) { return length_text(value_m, floor.plan.units); };
+  // In the plan's unit, whatever it is.
+  auto in_unit = [&](double value_m) { return length_text(value_m, floor.plan.units); };
   std::map<std::string, const AnchorPoint*> seen;
   for (const auto& anchor : floor.anchors) {
     if (auto [it, fresh] = seen.emplace(anchor.id, &anchor); !fresh)
@@ -43,8 +44,8 @@ void check_anchors(const Floor& floor, const std::string& context, DiagnosticSin
     const double length = floor.plan.wall_length_m(*wall);
     if (anchor.offset_m < 0.0 || anchor.offset_m > length) {
       sink.add(at(anchor.source, "offset",
-                  context + "anchor '" + anchor.id + "': offset " + metres(anchor.offset_m) +
-                      " is off wall " + std::to_string(wall->id) + " (length " + metres(length) +
+                  context + "anchor '" + anchor.id + "': offset " + in_unit(anchor.offset_m) +
+                      " is off wall " + std::to_string(wall->id) + " (length " + in_unit(length) +
                       ")"));
       continue;
     }
@@ -53,9 +54,9 @@ void check_anchors(const Floor& floor, const std::string& context, DiagnosticSin
       if (o.wall_id == anchor.wall_id && anchor.offset_m > o.offset_m &&
           anchor.offset_m < o.offset_m + o.width_m)
         sink.add(at(anchor.source, "offset",
-                    context + "anchor '" + anchor.id + "' at " + metres(anchor.offset_m) +
+                    context + "anchor '" + anchor.id + "' at " + in_unit(anchor.offset_m) +
                         " on wall " + std::to_string(anchor.wall_id) + " lies inside an opening (" +
-                        metres(o.offset_m) + " to " + metres(o.offset_m + o.width_m) +
+                        in_unit(o.offset_m) + " to " + in_unit(o.offset_m + o.width_m) +
                         "); anchor pipes need solid wall"));
     }
   }

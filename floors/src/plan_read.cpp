@@ -151,10 +151,9 @@ class TableReader {
       fail(line, field,
            "expected a finite number, got '" + word + "' (NaN and infinity are not allowed)");
     const double value_m = value * meters_per(unit_);
-    if (!range_m.contains(value_m))
-      fail(line, field,
-           "must be " + range_m.describe(to_string(unit_), meters_per(unit_)) + ", got " + word +
-               " " + to_string(unit_));
+    const std::string wrong = range_m.violation(value_m, word + " " + to_string(unit_),
+                                                to_string(unit_), meters_per(unit_));
+    if (!wrong.empty()) fail(line, field, wrong);
     return value_m;
   }
 

@@ -159,17 +159,21 @@ std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
   const int count = layer_count(floor.height_m, layer_height_m);
   std::vector<Layer> layers;
   layers.reserve(count);
-  for (int k = 0; k < count; ++k) {
-    const double z0 = k * layer_height_m;
-    const double z1 = std::min((k + 1) * layer_height_m, floor.height_m);
-    Layer layer = slice_plan_at(floor.plan, z0, z1, options);
-    layer.floor_index = floor.index;
-    layer.index = k;
-    layer.z_bottom_m = floor.base_elevation_m + z0;
-    layer.z_top_m = floor.base_elevation_m + z1;
-    layers.push_back(std::move(layer));
-  }
+  for (int k = 0; k < count; ++k)
+    layers.push_back(slice_floor_layer(floor, layer_height_m, k, options));
   return layers;
+}
+
+Layer slice_floor_layer(const Floor& floor, double layer_height_m, int k,
+                        const SliceOptions& options) {
+  const double z0 = k * layer_height_m;
+  const double z1 = std::min((k + 1) * layer_height_m, floor.height_m);
+  Layer layer = slice_plan_at(floor.plan, z0, z1, options);
+  layer.floor_index = floor.index;
+  layer.index = k;
+  layer.z_bottom_m = floor.base_elevation_m + z0;
+  layer.z_top_m = floor.base_elevation_m + z1;
+  return layer;
 }
 
 Layer slice_plan_at(const FloorPlan& plan, double z_bottom_m, double z_top_m,

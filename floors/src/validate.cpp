@@ -71,7 +71,8 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
                    const std::string& context) {
   DiagnosticSink sink;
   const std::string prefix = context.empty() ? "" : context + ": ";
-  auto metres = [&](double value_m) { return length_text(value_m, plan.units); };
+  // In the plan's unit, whatever it is.
+  auto in_unit = [&](double value_m) { return length_text(value_m, plan.units); };
 
   if (plan.walls.empty())
     sink.add(Diagnostic{plan.source_file, 0, "walls",
@@ -110,7 +111,7 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
     if (w.thickness_m && *w.thickness_m <= 0.0)
       sink.add(at(w.source, "thickness",
                   prefix + "wall " + std::to_string(w.id) + ": thickness must be positive, got " +
-                      metres(*w.thickness_m)));
+                      in_unit(*w.thickness_m)));
     if (a == vertices.end() || b == vertices.end()) continue;
     const Eigen::Vector2d pa = a->second->position_m, pb = b->second->position_m;
     const double length = (pb - pa).norm();
@@ -138,42 +139,42 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
       ok = false;
     }
     if (o.width_m <= 0.0) {
-      sink.add(at(o.source, "width", name + ": width must be positive, got " + metres(o.width_m)));
+      sink.add(at(o.source, "width", name + ": width must be positive, got " + in_unit(o.width_m)));
       ok = false;
     }
     if (o.offset_m < 0.0) {
       sink.add(at(o.source, "offset",
-                  name + ": offset must be zero or more, got " + metres(o.offset_m)));
+                  name + ": offset must be zero or more, got " + in_unit(o.offset_m)));
       ok = false;
     }
     if (o.sill_m < 0.0) {
       sink.add(at(o.source, "sill",
-                  name + ": sill height must be zero or more, got " + metres(o.sill_m)));
+                  name + ": sill height must be zero or more, got " + in_unit(o.sill_m)));
       ok = false;
     }
     if (o.head_m <= 0.0) {
       sink.add(
-          at(o.source, "head", name + ": head height must be positive, got " + metres(o.head_m)));
+          at(o.source, "head", name + ": head height must be positive, got " + in_unit(o.head_m)));
       ok = false;
     } else if (o.sill_m >= o.head_m) {
       sink.add(at(o.source, "sill",
-                  name + ": sill (" + metres(o.sill_m) + ") must be below head (" +
-                      metres(o.head_m) + ")"));
+                  name + ": sill (" + in_unit(o.sill_m) + ") must be below head (" +
+                      in_unit(o.head_m) + ")"));
       ok = false;
     }
     if (floor_height_m && o.head_m > *floor_height_m + kLengthTolerance_m) {
       sink.add(at(o.source, "head",
-                  name + ": head (" + metres(o.head_m) + ") is above the floor height (" +
-                      metres(*floor_height_m) + ")"));
+                  name + ": head (" + in_unit(o.head_m) + ") is above the floor height (" +
+                      in_unit(*floor_height_m) + ")"));
       ok = false;
     }
     if (ok && wall_length.count(o.wall_id)) {
       const double length = wall_length[o.wall_id];
       if (o.offset_m + o.width_m > length + kLengthTolerance_m) {
         sink.add(at(o.source, "",
-                    name + " does not fit on its wall: offset " + metres(o.offset_m) + " + width " +
-                        metres(o.width_m) + " = " + metres(o.offset_m + o.width_m) +
-                        ", but the wall is " + metres(length) + " long"));
+                    name + " does not fit on its wall: offset " + in_unit(o.offset_m) +
+                        " + width " + in_unit(o.width_m) + " = " + in_unit(o.offset_m + o.width_m) +
+                        ", but the wall is " + in_unit(length) + " long"));
       } else {
         sound.push_back(&o);
       }
@@ -191,7 +192,7 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
       if (along > kLengthTolerance_m && up > kLengthTolerance_m)
         sink.add(at(q.source, "",
                     prefix + describe_opening(q) + " overlaps " + describe_opening(p) + " (" +
-                        where(p.source) + ") by " + metres(along) + " along the wall"));
+                        where(p.source) + ") by " + in_unit(along) + " along the wall"));
     }
   }
   sink.throw_if_any();

@@ -19,6 +19,7 @@ const Range kReach_m = Range::closed(0.0, 20.0);
 const Range kMargin_m = Range::closed(0.0, 5.0);
 const Range kGantryWidth_m = Range::above(0.0, 20.0);
 const Range kLinkMass_kg = Range::above(0.0, 1.0e6);
+const Range kJointSpeed = Range::above(0.0, 20.0);  // m/s or rad/s
 constexpr int kMaxUnits = 16;
 
 double wrap(double a) {
@@ -61,14 +62,15 @@ struct Reader {
     const bool revolute = info.type == "revolute";
     const Range range =
         revolute ? Range::closed(-20.0 * M_PI, 20.0 * M_PI) : Range::closed(-100.0, 100.0);
-    for (const double limit : {info.lower, info.upper})
-      if (!range.contains(limit))
+    for (const double limit : {info.lower, info.upper}) {
+      const std::string wrong = range.violation(limit, plain_number(limit), revolute ? "rad" : "m");
+      if (!wrong.empty())
         throw InputError(file(), info.line, "joint[" + name + "].limit",
-                         "must be " + range.describe(revolute ? "rad" : "m") + ", got " +
-                             plain_number(limit) + " (the " + role + ")");
-    if (!(info.velocity > 0.0) || info.velocity > 20.0)
-      throw InputError(file(), info.line, "joint[" + name + "].limit.velocity",
-                       "must be more than 0 and at most 20, got " + plain_number(info.velocity));
+                         wrong + " (the " + role + ")");
+    }
+    const std::string slow = kJointSpeed.violation(info.velocity, plain_number(info.velocity), "");
+    if (!slow.empty())
+      throw InputError(file(), info.line, "joint[" + name + "].limit.velocity", slow);
     return j;
   }
 };
@@ -127,11 +129,12 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
       throw InputError(urdf.source_file, link.line, "link[" + link.name + "]",
                        "has no collision geometry (box, cylinder or sphere); every link of a "
                        "climbing machine is checked against the walls");
-    if (!kLinkMass_kg.contains(link.mass_kg))
+    const std::string light =
+        kLinkMass_kg.violation(link.mass_kg, plain_number(link.mass_kg) + " kg", "kg");
+    if (!light.empty())
       throw InputError(urdf.source_file, link.line, "link[" + link.name + "].inertial.mass",
-                       "must be " + kLinkMass_kg.describe("kg") + ", got " +
-                           plain_number(link.mass_kg) +
-                           " kg (no <inertial> counts as 0); the platform's statics weigh every "
+                       light +
+                           " (no <inertial> counts as 0); the platform's statics weigh every "
                            "link of a climbing machine");
   }
 

@@ -41,10 +41,10 @@ const Range kStopper_rad = Range::closed(-20.0 * M_PI, 20.0 * M_PI);
 // A URDF value out of range: the URDF and the joint's element are named.
 void check_joint_value(const Field& field, const std::string& urdf_file, const JointInfo& j,
                        const char* attribute, double value, const Range& range, const char* unit) {
-  if (!range.contains(value))
+  const std::string wrong = range.violation(value, plain_number(value) + " " + unit, unit);
+  if (!wrong.empty())
     throw InputError(urdf_file, j.line, "joint[" + j.name + "].limit." + attribute,
-                     "must be " + range.describe(unit) + ", got " + plain_number(value) + " " +
-                         unit + " (joint used as " + field.path() + " in " + field.file() + ")");
+                     wrong + " (joint used as " + field.path() + " in " + field.file() + ")");
 }
 
 std::string joint_list(const UrdfInfo& urdf) {

@@ -37,10 +37,7 @@ double ClimbReport::planning_s() const {
 
 ClimbReport plan_climbs(const Project& project, std::optional<int> floor,
                         const climb::ClimbOptions& options) {
-  if (floor && (*floor < 0 || *floor >= static_cast<int>(project.building.floors.size())))
-    throw InputError("", 0, "floor",
-                     "no floor " + std::to_string(*floor) + "; " + project.file.string() +
-                         " has floors 0 to " + std::to_string(project.building.floors.size() - 1));
+  if (floor) check_floor(project, *floor);
   ClimbReport report;
   if (!project.climber) {
     report.fixed_gantry = true;

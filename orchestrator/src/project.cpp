@@ -146,12 +146,17 @@ void check_fit(const Project& project) {
   sink.throw_if_any();
 }
 
-floors::Layer layer_of(const Project& project, int floor, std::optional<int> layer) {
-  const floors::Building& b = project.building;
-  if (floor < 0 || floor >= static_cast<int>(b.floors.size()))
+void check_floor(const Project& project, int floor) {
+  const auto floors = project.building.floors.size();
+  if (floor < 0 || floor >= static_cast<int>(floors))
     throw InputError("", 0, "floor",
                      "no floor " + std::to_string(floor) + "; " + project.file.string() +
-                         " has floors 0 to " + std::to_string(b.floors.size() - 1));
+                         " has floors 0 to " + std::to_string(floors - 1));
+}
+
+floors::Layer layer_of(const Project& project, int floor, std::optional<int> layer) {
+  const floors::Building& b = project.building;
+  check_floor(project, floor);
   const floors::Floor& f = b.floors[floor];
   if (!project.is_building && !layer) return floors::plan_as_layer(f.plan);
   const int count = floors::layer_count(f.height_m, b.layer_height_m);
@@ -160,23 +165,13 @@ floors::Layer layer_of(const Project& project, int floor, std::optional<int> lay
     throw InputError("", 0, "layer",
                      "no layer " + std::to_string(k) + "; floor " + std::to_string(floor) +
                          " has layers 0 to " + std::to_string(count - 1));
-  const double z0 = k * b.layer_height_m;
-  const double z1 = std::min((k + 1) * b.layer_height_m, f.height_m);
-  floors::Layer out = floors::slice_plan_at(f.plan, z0, z1);
-  out.floor_index = f.index;
-  out.index = k;
-  out.z_bottom_m = f.base_elevation_m + z0;
-  out.z_top_m = f.base_elevation_m + z1;
-  return out;
+  return floors::slice_floor_layer(f, b.layer_height_m, k);
 }
 
 std::vector<DistinctLayer> distinct_layers(const Project& project, std::optional<int> floor,
                                            std::optional<int> layer) {
   const floors::Building& b = project.building;
-  if (floor && (*floor < 0 || *floor >= static_cast<int>(b.floors.size())))
-    throw InputError("", 0, "floor",
-                     "no floor " + std::to_string(*floor) + "; " + project.file.string() +
-                         " has floors 0 to " + std::to_string(b.floors.size() - 1));
+  if (floor) check_floor(project, *floor);
   std::vector<DistinctLayer> out;
   std::map<floors::GeometryKey, std::size_t> index;
   for (const auto& f : b.floors) {
@@ -184,10 +179,11 @@ std::vector<DistinctLayer> distinct_layers(const Project& project, std::optional
     std::vector<floors::Layer> layers;
     if (!project.is_building && !layer)
       layers.push_back(floors::plan_as_layer(f.plan));
-    else
+    else if (!layer)
       layers = floors::slice_floor(f, b.layer_height_m);
+    else if (*layer >= 0 && *layer < floors::layer_count(f.height_m, b.layer_height_m))
+      layers.push_back(floors::slice_floor_layer(f, b.layer_height_m, *layer));  // that one only
     for (auto& l : layers) {
-      if (layer && l.index != *layer) continue;
       if (l.segments.empty()) continue;
       const LayerRef ref{f.index, l.index};
       floors::GeometryKey key(l);
@@ -240,7 +236,7 @@ LayerPlanResult plan_layer(const Project& project, const floors::Layer& layer,
     throw InputError("", 0, "MultiNozzleOptions::nozzles", "must be at least 1");
   if (request.nozzles == 1) {
     out.single = planner::plan_layer(layer, *project.machine, request.planning);
-    out.status = planner::PlanStatus::solved();
+    out.status = planner::PlanStatus();
     return out;
   }
   planner::MultiNozzleOptions multi = request.multi;

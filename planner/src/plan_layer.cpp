@@ -232,7 +232,8 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   CCBUILD_CHECK(covers_every_segment_once(plan.sequence, layer.segments.size()),
                 "the planned sequence deposits every wall exactly once");
   plan.evaluation = model.evaluate(plan.sequence, path);
-  plan.waypoints = waypoints_of(model, plan.sequence, path, plan.evaluation, layer.z_top_m);
+  if (options.waypoints)
+    plan.waypoints = waypoints_of(model, plan.sequence, path, plan.evaluation, layer.z_top_m);
   if (options.objective == Objective::kDistance &&
       plan.evaluation.airtime_distance_m <= plan.lower_bound_m + 1e-9)
     plan.stop = StopReason::kProvenOptimal;

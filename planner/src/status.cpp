@@ -2,7 +2,7 @@
 
 namespace ccbuild::planner {
 
-std::string to_string(PlanStatus::Code code) {
+std::string to_string(PlanCode code) {
   switch (code) {
     case PlanStatus::Code::kSolved:
       return "solved";
@@ -18,11 +18,6 @@ std::string to_string(PlanStatus::Code code) {
       return "cancelled";
   }
   return "?";
-}
-
-std::string PlanStatus::to_string() const {
-  const std::string name = planner::to_string(code_);
-  return reason_.empty() ? name : name + ": " + reason_;
 }
 
 }  // namespace ccbuild::planner

@@ -3,8 +3,10 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/limits.hpp"
 
 namespace ccbuild::cli {
 
@@ -35,19 +37,37 @@ CLI::Validator unsigned_integer() {
       "INTEGER from 0 to 2^64 - 1");
 }
 
+namespace {
+
+// The number `text` says, when it is one whole finite decimal number.
+std::optional<double> parse_finite(const std::string& text) {
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
+      !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
 CLI::Validator number_in(const Range& range, const std::string& unit) {
   const std::string said = range.describe(unit);
   return CLI::Validator(
-      [range, said](std::string& text) -> std::string {
-        double value = 0.0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
-            !std::isfinite(value))
-          return "expected a number " + said + ", got '" + text + "'";
-        if (!range.contains(value)) return "must be " + said + ", got " + text;
-        return "";
+      [range, said, unit](std::string& text) -> std::string {
+        const auto value = parse_finite(text);
+        if (!value) return "expected a number " + said + ", got '" + text + "'";
+        return range.violation(*value, text, unit);
       },
       "NUMBER " + said);
+}
+
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return parse_finite(text) ? "" : "expected a number, got '" + text + "'";
+      },
+      "NUMBER");
 }
 
 void add_input_options(CLI::App& command, InputOptions& options) {
@@ -58,13 +78,15 @@ void add_input_options(CLI::App& command, InputOptions& options) {
       ->capture_default_str();
   command
       .add_option("--floor-height", options.floor_height,
-                  "For a plan file: the floor height in --units (default 3 m); openings must fit "
-                  "under it")
-      ->check(number_in(Range::above(0.0, 1000.0), "(in --units)"));
+                  "For a plan file: the floor height in --units (default 3 m; " +
+                      floors::limits::kFloorHeight_m.describe("m") +
+                      "); openings must fit under it")
+      ->check(finite_number());
   command
       .add_option("--layer-height", options.layer_height,
-                  "For a plan file: the layer height in --units")
-      ->check(number_in(Range::above(0.0, 100.0), "(in --units)"))
+                  "For a plan file: the layer height in --units (" +
+                      floors::limits::kLayerHeight_m.describe("m") + ")")
+      ->check(finite_number())
       ->capture_default_str();
   command.add_option(
       "--machine", options.machine,
@@ -92,12 +114,10 @@ double length_flag(const std::string& text, const char* flag, floors::LengthUnit
   const auto value = floors::parse_length_m(text, unit);
   if (!value)
     throw InputError("", 0, flag, "expected a length such as 1.5, 1.5m or 5ft, got '" + text + "'");
-  const Range range = Range::above(0.0, max_m);
-  if (!range.contains(*value))
-    throw InputError("", 0, flag,
-                     "must be " +
-                         range.describe(floors::to_string(unit), floors::meters_per(unit)) +
-                         ", got '" + text + "'");
+  const std::string wrong =
+      Range::above(0.0, max_m)
+          .violation(*value, "'" + text + "'", floors::to_string(unit), floors::meters_per(unit));
+  if (!wrong.empty()) throw InputError("", 0, flag, wrong);
   return *value;
 }
 

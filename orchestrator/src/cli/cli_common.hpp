@@ -27,6 +27,8 @@ CLI::Validator integer_in(std::int64_t min, std::int64_t max);
 CLI::Validator unsigned_integer();
 /// A finite decimal number inside `range` (in `unit`).
 CLI::Validator number_in(const Range& range, const std::string& unit);
+/// A finite decimal number, its range checked where its unit is known.
+CLI::Validator finite_number();
 
 /// Options every command that reads FILE shares.
 struct InputOptions {

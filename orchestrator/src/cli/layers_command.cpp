@@ -24,10 +24,7 @@ struct LayersOptions {
 void run_layers(const LayersOptions& options, int& exit_code) {
   const orchestrator::Project project = open_input(options.file, options.input);
   const floors::Building& b = project.building;
-  if (options.floor && (*options.floor < 0 || *options.floor >= static_cast<int>(b.floors.size())))
-    throw InputError("", 0, "--floor",
-                     printf_string("no floor %d; %s has floors 0 to %zu", *options.floor,
-                                   options.file.c_str(), b.floors.size() - 1));
+  if (options.floor) orchestrator::check_floor(project, *options.floor);
   const orchestrator::BuildingSummary summary = orchestrator::summarize_building(b);
 
   if (options.json) {

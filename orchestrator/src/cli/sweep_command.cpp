@@ -85,14 +85,6 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
   for (const auto& t : o.platform_widths)
     platforms.push_back(length_flag(t, "--platform-width", unit));
   for (const auto& t : o.gantry_widths) gantries.push_back(length_flag(t, "--gantry-width", unit));
-  for (int n : o.nozzles)
-    if (n < 1 || n > planner::kMaxNozzles)
-      throw InputError("", 0, "--nozzles",
-                       "each count must be from 1 to " + std::to_string(planner::kMaxNozzles) +
-                           ", got " + std::to_string(n));
-  for (const auto& a : o.rail_axes)
-    if (a != "x" && a != "y")
-      throw InputError("", 0, "--rail-axis", "expected x or y, got '" + a + "'");
 
   // The layers to plan: each distinct geometry once, weighted by how many layers share it.
   const auto distinct = orchestrator::distinct_layers(project, o.floor, o.layer);
@@ -107,6 +99,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
   planning.objective = *planner::parse_objective(o.objective);
   planning.seed = o.seed;
   planning.time_limit_s = o.time_limit_s;
+  planning.waypoints = false;  // a sweep reports times, never paths
   // Each layer's single-nozzle time, once: the baseline row and the comparison inside
   // every plan, with the same machine and options as plan-layer would use.
   std::vector<double> single_time;
@@ -306,6 +299,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--rail-axis", o->rail_axes, "Rail orientations: x, y")
       ->delimiter(',')
+      ->check(CLI::IsMember({"x", "y"}))
       ->capture_default_str();
   command->add_option("--floor", o->floor, "Only this floor of a building")
       ->check(integer_in(0, 100000));

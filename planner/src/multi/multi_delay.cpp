@@ -232,6 +232,7 @@ MethodResult delay_method(const StageContext& ctx) {
         PlanOptions o = ctx.options.planning;
         o.algorithm = Algorithm::kCcTsp;
         o.path = PathSpec::closed_tour();
+        o.waypoints = false;  // only the order is kept
         o.time_limit_s = std::max(0.05, std::min(o.time_limit_s, ctx.stop.remaining_s()));
         all.working = plan_layer(whole.layer, ctx.machine, o).sequence;
         planned = true;

@@ -87,7 +87,7 @@ Stage plan_stage(detail::StageContext& ctx) {
       stage.status = std::move(result.status);
       continue;
     }
-    stage.status = PlanStatus::solved();
+    stage.status = PlanStatus();
     stage.method = method;
     stage.method_detail = result.detail.empty() ? to_string(method) : result.detail;
     stage.nozzles = std::move(result.paths);
@@ -195,6 +195,7 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
     PlanOptions single = options.planning;
     single.algorithm = Algorithm::kCcTsp;
     single.path = PathSpec::closed_tour();
+    single.waypoints = false;  // only its time is kept
     // The reference takes a share of the time, not all of it.
     single.time_limit_s = std::max(0.01, 0.25 * stop.remaining_s());
     plan.single_nozzle_time_s = plan_layer(layer, machine, single).evaluation.layer_time_s;
@@ -212,7 +213,7 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   for (std::size_t k = 1; k < strips.size(); ++k) strip_cuts.push_back(strips[k].first);
   const detail::CutLayer by_strip = detail::cut_layer(layer, axis, strip_cuts);
 
-  plan.status = PlanStatus::solved();
+  plan.status = PlanStatus();
   plan.min_gap_m = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < strips.size(); ++k) {
     const std::vector<int> segments = by_strip.segments_in(static_cast<int>(k));

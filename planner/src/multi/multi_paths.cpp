@@ -129,7 +129,7 @@ PlanStatus stop_status(const StageContext& ctx, const std::string& during) {
   if (ctx.stop.cancelled()) return {PlanStatus::Code::kCancelled, "cancelled during " + during};
   if (ctx.stop.should_stop())
     return {PlanStatus::Code::kTimeLimit, "the time limit came during " + during};
-  return PlanStatus::solved();
+  return PlanStatus();
 }
 
 CycleSearch compatible_cycles(const StageContext& ctx, const CutLayer& cut,
@@ -187,7 +187,7 @@ CycleSearch compatible_cycles(const StageContext& ctx, const CutLayer& cut,
   for (int c0 = 0; c0 < count[0] && !out_of_budget && !out_of_time; ++c0) {
     if (extend(0, c0)) {
       choice[0] = c0;
-      return {PlanStatus::solved(), choice};
+      return {PlanStatus(), choice};
     }
   }
   const std::string checked_pairs = std::to_string(checks) + " cycle pairs checked";

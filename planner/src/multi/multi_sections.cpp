@@ -69,6 +69,7 @@ Sequence closed_tour(const floors::Layer& layer, const std::vector<int>& segment
   PlanOptions o = ctx.options.planning;
   o.algorithm = Algorithm::kCcTsp;
   o.path = PathSpec::closed_tour();
+  o.waypoints = false;  // only the order is kept
   o.time_limit_s = std::max(0.05, std::min(o.time_limit_s, ctx.stop.remaining_s()));
   if (max_kicks) o.max_kicks = max_kicks;
   // Sections and zones are many and small: a short exact-time polish is plenty.

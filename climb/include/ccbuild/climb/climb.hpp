@@ -12,34 +12,25 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/common/status.hpp"
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/machine/climbing_machine.hpp"
 
 namespace ccbuild::climb {
 
-/// The outcome of a climbing question, as a value: true when feasible, and it says why not.
-class ClimbStatus {
- public:
-  enum class Code {
-    kFeasible,
-    kNoAnchor,   ///< no pipe a unit can reach at a level the legs allow
-    kBlocked,    ///< no collision-free motion found within the phase's budget
-    kUnstable,   ///< the centre of mass cannot stay inside the holding units' polygon
-    kTimeLimit,  ///< the planning time ran out
-  };
-  ClimbStatus() = default;
-  ClimbStatus(Code code, std::string reason) : code_(code), reason_(std::move(reason)) {}
-  explicit operator bool() const { return code_ == Code::kFeasible; }
-  Code code() const { return code_; }
-  const std::string& reason() const { return reason_; }
-  std::string to_string() const;
-
- private:
-  Code code_ = Code::kFeasible;
-  std::string reason_;
+enum class ClimbCode {
+  kFeasible,
+  kNoAnchor,   ///< no pipe a unit can reach at a level the legs allow
+  kBlocked,    ///< no collision-free motion found within the phase's budget
+  kUnstable,   ///< the centre of mass cannot stay inside the holding units' polygon
+  kTimeLimit,  ///< the planning time ran out
 };
 /// "feasible", "no-anchor", "blocked", "unstable", "time-limit".
-std::string to_string(ClimbStatus::Code code);
+std::string to_string(ClimbCode code);
+
+/// The outcome of a climbing question, as a value: true when feasible, and it says why
+/// not. ClimbStatus::Code is ClimbCode.
+using ClimbStatus = Status<ClimbCode, ClimbCode::kFeasible, &to_string>;
 
 /// A pipe cast horizontally through a wall; a unit's pin goes into it.
 struct Anchor {

@@ -36,6 +36,10 @@ struct Range {
   /// As people say it: "from 0 to 60 s", "more than 0 and at most 2 m/s". `per_unit`
   /// converts the ends into `unit` (the ends divided by it).
   std::string describe(const std::string& unit, double per_unit = 1.0) const;
+  /// "" when `value` is in range, else "must be <describe>, got <got>": the one wording
+  /// of every out-of-range message (`got` as the user wrote it, with its unit).
+  std::string violation(double value, const std::string& got, const std::string& unit,
+                        double per_unit = 1.0) const;
 };
 
 /// "4.500 m" (3 decimals by default).

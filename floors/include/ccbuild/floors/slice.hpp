@@ -74,6 +74,9 @@ int layer_count(double floor_height_m, double layer_height_m);
 /// All layers of one floor of a building.
 std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
                                const SliceOptions& options = {});
+/// Layer `k` (0 to layer_count - 1) of one floor of a building, as slice_floor gives it.
+Layer slice_floor_layer(const Floor& floor, double layer_height_m, int k,
+                        const SliceOptions& options = {});
 
 /// One layer at a given height above the plan's floor base (for single-plan tools).
 Layer slice_plan_at(const FloorPlan& plan, double z_bottom_m, double z_top_m,

@@ -72,6 +72,9 @@ struct LayerRef {
   int layer = 0;
 };
 
+/// Throws InputError (field `floor`) when the project has no floor `floor`.
+void check_floor(const Project& project, int floor);
+
 /// One layer of a floor (InputError, field `floor` or `layer`, when there is none). For
 /// a lone plan without a layer number, the plan with every wall whole (openings ignored).
 floors::Layer layer_of(const Project& project, int floor, std::optional<int> layer);

@@ -184,7 +184,8 @@ Move CostModel::make_move(const PathState& state, int to_point, double rotation_
   m.rotation_rad = rotation_rad;
   m.rotation_s = turn_s(rotation_rad);
   m.next_step = next_step;
-  if (m.distance_m > 1e-9) {
+  const bool moves = m.distance_m > 1e-9;  // as move_time_s: coincident points do not move
+  if (moves) {
     m.travel_s = travel_s(m.from_m, m.to_m);
     const std::vector<int>& crossed = state.point >= 0
                                           ? crossed_between_points(state.point, to_point)
@@ -196,7 +197,9 @@ Move CostModel::make_move(const PathState& state, int to_point, double rotation_
       }
     }
   }
-  m.time_s = move_time_s(m.from_m, m.to_m, rotation_rad, m.lifted);
+  // The move-time rule on the parts worked out above (move_time_s would work them out again).
+  m.time_s =
+      combine_move_s(moves ? m.travel_s + machine_.accel_delay_s : 0.0, m.rotation_s, m.lifted);
   return m;
 }
 

@@ -50,6 +50,9 @@ struct PlanOptions {
   /// by default; the matching bound alone is faster on very large layers.
   BoundKind bound = BoundKind::kConnected;
   const std::atomic<bool>* cancel = nullptr;
+  /// False: no waypoints in the plan (a caller that keeps only the sequence, e.g. a
+  /// section's tour inside the multi-nozzle planner).
+  bool waypoints = true;
 };
 
 struct LayerPlan {
@@ -59,7 +62,8 @@ struct LayerPlan {
   PathSpec path;
   Sequence sequence;                ///< every segment of the layer exactly once
   Evaluation evaluation;            ///< exact (CostModel::evaluate)
-  std::vector<Waypoint> waypoints;  ///< the timed path (timeline.hpp), at the layer's top
+  std::vector<Waypoint> waypoints;  ///< the timed path (timeline.hpp), at the layer's top;
+                                    ///< empty when PlanOptions::waypoints is false
   double lower_bound_m = 0.0;       ///< valid bound on airtime distance (see lower_bound.hpp)
   BoundSource lower_bound_source = BoundSource::kMatching;  ///< which bound it is
   int odd_points = 0;
