@@ -334,10 +334,15 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
     return best;
   };
   // The order of the units: of all orders, the one whose least stable transfer is the
-  // most stable (ties: the first in the units' own order).
+  // most stable (ties: the first in the units' own order). Beyond kExhaustiveUnits units
+  // (720 orders) the orders are too many: then each next unit is the one whose transfer is
+  // the most stable, given those before it.
+  constexpr int kExhaustiveUnits = 6;
+  const bool every_order = units <= kExhaustiveUnits;
   std::vector<int> order(units);
   for (int u = 0; u < units; ++u) order[u] = u;
-  {
+  const double gx0 = q[m.gantry_joints[0]], gy0 = q[m.gantry_joints[1]];
+  if (every_order) {
     std::vector<int> trial = order, best_order = order;
     double best_margin = -std::numeric_limits<double>::infinity();
     do {
@@ -346,9 +351,7 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
       for (int first = 0; first < units && worst > best_margin; first += m.units_per_transfer) {
         const std::vector<int> group(trial.begin() + first,
                                      trial.begin() + std::min(units, first + m.units_per_transfer));
-        worst = std::min(
-            worst,
-            counterweight(group, moved, q[m.gantry_joints[0]], q[m.gantry_joints[1]]).margin);
+        worst = std::min(worst, counterweight(group, moved, gx0, gy0).margin);
         for (int u : group) moved[u] = 1;
       }
       if (worst > best_margin + 1e-9) {
@@ -357,6 +360,31 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
       }
     } while (std::next_permutation(trial.begin(), trial.end()));
     order = best_order;
+  } else {
+    order.clear();
+    std::vector<char> moved(units, 0), placed(units, 0);
+    std::vector<int> group;
+    while (static_cast<int>(order.size()) < units) {
+      int best = -1;
+      double best_margin = -std::numeric_limits<double>::infinity();
+      for (int u = 0; u < units; ++u) {
+        if (placed[u]) continue;
+        std::vector<int> trial = group;
+        trial.push_back(u);
+        const double margin = counterweight(trial, moved, gx0, gy0).margin;
+        if (best < 0 || margin > best_margin + 1e-9) {
+          best = u;
+          best_margin = margin;
+        }
+      }
+      placed[best] = 1;
+      order.push_back(best);
+      group.push_back(best);
+      if (static_cast<int>(group.size()) == m.units_per_transfer) {
+        for (int u : group) moved[u] = 1;
+        group.clear();
+      }
+    }
   }
   std::vector<char> moved(units, 0);
   for (int first = 0; first < units; first += m.units_per_transfer) {
@@ -376,13 +404,15 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
                         ": the pins left holding lie in a line, no polygon to "
                         "stand on");
       if (best.margin < m.stability_margin_m)
-        return fail(ClimbStatus::Code::kUnstable,
-                    "moving " + names +
-                        ": with the gantry as counterweight anywhere on its "
-                        "rails, the centre of mass stays " +
-                        metres(m.stability_margin_m - best.margin, 2) +
-                        " short of the margin inside the holding pins' polygon (in every order "
-                        "of the units)");
+        return fail(
+            ClimbStatus::Code::kUnstable,
+            "moving " + names +
+                ": with the gantry as counterweight anywhere on its "
+                "rails, the centre of mass stays " +
+                metres(m.stability_margin_m - best.margin, 2) +
+                " short of the margin inside the holding pins' polygon" +
+                (every_order ? " (in every order of the units)"
+                             : " (the units taken in their most stable order, one by one)"));
       const std::vector<double> before = q;
       const MotionResult r = climber.move_joints(joints, {best.x, best.y}, q, platform,
                                                  m.gantry_links, support_without({}));

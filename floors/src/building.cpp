@@ -1,7 +1,9 @@
 #include "ccbuild/floors/building.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -180,6 +182,20 @@ bool is_building_document(const Document& doc) {
 }
 
 }  // namespace
+
+Envelope envelope(const Building& building) {
+  Envelope out;
+  out.min_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  out.max_m = -out.min_m;
+  for (const auto& floor : building.floors) {
+    for (const auto& v : floor.plan.vertices) {
+      out.min_m = out.min_m.cwiseMin(v.position_m);
+      out.max_m = out.max_m.cwiseMax(v.position_m);
+    }
+    out.top_m = std::max(out.top_m, floor.base_elevation_m + floor.height_m);
+  }
+  return out;
+}
 
 Building load_building(const fs::path& path) {
   return building_from_document(load_document(path), path);

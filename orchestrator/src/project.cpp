@@ -102,15 +102,8 @@ void check_fit(const Project& project) {
   auto L = [&](double value_m) { return project.length(value_m, 2); };
   // Footprint against the x and y travel (where the site origin lies is not modelled, so
   // lengths are compared).
-  Eigen::Vector2d lo(std::numeric_limits<double>::infinity(),
-                     std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;
-  for (const auto& floor : b.floors)
-    for (const auto& v : floor.plan.vertices) {
-      lo = lo.cwiseMin(v.position_m);
-      hi = hi.cwiseMax(v.position_m);
-    }
-  const Eigen::Vector2d extent = (hi - lo).cwiseMax(Eigen::Vector2d::Zero());
+  const floors::Envelope space = floors::envelope(b);
+  const Eigen::Vector2d extent = space.size_m();
   const double reach_x = m.x.max_m - m.x.min_m, reach_y = m.y.max_m - m.y.min_m;
   if (extent.x() > reach_x || extent.y() > reach_y)
     throw InputError(where, 0, "",
@@ -119,9 +112,7 @@ void check_fit(const Project& project) {
                          " (its x and y joints' ranges)");
   // Height: the top layer is printed at the top of the building, and the nozzle must
   // still lift over the walls there.
-  double top_m = 0.0;
-  for (const auto& floor : b.floors)
-    top_m = std::max(top_m, floor.base_elevation_m + floor.height_m);
+  const double top_m = space.top_m;
   const double reach_z = m.z.max_m - m.z.min_m;
   if (!project.climber && top_m + m.lift_height_m > reach_z + 1e-9)
     throw InputError(where, 0, "",

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "ccbuild/floors/slice.hpp"
 #include "test_support.hpp"
@@ -18,6 +20,11 @@ namespace ccbuild::climb {
 namespace {
 namespace fs = std::filesystem;
 using testing::contains;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
 
 const machine::ClimbingMachine& climber() {
   static const machine::MachineProfile profile =
@@ -149,8 +156,7 @@ TEST(Climb, ATransferThatWouldTipThePlatformIsRefused) {
   // Demand 3 m of stability margin: no place of the gantry gives it with one unit away.
   const fs::path dir = fs::temp_directory_path() / ("ccbuild_tip_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  std::ifstream in(testing::source_path("config/machines/cc-climber.yaml"));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text = slurp(testing::source_path("config/machines/cc-climber.yaml"));
   text.replace(text.find("urdf: cc_climber.urdf"), 21,
                "urdf: " + testing::source_path("config/machines/cc_climber.urdf").string());
   text.replace(text.find("stability_margin_m: 0.3"), 23, "stability_margin_m: 3.0");
@@ -291,6 +297,88 @@ TEST_F(Apartment, PipesAreAsLowAsTheLegsAllowAndOnSolidWall) {
   }
 }
 
+// The apartment without its anchor points (a copy of config/, the anchors taken out of
+// the building file), so that the default rule places the pipes.
+floors::Building apartment_without_anchors() {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_rule_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(testing::source_path("config"), dir / "config", fs::copy_options::recursive);
+  const fs::path file = dir / "config" / "buildings" / "apartment.yaml";
+  std::istringstream in(slurp(file));
+  std::string kept, line;
+  while (std::getline(in, line))
+    if (line.find("anchors:") == std::string::npos && line.rfind("      - {id: A", 0) != 0)
+      kept += line + "\n";
+  std::ofstream(file) << kept;
+  floors::Building bare = floors::load_building(file);
+  fs::remove_all(dir);
+  return bare;
+}
+
+// The bundled climber with four more units (copies of U1 and U4 mounted further along
+// the long beams), in a temporary folder.
+machine::MachineProfile eight_unit_climber() {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_eight_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::string urdf = slurp(testing::source_path("config/machines/cc_climber.urdf"));
+  std::string profile = slurp(testing::source_path("config/machines/cc-climber.yaml"));
+  // A unit's block: its lines, from its base link to its pin's joint.
+  auto block_of = [&](const std::string& unit) {
+    const auto begin = urdf.rfind('\n', urdf.find("<link name=\"" + unit + "_base\"")) + 1;
+    const auto end = urdf.find('\n', urdf.find("<joint name=\"" + unit + "_pin_slide\"")) + 1;
+    return urdf.substr(begin, end - begin);
+  };
+  const std::string u1 = block_of("u1"), u4 = block_of("u4");
+  std::string more, units;
+  const struct {
+    const char* name;
+    const std::string* from;
+    const char* from_xyz;
+    const char* xyz;
+  } added[] = {{"u5", &u1, "0.6 -1.2 0", "10.6 -1.2 0"},
+               {"u6", &u4, "0.6 17.05 0", "10.6 17.05 0"},
+               {"u7", &u1, "0.6 -1.2 0", "20.1 -1.2 0"},
+               {"u8", &u4, "0.6 17.05 0", "20.1 17.05 0"}};
+  for (const auto& a : added) {
+    std::string b = *a.from;
+    const std::string old_name = a.from == &u1 ? "u1_" : "u4_";
+    for (auto at = b.find(old_name); at != std::string::npos; at = b.find(old_name, at))
+      b.replace(at, old_name.size(), std::string(a.name) + "_");
+    b.replace(b.find(a.from_xyz), std::string(a.from_xyz).size(), a.xyz);
+    more += b;
+    const std::string n = a.name;
+    units += "    - {name: U" + n.substr(1) + ", swing: " + n + "_swing, reach: " + n +
+             "_reach, wrist: " + n + "_wrist_yaw, stroke: " + n + "_stroke, pin: " + n +
+             "_pin_slide}\n";
+  }
+  urdf.insert(urdf.find("</robot>"), more);
+  profile.insert(profile.find("  units_per_transfer:"), units);
+  std::ofstream(dir / "cc_climber.urdf") << urdf;
+  std::ofstream(dir / "cc-climber.yaml") << profile;
+  machine::MachineProfile out = machine::load_machine_profile(dir / "cc-climber.yaml");
+  fs::remove_all(dir);
+  return out;
+}
+
+TEST(Climb, EightUnitsClimbInTheirMostStableOrder) {
+  // 8! orders are too many to try: the units go one by one, the most stable next.
+  const machine::MachineProfile eight = eight_unit_climber();
+  ASSERT_EQ(eight.climbing->units.size(), 8u);
+  const floors::Building bare = apartment_without_anchors();
+  const StagePlan stages = climb_stages(bare, *eight.climbing);
+  ASSERT_TRUE(stages.status) << stages.status.to_string();
+  ASSERT_GE(stages.stages.size(), 2u);
+  const ClimbPlan plan = plan_climb(*eight.climbing, bare, stages.stages[0], stages.stages[1]);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  std::vector<int> transferred;
+  for (const auto& p : plan.phases)
+    if (p.kind == ClimbPhase::Kind::kTransit) transferred.push_back(p.unit);
+  std::sort(transferred.begin(), transferred.end());
+  EXPECT_EQ(transferred, std::vector<int>({0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_TRUE(verify_climb(*eight.climbing, bare, stages.stages[0], stages.stages[1], plan));
+}
+
 TEST(Climb, TheDefaultRuleKeepsPipesClearOfAWindowAbove) {
   // A 6 m storey, one climb; windows (sills at 2 m) in walls 1 and 4 up to 1.5 m from
   // their corner, right where U1's nearest pipe would be: the pipe goes 0.3 m past the
@@ -310,22 +398,8 @@ TEST(Climb, TheDefaultRuleKeepsPipesClearOfAWindowAbove) {
 }
 
 TEST(Climb, TheDefaultRuleKeepsPipesOnSolidWallAwayFromEnds) {
-  // The apartment without anchor points: the rule places them. (A copy of config/, with
-  // the anchors taken out of the building file.)
-  const fs::path dir = fs::temp_directory_path() / ("ccbuild_rule_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  fs::copy(testing::source_path("config"), dir / "config", fs::copy_options::recursive);
-  const fs::path file = dir / "config" / "buildings" / "apartment.yaml";
-  std::ifstream in(file);
-  std::string kept, line;
-  while (std::getline(in, line))
-    if (line.find("anchors:") == std::string::npos && line.rfind("      - {id: A", 0) != 0)
-      kept += line + "\n";
-  in.close();
-  std::ofstream(file) << kept;
-  const floors::Building bare = floors::load_building(file);
-  fs::remove_all(dir);
+  // The apartment without anchor points: the rule places them.
+  const floors::Building bare = apartment_without_anchors();
   for (const auto& f : bare.floors) ASSERT_TRUE(f.anchors.empty());
   const StagePlan plan = climb_stages(bare, climber());
   ASSERT_TRUE(plan.status) << plan.status.to_string();

@@ -1,7 +1,6 @@
 // ccbuild climb BUILDING: where a climbing machine stands, stage after stage, and every
 // climb between stages planned with OMPL against the walls built so far.
 
-#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -47,9 +46,7 @@ void run_climb(const ClimbOptions& o, int& exit_code) {
   }
   auto L = [&](double value_m) { return project.length(value_m, 2); };
   if (report.fixed_gantry) {
-    double top_m = 0.0;
-    for (const auto& f : project.building.floors)
-      top_m = std::max(top_m, f.base_elevation_m + f.height_m);
+    const double top_m = floors::envelope(project.building).top_m;
     std::cout << o.file << " on " << project.machine_origin << ": a fixed gantry; the building ("
               << L(top_m) << " tall) is within its reach, so no climbs are needed\n";
     return;

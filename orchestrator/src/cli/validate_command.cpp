@@ -23,16 +23,9 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
   const orchestrator::Project project = open_input(options.file, options.input);
   const floors::Building& b = project.building;
   const machine::MachineModel& machine = project.machine_model();
-  Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  double top_m = 0.0;
-  for (const auto& floor : b.floors) {
-    for (const auto& v : floor.plan.vertices) {
-      lo = lo.cwiseMin(v.position_m);
-      hi = hi.cwiseMax(v.position_m);
-    }
-    top_m = std::max(top_m, floor.base_elevation_m + floor.height_m);
-  }
-  const Eigen::Vector2d extent = hi - lo;
+  const floors::Envelope space = floors::envelope(b);
+  const Eigen::Vector2d extent = space.size_m();
+  const double top_m = space.top_m;
   const orchestrator::BuildingSummary summary = orchestrator::summarize_building(b);
   int walls = 0, openings = 0, anchors = 0;
   for (const auto& f : summary.floors) {

@@ -3,6 +3,7 @@
 // and the anchor points where climbing pipes are embedded; plus the layer height and
 // references to the material and machine profiles.
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -45,6 +46,16 @@ struct Building {
   /// output is ever written over one of them.
   std::vector<std::filesystem::path> files_read;
 };
+
+/// The space a building takes: its footprint's bounding box over every floor's vertices,
+/// and the top of its top floor, m.
+struct Envelope {
+  Eigen::Vector2d min_m = Eigen::Vector2d::Zero(), max_m = Eigen::Vector2d::Zero();
+  double top_m = 0.0;
+  /// Width along x and y (0 for a building without vertices).
+  Eigen::Vector2d size_m() const { return (max_m - min_m).cwiseMax(Eigen::Vector2d::Zero()); }
+};
+Envelope envelope(const Building& building);
 
 /// Loads and validates a building file (YAML or JSON) and the plans it references
 /// (paths relative to the building file). Does not open the material and machine
