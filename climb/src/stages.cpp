@@ -120,7 +120,8 @@ std::vector<Candidate> candidates(const floors::Floor& floor, const floors::Laye
 
 }  // namespace
 
-StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& m) {
+StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& m,
+                       const StageOptions& options) {
   StagePlan plan;
   const int units = static_cast<int>(m.units.size());
   std::vector<GlobalLayer> layers;
@@ -241,6 +242,14 @@ StagePlan climb_stages(const floors::Building& building, const machine::Climbing
     const std::size_t first = next;
     while (next < layers.size() && layers[next].z_top_m <= stage.platform_z_m + above + 1e-9)
       ++next;
+    if (options.at_floor_tops && next < layers.size() && next > first &&
+        layers[next].floor == layers[next - 1].floor) {
+      std::size_t floor_start = next - 1;
+      while (floor_start > first && layers[floor_start - 1].floor == layers[next - 1].floor)
+        --floor_start;
+      if (floor_start > first && layers[floor_start - 1].floor != layers[next - 1].floor)
+        next = floor_start;
+    }
     if (next == first) {
       plan.status = {ClimbStatus::Code::kNoAnchor,
                      printf_string("stage %d at %.2f m reaches no layer: the next one's top is at "

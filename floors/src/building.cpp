@@ -86,8 +86,8 @@ void check_layer_budget(const Building& building, const std::string& file, int l
 
 Building building_from_document(const Document& doc, const fs::path& path) {
   const Field root = Field::root(doc);
-  MapReader map(root,
-                {"name", "description", "units", "layer_height", "material", "machine", "floors"});
+  MapReader map(root, {"name", "description", "units", "layer_height", "slab_stage_h", "material",
+                       "machine", "floors"});
   map.reject_unknown();
   const fs::path base = path.has_parent_path() ? path.parent_path() : fs::path(".");
 
@@ -99,6 +99,8 @@ Building building_from_document(const Document& doc, const fs::path& path) {
   const LengthUnit unit = building.units;
   const Field layer_height = map.required("layer_height");
   building.layer_height_m = read_length(layer_height, limits::kLayerHeight_m, unit);
+  if (auto slab = map.optional("slab_stage_h"))
+    building.slab_stage_s = slab->as_number_in(limits::kSlabStage_s, "h", 3600.0);
   building.material_profile =
       resolve_reference(map.required("material"), base, building.material_source);
   building.machine_profile =

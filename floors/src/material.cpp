@@ -1,6 +1,7 @@
 #include "ccbuild/floors/material.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
@@ -16,6 +17,7 @@ const Range kInterval_s = Range::closed(0.0, 7 * 86'400.0);
 const Range kAge_s = Range::closed(0.0, 365 * 86'400.0);
 const Range kStrength_mpa = Range::closed(0.0, 200.0);
 constexpr std::size_t kMaxStrengthPoints = 1000;
+const Range kSafetyFactor = Range::closed(1.0, 10.0);
 }  // namespace
 
 double MaterialProfile::strength_at_mpa(double age_s) const {
@@ -32,11 +34,27 @@ double MaterialProfile::strength_at_mpa(double age_s) const {
   return strength_curve.back().strength_mpa;
 }
 
+double MaterialProfile::age_for_strength_s(double strength_mpa) const {
+  if (strength_curve.empty() || strength_curve.back().strength_mpa < strength_mpa)
+    return std::numeric_limits<double>::infinity();
+  if (strength_curve.front().strength_mpa >= strength_mpa) return 0.0;
+  for (std::size_t i = 1; i < strength_curve.size(); ++i) {
+    const auto& p = strength_curve[i - 1];
+    const auto& q = strength_curve[i];
+    if (q.strength_mpa >= strength_mpa) {
+      // p is below the strength and q reaches it, so q is strictly above p here.
+      const double t = (strength_mpa - p.strength_mpa) / (q.strength_mpa - p.strength_mpa);
+      return p.age_s + t * (q.age_s - p.age_s);
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 MaterialProfile load_material_profile(const std::filesystem::path& path) {
   const Document doc = load_document(path);
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "density_kg_m3", "min_layer_interval_s",
-                       "max_layer_interval_s", "strength_curve"});
+                       "max_layer_interval_s", "strength_curve", "safety_factor"});
   map.reject_unknown();
   MaterialProfile m;
   m.source_file = path.string();
@@ -68,6 +86,8 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
     m.strength_curve.push_back(p);
   }
   if (m.strength_curve.size() < 2) curve.fail("needs at least two points");
+  if (auto factor = map.optional("safety_factor"))
+    m.safety_factor = factor->as_number_in(kSafetyFactor, "");
   return m;
 }
 

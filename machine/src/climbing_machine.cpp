@@ -17,7 +17,6 @@ const Range kShort_m = Range::closed(0.0, 1.0);
 const Range kStrength_mpa = Range::above(0.0, 100.0);
 const Range kReach_m = Range::closed(0.0, 20.0);
 const Range kMargin_m = Range::closed(0.0, 5.0);
-const Range kGantryWidth_m = Range::above(0.0, 20.0);
 const Range kLinkMass_kg = Range::above(0.0, 1.0e6);
 const Range kJointSpeed = Range::above(0.0, 20.0);  // m/s or rad/s
 constexpr int kMaxUnits = 16;
@@ -82,26 +81,12 @@ namespace detail {
 std::shared_ptr<const ClimbingMachine> read_climbing(
     const Field& field, const UrdfInfo& urdf, const MachineModel& gantry,
     const std::array<std::string, 4>& gantry_joints) {
-  MapReader map(field, {"platform",
-                        "units",
-                        "units_per_transfer",
-                        "nozzle_reach_below_m",
-                        "nozzle_reach_above_m",
-                        "stroke_end_margin_m",
-                        "stroke_speed_loaded_m_s",
-                        "lift_per_stroke_m",
-                        "stroke_reset_s",
-                        "pin_insert_s",
-                        "pin_release_s",
-                        "pin_gap_m",
-                        "pin_past_centre_m",
-                        "anchor_strength_mpa",
-                        "anchor_clearance_m",
-                        "pipe_embed_s",
-                        "foundation_anchor_depth_m",
-                        "stability_margin_m",
-                        "nozzles",
-                        "gantry_width_m"});
+  MapReader map(
+      field,
+      {"platform", "units", "units_per_transfer", "nozzle_reach_below_m", "nozzle_reach_above_m",
+       "stroke_end_margin_m", "stroke_speed_loaded_m_s", "lift_per_stroke_m", "stroke_reset_s",
+       "pin_insert_s", "pin_release_s", "pin_gap_m", "pin_past_centre_m", "anchor_strength_mpa",
+       "anchor_clearance_m", "pipe_embed_s", "foundation_anchor_depth_m", "stability_margin_m"});
   map.reject_unknown();
   auto machine = std::make_shared<ClimbingMachine>();
   ClimbingMachine& m = *machine;
@@ -227,11 +212,6 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
   number("pipe_embed_s", m.pipe_embed_s, kTime_s, "s");
   number("foundation_anchor_depth_m", m.foundation_anchor_depth_m, kShort_m, "m");
   number("stability_margin_m", m.stability_margin_m, kMargin_m, "m");
-  if (auto n = map.optional("nozzles")) {
-    m.nozzles = static_cast<int>(n->as_count());
-    if (m.nozzles < 1 || m.nozzles > 16) n->fail("must be from 1 to 16");
-  }
-  number("gantry_width_m", m.gantry_width_m, kGantryWidth_m, "m");
 
   // Every unit's chain must solve: a round trip through its inverse kinematics at a pose
   // within its limits proves the chain is the shape ccbuild assumes.

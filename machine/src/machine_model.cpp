@@ -32,6 +32,8 @@ const Range kLiftHeight_m = Range::closed(0.0, 5.0);
 const Range kLiftTime_s = Range::closed(0.0, 600.0);
 const Range kIdleLimit_s = Range::above(0.0, 86'400.0);
 const Range kNozzleWidth_m = Range::closed(0.005, 1.0);
+const Range kGantryWidth_m = Range::above(0.0, 20.0);
+const Range kPurge_s = Range::closed(0.0, 3'600.0);
 // URDF joints.
 const Range kAxisPosition_m = Range::closed(-1000.0, 1000.0);
 const Range kAxisSpeed_m_s = Range::above(0.0, 10.0);
@@ -90,10 +92,10 @@ MachineModel load_machine(const fs::path& profile_path) {
 MachineProfile load_machine_profile(const fs::path& profile_path) {
   const Document doc = load_document(profile_path);
   const Field root = Field::root(doc);
-  MapReader map(
-      root, {"name", "description", "urdf", "joints", "deposition_speed_m_s", "travel_speed_m_s",
-             "rotate_while_moving", "accel_delay_s", "lift_height_m", "lift_time_s", "lower_time_s",
-             "nozzle_idle_limit_s", "nozzle_width_m", "climbing"});
+  MapReader map(root, {"name", "description", "urdf", "joints", "deposition_speed_m_s",
+                       "travel_speed_m_s", "rotate_while_moving", "accel_delay_s", "lift_height_m",
+                       "lift_time_s", "lower_time_s", "nozzle_idle_limit_s", "nozzle_width_m",
+                       "nozzles", "gantry_width_m", "rail_axis", "purge_s", "climbing"});
   map.reject_unknown();
 
   MachineModel m;
@@ -151,6 +153,18 @@ MachineProfile load_machine_profile(const fs::path& profile_path) {
   m.nozzle_idle_limit_s = map.required("nozzle_idle_limit_s").as_number_in(kIdleLimit_s, "s");
   if (auto width = map.optional("nozzle_width_m"))
     m.nozzle_width_m = width->as_number_in(kNozzleWidth_m, "m");
+  if (auto n = map.optional("nozzles")) {
+    m.nozzles = static_cast<int>(n->as_count());
+    if (m.nozzles < 1 || m.nozzles > 16) n->fail("must be from 1 to 16 (gantries on the rails)");
+  }
+  if (auto width = map.optional("gantry_width_m"))
+    m.gantry_width_m = width->as_number_in(kGantryWidth_m, "m");
+  if (auto axis = map.optional("rail_axis")) {
+    const std::string text = axis->as_string();
+    if (text != "x" && text != "y") axis->fail("must be x or y, got '" + text + "'");
+    m.rail_axis = text[0];
+  }
+  if (auto purge = map.optional("purge_s")) m.purge_s = purge->as_number_in(kPurge_s, "s");
 
   // Lift either from a height (the z joint's speed gives the time) or from two times.
   const auto height = map.optional("lift_height_m");

@@ -53,9 +53,7 @@ ClimbReport plan_climbs(const Project& project, std::optional<int> floor,
   return report;
 }
 
-namespace {
-
-json anchor_json(const Project& project, const climb::Anchor& a) {
+nlohmann::ordered_json anchor_json(const Project& project, const climb::Anchor& a) {
   return {{"id", a.id},
           {"unit", project.climber->units[a.unit].name},
           {"floor", a.floor < 0 ? json(nullptr) : json(a.floor)},
@@ -68,7 +66,57 @@ json anchor_json(const Project& project, const climb::Anchor& a) {
           {"by_default_rule", a.by_default_rule}};
 }
 
-}  // namespace
+nlohmann::ordered_json stage_json(const Project& project, const climb::ClimbStage& s) {
+  json anchors = json::array();
+  for (const auto& a : s.anchors) anchors.push_back(anchor_json(project, a));
+  return {{"stage", s.index},
+          {"platform_z_m", rounded(s.platform_z_m)},
+          {"first", {{"floor", s.first.floor}, {"layer", s.first.layer}}},
+          {"last", {{"floor", s.last.floor}, {"layer", s.last.layer}}},
+          {"top_m", rounded(s.top_m)},
+          {"anchors", anchors}};
+}
+
+nlohmann::ordered_json climb_plan_json(const Project& project, const climb::ClimbPlan& c,
+                                       bool with_planning_time) {
+  const machine::ClimbingMachine& m = *project.climber;
+  json phases = json::array();
+  for (const auto& p : c.phases) {
+    json waypoints = json::array();
+    for (std::size_t k = 0; k < p.path.size(); ++k) {
+      json values = json::array();
+      for (double v : p.path[k]) values.push_back(rounded(v));
+      json point = {{"t_s", rounded(k < p.t_s.size() ? p.t_s[k] : 0.0)}, {"values", values}};
+      if (k < p.following.size()) {
+        json legs = json::array();
+        for (double v : p.following[k]) legs.push_back(rounded(v));
+        point["following"] = legs;
+      }
+      waypoints.push_back(point);
+    }
+    json phase = {{"kind", climb::to_string(p.kind)},
+                  {"unit", p.unit >= 0 ? json(m.units[p.unit].name) : json(nullptr)},
+                  {"joints", p.joints},
+                  {"following_joints", p.following_joints},
+                  {"duration_s", rounded(p.duration_s)}};
+    if (with_planning_time) phase["planning_s"] = rounded(p.planning_s);
+    phase["min_clearance_m"] =
+        std::isfinite(p.min_clearance_m) ? json(rounded(p.min_clearance_m)) : json(nullptr);
+    phase["strokes"] = p.strokes;
+    phase["waypoints"] = waypoints;
+    phases.push_back(phase);
+  }
+  json out = {{"from_stage", c.from_stage},
+              {"to_stage", c.to_stage},
+              {"status", climb::to_string(c.status.code())},
+              {"status_reason", c.status.reason()},
+              {"duration_s", rounded(c.duration_s)}};
+  if (with_planning_time) out["planning_s"] = rounded(c.planning_s);
+  out["min_clearance_m"] =
+      std::isfinite(c.min_clearance_m) ? json(rounded(c.min_clearance_m)) : json(nullptr);
+  out["phases"] = phases;
+  return out;
+}
 
 nlohmann::ordered_json climb_report_json(const Project& project, const ClimbReport& report) {
   json out;
@@ -107,57 +155,10 @@ nlohmann::ordered_json climb_report_json(const Project& project, const ClimbRepo
   out["status"] = climb::to_string(status.code());
   out["status_reason"] = status.reason();
   json stages = json::array();
-  for (const auto& s : report.stages.stages) {
-    json anchors = json::array();
-    for (const auto& a : s.anchors) anchors.push_back(anchor_json(project, a));
-    stages.push_back({{"stage", s.index},
-                      {"platform_z_m", rounded(s.platform_z_m)},
-                      {"first", {{"floor", s.first.floor}, {"layer", s.first.layer}}},
-                      {"last", {{"floor", s.last.floor}, {"layer", s.last.layer}}},
-                      {"top_m", rounded(s.top_m)},
-                      {"anchors", anchors}});
-  }
+  for (const auto& s : report.stages.stages) stages.push_back(stage_json(project, s));
   out["stages"] = stages;
   json climbs = json::array();
-  for (const auto& c : report.climbs) {
-    const machine::ClimbingMachine& m = *project.climber;
-    json phases = json::array();
-    for (const auto& p : c.phases) {
-      json waypoints = json::array();
-      for (std::size_t k = 0; k < p.path.size(); ++k) {
-        json values = json::array();
-        for (double v : p.path[k]) values.push_back(rounded(v));
-        json point = {{"t_s", rounded(k < p.t_s.size() ? p.t_s[k] : 0.0)}, {"values", values}};
-        if (k < p.following.size()) {
-          json legs = json::array();
-          for (double v : p.following[k]) legs.push_back(rounded(v));
-          point["following"] = legs;
-        }
-        waypoints.push_back(point);
-      }
-      phases.push_back(
-          {{"kind", climb::to_string(p.kind)},
-           {"unit", p.unit >= 0 ? json(m.units[p.unit].name) : json(nullptr)},
-           {"joints", p.joints},
-           {"following_joints", p.following_joints},
-           {"duration_s", rounded(p.duration_s)},
-           {"planning_s", rounded(p.planning_s)},
-           {"min_clearance_m",
-            std::isfinite(p.min_clearance_m) ? json(rounded(p.min_clearance_m)) : json(nullptr)},
-           {"strokes", p.strokes},
-           {"waypoints", waypoints}});
-    }
-    climbs.push_back(
-        {{"from_stage", c.from_stage},
-         {"to_stage", c.to_stage},
-         {"status", climb::to_string(c.status.code())},
-         {"status_reason", c.status.reason()},
-         {"duration_s", rounded(c.duration_s)},
-         {"planning_s", rounded(c.planning_s)},
-         {"min_clearance_m",
-          std::isfinite(c.min_clearance_m) ? json(rounded(c.min_clearance_m)) : json(nullptr)},
-         {"phases", phases}});
-  }
+  for (const auto& c : report.climbs) climbs.push_back(climb_plan_json(project, c, true));
   out["climbs"] = climbs;
   out["totals"] = {{"stage_count", report.stages.stages.size()},
                    {"climb_count", report.climbs.size()},

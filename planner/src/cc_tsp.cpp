@@ -46,6 +46,18 @@ double TourCosts::cost(int u, int v) const {
   const Vec2& a = position_[u];
   const Vec2& b = position_[v];
   if (objective_ == Objective::kDistance) return model_.distance_m(a, b);
+  const int nodes = 2 * item_count_;
+  if (nodes > kCostCacheNodes) return time_cost(u, v);
+  if (time_costs_.empty())
+    time_costs_.assign(static_cast<std::size_t>(nodes) * nodes, std::nan(""));
+  double& known = time_costs_[static_cast<std::size_t>(std::min(u, v)) * nodes + std::max(u, v)];
+  if (std::isnan(known)) known = time_cost(u, v);
+  return known;
+}
+
+double TourCosts::time_cost(int u, int v) const {
+  const Vec2& a = position_[u];
+  const Vec2& b = position_[v];
   // Leaving u along its wall's heading, entering v's wall: turn between them.
   double rotation = 0.0;
   if (!arrive_[u].isZero() && !arrive_[v].isZero())

@@ -57,6 +57,12 @@ class TourCosts {
   std::vector<Vec2> position_;
   std::vector<Vec2> arrive_;  ///< unit heading arriving at a node along its wall (0: free to turn)
   std::vector<std::vector<int>> neighbours_;
+  double time_cost(int u, int v) const;
+  /// Time costs already computed (NaN: not yet), node by node: the search asks for the
+  /// same pairs again and again, and a time cost needs a crossing test against the walls.
+  /// Kept for tours of up to kCostCacheNodes nodes (18 MB).
+  static constexpr int kCostCacheNodes = 1500;
+  mutable std::vector<double> time_costs_;
 };
 
 /// A cyclic order of items, each with a direction.

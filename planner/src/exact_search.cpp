@@ -4,6 +4,7 @@
 // evaluated from the first position they change, reusing the nozzle states before it.
 
 #include <algorithm>
+#include <cmath>
 
 #include "ccbuild/common/input_error.hpp"
 #include "search_internal.hpp"
@@ -22,6 +23,7 @@ class IncrementalTime {
     std::fill(position_.begin(), position_.end(), -1);
     for (std::size_t k = 0; k < current_.size(); ++k)
       position_[current_[k].segment] = static_cast<int>(k);
+    scratch_ = position_;
     state_.assign(current_.size() + 1, {});
     time_.assign(current_.size() + 1, 0.0);
     cost_ = run(current_, 0, position_, true);
@@ -30,16 +32,28 @@ class IncrementalTime {
 
   /// Airtime of `candidate`, equal to the current sequence before `from`.
   double evaluate(const Sequence& candidate, std::size_t from) {
-    scratch_ = position_;
-    for (std::size_t k = from; k < candidate.size(); ++k)
-      scratch_[candidate[k].segment] = static_cast<int>(k);
-    return run(candidate, from, scratch_, false);
+    // Where the candidate last differs: past it, the same segments are built and the
+    // same steps follow, so once the nozzle's state matches the current sequence's the
+    // rest of the time is the current's (only the winding of the heading can differ).
+    std::size_t last = candidate.size();
+    while (last > from && candidate[last - 1].segment == current_[last - 1].segment &&
+           candidate[last - 1].reversed == current_[last - 1].reversed)
+      --last;
+    if (last == from) return cost_;
+    for (std::size_t k = from; k < last; ++k) scratch_[candidate[k].segment] = static_cast<int>(k);
+    const bool same_front = candidate.front().segment == current_.front().segment &&
+                            candidate.front().reversed == current_.front().reversed;
+    const double cost = run(candidate, from, scratch_, false, same_front ? last : kNoShortcut);
+    for (std::size_t k = from; k < last; ++k)
+      scratch_[current_[k].segment] = position_[current_[k].segment];
+    return cost;
   }
 
   void accept(const Sequence& candidate, std::size_t from) {
     current_ = candidate;
     for (std::size_t k = from; k < current_.size(); ++k)
       position_[current_[k].segment] = static_cast<int>(k);
+    scratch_ = position_;
     cost_ = run(current_, from, position_, true);
   }
 
@@ -48,12 +62,28 @@ class IncrementalTime {
   long steps() const { return steps_; }
 
  private:
+  static constexpr std::size_t kNoShortcut = static_cast<std::size_t>(-1);
+
+  /// The nozzle is in the same state as the current sequence's before step k.
+  bool converged(const PathState& state, std::size_t k) const {
+    const PathState& s = state_[k];
+    return state.point == s.point && state.steps == s.steps && state.position_m == s.position_m &&
+           std::abs(state.heading_rad - s.heading_rad) <= 1e-12 &&
+           state.initial_heading_rad == s.initial_heading_rad;
+  }
+
+  /// Airtime of `sequence` from `from` on (the states before it are the current's). With
+  /// `shortcut_after` set (not when storing), stops at the first step at or past it where
+  /// the state has converged to the current sequence's, adding the current's rest.
   double run(const Sequence& sequence, std::size_t from, const std::vector<int>& position,
-             bool store) {
+             bool store, std::size_t shortcut_after = kNoShortcut) {
     PathState state = from == 0 ? model_.begin(path_) : state_[from];
     double time = time_[from];
-    steps_ += static_cast<long>(sequence.size() - from) + 1;
     for (std::size_t k = from; k < sequence.size(); ++k) {
+      if (k >= shortcut_after && k > from && converged(state, k)) {
+        steps_ += static_cast<long>(k - from);
+        return time + (cost_ - time_[k]);
+      }
       if (store) {
         state_[k] = state;
         time_[k] = time;
@@ -63,6 +93,7 @@ class IncrementalTime {
                                     [&](int s) { return position[s] >= 0 && position[s] < here; });
       if (k > 0 || !path_.closed) time += m.time_s;
     }
+    steps_ += static_cast<long>(sequence.size() - from) + 1;
     if (store) {
       state_[sequence.size()] = state;
       time_[sequence.size()] = time;

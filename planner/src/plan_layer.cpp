@@ -241,4 +241,22 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   return plan;
 }
 
+LayerPlan time_sequence(const floors::Layer& layer, const machine::MachineModel& machine,
+                        const Sequence& sequence, const PlanOptions& options) {
+  CCBUILD_CHECK(covers_every_segment_once(sequence, layer.segments.size()),
+                "a timed sequence deposits every wall exactly once");
+  const CostModel model(layer, machine, options.metric);
+  LayerPlan plan;
+  plan.algorithm = options.algorithm;
+  plan.metric = options.metric;
+  plan.objective = options.objective;
+  plan.path = options.path;
+  plan.sequence = sequence;
+  plan.evaluation = model.evaluate(plan.sequence, options.path);
+  if (options.waypoints)
+    plan.waypoints =
+        waypoints_of(model, plan.sequence, options.path, plan.evaluation, layer.z_top_m);
+  return plan;
+}
+
 }  // namespace ccbuild::planner

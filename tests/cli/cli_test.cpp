@@ -18,7 +18,7 @@ TEST(Cli, ValidateBundledHouse) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "valid building"));
   EXPECT_TRUE(contains(r.out, "total: 2 floor(s)"));
-  EXPECT_TRUE(contains(r.out, "CC gantry, single nozzle"));
+  EXPECT_TRUE(contains(r.out, "CC gantry, up to three nozzles"));
 }
 
 TEST(Cli, ValidateJsonAgreesWithTheModel) {

@@ -14,7 +14,7 @@ using testing::expect_input_error;
 
 TEST(MachineModel, BundledProfileReadsKinematicsFromTheUrdf) {
   const MachineModel m = load_machine(testing::source_path("config/machines/cc-gantry.yaml"));
-  EXPECT_EQ(m.name, "CC gantry, single nozzle");
+  EXPECT_EQ(m.name, "CC gantry, up to three nozzles");
   EXPECT_DOUBLE_EQ(m.x.speed_m_s, 0.5);
   EXPECT_DOUBLE_EQ(m.x.max_m, 62.0);
   EXPECT_DOUBLE_EQ(m.y.max_m, 27.0);

@@ -39,7 +39,7 @@ TEST(Project, EveryFileIsReadOnce) {
 TEST(Project, ALonePlanGetsTheBundledMachineAndMaterial) {
   const Project plan = open_project(testing::data("plans/cottage.yaml"));
   EXPECT_FALSE(plan.is_building);
-  EXPECT_EQ(plan.machine_model().name, "CC gantry, single nozzle");
+  EXPECT_EQ(plan.machine_model().name, "CC gantry, up to three nozzles");
   EXPECT_TRUE(contains(plan.machine_origin, "(bundled default)"));
   EXPECT_EQ(plan.material.name, "Standard CC mix");
   // The same machine a building names: the same numbers in every command.

@@ -16,6 +16,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/orchestrator/schedule_json.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -112,7 +113,8 @@ int main(int argc, char** argv) {
       "plan); 2 bad input or usage; 3 internal error.\n"
       "Run `ccbuild COMMAND --help` for a command's options and examples.",
       "ccbuild");
-  app.set_version_flag("--version", "ccbuild 0.1.0");
+  app.set_version_flag("--version",
+                       std::string("ccbuild ") + ccbuild::orchestrator::kCcbuildVersion);
   app.require_subcommand(1, 1);
   app.fallthrough(false);
   app.failure_message(
@@ -124,6 +126,8 @@ int main(int argc, char** argv) {
   add_plan_layer_command(app, exit_code);
   add_sweep_command(app, exit_code);
   add_climb_command(app, exit_code);
+  add_schedule_command(app, exit_code);
+  add_diff_command(app, exit_code);
 
   bool json = false;
   for (int k = 1; k < argc; ++k)

@@ -70,7 +70,16 @@ struct StagePlan {
 /// low as the legs allow (so they cure while printing goes on), on the building's anchor
 /// points, or where it has none by the default rule (docs/formats.md). Throws nothing for
 /// a valid building: a stage without a reachable anchor is an answer (kNoAnchor).
-StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& machine);
+struct StageOptions {
+  /// Climb only between floors where the reach allows: a stage that would end part-way
+  /// up a floor ends at the top of the floor below instead (when it still prints
+  /// something). A climb waits for its anchors' strength, hours or days; between floors
+  /// that wait costs no cold joint, since the next floor starts on its slab.
+  bool at_floor_tops = false;
+};
+
+StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& machine,
+                       const StageOptions& options = {});
 
 struct ClimbOptions {
   std::uint64_t seed = 1;      ///< the same seed and inputs give the same paths

@@ -37,6 +37,9 @@ struct Building {
   std::string source_file;
   LengthUnit units = LengthUnit::kMeter;  ///< as the file said; the model is in metres
   double layer_height_m = 0.0;
+  /// Between two floors: the slab stage (placing and curing the slab before the next
+  /// floor's walls start on it), s; `slab_stage_h` in the file, 8 h by default.
+  double slab_stage_s = 8 * 3600.0;
   std::vector<Floor> floors;
   std::filesystem::path material_profile;  ///< resolved against the building file's folder
   std::filesystem::path machine_profile;

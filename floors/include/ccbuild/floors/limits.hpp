@@ -22,6 +22,8 @@ inline const Range kOpeningHeight_m = Range::closed(0.0, 100.0);
 inline const Range kFloorHeight_m = Range::above(0.0, 100.0);
 /// Layer height: printed layers are millimetres to centimetres thick.
 inline const Range kLayerHeight_m = Range::closed(0.001, 1.0);
+/// The slab stage between floors: up to 30 days.
+inline const Range kSlabStage_s = Range::closed(0.0, 30 * 86'400.0);
 
 /// Ids of vertices and walls: 1 to this.
 inline constexpr std::int64_t kMaxId = 999'999'999;

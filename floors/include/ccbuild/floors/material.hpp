@@ -24,9 +24,14 @@ struct MaterialProfile {
   double max_layer_interval_s = 0.0;
   /// Compressive strength against age, ages strictly increasing, strength non-decreasing.
   std::vector<StrengthPoint> strength_curve;
+  /// A layer must be this many times stronger than the stress of the walls above it.
+  double safety_factor = 1.5;
 
   /// Strength at `age_s`, linear between points, flat outside them.
   double strength_at_mpa(double age_s) const;
+  /// The youngest age at which the strength reaches `strength_mpa` (0 when it does from
+  /// the start); +infinity when the curve never reaches it.
+  double age_for_strength_s(double strength_mpa) const;
 };
 
 /// Loads and validates a material profile (YAML or JSON).

@@ -60,8 +60,6 @@ struct ClimbingMachine {
   double pipe_embed_s = 120.0;
   double foundation_anchor_depth_m = 0.3;
   double stability_margin_m = 0.3;
-  int nozzles = 1;
-  double gantry_width_m = 1.5;
 
   std::vector<std::filesystem::path> files_read;
 

@@ -41,6 +41,12 @@ struct MachineModel {
   double lower_time_s = 2.0;           ///< lowering it back
   double nozzle_idle_limit_s = 600.0;  ///< longest idle (air) move before concrete clogs
   double nozzle_width_m = 0.15;        ///< default wall thickness
+  /// Gantries (one nozzle each) on the common rails; the scheduler uses 1 up to this.
+  int nozzles = 1;
+  double gantry_width_m = 1.5;  ///< two gantries' rail positions stay at least this apart
+  char rail_axis = 'x';         ///< 'x' or 'y': the layout axis the rails run along
+  /// Clearing the nozzle after an idle spell longer than nozzle_idle_limit_s.
+  double purge_s = 120.0;
 
   /// The defaults above, with x/y axes 0..50 m at 0.5 m/s and z 0..10 m at 0.1 m/s.
   static MachineModel defaults();

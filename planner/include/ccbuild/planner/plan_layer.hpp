@@ -81,6 +81,15 @@ struct LayerPlan {
 /// so the replay costs exactly what the plan did.
 Sequence map_sequence(const Sequence& sequence, const std::vector<floors::SegmentMatch>& matches);
 
+/// A sequence ordered by the caller (every segment of the layer exactly once), timed
+/// exactly as plan_layer times its own: its evaluation and, unless options.waypoints is
+/// false, its waypoints. The scheduler uses it to make a layer follow the order of the
+/// layer below. Only metric, objective, path and waypoints of `options` are used; the
+/// algorithm is reported as given. Throws InternalError when a segment is missing or
+/// repeated.
+LayerPlan time_sequence(const floors::Layer& layer, const machine::MachineModel& machine,
+                        const Sequence& sequence, const PlanOptions& options);
+
 /// Plans a layer, within `options.time_limit_s` for the whole call. Throws InputError,
 /// naming the PlanOptions or PathSpec field, for options that do not fit the layer (exact
 /// on a large layer, a first wall that is not in it, a non-positive time limit), and for

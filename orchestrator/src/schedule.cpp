@@ -1,0 +1,1113 @@
+#include "ccbuild/orchestrator/schedule.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <limits>
+#include <mutex>
+#include <thread>
+#include <unordered_map>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+
+namespace ccbuild::orchestrator {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kGravity_m_s2 = 9.80665;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// A point lies on a deposited span when this close to it: layers merge points closer
+/// than 1 mm, so a section's cut may move a wall end by up to that.
+constexpr double kOnSpan_m = 2e-3;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Runs `tasks` on `jobs` threads; the calling thread reports progress as they finish.
+void run_parallel(std::vector<std::function<void()>>& tasks, int jobs,
+                  const std::function<void(int done, int total)>& on_done) {
+  if (tasks.empty()) return;
+  const int total = static_cast<int>(tasks.size());
+  std::atomic<int> next{0};
+  std::mutex mutex;
+  std::condition_variable finished;
+  int done = 0;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (int k; (k = next.fetch_add(1)) < total;) {
+      try {
+        tasks[k]();
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+      }
+      {
+        std::lock_guard lock(mutex);
+        ++done;
+      }
+      finished.notify_one();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::max(1, std::min(jobs, total)); ++t) threads.emplace_back(worker);
+  {
+    std::unique_lock lock(mutex);
+    int reported = 0;
+    while (reported < total) {
+      finished.wait(lock, [&] { return done > reported; });
+      reported = done;
+      lock.unlock();
+      if (on_done) on_done(reported, total);
+      lock.lock();
+    }
+  }
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+/// A stretch a nozzle deposits: from a to b, between the times ta and tb (plan time).
+struct Span {
+  Eigen::Vector2d a, b;
+  double ta = 0.0, tb = 0.0;
+};
+
+/// When each point of a wall is deposited in one plan, by wall id.
+struct DepositIndex {
+  std::unordered_map<std::int64_t, std::vector<Span>> spans;
+  /// Earliest and latest time the nozzles pass `p` on wall `wall` depositing; false when
+  /// no span of that wall passes it.
+  bool times_at(std::int64_t wall, const Eigen::Vector2d& p, double& lo, double& hi) const {
+    const auto it = spans.find(wall);
+    if (it == spans.end()) return false;
+    bool found = false;
+    for (const Span& s : it->second) {
+      const Eigen::Vector2d d = s.b - s.a;
+      const double len2 = d.squaredNorm();
+      const double u = len2 > 0 ? std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+      if ((s.a + u * d - p).norm() > kOnSpan_m) continue;
+      const double t = s.ta + u * (s.tb - s.ta);
+      lo = found ? std::min(lo, t) : t;
+      hi = found ? std::max(hi, t) : t;
+      found = true;
+    }
+    return found;
+  }
+};
+
+/// One geometry planned at one nozzle count.
+struct Planned {
+  bool usable = false;
+  std::string why_not;  ///< when not usable
+  std::string method;
+  double layer_time_s = 0.0, deposition_s = 0.0, airtime_s = 0.0, max_idle_s = 0.0;
+  double min_gap_m = 0.0;
+  bool stopped_by_time = false;
+  std::vector<std::vector<planner::Waypoint>> waypoints;  ///< per nozzle, layer time
+  double planning_s = 0.0;
+};
+
+/// Labels each extruding waypoint with the wall and 1-based piece of `layer` it lies on.
+void label_pieces(std::vector<planner::Waypoint>& path, const floors::Layer& layer) {
+  std::unordered_map<std::int64_t, std::vector<int>> by_wall;
+  for (int s = 0; s < static_cast<int>(layer.segments.size()); ++s)
+    by_wall[layer.segments[s].wall_id].push_back(s);
+  auto on = [&](int s, const Eigen::Vector2d& p) {
+    const auto& seg = layer.segments[s];
+    const Eigen::Vector2d a = layer.start_m(seg), d = layer.end_m(seg) - a;
+    const double u = std::clamp((p - a).dot(d) / std::max(d.squaredNorm(), 1e-18), 0.0, 1.0);
+    return (a + u * d - p).norm() <= kOnSpan_m;
+  };
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    if (!path[k].extruding) continue;
+    const Eigen::Vector2d mid = 0.5 * (path[k].position_m + path[k + 1].position_m);
+    int found = -1;
+    if (auto it = by_wall.find(path[k].wall); it != by_wall.end())
+      for (int s : it->second)
+        if (on(s, mid)) found = s;
+    for (int s = 0; found < 0 && s < static_cast<int>(layer.segments.size()); ++s)
+      if (on(s, mid)) found = s;
+    CCBUILD_CHECK(found >= 0,
+                  printf_string("a deposited span of wall %lld from (%.4f, %.4f) to "
+                                "(%.4f, %.4f) lies on no wall piece of its layer",
+                                static_cast<long long>(path[k].wall), path[k].position_m.x(),
+                                path[k].position_m.y(), path[k + 1].position_m.x(),
+                                path[k + 1].position_m.y()));
+    path[k].wall = layer.segments[found].wall_id;
+    path[k].piece = layer.segments[found].piece + 1;
+  }
+}
+
+DepositIndex index_of(const std::vector<std::vector<planner::Waypoint>>& nozzles) {
+  DepositIndex index;
+  for (const auto& path : nozzles)
+    for (std::size_t k = 0; k + 1 < path.size(); ++k)
+      if (path[k].extruding)
+        index.spans[path[k].wall].push_back(
+            {path[k].position_m, path[k + 1].position_m, path[k].t_s, path[k + 1].t_s});
+  return index;
+}
+
+/// The local intervals between a layer and the one it is deposited on, less the
+/// difference of their starts: interval at an end = start_above - start_below + offset.
+struct IntervalOffsets {
+  int ends = 0;  ///< piece ends of the upper layer over a wall of the lower one
+  double min_offset_s = kInf, max_offset_s = -kInf;
+  PieceEnd min_at, max_at;
+};
+
+IntervalOffsets interval_offsets(const floors::Layer& upper, const DepositIndex& upper_index,
+                                 const DepositIndex& lower_index) {
+  IntervalOffsets out;
+  for (const auto& seg : upper.segments)
+    for (int end = 0; end < 2; ++end) {
+      const Eigen::Vector2d p = end == 0 ? upper.start_m(seg) : upper.end_m(seg);
+      double up_lo, up_hi, low_lo, low_hi;
+      if (!upper_index.times_at(seg.wall_id, p, up_lo, up_hi)) continue;
+      if (!lower_index.times_at(seg.wall_id, p, low_lo, low_hi)) continue;  // over an opening
+      ++out.ends;
+      const PieceEnd where{seg.wall_id, seg.piece + 1, p.x(), p.y()};
+      if (up_lo - low_hi < out.min_offset_s) {
+        out.min_offset_s = up_lo - low_hi;
+        out.min_at = where;
+      }
+      if (up_hi - low_lo > out.max_offset_s) {
+        out.max_offset_s = up_hi - low_lo;
+        out.max_at = where;
+      }
+    }
+  return out;
+}
+
+std::string where_text(int floor, int layer) {
+  return "floor " + std::to_string(floor) + " layer " + std::to_string(layer);
+}
+
+std::string piece_text(const PieceEnd& e) {
+  return printf_string("wall %lld piece %d at (%.3f, %.3f) m", static_cast<long long>(e.wall),
+                       e.piece, e.x_m, e.y_m);
+}
+
+class Scheduler {
+ public:
+  Scheduler(const Project& project, const ScheduleOptions& options)
+      : project_(project),
+        options_(options),
+        machine_(*project.machine),
+        material_(project.material),
+        stress_per_m_mpa_(project.material.density_kg_m3 * kGravity_m_s2 * 1e-6),
+        jobs_(options.jobs > 0
+                  ? options.jobs
+                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {}
+
+  Schedule run();
+
+ private:
+  struct Slice {
+    int floor = 0;
+    floors::Layer layer;
+    int geometry = 0;  ///< 0-based index into reps_
+  };
+
+  void progress(const std::string& line) const {
+    if (options_.progress) options_.progress(line);
+  }
+  Planned plan(int geometry, int nozzles) const;
+  const Planned& planned(int geometry, int nozzles);
+  /// The fewest nozzles whose plan of `geometry` is usable and no longer than the maximum
+  /// interval: below that, the next layer of the same geometry cannot keep its intervals,
+  /// and a layer deposited slowly makes the one above it late at the pieces it did first.
+  /// `between_s`: the most time spent between two layers of the run (pipes).
+  int fewest_nozzles(int geometry, double between_s);
+  void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
+  /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
+  /// variant "<base>m1", ... when another layer of its geometry names them differently);
+  /// returns its key.
+  std::string register_plan(const std::string& base, const Slice& slice, int nozzles,
+                            const Planned& p);
+  /// The key of `slice`'s optimised plan at `nozzles`.
+  std::string plan_key(const Slice& slice, int nozzles);
+  /// One nozzle depositing `slice` in the order the plan `below_key` deposited the layer
+  /// below: where the geometry changes (openings begin or end), an optimised plan may
+  /// cover first what the layer below did last, and break the maximum interval there.
+  const Planned& follow_plan(const Slice& slice, const std::string& below_key);
+  static std::string follow_key(const Slice& slice, const std::string& below_key) {
+    return printf_string("g%d~%s", slice.geometry + 1, below_key.c_str());
+  }
+  double move_between(const std::string& from_key, const std::string& to_key) const;
+  const IntervalOffsets& offsets(const Slice& upper, const std::string& upper_key,
+                                 const std::string& lower_key);
+  /// The earliest start of global layer `i` that the layers below `first_checked` can
+  /// carry (each at its age from its end), and why; `impossible` when one never can.
+  double strength_ready_s(int i, int first_checked, double earliest_s, WaitReason& reason,
+                          bool& impossible) const;
+  void fail(Infeasibility infeasibility);
+  /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's.
+  void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
+                   double deposition_s);
+
+  const Project& project_;
+  const ScheduleOptions& options_;
+  const machine::MachineModel& machine_;
+  const floors::MaterialProfile& material_;
+  /// The stress of a metre of wall on what carries it, MPa.
+  const double stress_per_m_mpa_;
+  int jobs_;
+
+  std::vector<Slice> slices_;
+  std::vector<floors::Layer> reps_;  ///< each geometry's first layer
+  std::map<std::pair<int, int>, Planned> planned_;
+  std::map<std::string, DepositIndex> indexes_;
+  std::map<std::pair<std::string, std::string>, IntervalOffsets> offsets_;
+  std::map<std::string, std::vector<std::string>> variants_;
+  std::map<std::string, Planned> follow_;
+  /// Every registered plan key's plan (in planned_ or follow_, whose nodes stay put).
+  std::map<std::string, const Planned*> registered_;
+  Schedule schedule_;
+  std::vector<double> layer_end_s_;  ///< per global layer, once scheduled
+  int further_failures_ = 0;
+};
+
+Planned Scheduler::plan(int geometry, int nozzles) const {
+  const auto started = Clock::now();
+  Planned out;
+  const floors::Layer& layer = reps_[geometry];
+  LayerPlanRequest request;
+  request.nozzles = nozzles;
+  request.planning.objective = planner::Objective::kTime;
+  request.planning.seed = options_.seed;
+  request.planning.time_limit_s = options_.layer_time_limit_s;
+  request.planning.max_kicks = options_.max_kicks;
+  request.multi.gantry_width_m = machine_.gantry_width_m;
+  request.multi.rail_axis =
+      machine_.rail_axis == 'y' ? planner::RailAxis::kY : planner::RailAxis::kX;
+  request.multi.planning = request.planning;
+  request.multi.message_unit = project_.building.units;
+  try {
+    const LayerPlanResult result = plan_layer(project_, layer, request);
+    if (!result.status) {
+      out.why_not = result.status.to_string();
+    } else if (result.single) {
+      const auto& p = *result.single;
+      out.method = "cc-tsp";
+      out.layer_time_s = p.evaluation.layer_time_s;
+      out.deposition_s = p.evaluation.deposition_s;
+      out.airtime_s = p.evaluation.airtime_s;
+      out.max_idle_s = p.evaluation.max_idle_s;
+      out.stopped_by_time = p.stop == planner::StopReason::kTimeLimit;
+      out.waypoints.push_back(p.waypoints);
+    } else {
+      const auto& m = *result.multi;
+      out.method = m.stages.empty() ? "" : planner::to_string(m.stages.front().method);
+      out.layer_time_s = m.layer_time_s;
+      out.min_gap_m = m.min_gap_m;
+      out.waypoints.assign(nozzles, {});
+      for (const auto& stage : m.stages)
+        for (const auto& n : stage.nozzles) {
+          out.deposition_s += n.evaluation.deposition_s;
+          out.airtime_s += n.evaluation.airtime_s;
+          auto& path = out.waypoints[n.nozzle];
+          path.insert(path.end(), n.waypoints.begin(), n.waypoints.end());
+        }
+    }
+    if (result.status) {
+      out.max_idle_s = result.max_idle_s();
+      if (result.idle_limit_violations() > 0)
+        out.why_not = printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s",
+                                    out.max_idle_s, machine_.nozzle_idle_limit_s);
+      else
+        out.usable = true;
+    }
+  } catch (const InputError& error) {
+    // A nozzle count the rails cannot take: an answer for this count, not an input error.
+    out.why_not = error.diagnostics().empty() ? error.what() : error.diagnostics()[0].message;
+  }
+  for (auto& path : out.waypoints) label_pieces(path, layer);
+  out.planning_s = seconds_since(started);
+  return out;
+}
+
+void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
+                           const std::string& what) {
+  std::vector<std::pair<int, int>> todo;
+  for (const auto& w : wanted)
+    if (!planned_.count(w) && std::find(todo.begin(), todo.end(), w) == todo.end())
+      todo.push_back(w);
+  if (todo.empty()) return;
+  std::vector<Planned> results(todo.size());
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    tasks.push_back([&, k] { results[k] = plan(todo[k].first, todo[k].second); });
+  const auto started = Clock::now();
+  run_parallel(tasks, jobs_, [&](int done, int total) {
+    progress(printf_string("%s: %d of %d planned (%.1f s)", what.c_str(), done, total,
+                           seconds_since(started)));
+  });
+  for (std::size_t k = 0; k < todo.size(); ++k) planned_[todo[k]] = std::move(results[k]);
+  schedule_.layer_planning_s += seconds_since(started);
+  schedule_.plans_computed += static_cast<int>(todo.size());
+}
+
+const Planned& Scheduler::planned(int geometry, int nozzles) {
+  const auto key = std::make_pair(geometry, nozzles);
+  if (!planned_.count(key))
+    plan_batch({key}, printf_string("geometry G%d with %d nozzles", geometry + 1, nozzles));
+  return planned_.at(key);
+}
+
+int Scheduler::fewest_nozzles(int geometry, double between_s) {
+  for (int n = 1; n <= machine_.nozzles; ++n) {
+    const Planned& p = planned(geometry, n);
+    if (p.usable && p.layer_time_s + between_s <= material_.max_layer_interval_s) return n;
+  }
+  return 1;
+}
+
+std::string Scheduler::register_plan(const std::string& base, const Slice& slice, int nozzles,
+                                     const Planned& p) {
+  // Labelled with this layer's walls: layers of one geometry may name their walls
+  // differently (different plans drawn alike); such a layer gets its own entry.
+  std::vector<std::vector<planner::Waypoint>> paths = p.waypoints;
+  for (auto& path : paths) label_pieces(path, slice.layer);
+  auto same_labels = [&](const SchedulePlan& plan) {
+    for (std::size_t n = 0; n < paths.size(); ++n)
+      for (std::size_t k = 0; k < paths[n].size(); ++k)
+        if (paths[n][k].wall != plan.waypoints[n][k].wall ||
+            paths[n][k].piece != plan.waypoints[n][k].piece)
+          return false;
+    return true;
+  };
+  auto& variants = variants_[base];
+  for (const auto& key : variants)
+    if (same_labels(schedule_.plans.at(key))) return key;
+  const std::string key = variants.empty() ? base : base + "m" + std::to_string(variants.size());
+  SchedulePlan plan;
+  plan.key = key;
+  plan.geometry = slice.geometry + 1;
+  plan.nozzles = nozzles;
+  plan.method = p.method;
+  plan.z_top_m = slice.layer.z_top_m;
+  plan.layer_time_s = p.layer_time_s;
+  plan.min_gap_m = p.min_gap_m;
+  plan.waypoints = std::move(paths);
+  plan.layer = slice.layer;
+  for (auto& path : plan.waypoints)  // drawn at this layer's height
+    for (auto& w : path) w.z_m += slice.layer.z_top_m - reps_[slice.geometry].z_top_m;
+  indexes_[key] = index_of(plan.waypoints);
+  schedule_.plans[key] = std::move(plan);
+  registered_[key] = &p;
+  variants.push_back(key);
+  return key;
+}
+
+std::string Scheduler::plan_key(const Slice& slice, int nozzles) {
+  return register_plan(printf_string("g%dn%d", slice.geometry + 1, nozzles), slice, nozzles,
+                       planned(slice.geometry, nozzles));
+}
+
+const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& below_key) {
+  const std::string base = follow_key(slice, below_key);
+  auto it = follow_.find(base);
+  if (it != follow_.end()) return it->second;
+  const auto started = Clock::now();
+  // Each piece goes to the nozzle that deposited the wall under it, in the order and the
+  // direction that nozzle did, so that every piece is covered about one layer time after
+  // the one under it.
+  const SchedulePlan& under = schedule_.plans.at(below_key);
+  const int nozzles = static_cast<int>(under.waypoints.size());
+  std::vector<DepositIndex> by_nozzle;
+  for (const auto& path : under.waypoints) by_nozzle.push_back(index_of({path}));
+  const floors::Layer& layer = slice.layer;
+  struct Keyed {
+    double t_s;
+    int segment;
+    bool reversed;
+  };
+  std::vector<std::vector<Keyed>> keyed(nozzles);
+  for (int k = 0; k < static_cast<int>(layer.segments.size()); ++k) {
+    const auto& seg = layer.segments[k];
+    // The nozzle that passed either end first; a piece over an opening goes last.
+    Keyed best{kInf, k, false};
+    int owner = 0;
+    for (int n = 0; n < nozzles; ++n) {
+      double a_lo = kInf, a_hi, b_lo = kInf, b_hi;
+      const bool at_a = by_nozzle[n].times_at(seg.wall_id, layer.start_m(seg), a_lo, a_hi);
+      const bool at_b = by_nozzle[n].times_at(seg.wall_id, layer.end_m(seg), b_lo, b_hi);
+      if (!at_a && !at_b) continue;
+      const double t = std::min(at_a ? a_lo : kInf, at_b ? b_lo : kInf);
+      if (t < best.t_s) {
+        best = {t, k, at_a && at_b ? b_lo < a_lo : !at_a};
+        owner = n;
+      }
+    }
+    keyed[owner].push_back(best);
+  }
+  Planned out;
+  out.method = "follow-below";
+  planner::PlanOptions options;
+  options.objective = planner::Objective::kTime;
+  std::vector<planner::Timeline> rails;
+  const planner::RailAxis axis =
+      machine_.rail_axis == 'y' ? planner::RailAxis::kY : planner::RailAxis::kX;
+  for (int n = 0; n < nozzles; ++n) {
+    std::stable_sort(keyed[n].begin(), keyed[n].end(),
+                     [](const Keyed& x, const Keyed& y) { return x.t_s < y.t_s; });
+    std::vector<int> segments;
+    for (const auto& k : keyed[n]) segments.push_back(k.segment);
+    if (segments.empty()) {
+      out.waypoints.push_back({});
+      rails.push_back(planner::parked_at(under.waypoints[n].empty()
+                                             ? Eigen::Vector2d::Zero()
+                                             : under.waypoints[n].back().position_m));
+      continue;
+    }
+    // The nozzle's own pieces as a layer: sequence steps index into it.
+    const floors::Layer own = nozzles == 1 ? layer : floors::sub_layer(layer, segments);
+    planner::Sequence sequence;
+    for (std::size_t j = 0; j < keyed[n].size(); ++j)
+      sequence.push_back(
+          {nozzles == 1 ? keyed[n][j].segment : static_cast<int>(j), keyed[n][j].reversed});
+    const planner::LayerPlan plan = planner::time_sequence(own, machine_, sequence, options);
+    out.layer_time_s = std::max(out.layer_time_s, plan.evaluation.layer_time_s);
+    out.deposition_s += plan.evaluation.deposition_s;
+    out.airtime_s += plan.evaluation.airtime_s;
+    out.max_idle_s = std::max(out.max_idle_s, plan.evaluation.max_idle_s);
+    if (plan.evaluation.idle_limit_violations > 0 && out.why_not.empty())
+      out.why_not = printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s",
+                                  plan.evaluation.max_idle_s, machine_.nozzle_idle_limit_s);
+    planner::Timeline rail;
+    for (const auto& w : plan.waypoints) rail.append(w.t_s, w.position_m);
+    rails.push_back(rail);
+    out.waypoints.push_back(plan.waypoints);
+  }
+  // The gantries must keep their gap: checked exactly at every breakpoint of either.
+  out.min_gap_m = kInf;
+  for (int n = 0; n + 1 < nozzles && out.why_not.empty(); ++n) {
+    out.min_gap_m = std::min(out.min_gap_m, planner::min_gap_m(rails[n], rails[n + 1], axis));
+    if (auto conflict =
+            planner::first_conflict(rails[n], rails[n + 1], axis, machine_.gantry_width_m))
+      out.why_not = printf_string("gantries %d and %d come within %.3f m at %.1f s", n + 1, n + 2,
+                                  conflict->right_m - conflict->left_m, conflict->time_s);
+  }
+  if (nozzles == 1) out.min_gap_m = 0.0;
+  out.usable = out.why_not.empty();
+  // Drawn at the geometry's first layer, like every other plan.
+  for (auto& path : out.waypoints)
+    for (auto& w : path) w.z_m += reps_[slice.geometry].z_top_m - layer.z_top_m;
+  out.planning_s = seconds_since(started);
+  schedule_.layer_planning_s += out.planning_s;
+  return follow_.emplace(base, std::move(out)).first->second;
+}
+
+double Scheduler::move_between(const std::string& from_key, const std::string& to_key) const {
+  const auto& from = schedule_.plans.at(from_key).waypoints;
+  const auto& to = schedule_.plans.at(to_key).waypoints;
+  double longest = 0.0;
+  for (std::size_t n = 0; n < to.size() && n < from.size(); ++n) {
+    if (from[n].empty() || to[n].empty()) continue;
+    const auto& a = from[n].back();
+    const auto& b = to[n].front();
+    const double travel_s = (b.position_m - a.position_m).norm() / machine_.travel_speed_m_s;
+    const double turn_s = std::abs(b.heading_rad - a.heading_rad) / machine_.rotation_speed_rad_s;
+    const double move_s =
+        machine_.rotate_while_moving ? std::max(travel_s, turn_s) : travel_s + turn_s;
+    longest = std::max(longest, move_s + machine_.accel_delay_s);
+  }
+  // The nozzle rises by one layer height.
+  return longest + project_.building.layer_height_m / machine_.z.speed_m_s;
+}
+
+const IntervalOffsets& Scheduler::offsets(const Slice& upper, const std::string& upper_key,
+                                          const std::string& lower_key) {
+  const auto key = std::make_pair(upper_key, lower_key);
+  auto it = offsets_.find(key);
+  if (it == offsets_.end())
+    it = offsets_
+             .emplace(key,
+                      interval_offsets(upper.layer, indexes_.at(upper_key), indexes_.at(lower_key)))
+             .first;
+  return it->second;
+}
+
+double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, WaitReason& reason,
+                                   bool& impossible) const {
+  // The weight of the walls from layer j's bottom up to the new layer's top, times the
+  // safety factor, must not exceed layer j's strength at its age (from its end).
+  const double top_m = slices_[i].layer.z_top_m;
+  const double worst_age_s =
+      material_.age_for_strength_s(material_.safety_factor * stress_per_m_mpa_ * top_m);
+  double ready_s = -kInf;
+  for (int j = first_checked - 1; j >= 0; --j) {
+    // Older layers carry at most the whole height; once that is within their age, stop.
+    if (std::isfinite(worst_age_s) && layer_end_s_[j] + worst_age_s <= earliest_s) break;
+    const double required_mpa =
+        material_.safety_factor * stress_per_m_mpa_ * (top_m - slices_[j].layer.z_bottom_m);
+    const double age_s = material_.age_for_strength_s(required_mpa);
+    if (!std::isfinite(age_s)) {
+      impossible = true;
+      reason.kind = "strength";
+      reason.detail = printf_string(
+          "%s would carry %.3f m of wall: %.4f MPa with the safety factor %.2f, more than the "
+          "material ever reaches (%.4f MPa)",
+          where_text(slices_[j].floor, slices_[j].layer.index).c_str(),
+          top_m - slices_[j].layer.z_bottom_m, required_mpa, material_.safety_factor,
+          material_.strength_curve.back().strength_mpa);
+      return kInf;
+    }
+    if (layer_end_s_[j] + age_s > ready_s) {
+      ready_s = layer_end_s_[j] + age_s;
+      reason.kind = "strength";
+      reason.detail = printf_string(
+          "%s carries %.3f m of wall above its bottom: %.4f MPa with the safety factor %.2f; "
+          "its concrete reaches that %.1f s after it was deposited",
+          where_text(slices_[j].floor, slices_[j].layer.index).c_str(),
+          top_m - slices_[j].layer.z_bottom_m, required_mpa, material_.safety_factor, age_s);
+    }
+  }
+  return ready_s;
+}
+
+void Scheduler::fail(Infeasibility infeasibility) {
+  // The first is the one reported in full (with its computed fix); a few more are named.
+  constexpr int kNamed = 5;
+  if (schedule_.feasible) {
+    schedule_.feasible = false;
+    schedule_.infeasibility = std::move(infeasibility);
+  } else if (++further_failures_ <= kNamed) {
+    schedule_.warnings.push_back("also infeasible: " + infeasibility.message);
+  } else if (further_failures_ == kNamed + 1) {
+    schedule_.warnings.push_back(
+        "also infeasible: more layers (each is listed in the JSON by its "
+        "local_interval_max_s)");
+  }
+}
+
+void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
+                            double deposition_s) {
+  const double required_s = inf.required_s, achieved_s = inf.achieved_s;
+  const double excess_s = achieved_s - required_s;
+  inf.max_interval_needed_s = std::ceil(achieved_s);
+  // Faster deposition shortens the deposition share of the interval; airtime stays.
+  if (deposition_s > excess_s)
+    inf.deposition_speed_needed_m_s =
+        machine_.deposition_speed_m_s * deposition_s / (deposition_s - excess_s);
+  // More nozzles than the machine has: plan them, up to 16, until one count is fast enough
+  // on its own (the layer's time plus the move to it must fit the maximum).
+  for (int n = machine_.nozzles + 1; n <= std::min(16, machine_.nozzles + 4); ++n) {
+    const Planned& p = planned(slice.geometry, n);
+    if (p.usable && achieved_s - layer_time_s + p.layer_time_s <= required_s) {
+      inf.nozzles_needed = n;
+      break;
+    }
+  }
+  std::string fix =
+      printf_string("a maximum layer interval of at least %.0f s", *inf.max_interval_needed_s);
+  if (inf.deposition_speed_needed_m_s)
+    fix += printf_string("; or a deposition speed of at least %.3f m/s (now %.3f)",
+                         *inf.deposition_speed_needed_m_s, machine_.deposition_speed_m_s);
+  if (inf.nozzles_needed)
+    fix += printf_string("; or %d nozzles (the machine has %d)", *inf.nozzles_needed,
+                         machine_.nozzles);
+  inf.fix = fix;
+}
+
+Schedule Scheduler::run() {
+  const auto started = Clock::now();
+  const floors::Building& b = project_.building;
+  // Every layer with walls, bottom to top; geometries by first appearance.
+  std::map<floors::GeometryKey, int> geometry_of;
+  for (const auto& f : b.floors)
+    for (auto& l : floors::slice_floor(f, b.layer_height_m)) {
+      if (l.segments.empty()) continue;
+      floors::GeometryKey key(l);
+      auto [it, fresh] = geometry_of.try_emplace(std::move(key), static_cast<int>(reps_.size()));
+      if (fresh) reps_.push_back(l);
+      slices_.push_back({f.index, std::move(l), it->second});
+    }
+  CCBUILD_CHECK(!slices_.empty(), "a validated building has walls");
+  const int count = static_cast<int>(slices_.size());
+  layer_end_s_.assign(count, 0.0);
+
+  // Climbing machine: stages (breaking at floor tops where the reach allows) and their
+  // climbs, planned in parallel with the first layer plans.
+  std::vector<climb::ClimbPlan> climbs;
+  std::vector<double> climb_planning_s;
+  if (project_.climber) {
+    climb::StageOptions stage_options;
+    stage_options.at_floor_tops = true;
+    const climb::StagePlan stages = climb::climb_stages(b, *project_.climber, stage_options);
+    schedule_.stages = stages.stages;
+    if (!stages.status) {
+      Infeasibility inf;
+      inf.kind = "climb";
+      inf.message = "the climbing machine's stages: " + stages.status.to_string();
+      inf.fix = "anchor points the units can reach (see `ccbuild climb`)";
+      fail(inf);
+    }
+  }
+  const int climb_count = std::max(0, static_cast<int>(schedule_.stages.size()) - 1);
+  climbs.resize(climb_count);
+  climb_planning_s.assign(climb_count, 0.0);
+  {
+    std::vector<std::function<void()>> tasks;
+    std::vector<std::pair<int, int>> first;
+    for (int g = 0; g < static_cast<int>(reps_.size()); ++g) first.push_back({g, 1});
+    std::vector<Planned> results(first.size());
+    for (std::size_t k = 0; k < first.size(); ++k)
+      tasks.push_back([&, k] { results[k] = plan(first[k].first, 1); });
+    for (int c = 0; c < climb_count; ++c)
+      tasks.push_back([&, c] {
+        const auto t0 = Clock::now();
+        climb::ClimbOptions o;
+        o.seed = options_.seed;
+        o.time_limit_s = options_.climb_time_limit_s;
+        climbs[c] = climb::plan_climb(*project_.climber, b, schedule_.stages[c],
+                                      schedule_.stages[c + 1], o);
+        climb_planning_s[c] = seconds_since(t0);
+      });
+    const auto t0 = Clock::now();
+    run_parallel(tasks, jobs_, [&](int done, int total) {
+      progress(printf_string("planning %zu layer geometries and %d climbs: %d of %d done (%.1f s)",
+                             reps_.size(), climb_count, done, total, seconds_since(t0)));
+    });
+    for (std::size_t k = 0; k < first.size(); ++k) planned_[first[k]] = std::move(results[k]);
+    schedule_.plans_computed += static_cast<int>(first.size());
+    double climb_s = 0.0;
+    for (double s : climb_planning_s) climb_s += s;
+    // Wall-clock shares: the climbs' part of the batch by their summed time.
+    const double batch_s = seconds_since(t0);
+    double layer_sum_s = 0.0;
+    for (const auto& r : planned_) layer_sum_s += r.second.planning_s;
+    const double share = climb_s + layer_sum_s > 0 ? climb_s / (climb_s + layer_sum_s) : 0.0;
+    schedule_.climb_planning_s += batch_s * share;
+    schedule_.layer_planning_s += batch_s * (1.0 - share);
+  }
+  // Geometries too slow for one nozzle: every count up to the machine's, in parallel.
+  {
+    std::vector<std::pair<int, int>> more;
+    for (int g = 0; g < static_cast<int>(reps_.size()); ++g) {
+      const Planned& p = planned_.at({g, 1});
+      if (!p.usable || p.layer_time_s > 0.9 * material_.max_layer_interval_s)
+        for (int n = 2; n <= machine_.nozzles; ++n) more.push_back({g, n});
+    }
+    plan_batch(more, "layer geometries too slow for one nozzle");
+  }
+  for (const auto& [key, p] : planned_)
+    if (p.stopped_by_time)
+      schedule_.warnings.push_back(printf_string(
+          "the plan of geometry G%d with %d nozzles stopped at its time limit of %.0f s: "
+          "schedules may differ between machines of different speed",
+          key.first + 1, key.second, options_.layer_time_limit_s));
+
+  // Pipes cast after each layer, and the climb after each stage's last layer.
+  std::map<std::pair<int, int>, std::vector<climb::Anchor>> pipes_after;
+  std::map<std::pair<int, int>, int> climb_after;  // -> climb index
+  for (std::size_t s = 0; s < schedule_.stages.size(); ++s) {
+    const auto& st = schedule_.stages[s];
+    for (const auto& a : st.anchors)
+      if (a.floor >= 0) pipes_after[{a.floor, a.layer}].push_back(a);
+    if (static_cast<int>(s) < climb_count) climb_after[{st.last.floor, st.last.layer}] = s;
+  }
+  std::map<std::string, double> pipe_done_s;  // anchor id + floor -> when cast
+
+  // Per layer: the most pipe time between two layers of its run (consecutive layers of
+  // one floor and geometry), so that the run gets nozzles enough for it.
+  std::vector<double> run_between_s(count, 0.0);
+  for (int first = 0; first < count;) {
+    int last = first;
+    while (last + 1 < count && slices_[last + 1].floor == slices_[first].floor &&
+           slices_[last + 1].geometry == slices_[first].geometry)
+      ++last;
+    double most_s = 0.0;
+    for (int k = first; k <= last; ++k)
+      if (auto it = pipes_after.find({slices_[k].floor, slices_[k].layer.index});
+          it != pipes_after.end())
+        most_s = std::max(most_s, it->second.size() * project_.climber->pipe_embed_s);
+    std::fill(run_between_s.begin() + first, run_between_s.begin() + last + 1, most_s);
+    first = last + 1;
+  }
+  const auto book_started = Clock::now();
+  const double planning_before_s = schedule_.layer_planning_s;
+  double previous_end_s = 0.0;  // the machine is free from here
+  double ready_extra_s = 0.0;   // pipes, slab, climb time after the previous layer
+  std::string previous_key;
+  int last_floor = -1;
+  for (int i = 0; i < count; ++i) {
+    const Slice& slice = slices_[i];
+    ScheduledLayer out;
+    out.floor = slice.floor;
+    out.layer = slice.layer.index;
+    out.z_bottom_m = slice.layer.z_bottom_m;
+    out.z_top_m = slice.layer.z_top_m;
+    out.geometry = slice.geometry + 1;
+    const bool same_floor = i > 0 && slices_[i - 1].floor == slice.floor;
+    const ScheduledLayer* below = same_floor ? &schedule_.layers.back() : nullptr;
+
+    // The layers further below: each must carry the walls up to this layer's top, at its
+    // age from its end (the one just below is checked piece by piece, with each plan).
+    WaitReason strength;
+    bool impossible = false;
+    const double strong_s =
+        strength_ready_s(i, below ? i - 1 : i, previous_end_s, strength, impossible);
+    if (impossible) {
+      Infeasibility inf;
+      inf.kind = "strength";
+      inf.floor = slice.floor;
+      inf.layer = slice.layer.index;
+      inf.message = where_text(slice.floor, slice.layer.index) + ": " + strength.detail;
+      inf.fix = "a stronger material, or lower floors";
+      fail(inf);
+    }
+    // The stress on the layer just below, from its bottom to this layer's top, and the age
+    // its concrete needs for it.
+    const double below_age_s =
+        below ? material_.age_for_strength_s(material_.safety_factor * stress_per_m_mpa_ *
+                                             (slice.layer.z_top_m - below->z_bottom_m))
+              : 0.0;
+    if (below && !std::isfinite(below_age_s) && !impossible) {
+      Infeasibility inf;
+      inf.kind = "strength";
+      inf.floor = slice.floor;
+      inf.layer = slice.layer.index;
+      inf.message = printf_string(
+          "%s: floor %d layer %d would carry %.3f m of wall, more than the material ever "
+          "carries with the safety factor %.2f",
+          where_text(slice.floor, slice.layer.index).c_str(), below->floor, below->layer,
+          slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor);
+      inf.fix = "a stronger material, or thinner layers";
+      fail(inf);
+    }
+
+    // Try the fewest nozzles fast enough up to the machine's count: the first plan that
+    // keeps every interval (at one nozzle, where the geometry changes, also the plan that
+    // follows the order of the layer below).
+    struct Choice {
+      int nozzles = 0;
+      std::string key;
+      const Planned* planned = nullptr;
+      double start_s = 0.0, move_s = 0.0, wait_s = 0.0;
+      std::vector<WaitReason> reasons;
+      bool purge = false;
+      IntervalOffsets offsets;
+      double local_max_s = -kInf;
+      bool ok = false;
+    };
+    std::optional<Choice> best;
+    std::vector<std::string> refusals;
+    auto consider = [&](int n, const std::string& key, const Planned& p) {
+      Choice c;
+      c.nozzles = n;
+      c.key = key;
+      c.planned = &p;
+      c.move_s = previous_key.empty() ? 0.0 : move_between(previous_key, c.key);
+      const double earliest_s = previous_end_s + ready_extra_s + c.move_s;
+      double start_s = earliest_s;
+      auto require = [&](double need_s, const char* kind, const std::string& detail) {
+        if (need_s <= earliest_s + 1e-9) return;
+        c.reasons.push_back({kind, need_s - earliest_s, detail});
+        start_s = std::max(start_s, need_s);
+      };
+      if (below) {
+        c.offsets = offsets(slice, c.key, below->plan);
+        if (c.offsets.ends > 0) {
+          const double earliest_local_s = earliest_s - below->start_s + c.offsets.min_offset_s;
+          require(below->start_s + material_.min_layer_interval_s - c.offsets.min_offset_s,
+                  "min-interval",
+                  printf_string("%s would be covered %.1f s after it was deposited, under the "
+                                "minimum interval of %.1f s",
+                                piece_text(c.offsets.min_at).c_str(), earliest_local_s,
+                                material_.min_layer_interval_s));
+          if (std::isfinite(below_age_s))
+            require(below->start_s + below_age_s - c.offsets.min_offset_s, "strength",
+                    printf_string("%s (floor %d layer %d) would carry %.3f m of wall %.1f s "
+                                  "after it was deposited; with the safety factor %.2f its "
+                                  "concrete needs %.1f s",
+                                  piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
+                                  slice.layer.z_top_m - below->z_bottom_m, earliest_local_s,
+                                  material_.safety_factor, below_age_s));
+        }
+      }
+      if (!impossible && std::isfinite(strong_s)) {
+        strength.required_s = 0.0;
+        if (strong_s > earliest_s + 1e-9) require(strong_s, "strength", strength.detail);
+      }
+      c.wait_s = start_s - earliest_s;
+      // The nozzle idles from the previous layer's end: past the limit it is purged.
+      if (!previous_key.empty() && start_s - previous_end_s > machine_.nozzle_idle_limit_s + 1e-9) {
+        c.purge = true;
+        start_s += machine_.purge_s;
+      }
+      c.start_s = start_s;
+      if (below && c.offsets.ends > 0) {
+        c.local_max_s = start_s - below->start_s + c.offsets.max_offset_s;
+        c.ok = c.local_max_s <= material_.max_layer_interval_s + 1e-9;
+        if (!c.ok)
+          refusals.push_back(printf_string(
+              "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
+              n == 1 ? "" : "s", p.method.c_str(), piece_text(c.offsets.max_at).c_str(),
+              c.local_max_s, material_.max_layer_interval_s));
+      } else {
+        c.ok = true;
+      }
+      const bool done = c.ok;
+      if (c.ok || !best || c.local_max_s < best->local_max_s) best = std::move(c);
+      return done;
+    };
+    // A layer like the one below first tries the same plan: every interval is then the
+    // same, start to start.
+    bool placed = false;
+    if (below && slices_[i - 1].geometry == slice.geometry)
+      placed = consider(below->nozzles, below->plan, *registered_.at(below->plan));
+    for (int n = fewest_nozzles(slice.geometry, run_between_s[i]); !placed && n <= machine_.nozzles;
+         ++n) {
+      const Planned& p = planned(slice.geometry, n);
+      if (p.usable && consider(n, plan_key(slice, n), p)) break;
+      if (!p.usable)
+        refusals.push_back(
+            printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
+      if (below && n == below->nozzles) {
+        const Planned& f = follow_plan(slice, below->plan);
+        if (f.usable && consider(n, register_plan(follow_key(slice, below->plan), slice, n, f), f))
+          break;
+        if (!f.usable)
+          refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
+                                           n == 1 ? "" : "s", f.why_not.c_str()));
+      }
+    }
+    if (!best) {
+      // No nozzle count has a plan at all.
+      Infeasibility inf;
+      inf.kind = "no-plan";
+      inf.floor = slice.floor;
+      inf.layer = slice.layer.index;
+      std::string why;
+      for (const auto& r : refusals) why += (why.empty() ? "" : "; ") + r;
+      inf.message = where_text(slice.floor, slice.layer.index) + ": no usable plan: " + why;
+      inf.fix = "see `ccbuild plan-layer` on this layer";
+      fail(inf);
+      break;
+    }
+    if (!best->ok) {
+      Infeasibility inf;
+      inf.kind = "max-interval";
+      inf.floor = slice.floor;
+      inf.layer = slice.layer.index;
+      inf.required_s = material_.max_layer_interval_s;
+      inf.achieved_s = best->local_max_s;
+      inf.message = printf_string(
+          "%s: %s is covered %.1f s after it was deposited with %d nozzle%s (the best of the "
+          "counts the machine allows), over the material's maximum interval of %.1f s by %.1f s",
+          where_text(slice.floor, slice.layer.index).c_str(),
+          piece_text(best->offsets.max_at).c_str(), best->local_max_s, best->nozzles,
+          best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
+          best->local_max_s - material_.max_layer_interval_s);
+      if (schedule_.feasible) {  // the first one: compute its fixes
+        const Planned& p = *best->planned;
+        compute_fix(inf, slice, p.layer_time_s, p.deposition_s / best->nozzles);
+        inf.message += "; fix: " + inf.fix;
+      }
+      fail(inf);
+    }
+    const Planned& p = *best->planned;
+    out.plan = best->key;
+    out.nozzles = best->nozzles;
+    out.method = p.method;
+    out.start_s = best->start_s;
+    out.end_s = best->start_s + p.layer_time_s;
+    out.deposition_s = p.deposition_s;
+    out.airtime_s = p.airtime_s;
+    out.max_idle_s = p.max_idle_s;
+    out.move_before_s = best->move_s;
+    out.wait_before_s = best->wait_s;
+    out.wait_reasons = best->reasons;
+    out.purge_before = best->purge;
+    if (below) {
+      out.interval_s = out.start_s - below->start_s;
+      if (best->offsets.ends > 0) {
+        out.local_interval_min_s = out.start_s - below->start_s + best->offsets.min_offset_s;
+        out.local_interval_max_s = out.start_s - below->start_s + best->offsets.max_offset_s;
+        out.local_min_at = best->offsets.min_at;
+        out.local_max_at = best->offsets.max_at;
+        out.piece_ends_checked = best->offsets.ends;
+      }
+    }
+    if (best->purge) {
+      Event e;
+      e.kind = Event::Kind::kPurge;
+      e.start_s = out.start_s - machine_.purge_s;
+      e.end_s = out.start_s;
+      e.floor = out.floor;
+      e.layer = out.layer;
+      e.detail = printf_string("the nozzle idled %.1f s, over its limit of %.1f s",
+                               e.start_s - previous_end_s, machine_.nozzle_idle_limit_s);
+      schedule_.events.push_back(e);
+    }
+    layer_end_s_[i] = out.end_s;
+    previous_end_s = out.end_s;
+    previous_key = out.plan;
+    last_floor = out.floor;
+    schedule_.layers.push_back(out);
+    ready_extra_s = 0.0;
+
+    // After the layer: its pipes, then (at a floor's top) the slab, then a climb.
+    double t = out.end_s;
+    if (auto it = pipes_after.find({out.floor, out.layer}); it != pipes_after.end())
+      for (const auto& a : it->second) {
+        Event e;
+        e.kind = Event::Kind::kPipe;
+        e.start_s = t;
+        e.end_s = t += project_.climber->pipe_embed_s;
+        e.floor = out.floor;
+        e.layer = out.layer;
+        e.anchor = a;
+        e.detail = "pipe " + a.id + " for unit " + project_.climber->units[a.unit].name;
+        pipe_done_s[a.id + "@" + std::to_string(a.floor)] = e.end_s;
+        schedule_.events.push_back(e);
+      }
+    const bool floor_top = i + 1 == count || slices_[i + 1].floor != out.floor;
+    if (floor_top && i + 1 < count) {
+      Event e;
+      e.kind = Event::Kind::kSlab;
+      e.start_s = t;
+      e.end_s = t += b.slab_stage_s;
+      e.floor = out.floor;
+      e.layer = out.layer;
+      e.detail = "slab over floor " + std::to_string(out.floor);
+      schedule_.events.push_back(e);
+    }
+    if (auto it = climb_after.find({out.floor, out.layer}); it != climb_after.end()) {
+      const int c = it->second;
+      const climb::ClimbStage& to = schedule_.stages[c + 1];
+      Event e;
+      e.kind = Event::Kind::kClimb;
+      ClimbEvent ce;
+      ce.from_stage = c;
+      ce.to_stage = c + 1;
+      ce.plan = climbs[c];
+      double ready_s = t;
+      const double strength_mpa = project_.climber->anchor_strength_mpa;
+      const double age_needed_s = material_.age_for_strength_s(strength_mpa);
+      for (const auto& a : to.anchors) {
+        const auto cast = pipe_done_s.find(a.id + "@" + std::to_string(a.floor));
+        const double cast_s = cast == pipe_done_s.end() ? 0.0 : cast->second;
+        if (cast_s + age_needed_s > ready_s + 1e-9) {
+          ce.wait_reasons.push_back(
+              {"anchor-strength", cast_s + age_needed_s - t,
+               printf_string("anchor %s (unit %s, cast %s) reaches %.1f MPa %.1f h after it "
+                             "was cast",
+                             a.id.c_str(), project_.climber->units[a.unit].name.c_str(),
+                             where_text(a.floor, a.layer).c_str(), strength_mpa,
+                             age_needed_s / 3600.0)});
+          ready_s = cast_s + age_needed_s;
+        }
+      }
+      if (!std::isfinite(age_needed_s)) {
+        Infeasibility inf;
+        inf.kind = "climb";
+        inf.floor = out.floor;
+        inf.layer = out.layer;
+        inf.message = printf_string(
+            "climb %d -> %d: the material never reaches the anchors' strength of %.1f MPa", c,
+            c + 1, strength_mpa);
+        inf.fix = "a material that reaches the anchor strength, or a lower anchor_strength_mpa";
+        fail(inf);
+        break;
+      }
+      ce.wait_before_s = ready_s - t;
+      ce.start_s = ready_s;
+      ce.end_s = ready_s + ce.plan.duration_s;
+      for (const auto& a : to.anchors) {
+        const auto cast = pipe_done_s.find(a.id + "@" + std::to_string(a.floor));
+        const double age_s = ce.start_s - (cast == pipe_done_s.end() ? 0.0 : cast->second);
+        ce.anchors.push_back({a.id, project_.climber->units[a.unit].name, age_s,
+                              material_.strength_at_mpa(age_s), strength_mpa});
+      }
+      if (!ce.plan.status) {
+        Infeasibility inf;
+        inf.kind = "climb";
+        inf.floor = out.floor;
+        inf.layer = out.layer;
+        inf.message = printf_string("climb %d -> %d: ", c, c + 1) + ce.plan.status.to_string();
+        inf.fix = "see `ccbuild climb` for this building and machine";
+        fail(inf);
+      }
+      e.start_s = ce.start_s;
+      e.end_s = ce.end_s;
+      e.floor = out.floor;
+      e.layer = out.layer;
+      e.detail = printf_string("climb from stage %d to %d", c, c + 1);
+      t = e.end_s;
+      e.climb = std::move(ce);
+      schedule_.events.push_back(std::move(e));
+    }
+    ready_extra_s = t - out.end_s;
+    if (options_.progress && (i + 1) % 25 == 0)
+      progress(printf_string("scheduled %d of %d layers", i + 1, count));
+  }
+  (void)last_floor;
+
+  std::stable_sort(schedule_.events.begin(), schedule_.events.end(),
+                   [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
+  ScheduleTotals& tot = schedule_.totals;
+  for (const auto& l : schedule_.layers) {
+    tot.makespan_s = std::max(tot.makespan_s, l.end_s);
+    tot.deposition_s += l.deposition_s;
+    tot.airtime_s += l.airtime_s;
+    tot.waits_s += l.wait_before_s;
+    tot.moves_s += l.move_before_s;
+    tot.machine_s += l.end_s - l.start_s + l.move_before_s;
+  }
+  for (const auto& e : schedule_.events) {
+    tot.makespan_s = std::max(tot.makespan_s, e.end_s);
+    const double d = e.end_s - e.start_s;
+    switch (e.kind) {
+      case Event::Kind::kPipe:
+        tot.pipes_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kSlab:
+        tot.slabs_s += d;
+        break;
+      case Event::Kind::kPurge:
+        tot.purges_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kClimb:
+        tot.climbs_s += d;
+        tot.machine_s += d;
+        tot.waits_s += e.climb->wait_before_s;
+        break;
+    }
+  }
+  schedule_.bookkeeping_s =
+      seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
+  (void)book_started;
+  (void)planning_before_s;
+  return std::move(schedule_);
+}
+
+}  // namespace
+
+std::string to_string(Event::Kind kind) {
+  switch (kind) {
+    case Event::Kind::kPipe:
+      return "pipe";
+    case Event::Kind::kClimb:
+      return "climb";
+    case Event::Kind::kSlab:
+      return "slab";
+    case Event::Kind::kPurge:
+      return "purge";
+  }
+  return "?";
+}
+
+Schedule build_schedule(const Project& project, const ScheduleOptions& options) {
+  Scheduler scheduler(project, options);
+  return scheduler.run();
+}
+
+}  // namespace ccbuild::orchestrator
