@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Quick start, step 1: install what is missing, build, and run the main job on the
-# bundled example building.
+# Quick start, step 1: install what is missing, build, and run the main job (the whole
+# schedule) on the bundled example building.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh
@@ -15,3 +15,6 @@ echo
 echo "== ccbuild plan-layer $example --floor 0 --layer 12 --objective time --svg build/house-floor0-layer12.svg"
 ./build/ccbuild plan-layer "$example" --floor 0 --layer 12 --objective time --force \
   --svg build/house-floor0-layer12.svg
+echo
+echo "== ccbuild schedule $example -o build/house.schedule.json"
+./build/ccbuild schedule "$example" --force -o build/house.schedule.json

@@ -734,6 +734,7 @@ Schedule Scheduler::run() {
   double previous_end_s = 0.0;  // the machine is free from here
   double ready_extra_s = 0.0;   // pipes, slab, climb time after the previous layer
   std::string previous_key;
+  double pipes_before_s = 0.0;  // cast after the previous layer
   int last_floor = -1;
   for (int i = 0; i < count; ++i) {
     const Slice& slice = slices_[i];
@@ -921,6 +922,7 @@ Schedule Scheduler::run() {
     out.airtime_s = p.airtime_s;
     out.max_idle_s = p.max_idle_s;
     out.move_before_s = best->move_s;
+    out.pipes_before_s = pipes_before_s;
     out.wait_before_s = best->wait_s;
     out.wait_reasons = best->reasons;
     out.purge_before = best->purge;
@@ -954,12 +956,14 @@ Schedule Scheduler::run() {
 
     // After the layer: its pipes, then (at a floor's top) the slab, then a climb.
     double t = out.end_s;
+    pipes_before_s = 0.0;
     if (auto it = pipes_after.find({out.floor, out.layer}); it != pipes_after.end())
       for (const auto& a : it->second) {
         Event e;
         e.kind = Event::Kind::kPipe;
         e.start_s = t;
         e.end_s = t += project_.climber->pipe_embed_s;
+        pipes_before_s += project_.climber->pipe_embed_s;
         e.floor = out.floor;
         e.layer = out.layer;
         e.anchor = a;

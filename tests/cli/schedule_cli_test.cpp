@@ -1,0 +1,165 @@
+// `ccbuild schedule` and `ccbuild diff`: exit codes (0 feasible, 1 infeasible or
+// differing, 2 bad input), the schedule file written whole and never over an input, the
+// same bytes whatever --jobs, and diff naming what changed and honouring its tolerance.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+using testing::run_ccbuild;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_schedule_cli_" + name + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
+  const fs::path dir = scratch("jobs");
+  const auto one = run_ccbuild("schedule config/buildings/house.yaml --quiet --jobs 1 -o " +
+                               (dir / "one.json").string());
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_TRUE(contains(one.out, "60 layers"));
+  EXPECT_TRUE(contains(one.out, "feasible"));
+  EXPECT_TRUE(contains(one.out, "schedule written to"));
+  EXPECT_TRUE(one.err.empty()) << one.err;  // --quiet: no progress
+  const auto two = run_ccbuild("schedule config/buildings/house.yaml --jobs 2 -o " +
+                               (dir / "two.json").string());
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_TRUE(contains(two.err, "planning 6 layer geometries"));  // progress on stderr
+  EXPECT_EQ(slurp(dir / "one.json"), slurp(dir / "two.json"));
+  const auto doc = nlohmann::json::parse(slurp(dir / "one.json"));
+  EXPECT_EQ(doc["format"], "ccbuild-schedule");
+  EXPECT_EQ(doc["schema_version"], 1);
+  EXPECT_EQ(doc["inputs"]["files"].size(), 6u);
+  EXPECT_EQ(doc["inputs"]["files"][0]["sha256"].get<std::string>().size(), 64u);
+  // The same schedule: diff agrees.
+  const auto same =
+      run_ccbuild("diff " + (dir / "one.json").string() + " " + (dir / "two.json").string());
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+  EXPECT_TRUE(contains(same.out, "agree"));
+  fs::remove_all(dir);
+}
+
+TEST(ScheduleCommand, NeverWritesOverAnInputNorAnOutputWithoutForce) {
+  const fs::path dir = scratch("force");
+  const fs::path out = dir / "s.json";
+  std::ofstream(out) << "precious";
+  const auto refused =
+      run_ccbuild("schedule config/buildings/house.yaml --quiet -o " + out.string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_TRUE(contains(refused.err, "--force"));
+  EXPECT_EQ(slurp(out), "precious");
+  const auto input = run_ccbuild(
+      "schedule config/buildings/house.yaml --quiet --force -o config/buildings/house/ground.yaml");
+  EXPECT_EQ(input.exit_code, 2);
+  EXPECT_TRUE(contains(input.err, "ground.yaml"));
+  fs::remove_all(dir);
+}
+
+TEST(ScheduleCommand, AnInfeasibleBuildingExitsOneAndStillWritesItsSchedule) {
+  const fs::path dir = scratch("infeasible");
+  std::ofstream(dir / "impatient.yaml")
+      << "name: impatient\ndensity_kg_m3: 2200\nmin_layer_interval_s: 10\n"
+         "max_layer_interval_s: 60\nstrength_curve:\n  - {age_min: 0, strength_mpa: 0.01}\n"
+         "  - {age_min: 60, strength_mpa: 1}\n";
+  const auto r =
+      run_ccbuild("schedule config/buildings/house.yaml --quiet --material " +
+                  (dir / "impatient.yaml").string() + " -o " + (dir / "s.json").string());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.out, "NOT feasible"));
+  EXPECT_TRUE(contains(r.out, "floor 0 layer 1"));
+  EXPECT_TRUE(contains(r.out, "fix: a maximum layer interval of at least"));
+  const auto doc = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_FALSE(doc["feasible"].get<bool>());
+  EXPECT_EQ(doc["infeasibility"]["kind"], "max-interval");
+  EXPECT_GT(doc["infeasibility"]["fix"]["max_interval_needed_s"].get<double>(), 60.0);
+  EXPECT_EQ(doc["layers"].size(), 60u);
+  fs::remove_all(dir);
+}
+
+TEST(ScheduleCommand, BadInputIsExitTwo) {
+  EXPECT_EQ(run_ccbuild("schedule tests/data/buildings/missing_plan.yaml --quiet").exit_code, 2);
+  const auto jobs = run_ccbuild("schedule config/buildings/house.yaml --jobs -1");
+  EXPECT_EQ(jobs.exit_code, 2);
+  EXPECT_TRUE(contains(jobs.err, "--jobs"));
+  const auto typo = run_ccbuild("schedule config/buildings/house.yaml --job 2");
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_TRUE(contains(typo.err, "did you mean '--jobs'"));
+  EXPECT_EQ(run_ccbuild("schedule config/buildings/house.yaml --layer-time-limit 0").exit_code, 2);
+}
+
+TEST(DiffCommand, NamesWhatChangedAndHonoursTheTolerance) {
+  const fs::path dir = scratch("diff");
+  ASSERT_EQ(
+      run_ccbuild("schedule config/buildings/house.yaml --quiet -o " + (dir / "old.json").string())
+          .exit_code,
+      0);
+  auto doc = nlohmann::json::parse(slurp(dir / "old.json"));
+  // Floor 1 layer 3 starts 10 s later; its end moves with it.
+  for (auto& l : doc["layers"])
+    if (l["floor"] == 1 && l["layer"] == 3) {
+      l["start_s"] = l["start_s"].get<double>() + 10.0;
+      l["end_s"] = l["end_s"].get<double>() + 10.0;
+    }
+  std::ofstream(dir / "new.json") << doc.dump(1);
+  const std::string files = (dir / "old.json").string() + " " + (dir / "new.json").string();
+  const auto differ = run_ccbuild("diff " + files);
+  EXPECT_EQ(differ.exit_code, 1);
+  EXPECT_TRUE(contains(differ.out, "floor 1 layer 3: start_s"));
+  EXPECT_TRUE(contains(differ.out, "1 layers"));
+  // 10 s moved: a tolerance of 10 s allows it, 9.999 s does not.
+  EXPECT_EQ(run_ccbuild("diff " + files + " --tolerance 10s").exit_code, 0);
+  EXPECT_EQ(run_ccbuild("diff " + files + " --tolerance 9.999s").exit_code, 1);
+  // A nozzle count is never within a tolerance.
+  doc["layers"][5]["nozzles"] = 2;
+  std::ofstream(dir / "new.json") << doc.dump(1);
+  const auto nozzles = run_ccbuild("diff " + files + " --tolerance 100%");
+  EXPECT_EQ(nozzles.exit_code, 1);
+  EXPECT_TRUE(contains(nozzles.out, "nozzles 1 -> 2"));
+  fs::remove_all(dir);
+}
+
+TEST(DiffCommand, RefusesWhatIsNotASchedule) {
+  const fs::path dir = scratch("notschedule");
+  std::ofstream(dir / "a.json") << "{\"format\": \"ccbuild-climbs-1\"}";
+  std::ofstream(dir / "b.json") << "{\"format\": \"ccbuild-schedule\",\n \"schema_version\": 1,";
+  const auto foreign =
+      run_ccbuild("diff " + (dir / "a.json").string() + " " + (dir / "a.json").string());
+  EXPECT_EQ(foreign.exit_code, 2);
+  EXPECT_TRUE(contains(foreign.err, "a.json"));
+  EXPECT_TRUE(contains(foreign.err, "format"));
+  const auto truncated =
+      run_ccbuild("diff " + (dir / "b.json").string() + " " + (dir / "b.json").string());
+  EXPECT_EQ(truncated.exit_code, 2);
+  EXPECT_TRUE(contains(truncated.err, "b.json:2"));
+  EXPECT_TRUE(contains(truncated.err, "not valid JSON"));
+  const auto tolerance = run_ccbuild("diff " + (dir / "a.json").string() + " " +
+                                     (dir / "a.json").string() + " --tolerance 5");
+  EXPECT_EQ(tolerance.exit_code, 2);
+  EXPECT_TRUE(contains(tolerance.err, "--tolerance"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ccbuild

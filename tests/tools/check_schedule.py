@@ -1,0 +1,1158 @@
+#!/usr/bin/env python3
+"""Re-checks a ccbuild schedule (ccbuild schedule -o) from its JSON alone.
+
+Independent of ccbuild's code: it reads only the document (docs/schedule.md) and
+recomputes what it checks from the waypoints, the inputs and the events; the document's
+derived numbers (layer times, intervals, totals, ...) are compared with the recomputed
+ones, never used to compute them. It checks:
+  1. structure: the keys and types; layers in building order; each layer's plan exists
+     and has the layer's nozzle count;
+  2. coverage: every wall piece of every plan deposited exactly once (the extruding
+     spans labelled with it lie on it and cover its length once), no span on a piece
+     the plan does not have;
+  3. timing: time never runs backwards, deposition at the deposition speed, air moves
+     within the axes' and the travel speed, z within the z speed, turns within the
+     rotation speed, the heading within the stopper; the plan's layer time is its
+     last waypoint's;
+  4. gantries: adjacent nozzles (rail order) a gantry width apart at every breakpoint
+     of either (the paths are piecewise linear, so that is exact);
+  5. layers: each lasts its plan's layer time, none overlaps the previous one or its
+     move, the wait is the largest of its reasons, start-to-start intervals;
+  6. local intervals: per piece end, the time between the layer below depositing that
+     point of the wall and this layer depositing it, compared with the document and
+     with the material's minimum and maximum (an infeasible schedule must say so and
+     may exceed the maximum);
+  7. strength: the layer below is old enough, at every piece end, to carry the walls
+     from its bottom to this layer's top (density, g, safety factor, strength curve);
+  8. events: in time order, outside every layer, each after the layer it names; pipes
+     name their anchor; purges before the layers that say so; a climb starts only when
+     every anchor of its stage has reached the anchor strength, counted from the end
+     of the latest placement of that pipe; its duration is its phases' sum;
+  9. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
+     slabs and machine time are what the layers and events add up to.
+
+Usage: check_schedule.py SCHEDULE.json              exit 0 when sound, 1 with the problems
+       check_schedule.py SCHEDULE.json --self-test  corrupts the document in many ways
+                                                    and exits 0 only when each is caught
+Exit 2: not a schedule (unreadable, not JSON, another format or schema version).
+"""
+
+import argparse
+import bisect
+import json
+import math
+import sys
+import time
+
+G = 9.80665        # m/s²
+T_DOC = 1e-3       # s: a time the document states, against the recomputed one
+ON_SPAN = 2e-3     # m: a point on a span, a span on its piece
+COVER = 1e-3       # m: the spans' lengths against the piece's
+ROUND_P = 2e-6     # m: two coordinates, each rounded to micrometres
+ROUND_T = 2e-6     # s: two times, each rounded to microseconds
+ROUND_A = 2e-6     # rad: two headings, each rounded to microradians
+INTERVAL = 1e-6    # s: an interval against the material's bounds
+WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab")
+EVENT_KINDS = ("pipe", "slab", "purge", "climb")
+MAX_SHOWN = 20
+
+
+class NotASchedule(Exception):
+    pass
+
+
+# ---------------------------------------------------------------- 1. structure
+
+NUM, INT, STR, BOOL, LIST, OBJ, NULL, POINT = "number", "integer", "string", "boolean", \
+    "list", "object", "null", "point"
+
+TOP = {"format": STR, "schema_version": INT, "inputs": OBJ, "feasible": BOOL,
+       "infeasibility": (OBJ, NULL), "totals": OBJ, "layers": LIST, "plans": OBJ,
+       "stages": LIST, "events": LIST, "warnings": LIST}
+INPUTS = {"building": STR, "layer_height_m": NUM, "slab_stage_s": NUM, "machine": OBJ,
+          "material": OBJ, "files": LIST}
+MACHINE = {"deposition_speed_m_s": NUM, "travel_speed_m_s": NUM, "x_speed_m_s": NUM,
+           "y_speed_m_s": NUM, "z_speed_m_s": NUM, "rotation_speed_rad_s": NUM,
+           "stopper_min_rad": (NUM, NULL), "stopper_max_rad": (NUM, NULL), "nozzles": INT,
+           "gantry_width_m": NUM, "rail_axis": STR, "purge_s": NUM, "kind": STR}
+CLIMBING = {"anchor_strength_mpa": NUM, "pipe_embed_s": NUM}
+MATERIAL = {"density_kg_m3": NUM, "min_layer_interval_s": NUM, "max_layer_interval_s": NUM,
+            "safety_factor": NUM, "strength_curve": LIST}
+CURVE_POINT = {"age_s": NUM, "strength_mpa": NUM}
+TOTALS = {"makespan_s": NUM, "layers": INT, "deposition_s": NUM, "airtime_s": NUM,
+          "moves_s": NUM, "waits_s": NUM, "pipes_s": NUM, "purges_s": NUM, "climbs_s": NUM,
+          "slabs_s": NUM, "machine_s": NUM}
+LAYER = {"floor": INT, "layer": INT, "z_m": NUM, "z_bottom_m": NUM, "geometry": INT,
+         "plan": STR, "nozzles": INT, "method": STR, "start_s": NUM, "end_s": NUM,
+         "deposition_s": NUM, "airtime_s": NUM, "max_idle_s": NUM, "move_before_s": NUM,
+         "pipes_before_s": NUM, "wait_before_s": NUM, "wait_reasons": LIST,
+         "purge_before": BOOL, "interval_s": (NUM, NULL), "local_interval_min_s": (NUM, NULL),
+         "local_interval_max_s": (NUM, NULL), "local_interval_min_at": (OBJ, NULL),
+         "local_interval_max_at": (OBJ, NULL), "piece_ends_checked": INT}
+REASON = {"kind": STR, "required_s": NUM, "detail": STR}
+PLAN = {"geometry": INT, "nozzles_used": INT, "method": STR, "z_top_m": NUM,
+        "layer_time_s": NUM, "pieces": LIST, "nozzles": LIST}
+PIECE = {"wall": INT, "piece": INT, "piece_count": INT, "start_m": POINT, "end_m": POINT,
+         "length_m": NUM}
+NOZZLE = {"nozzle": INT, "waypoints": LIST}
+WAYPOINT = {"t_s": NUM, "x_m": NUM, "y_m": NUM, "z_m": NUM, "heading_rad": NUM,
+            "extruding": BOOL, "wall": INT, "piece": INT}
+EVENT = {"kind": STR, "start_s": NUM, "end_s": NUM, "floor": (INT, NULL),
+         "after_layer": (INT, NULL), "detail": STR}
+PIPE = {"anchor": OBJ}
+CLIMB = {"from_stage": INT, "to_stage": INT, "wait_before_s": NUM, "wait_reasons": LIST,
+         "anchors": LIST, "climb": OBJ}
+CLIMB_ANCHOR = {"id": STR, "age_s": NUM, "strength_mpa": NUM, "required_mpa": NUM}
+CLIMB_BODY = {"duration_s": NUM, "phases": LIST}
+STAGE = {"stage": INT, "anchors": LIST}
+
+
+def type_ok(v, t):
+    if isinstance(t, tuple):
+        return any(type_ok(v, u) for u in t)
+    if t == NUM:
+        return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+    if t == INT:
+        return isinstance(v, int) and not isinstance(v, bool)
+    if t == POINT:
+        return isinstance(v, list) and len(v) == 2 and all(type_ok(c, NUM) for c in v)
+    return {STR: str, BOOL: bool, LIST: list, OBJ: dict, NULL: type(None)}[t] is type(v)
+
+
+def keys_ok(obj, schema, where, problems):
+    if not isinstance(obj, dict):
+        problems.append("%s: not an object" % where)
+        return False
+    good = True
+    for key, t in schema.items():
+        if key not in obj:
+            problems.append("%s: no `%s`" % (where, key))
+            good = False
+        elif not type_ok(obj[key], t):
+            problems.append("%s: `%s` is %r, expected %s" % (where, key, obj[key],
+                                                              t if isinstance(t, str) else " or ".join(t)))
+            good = False
+    return good
+
+
+def check_structure(doc, problems):
+    """Keys and types, so that the other checks can read the document."""
+    if not keys_ok(doc, TOP, "document", problems):
+        return
+    inputs = doc["inputs"]
+    if keys_ok(inputs, INPUTS, "inputs", problems):
+        m = inputs["machine"]
+        if keys_ok(m, MACHINE, "inputs.machine", problems):
+            if m["rail_axis"] not in ("x", "y"):
+                problems.append("inputs.machine: rail_axis %r is neither x nor y" % m["rail_axis"])
+            if m["kind"] == "climbing":
+                keys_ok(m, CLIMBING, "inputs.machine (climbing)", problems)
+        if keys_ok(inputs["material"], MATERIAL, "inputs.material", problems):
+            curve = inputs["material"]["strength_curve"]
+            if not curve:
+                problems.append("inputs.material: an empty strength curve")
+            for i, p in enumerate(curve):
+                if keys_ok(p, CURVE_POINT, "strength_curve[%d]" % i, problems) and i and \
+                        type_ok(curve[i - 1], OBJ) and p["age_s"] <= curve[i - 1].get("age_s", -math.inf):
+                    problems.append("strength_curve[%d]: ages not increasing" % i)
+    keys_ok(doc["totals"], TOTALS, "totals", problems)
+    for i, layer in enumerate(doc["layers"]):
+        where = "layers[%d]" % i
+        if keys_ok(layer, LAYER, where, problems):
+            where = "floor %d layer %d" % (layer["floor"], layer["layer"])
+            for j, r in enumerate(layer["wait_reasons"]):
+                keys_ok(r, REASON, "%s wait_reasons[%d]" % (where, j), problems)
+    for key, plan in doc["plans"].items():
+        where = "plan %s" % key
+        if not keys_ok(plan, PLAN, where, problems):
+            continue
+        for j, piece in enumerate(plan["pieces"]):
+            keys_ok(piece, PIECE, "%s pieces[%d]" % (where, j), problems)
+        if not plan["nozzles"]:
+            problems.append("%s: no nozzles" % where)
+        for j, n in enumerate(plan["nozzles"]):
+            if not keys_ok(n, NOZZLE, "%s nozzles[%d]" % (where, j), problems):
+                continue
+            if not n["waypoints"]:
+                problems.append("%s nozzle %d: no waypoints" % (where, n["nozzle"]))
+            for k, w in enumerate(n["waypoints"]):
+                if not keys_ok(w, WAYPOINT, "%s nozzle %d waypoint %d" % (where, n["nozzle"], k),
+                               problems):
+                    break
+    for i, s in enumerate(doc["stages"]):
+        keys_ok(s, STAGE, "stages[%d]" % i, problems)
+    for i, e in enumerate(doc["events"]):
+        where = "event %d" % i
+        if not keys_ok(e, EVENT, where, problems):
+            continue
+        where = "event %d (%s)" % (i, e["kind"])
+        if e["kind"] not in EVENT_KINDS:
+            problems.append("%s: unknown kind" % where)
+        if e["kind"] == "pipe" and keys_ok(e, PIPE, where, problems):
+            if not isinstance(e["anchor"].get("id"), str):
+                problems.append("%s: its anchor has no id" % where)
+        if e["kind"] == "climb" and keys_ok(e, CLIMB, where, problems):
+            for j, a in enumerate(e["anchors"]):
+                keys_ok(a, CLIMB_ANCHOR, "%s anchors[%d]" % (where, j), problems)
+            for j, r in enumerate(e["wait_reasons"]):
+                keys_ok(r, REASON, "%s wait_reasons[%d]" % (where, j), problems)
+            if keys_ok(e["climb"], CLIMB_BODY, "%s climb" % where, problems):
+                for j, p in enumerate(e["climb"]["phases"]):
+                    keys_ok(p, {"duration_s": NUM}, "%s phase %d" % (where, j), problems)
+
+
+def check_layer_order(doc, problems):
+    """Building order, plans that exist with the layer's nozzles, the layer's height."""
+    layers, plans = doc["layers"], doc["plans"]
+    previous = None
+    for layer in layers:
+        where = "floor %d layer %d" % (layer["floor"], layer["layer"])
+        here = (layer["floor"], layer["layer"])
+        expected = [(0, 0)] if previous is None else [(previous[0], previous[1] + 1),
+                                                      (previous[0] + 1, 0)]
+        if here not in expected:
+            problems.append("%s: out of building order (after %s)" % (
+                where, "the start" if previous is None else "floor %d layer %d" % previous))
+        previous = here
+        plan = plans.get(layer["plan"])
+        if plan is None:
+            problems.append("%s: plan %s is not in plans" % (where, layer["plan"]))
+            continue
+        if not layer["nozzles"] == len(plan["nozzles"]) == plan["nozzles_used"]:
+            problems.append("%s: %d nozzles, plan %s has %d nozzle paths and says %d used" % (
+                where, layer["nozzles"], layer["plan"], len(plan["nozzles"]), plan["nozzles_used"]))
+        if layer["method"] != plan["method"] or layer["geometry"] != plan["geometry"]:
+            problems.append("%s: method %s geometry %d, plan %s has %s geometry %d" % (
+                where, layer["method"], layer["geometry"], layer["plan"], plan["method"],
+                plan["geometry"]))
+        if layer["z_m"] <= layer["z_bottom_m"]:
+            problems.append("%s: top %.6f m not above its bottom %.6f m" % (
+                where, layer["z_m"], layer["z_bottom_m"]))
+    if len(layers) != len({(l["floor"], l["layer"]) for l in layers}):
+        problems.append("a layer is listed twice")
+
+
+# ---------------------------------------------------------------- plans (2, 3, 4)
+
+class Plan:
+    """What the checks need of one plan, computed once for every layer that uses it."""
+
+    def __init__(self, key, plan):
+        self.key = key
+        self.end_t = max(n["waypoints"][-1]["t_s"] for n in plan["nozzles"])
+        self.deposition = self.airtime = self.max_idle = 0.0
+        self.by_wall = {}       # wall -> [(x0, y0, x1, y1, t0, t1)] of the extruding spans
+        self.waypoints = 0
+        for n in plan["nozzles"]:
+            w = n["waypoints"]
+            self.waypoints += len(w)
+            idle = 0.0          # the current run of air time between two depositions
+            for a, b in zip(w, w[1:]):
+                dt = b["t_s"] - a["t_s"]
+                if a["extruding"]:
+                    self.max_idle = max(self.max_idle, idle)
+                    idle = 0.0
+                    self.deposition += dt
+                    self.by_wall.setdefault(a["wall"], []).append(
+                        (a["x_m"], a["y_m"], b["x_m"], b["y_m"], a["t_s"], b["t_s"]))
+                else:
+                    self.airtime += dt
+                    idle += dt
+            self.max_idle = max(self.max_idle, idle)
+        # Both ends of every piece, with the times this plan deposits them.
+        self.ends = []          # (wall, piece, x, y, [times])
+        for piece in plan["pieces"]:
+            for x, y in (piece["start_m"], piece["end_m"]):
+                self.ends.append((piece["wall"], piece["piece"], x, y,
+                                  self.times_at(piece["wall"], x, y)))
+        self.breakpoints = 0    # gantry breakpoints checked
+        self.min_gap = None
+
+    def times_at(self, wall, x, y):
+        """The times an extruding span of `wall` passes within ON_SPAN of (x, y)."""
+        out = []
+        for x0, y0, x1, y1, t0, t1 in self.by_wall.get(wall, ()):
+            dx, dy = x1 - x0, y1 - y0
+            length2 = dx * dx + dy * dy
+            f = 0.0 if length2 <= 1e-18 else min(1.0, max(0.0, ((x - x0) * dx + (y - y0) * dy) / length2))
+            if math.hypot(x - x0 - f * dx, y - y0 - f * dy) <= ON_SPAN:
+                out.append(t0 + f * (t1 - t0))
+        return out
+
+
+def check_coverage(key, plan, problems):
+    """Every piece deposited once; no span off the plan's pieces."""
+    pieces = {}
+    counts = {}
+    for piece in plan["pieces"]:
+        label = (piece["wall"], piece["piece"])
+        if label in pieces:
+            problems.append("plan %s: wall %d piece %d listed twice" % ((key,) + label))
+        pieces[label] = piece
+        counts.setdefault(piece["wall"], []).append(piece)
+    for wall, ps in counts.items():
+        numbers = sorted(p["piece"] for p in ps)
+        if numbers != list(range(1, len(ps) + 1)) or any(p["piece_count"] != len(ps) for p in ps):
+            problems.append("plan %s: wall %d has pieces %s, its piece_count says %s" % (
+                key, wall, numbers, sorted({p["piece_count"] for p in ps})))
+    spans = {}                  # label -> [(from, to along the piece, length)]
+    for n in plan["nozzles"]:
+        w = n["waypoints"]
+        for k in range(len(w) - 1):
+            a, b = w[k], w[k + 1]
+            if not a["extruding"]:
+                continue
+            where = "plan %s nozzle %d waypoint %d" % (key, n["nozzle"], k)
+            label = (a["wall"], a["piece"])
+            piece = pieces.get(label)
+            if piece is None:
+                problems.append("%s: extrudes wall %d piece %d, not a piece of the plan" % ((where,) + label))
+                continue
+            (sx, sy), (ex, ey) = piece["start_m"], piece["end_m"]
+            length = math.hypot(ex - sx, ey - sy)
+            ux, uy = ((ex - sx) / length, (ey - sy) / length) if length > 0 else (1.0, 0.0)
+            along = []
+            for q in (a, b):
+                px, py = q["x_m"] - sx, q["y_m"] - sy
+                t, off = px * ux + py * uy, abs(py * ux - px * uy)
+                if off > ON_SPAN or t < -ON_SPAN or t > length + ON_SPAN:
+                    problems.append("%s: the span on wall %d piece %d leaves the piece "
+                                    "(%.4f, %.4f) m is %.4f m off it" % (
+                                        where, label[0], label[1], q["x_m"], q["y_m"],
+                                        max(off, -t, t - length)))
+                    break
+                along.append(t)
+            else:
+                spans.setdefault(label, []).append(
+                    (min(along), max(along), math.hypot(b["x_m"] - a["x_m"], b["y_m"] - a["y_m"])))
+    for label, piece in pieces.items():
+        where = "plan %s wall %d piece %d" % ((key,) + label)
+        (sx, sy), (ex, ey) = piece["start_m"], piece["end_m"]
+        length = math.hypot(ex - sx, ey - sy)
+        if abs(length - piece["length_m"]) > ROUND_P * 2:
+            problems.append("%s: length_m %.6f, its ends are %.6f m apart" % (where, piece["length_m"], length))
+        got = sorted(spans.get(label, []))
+        if not got:
+            problems.append("%s: never deposited" % where)
+            continue
+        total = sum(s[2] for s in got)
+        if abs(total - piece["length_m"]) > COVER + 1e-6 * piece["length_m"]:
+            problems.append("%s: its spans add up to %.6f m, the piece is %.6f m" % (where, total, piece["length_m"]))
+        at = 0.0
+        for s0, s1, _ in got:
+            if s0 > at + ON_SPAN:
+                problems.append("%s: %.4f m to %.4f m along it never deposited" % (where, at, s0))
+            elif s0 < at - ON_SPAN:
+                problems.append("%s: %.4f m to %.4f m along it deposited twice" % (where, s0, min(at, s1)))
+            at = max(at, s1)
+        if at < length - ON_SPAN:
+            problems.append("%s: %.4f m to its end (%.4f m) never deposited" % (where, at, length))
+
+
+def check_motion(key, plan, machine, info, problems):
+    """Time, speeds, turns and the stopper along every nozzle's path; the layer time."""
+    v_dep, v_travel = machine["deposition_speed_m_s"], machine["travel_speed_m_s"]
+    vx, vy, vz = machine["x_speed_m_s"], machine["y_speed_m_s"], machine["z_speed_m_s"]
+    rot = machine["rotation_speed_rad_s"]
+    lo, hi = machine["stopper_min_rad"], machine["stopper_max_rad"]
+    for n in plan["nozzles"]:
+        w = n["waypoints"]
+        where = "plan %s nozzle %d" % (key, n["nozzle"])
+        if w[0]["t_s"] < -ROUND_T:
+            problems.append("%s: starts at t = %.6f s, before the layer's start" % (where, w[0]["t_s"]))
+        if w[-1]["extruding"]:
+            problems.append("%s: the last waypoint still extrudes" % where)
+        for k, q in enumerate(w):
+            h = q["heading_rad"]
+            if (lo is not None and h < lo - ROUND_A) or (hi is not None and h > hi + ROUND_A):
+                problems.append("%s waypoint %d: heading %.6f rad past the stopper [%s, %s]" % (
+                    where, k, h, lo, hi))
+        for k in range(len(w) - 1):
+            a, b = w[k], w[k + 1]
+            at = "%s waypoint %d" % (where, k)
+            dt = b["t_s"] - a["t_s"]
+            if dt < -1e-9:
+                problems.append("%s: time runs backwards (%.6f s -> %.6f s)" % (at, a["t_s"], b["t_s"]))
+                continue
+            dx, dy, dz = abs(b["x_m"] - a["x_m"]), abs(b["y_m"] - a["y_m"]), abs(b["z_m"] - a["z_m"])
+            d = math.hypot(dx, dy)
+            if dz > vz * (dt + ROUND_T) + ROUND_P:
+                problems.append("%s: z changes %.6f m in %.6f s, over the z speed" % (at, dz, dt))
+            turn = abs(b["heading_rad"] - a["heading_rad"])
+            if turn > rot * (dt + ROUND_T) + ROUND_A:
+                problems.append("%s: turns %.6f rad in %.6f s, over the rotation speed" % (at, turn, dt))
+            if a["extruding"]:
+                if abs(d - v_dep * dt) > 1e-3 * v_dep * dt + ROUND_P + v_dep * ROUND_T:
+                    problems.append("%s: wall %d piece %d deposited at %s m/s (%.6f m in %.6f s), "
+                                    "not the deposition speed %g" % (
+                                        at, a["wall"], a["piece"],
+                                        "%.4f" % (d / dt) if dt > 0 else "inf", d, dt, v_dep))
+            else:
+                fast = [name for name, dist, v in (("x", dx, vx), ("y", dy, vy), ("travel", d, v_travel))
+                        if dist > v * dt * (1 + 1e-6) + ROUND_P + v * ROUND_T]
+                if fast:
+                    problems.append("%s: air move of %.6f m (x %.6f, y %.6f) in %.6f s, faster than "
+                                    "the %s speed" % (at, d, dx, dy, dt, " and ".join(fast)))
+    if abs(info.end_t - plan["layer_time_s"]) > T_DOC:
+        problems.append("plan %s: layer_time_s %.6f, its paths end at %.6f s" % (
+            key, plan["layer_time_s"], info.end_t))
+
+
+def interpolate(track, times, t):
+    """A piecewise linear coordinate at t, held before its first and after its last time."""
+    j = bisect.bisect_right(times, t)
+    if j == 0:
+        return track[0][1]
+    if j == len(track):
+        return track[-1][1]
+    (t0, p0), (t1, p1) = track[j - 1], track[j]
+    return p0 if t1 <= t0 else p0 + (t - t0) / (t1 - t0) * (p1 - p0)
+
+
+def check_gantries(key, plan, machine, info, problems):
+    """Adjacent nozzles on common rails, a gantry width apart at every breakpoint."""
+    if len(plan["nozzles"]) < 2:
+        return
+    axis = machine["rail_axis"] + "_m"
+    width = machine["gantry_width_m"]
+    tracks = [[(q["t_s"], q[axis]) for q in n["waypoints"]] for n in plan["nozzles"]]
+    smallest = math.inf
+    for i in range(len(tracks) - 1):
+        left, right = tracks[i], tracks[i + 1]
+        lt, rt = [t for t, _ in left], [t for t, _ in right]
+        worst = None
+        # At each breakpoint, the nozzle's own waypoint against the other interpolated.
+        for t, p in left:
+            gap = interpolate(right, rt, t) - p
+            if worst is None or gap < worst[0]:
+                worst = (gap, t)
+        for t, p in right:
+            gap = p - interpolate(left, lt, t)
+            if gap < worst[0]:
+                worst = (gap, t)
+        info.breakpoints += len(left) + len(right)
+        smallest = min(smallest, worst[0])
+        if worst[0] < width - 1e-6:
+            problems.append("plan %s: nozzles %d and %d are %.6f m apart along %s at t = %.6f s, "
+                            "under the gantry width %.6f m" % (
+                                key, plan["nozzles"][i]["nozzle"], plan["nozzles"][i + 1]["nozzle"],
+                                worst[0], machine["rail_axis"], worst[1], width))
+    info.min_gap = smallest
+    if plan.get("min_gap_m") is not None and abs(plan["min_gap_m"] - smallest) > 1e-5:
+        problems.append("plan %s: min_gap_m %.6f, the closest the gantries come is %.6f m" % (
+            key, plan["min_gap_m"], smallest))
+
+
+# ---------------------------------------------------------------- layers (5, 6, 7)
+
+def strength_at(curve, age):
+    """The strength curve at an age: linear between its points, flat outside them."""
+    if age <= curve[0][0]:
+        return curve[0][1]
+    for (a0, s0), (a1, s1) in zip(curve, curve[1:]):
+        if age <= a1:
+            return s0 + (s1 - s0) * (age - a0) / (a1 - a0)
+    return curve[-1][1]
+
+
+def age_reaching(curve, mpa):
+    """The first age at which the curve reaches `mpa` (inf when it never does)."""
+    if curve[0][1] >= mpa:
+        return 0.0
+    for (a0, s0), (a1, s1) in zip(curve, curve[1:]):
+        if s1 >= mpa:
+            return a0 + (a1 - a0) * (mpa - s0) / (s1 - s0)
+    return math.inf
+
+
+def check_layers(doc, infos, problems):
+    """Durations, order in time, waits, start-to-start intervals, nozzle times."""
+    layers = doc["layers"]
+    for i, layer in enumerate(layers):
+        where = "floor %d layer %d" % (layer["floor"], layer["layer"])
+        info = infos[layer["plan"]]
+        if abs(layer["end_s"] - layer["start_s"] - info.end_t) > T_DOC:
+            problems.append("%s: lasts %.6f s (start %.6f, end %.6f), plan %s takes %.6f s" % (
+                where, layer["end_s"] - layer["start_s"], layer["start_s"], layer["end_s"],
+                layer["plan"], info.end_t))
+        for name, value in (("deposition_s", info.deposition), ("airtime_s", info.airtime),
+                            ("max_idle_s", info.max_idle)):
+            if abs(layer[name] - value) > T_DOC:
+                problems.append("%s: %s %.6f, plan %s's paths give %.6f s" % (
+                    where, name, layer[name], layer["plan"], value))
+        limit = doc["inputs"]["machine"].get("nozzle_idle_limit_s")
+        if isinstance(limit, (int, float)) and info.max_idle > limit + T_DOC:
+            problems.append("%s: plan %s idles a nozzle %.6f s between depositions, over the idle "
+                            "limit %g s" % (where, layer["plan"], info.max_idle, limit))
+        if i == 0:
+            if layer["start_s"] < -T_DOC:
+                problems.append("%s: starts at %.6f s, before 0" % (where, layer["start_s"]))
+        else:
+            prev = layers[i - 1]
+            earliest = prev["end_s"] + layer["move_before_s"]
+            if layer["start_s"] < earliest - T_DOC:
+                problems.append("%s: starts at %.6f s, before the previous layer's end %.6f s and "
+                                "the move %.6f s" % (where, layer["start_s"], prev["end_s"],
+                                                     layer["move_before_s"]))
+        reasons = layer["wait_reasons"]
+        for j, r in enumerate(reasons):
+            if r["kind"] not in WAIT_KINDS or not r["detail"].strip():
+                problems.append("%s wait reason %d: kind %r, detail %r" % (where, j, r["kind"], r["detail"]))
+        longest = max([r["required_s"] for r in reasons], default=0.0)
+        if abs(layer["wait_before_s"] - longest) > T_DOC:
+            problems.append("%s: wait_before_s %.6f, its reasons need %.6f s" % (
+                where, layer["wait_before_s"], longest))
+        below = layers[i - 1] if i and layers[i - 1]["floor"] == layer["floor"] and \
+            layers[i - 1]["layer"] == layer["layer"] - 1 else None
+        if below is None:
+            if layer["interval_s"] is not None:
+                problems.append("%s: interval_s %.6f without a layer below on its floor" % (
+                    where, layer["interval_s"]))
+        else:
+            if layer["interval_s"] is None or \
+                    abs(layer["interval_s"] - (layer["start_s"] - below["start_s"])) > T_DOC:
+                problems.append("%s: interval_s %s, start to start is %.6f s" % (
+                    where, layer["interval_s"], layer["start_s"] - below["start_s"]))
+            if abs(layer["z_bottom_m"] - below["z_m"]) > ROUND_P:
+                problems.append("%s: bottom %.6f m, the layer below's top is %.6f m" % (
+                    where, layer["z_bottom_m"], below["z_m"]))
+
+
+def pair_intervals(this, below):
+    """Over this plan's piece ends on a wall the plan below deposits: (ends, smallest,
+    largest of this time - below time, where), in plan times; computed once per pair."""
+    count, low, high = 0, None, None
+    for wall, piece, x, y, own in this.ends:
+        under = below.times_at(wall, x, y)
+        if not under or not own:
+            continue
+        count += 1
+        lo = min(own) - max(under)
+        hi = max(own) - min(under)
+        if low is None or lo < low[0]:
+            low = (lo, wall, piece, x, y)
+        if high is None or hi > high[0]:
+            high = (hi, wall, piece, x, y)
+    return count, low, high
+
+
+def older_layers(layers, i, curve, rho_g_sf, where, problems):
+    """The older layers of the floor (below the layer below) carry the walls from their
+    bottoms to this layer's top, at their ages counted from their ends at this layer's
+    start. Returns the wait each would need from the earliest start."""
+    layer = layers[i]
+    earliest = layer["start_s"] - layer["wait_before_s"]
+    needs = []
+    j = i - 2
+    while j >= 0 and layers[j]["floor"] == layer["floor"]:
+        old = layers[j]
+        load = rho_g_sf * (layer["z_m"] - old["z_bottom_m"])
+        age = age_reaching(curve, load)
+        if layer["start_s"] - old["end_s"] < age - T_DOC:
+            problems.append("%s: floor %d layer %d is %.6f s old at its start, it needs %.6f s to carry "
+                            "%.6f MPa" % (where, old["floor"], old["layer"], layer["start_s"] - old["end_s"],
+                                          age, load))
+        needs.append(age - (earliest - old["end_s"]))
+        j -= 1
+    return needs
+
+
+def check_reasons(where, layer, min_need, below_need, older_needs, problems):
+    """Each min-interval and strength reason is the wait recomputed for it; a wait that
+    is needed has its reason."""
+    reasons = layer["wait_reasons"]
+    by_kind = {}
+    for r in reasons:
+        by_kind.setdefault(r["kind"], []).append(r["required_s"])
+    mins = by_kind.get("min-interval", [])
+    if min_need is not None:
+        if min_need > T_DOC and not mins:
+            problems.append("%s: needs a %.6f s wait for the minimum interval, no min-interval "
+                            "reason" % (where, min_need))
+        for got in mins:
+            if abs(got - min_need) > T_DOC:
+                problems.append("%s: min-interval reason requires %.6f s, recomputed %.6f s" % (
+                    where, got, min_need))
+    elif mins:
+        problems.append("%s: a min-interval reason without a layer below" % where)
+    needs = ([below_need] if below_need is not None else []) + older_needs
+    strengths = by_kind.get("strength", [])
+    for got in strengths:
+        if not any(abs(got - n) <= T_DOC for n in needs):
+            problems.append("%s: strength reason requires %.6f s, no layer below needs that (%s)" % (
+                where, got, ", ".join("%.3f" % n for n in needs[:4]) or "none"))
+    most = max(needs, default=0.0)
+    if most > T_DOC and max(strengths, default=-math.inf) < most - T_DOC:
+        problems.append("%s: the layers below need a %.6f s wait for their strength, the strength "
+                        "reasons say %s" % (where, most, strengths or "none"))
+
+
+def check_intervals(doc, infos, problems, notes, stats):
+    """Local intervals per piece end, against the document and the material; strength."""
+    layers = doc["layers"]
+    material = doc["inputs"]["material"]
+    curve = [(p["age_s"], p["strength_mpa"]) for p in material["strength_curve"]]
+    lo_bound, hi_bound = material["min_layer_interval_s"], material["max_layer_interval_s"]
+    rho_g_sf = material["density_kg_m3"] * G * material["safety_factor"] * 1e-6
+    feasible = doc["feasible"]
+    cache = {}
+    overs = []                  # (layer, interval) over the maximum, when infeasible
+    for i, layer in enumerate(layers):
+        where = "floor %d layer %d" % (layer["floor"], layer["layer"])
+        below = layers[i - 1] if i and layers[i - 1]["floor"] == layer["floor"] and \
+            layers[i - 1]["layer"] == layer["layer"] - 1 else None
+        if below is None:
+            if layer["local_interval_min_s"] is not None or layer["local_interval_max_s"] is not None:
+                problems.append("%s: local intervals without a layer below on its floor" % where)
+            continue
+        pair = (layer["plan"], below["plan"])
+        if pair not in cache:
+            cache[pair] = pair_intervals(infos[pair[0]], infos[pair[1]])
+        count, low, high = cache[pair]
+        stats["ends"] += count
+        shift = layer["start_s"] - below["start_s"]
+        if count != layer["piece_ends_checked"]:
+            problems.append("%s: piece_ends_checked %d, %d piece ends of plan %s lie on a wall "
+                            "plan %s deposits below" % (where, layer["piece_ends_checked"], count,
+                                                         pair[0], pair[1]))
+        older = older_layers(layers, i, curve, rho_g_sf, where, problems)
+        if count == 0:
+            if layer["local_interval_min_s"] is not None or layer["local_interval_max_s"] is not None:
+                problems.append("%s: local intervals %s..%s, no piece end has a wall under it" % (
+                    where, layer["local_interval_min_s"], layer["local_interval_max_s"]))
+            check_reasons(where, layer, None, None, older, problems)
+            continue
+        stats["layers"] += 1
+        smallest, largest = shift + low[0], shift + high[0]
+        for name, value, at in (("min", smallest, low), ("max", largest, high)):
+            said = layer["local_interval_%s_s" % name]
+            if said is None or abs(said - value) > T_DOC:
+                problems.append("%s: local_interval_%s_s %s, recomputed %.6f s (wall %d piece %d at "
+                                "(%.4f, %.4f) m)" % ((where, name, said, value) + at[1:]))
+        if smallest < lo_bound - INTERVAL:
+            problems.append("%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer "
+                            "below, under the minimum interval %g s" % ((where,) + low[1:] + (smallest, lo_bound)))
+        if largest > hi_bound + INTERVAL:
+            text = "%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer below, " \
+                   "over the maximum interval %g s" % ((where,) + high[1:] + (largest, hi_bound))
+            if feasible:
+                problems.append(text)
+            else:
+                notes.append(text)
+                overs.append((layer, largest))
+        # 7. The layer below carries the walls from its bottom to this layer's top.
+        load = rho_g_sf * (layer["z_m"] - below["z_bottom_m"])
+        age = age_reaching(curve, load)
+        if smallest < age - T_DOC:
+            problems.append("%s: wall %d piece %d at (%.4f, %.4f) m of the layer below is %.6f s "
+                            "old, it needs %.6f s to carry %.6f MPa" % (
+                                (where,) + low[1:] + (smallest, age, load)))
+        # The waits as they would be recomputed: from the earliest start (start - wait),
+        # the smallest interval would have been smallest - wait.
+        early = smallest - layer["wait_before_s"]
+        check_reasons(where, layer, lo_bound - early, age - early, older, problems)
+    stats["pairs"] = len(cache)
+    if not feasible:
+        bad = doc["infeasibility"]
+        if not isinstance(bad, dict) or not str(bad.get("message", "")).strip() or \
+                not isinstance(bad.get("fix"), dict) or not str(bad["fix"].get("text", "")).strip():
+            problems.append("infeasible, and infeasibility has no message or no fix.text: %r" % (bad,))
+        elif overs and bad.get("kind") == "max-interval":
+            layer, largest = overs[0]
+            if (bad.get("floor"), bad.get("layer")) != (layer["floor"], layer["layer"]) or \
+                    not isinstance(bad.get("achieved_s"), (int, float)) or \
+                    abs(bad["achieved_s"] - largest) > T_DOC:
+                problems.append("infeasibility names floor %s layer %s, achieved %s s; the first layer "
+                                "over the maximum is floor %d layer %d at %.6f s" % (
+                                    bad.get("floor"), bad.get("layer"), bad.get("achieved_s"),
+                                    layer["floor"], layer["layer"], largest))
+            warned = " ".join(str(w) for w in doc["warnings"])
+            for layer, largest in overs[1:]:
+                name = "floor %d layer %d" % (layer["floor"], layer["layer"])
+                if name + ":" not in warned:
+                    problems.append("%s: over the maximum interval (%.6f s), not in warnings" % (name, largest))
+        elif bad.get("kind") == "max-interval":
+            problems.append("infeasible over the maximum interval at floor %s layer %s, no layer's "
+                            "recomputed interval is over it" % (bad.get("floor"), bad.get("layer")))
+    elif doc["infeasibility"] is not None:
+        problems.append("feasible, with an infeasibility")
+
+
+# ---------------------------------------------------------------- 8. events
+
+def check_events(doc, problems, stats):
+    layers, events = doc["layers"], doc["events"]
+    machine = doc["inputs"]["machine"]
+    curve = [(p["age_s"], p["strength_mpa"]) for p in doc["inputs"]["material"]["strength_curve"]]
+    starts = [l["start_s"] for l in layers]
+    index = {(l["floor"], l["layer"]): i for i, l in enumerate(layers)}
+    duration = {"purge": machine["purge_s"], "slab": doc["inputs"]["slab_stage_s"],
+                "pipe": machine.get("pipe_embed_s")}
+    purges_end = []
+    for i, e in enumerate(events):
+        where = "event %d (%s)" % (i, e["kind"])
+        if i and e["start_s"] < events[i - 1]["start_s"]:
+            problems.append("%s: starts at %.6f s, before event %d (%.6f s): not sorted" % (
+                where, e["start_s"], i - 1, events[i - 1]["start_s"]))
+        if e["end_s"] < e["start_s"]:
+            problems.append("%s: ends at %.6f s, before its start %.6f s" % (where, e["end_s"], e["start_s"]))
+        if not e["detail"].strip():
+            problems.append("%s: no detail" % where)
+        want = duration.get(e["kind"])
+        if want is not None and abs(e["end_s"] - e["start_s"] - want) > T_DOC:
+            problems.append("%s: lasts %.6f s, the inputs say %g s" % (where, e["end_s"] - e["start_s"], want))
+        j = bisect.bisect_left(starts, e["end_s"] - ROUND_T) - 1
+        if j >= 0 and layers[j]["end_s"] > e["start_s"] + ROUND_T and e["end_s"] > e["start_s"]:
+            problems.append("%s: %.6f..%.6f s overlaps floor %d layer %d (%.6f..%.6f s)" % (
+                where, e["start_s"], e["end_s"], layers[j]["floor"], layers[j]["layer"],
+                layers[j]["start_s"], layers[j]["end_s"]))
+        after = index.get((e["floor"], e["after_layer"]))
+        if e["kind"] == "purge" and after is not None:
+            # ccbuild names, in a purge's after_layer, the layer the purge precedes (it
+            # ends at that layer's start), where docs/schedule.md's "after_layer" reads as
+            # the layer before: accepted, counted and reported as a note.
+            if abs(e["end_s"] - layers[after]["start_s"]) <= T_DOC:
+                stats["purges_naming_next"] += 1
+                after -= 1
+                if after < 0:
+                    continue
+        if after is None:
+            problems.append("%s: after floor %s layer %s, which is not in layers" % (
+                where, e["floor"], e["after_layer"]))
+        else:
+            nxt = layers[after + 1]["start_s"] if after + 1 < len(layers) else math.inf
+            if e["start_s"] < layers[after]["end_s"] - T_DOC or e["end_s"] > nxt + T_DOC:
+                problems.append("%s: %.6f..%.6f s is not between floor %d layer %d's end %.6f s and "
+                                "the next layer's start %.6f s" % (
+                                    where, e["start_s"], e["end_s"], e["floor"], e["after_layer"],
+                                    layers[after]["end_s"], nxt))
+        if e["kind"] == "purge":
+            purges_end.append(e["end_s"])
+        if e["kind"] == "pipe" and (e["anchor"].get("floor"), e["anchor"].get("after_layer")) != \
+                (e["floor"], e["after_layer"]):
+            problems.append("%s: cast after floor %s layer %s, its anchor says floor %s layer %s" % (
+                where, e["floor"], e["after_layer"], e["anchor"].get("floor"), e["anchor"].get("after_layer")))
+        if e["kind"] == "slab" and after is not None and after + 1 < len(layers) and \
+                layers[after + 1]["floor"] == e["floor"]:
+            problems.append("%s: a slab over floor %d before its top layer" % (where, e["floor"]))
+        if e["kind"] == "climb":
+            check_climb(doc, i, e, curve, problems, stats)
+    # A purge ends at the start of each layer that says so, and only there.
+    for l in layers:
+        k = bisect.bisect_left(purges_end, l["start_s"] - T_DOC)
+        has = k < len(purges_end) and abs(purges_end[k] - l["start_s"]) <= T_DOC
+        if has != l["purge_before"]:
+            problems.append("floor %d layer %d: purge_before %s, %s purge event ends at its start" % (
+                l["floor"], l["layer"], l["purge_before"], "a" if has else "no"))
+    check_between(doc, problems)
+    if sum(1 for l in layers if l["purge_before"]) != len(purges_end):
+        problems.append("%d purge events, %d layers with purge_before" % (
+            len(purges_end), sum(1 for l in layers if l["purge_before"])))
+
+
+def check_between(doc, problems):
+    """Between two layers every second is the events', the climbs' waits, the move's or
+    the wait's; pipes_before_s is the pipes'; a purge exactly when the nozzle idled
+    longer than its limit."""
+    layers = doc["layers"]
+    events = sorted(doc["events"], key=lambda e: e["start_s"])
+    starts = [e["start_s"] for e in events]
+    limit = doc["inputs"]["machine"].get("nozzle_idle_limit_s")
+    for k in range(1, len(events)):
+        if events[k]["start_s"] < events[k - 1]["end_s"] - T_DOC:
+            problems.append("events at %.6f s (%s) and %.6f s (%s) overlap" % (
+                events[k - 1]["start_s"], events[k - 1]["kind"], events[k]["start_s"], events[k]["kind"]))
+    for i in range(1, len(layers)):
+        prev, layer = layers[i - 1], layers[i]
+        where = "floor %d layer %d" % (layer["floor"], layer["layer"])
+        j = bisect.bisect_left(starts, prev["end_s"] - T_DOC)
+        between = []
+        while j < len(events) and events[j]["start_s"] <= layer["start_s"] + T_DOC:
+            if events[j]["end_s"] <= layer["start_s"] + T_DOC:
+                between.append(events[j])
+            j += 1
+        busy = sum(e["end_s"] - e["start_s"] for e in between)
+        waits = sum(e["wait_before_s"] for e in between if e["kind"] == "climb")
+        gap = layer["start_s"] - prev["end_s"]
+        if abs(gap - busy - waits - layer["move_before_s"] - layer["wait_before_s"]) > T_DOC:
+            problems.append("%s: %.6f s since the previous layer's end; its events (%.6f s), climbs' "
+                            "waits (%.6f s), move (%.6f s) and wait (%.6f s) account for %.6f s" % (
+                                where, gap, busy, waits, layer["move_before_s"], layer["wait_before_s"],
+                                busy + waits + layer["move_before_s"] + layer["wait_before_s"]))
+        pipes = sum(e["end_s"] - e["start_s"] for e in between if e["kind"] == "pipe")
+        if abs(pipes - layer["pipes_before_s"]) > T_DOC:
+            problems.append("%s: pipes_before_s %.6f, the pipe events before it last %.6f s" % (
+                where, layer["pipes_before_s"], pipes))
+        if isinstance(limit, (int, float)):
+            purge = [e for e in between if e["kind"] == "purge"]
+            idle = (purge[-1]["start_s"] if purge else layer["start_s"]) - prev["end_s"]
+            if layer["purge_before"] and idle < limit - T_DOC:
+                problems.append("%s: a purge after the nozzle idled %.6f s, under its limit %g s" % (
+                    where, idle, limit))
+            if not layer["purge_before"] and idle > limit + T_DOC:
+                problems.append("%s: the nozzle idled %.6f s, over its limit %g s, and no purge" % (
+                    where, idle, limit))
+
+
+def check_climb(doc, i, e, curve, problems, stats):
+    """Anchors old enough, recomputed from the pipes' placements; the climb's durations."""
+    where = "event %d (climb %d -> %d)" % (i, e["from_stage"], e["to_stage"])
+    required = doc["inputs"]["machine"].get("anchor_strength_mpa")
+    stats["climbs"] += 1
+    pipes = {}
+    for p in doc["events"]:
+        if p["kind"] == "pipe" and p["end_s"] <= e["start_s"] + ROUND_T:
+            pipes[p["anchor"]["id"]] = max(pipes.get(p["anchor"]["id"], -math.inf), p["end_s"])
+    stages = doc["stages"]
+    if e["to_stage"] != e["from_stage"] + 1:
+        problems.append("%s: does not climb to the next stage" % where)
+    elif 0 <= e["from_stage"] < len(stages):
+        last = stages[e["from_stage"]].get("last") or {}
+        if (last.get("floor"), last.get("layer")) != (e["floor"], e["after_layer"]):
+            problems.append("%s: after floor %s layer %s, stage %d ends at floor %s layer %s" % (
+                where, e["floor"], e["after_layer"], e["from_stage"], last.get("floor"), last.get("layer")))
+    if 0 <= e["to_stage"] < len(stages):
+        ids = sorted(a.get("id") for a in stages[e["to_stage"]]["anchors"])
+        if sorted(a["id"] for a in e["anchors"]) != ids:
+            problems.append("%s: anchors %s, stage %d holds %s" % (
+                where, sorted(a["id"] for a in e["anchors"]), e["to_stage"], ids))
+    else:
+        problems.append("%s: stage %d is not in stages" % (where, e["to_stage"]))
+    earliest = e["start_s"] - e["wait_before_s"]
+    needs = []                  # the wait each anchor needs from the earliest start
+    for a in e["anchors"]:
+        stats["anchors"] += 1
+        at = "%s anchor %s" % (where, a["id"])
+        if required is None or abs(a["required_mpa"] - required) > 1e-6:
+            problems.append("%s: required_mpa %g, the machine's anchor strength is %s" % (
+                at, a["required_mpa"], required))
+        cast = pipes.get(a["id"])
+        if cast is None:
+            problems.append("%s: no pipe event places it before the climb" % at)
+            continue
+        age = e["start_s"] - cast
+        mpa = strength_at(curve, age)
+        if required is not None:
+            needs.append(age_reaching(curve, required) - (earliest - cast))
+        if abs(a["age_s"] - age) > T_DOC:
+            problems.append("%s: age_s %.6f, the climb starts %.6f s after its pipe's placement" % (
+                at, a["age_s"], age))
+        if abs(a["strength_mpa"] - mpa) > 1e-5:
+            problems.append("%s: strength_mpa %.6f, the curve gives %.6f at %.6f s" % (
+                at, a["strength_mpa"], mpa, age))
+        if mpa < (required if required is not None else a["required_mpa"]) - 1e-6:
+            problems.append("%s: %.6f MPa at %.6f s, under the anchor strength %g MPa (needs %.6f s)" % (
+                at, mpa, age, required, age_reaching(curve, required)))
+    longest = max([r["required_s"] for r in e["wait_reasons"]], default=0.0)
+    if abs(e["wait_before_s"] - longest) > T_DOC:
+        problems.append("%s: wait_before_s %.6f, its reasons need %.6f s" % (where, e["wait_before_s"], longest))
+    for j, r in enumerate(e["wait_reasons"]):
+        if r["kind"] not in WAIT_KINDS or not r["detail"].strip():
+            problems.append("%s wait reason %d: kind %r, detail %r" % (where, j, r["kind"], r["detail"]))
+        elif r["kind"] == "anchor-strength" and not any(abs(r["required_s"] - n) <= T_DOC for n in needs):
+            problems.append("%s wait reason %d: requires %.6f s, no anchor needs that (%s)" % (
+                where, j, r["required_s"], ", ".join("%.3f" % n for n in needs)))
+    got = [r["required_s"] for r in e["wait_reasons"] if r["kind"] == "anchor-strength"]
+    for n in needs:
+        if n > T_DOC and not any(abs(g - n) <= T_DOC for g in got):
+            problems.append("%s: an anchor needs a %.6f s wait, no anchor-strength reason says so" % (where, n))
+    body = e["climb"]
+    phases = sum(p["duration_s"] for p in body["phases"])
+    if abs(e["end_s"] - e["start_s"] - body["duration_s"]) > T_DOC or abs(phases - body["duration_s"]) > T_DOC:
+        problems.append("%s: lasts %.6f s, climb.duration_s %.6f, its phases %.6f s" % (
+            where, e["end_s"] - e["start_s"], body["duration_s"], phases))
+
+
+# ---------------------------------------------------------------- 9. totals
+
+def check_totals(doc, infos, problems):
+    layers, events, totals = doc["layers"], doc["events"], doc["totals"]
+
+    def span(kind):
+        return sum(e["end_s"] - e["start_s"] for e in events if e["kind"] == kind)
+    pieces = {
+        "makespan_s": max([l["end_s"] for l in layers] + [e["end_s"] for e in events], default=0.0),
+        "deposition_s": sum(infos[l["plan"]].deposition for l in layers),
+        "airtime_s": sum(infos[l["plan"]].airtime for l in layers),
+        "moves_s": sum(l["move_before_s"] for l in layers),
+        "waits_s": sum(l["wait_before_s"] for l in layers) +
+        sum(e["wait_before_s"] for e in events if e["kind"] == "climb"),
+        "pipes_s": span("pipe"), "purges_s": span("purge"), "climbs_s": span("climb"),
+        "slabs_s": span("slab"),
+    }
+    pieces["machine_s"] = sum(infos[l["plan"]].end_t for l in layers) + pieces["moves_s"] + \
+        pieces["pipes_s"] + pieces["purges_s"] + pieces["climbs_s"]
+    if totals["layers"] != len(layers):
+        problems.append("totals: layers %d, the document lists %d" % (totals["layers"], len(layers)))
+    for name, value in pieces.items():
+        if abs(totals[name] - value) > T_DOC + 1e-9 * abs(value):
+            problems.append("totals: %s %.6f, the layers and events add up to %.6f" % (name, totals[name], value))
+
+
+# ---------------------------------------------------------------- driver
+
+def guarded(name, fn, problems, *args):
+    """A check that trips over a corrupt document reports that, not a traceback."""
+    try:
+        fn(*args)
+    except (KeyError, TypeError, ValueError, IndexError, ZeroDivisionError, AttributeError) as x:
+        problems.append("the %s check could not run: %s: %s" % (name, type(x).__name__, x))
+
+
+def check(doc):
+    """(problems, notes, stats). Raises NotASchedule for another document."""
+    if not isinstance(doc, dict) or doc.get("format") != "ccbuild-schedule":
+        raise NotASchedule("format is %r, not \"ccbuild-schedule\"" % (
+            doc.get("format") if isinstance(doc, dict) else type(doc).__name__))
+    if doc.get("schema_version") != 1 or isinstance(doc.get("schema_version"), bool):
+        raise NotASchedule("schema_version is %r, this checker reads 1" % doc.get("schema_version"))
+    problems, notes = [], []
+    stats = {"ends": 0, "layers": 0, "pairs": 0, "climbs": 0, "anchors": 0, "purges_naming_next": 0}
+    check_structure(doc, problems)
+    if problems:
+        return problems, notes, stats
+    guarded("layer order", check_layer_order, problems, doc, problems)
+    if problems:
+        return problems, notes, stats
+    machine = doc["inputs"]["machine"]
+    infos = {}
+    for key, plan in doc["plans"].items():
+        info = infos[key] = Plan(key, plan)
+        guarded("coverage", check_coverage, problems, key, plan, problems)
+        guarded("motion", check_motion, problems, key, plan, machine, info, problems)
+        guarded("gantry", check_gantries, problems, key, plan, machine, info, problems)
+    stats["infos"] = infos
+    guarded("layer", check_layers, problems, doc, infos, problems)
+    guarded("interval", check_intervals, problems, doc, infos, problems, notes, stats)
+    guarded("event", check_events, problems, doc, problems, stats)
+    guarded("totals", check_totals, problems, doc, infos, problems)
+    return problems, notes, stats
+
+
+def summary(doc, stats):
+    infos = stats["infos"]
+    multi = [i for i in infos.values() if i.min_gap is not None]
+    pieces = sum(len(p["pieces"]) for p in doc["plans"].values())
+    return ("OK: %d layers (%s), %d plans: %d pieces covered once, %d waypoints within the machine's "
+            "limits, %d gantry breakpoints in %d multi-nozzle plans; %d local intervals recomputed "
+            "over %d piece ends (%d plan pairs) within the material's %s and strength, waits "
+            "recomputed; %d events "
+            "(%d climbs, %d anchors strong enough); totals agree" % (
+                len(doc["layers"]), "feasible" if doc["feasible"] else "marked infeasible",
+                len(infos), pieces, sum(i.waypoints for i in infos.values()),
+                sum(i.breakpoints for i in multi), len(multi), stats["layers"], stats["ends"],
+                stats["pairs"], "bounds" if doc["feasible"] else "minimum", len(doc["events"]),
+                stats["climbs"], stats["anchors"]))
+
+
+# ---------------------------------------------------------------- self-test
+
+def corruptions(doc):
+    """(name, change(doc), text the problems must contain) for the self-test; each change
+    is applied to a fresh copy. Some need a feature of the document (several nozzles,
+    a climb) and are left out without it."""
+    layers, plans = doc["layers"], doc["plans"]
+    out = []
+
+    def add(name, expect):
+        def wrap(fn):
+            out.append((name, fn, expect))
+            return fn
+        return wrap
+
+    used = layers[len(layers) // 2]["plan"]
+    nozzle = max(range(len(plans[used]["nozzles"])), key=lambda n: len(plans[used]["nozzles"][n]["waypoints"]))
+    w = plans[used]["nozzles"][nozzle]["waypoints"]
+    extruding = [k for k in range(len(w) - 1) if w[k]["extruding"] and w[k + 1]["t_s"] - w[k]["t_s"] > 1.0]
+    moving = [k for k in range(len(w) - 1) if not w[k]["extruding"] and
+              math.hypot(w[k + 1]["x_m"] - w[k]["x_m"], w[k + 1]["y_m"] - w[k]["y_m"]) > 0.1]
+    k = extruding[len(extruding) // 2]
+
+    def path(d):
+        return d["plans"][used]["nozzles"][nozzle]["waypoints"]
+
+    add("schema version 2", "NOT A SCHEDULE")(lambda d: d.update(schema_version=2))
+    add("a layer without end_s", "no `end_s`")(lambda d: d["layers"][3].pop("end_s"))
+    add("two layers swapped", "out of building order")(
+        lambda d: d["layers"].__setitem__(slice(3, 5), [d["layers"][4], d["layers"][3]]))
+    add("a layer's plan missing", "not in plans")(lambda d: d["layers"][2].update(plan="nowhere"))
+    add("a layer's nozzle count", "nozzle paths")(lambda d: d["layers"][2].update(nozzles=d["layers"][2]["nozzles"] + 1))
+    add("a span left undeposited", "never deposited")(lambda d: path(d)[k].update(extruding=False))
+    add("a span on an unknown wall", "not a piece of the plan")(lambda d: path(d)[k].update(wall=987654))
+
+    @add("a span deposited twice", "deposited twice")
+    def twice(d):
+        p = path(d)
+        a, b = p[k], p[k + 1]
+        end = max(n["waypoints"][-1]["t_s"] for n in d["plans"][used]["nozzles"])
+        p.append(dict(p[-1], t_s=end + 1e5, x_m=a["x_m"], y_m=a["y_m"], heading_rad=a["heading_rad"],
+                      extruding=True, wall=a["wall"], piece=a["piece"]))
+        p.append(dict(b, t_s=end + 1e5 + b["t_s"] - a["t_s"], extruding=False))
+
+    add("depositing too fast", "not the deposition speed")(
+        lambda d: [q.update(t_s=q["t_s"] - 0.5 * (w[k + 1]["t_s"] - w[k]["t_s"])) for q in path(d)[k + 1:]])
+    if moving:
+        j = moving[len(moving) // 2]
+        add("an air move too fast", "faster than the")(
+            lambda d: [q.update(t_s=q["t_s"] - 0.9 * (w[j + 1]["t_s"] - w[j]["t_s"])) for q in path(d)[j + 1:]])
+    add("time running backwards", "time runs backwards")(lambda d: path(d)[k + 1].update(t_s=w[k]["t_s"] - 1.0))
+    add("past the stopper", "past the stopper")(lambda d: path(d)[-1].update(heading_rad=w[-1]["heading_rad"] + 40.0))
+    turns = [j for j in range(len(w) - 1) if abs(w[j + 1]["heading_rad"] - w[j]["heading_rad"]) > 0.05]
+    if turns:
+        # The largest turn, done in half the time the rotation speed allows.
+        t = max(turns, key=lambda j: abs(w[j + 1]["heading_rad"] - w[j]["heading_rad"]))
+        quick = 0.5 * abs(w[t + 1]["heading_rad"] - w[t]["heading_rad"]) / \
+            doc["inputs"]["machine"]["rotation_speed_rad_s"]
+        add("turning too fast", "over the rotation speed")(
+            lambda d: [q.update(t_s=q["t_s"] - (w[t + 1]["t_s"] - w[t]["t_s"] - quick)) for q in path(d)[t + 1:]])
+    add("a plan's layer time", "layer_time_s")(lambda d: d["plans"][used].update(layer_time_s=d["plans"][used]["layer_time_s"] + 5.0))
+    multi = [key for key, p in plans.items() if len(p["nozzles"]) > 1]
+    if multi:
+        @add("two gantries too close", "under the gantry width")
+        def close(d):
+            p = d["plans"][multi[0]]
+            axis = d["inputs"]["machine"]["rail_axis"] + "_m"
+            right = p["nozzles"][1]["waypoints"]
+            right[len(right) // 2][axis] = p["nozzles"][0]["waypoints"][0][axis]
+    with_below = [i for i, l in enumerate(layers) if l["local_interval_min_s"] is not None]
+    i = with_below[len(with_below) // 2]
+    add("a layer ends late", "lasts")(lambda d: d["layers"][i].update(end_s=d["layers"][i]["end_s"] + 5.0))
+
+    @add("a layer overlapping the previous one", "before the previous layer's end")
+    def overlap(d):
+        shift = d["layers"][i]["start_s"] - d["layers"][i - 1]["end_s"] + 10.0
+        for l in d["layers"][i:]:
+            l["start_s"] -= shift
+            l["end_s"] -= shift
+    add("a wait longer than its reasons", "its reasons need")(
+        lambda d: d["layers"][i].update(wait_before_s=d["layers"][i]["wait_before_s"] + 60.0))
+    add("an unknown wait reason", "wait reason 0")(
+        lambda d: d["layers"][i]["wait_reasons"].insert(0, {"kind": "lunch", "required_s": 0.0, "detail": "x"}))
+    add("a wrong local_interval_min_s", "local_interval_min_s")(
+        lambda d: d["layers"][i].update(local_interval_min_s=d["layers"][i]["local_interval_min_s"] + 1.0))
+    add("a wrong local_interval_max_s", "local_interval_max_s")(
+        lambda d: d["layers"][i].update(local_interval_max_s=d["layers"][i]["local_interval_max_s"] - 1.0))
+    add("a minimum interval the schedule breaks", "under the minimum interval")(
+        lambda d: d["inputs"]["material"].update(min_layer_interval_s=layers[i]["local_interval_min_s"] + 10.0))
+    if doc["feasible"]:
+        add("a maximum interval the schedule breaks", "over the maximum interval")(
+            lambda d: d["inputs"]["material"].update(max_layer_interval_s=layers[i]["local_interval_max_s"] - 10.0))
+        add("feasible, with an infeasibility", "with an infeasibility")(
+            lambda d: d.update(infeasibility={"message": "x", "fix": {"text": "y"}}))
+    add("infeasible without saying why", "infeasibility has no message")(
+        lambda d: d.update(feasible=False, infeasibility={"message": "", "fix": {"text": ""}}))
+    waited = [n for n, l in enumerate(layers) if any(r["kind"] == "min-interval" for r in l["wait_reasons"])]
+    if waited:
+        add("a min-interval reason left out", "no min-interval reason")(
+            lambda d: d["layers"][waited[0]].update(wait_reasons=[
+                r for r in d["layers"][waited[0]]["wait_reasons"] if r["kind"] != "min-interval"]))
+    add("a wrong max_idle_s", "max_idle_s")(lambda d: d["layers"][i].update(max_idle_s=d["layers"][i]["max_idle_s"] + 1.0))
+    add("an idle limit the plans break", "over the idle limit")(
+        lambda d: d["inputs"]["machine"].update(nozzle_idle_limit_s=1.0))
+    add("a wrong pipes_before_s", "pipes_before_s")(
+        lambda d: d["layers"][i].update(pipes_before_s=d["layers"][i]["pipes_before_s"] + 50.0))
+    add("a move longer than the gap", "account for")(
+        lambda d: d["layers"][i].update(move_before_s=d["layers"][i]["move_before_s"] + 20.0))
+    purged = [n for n, l in enumerate(layers) if l["purge_before"]]
+    if purged:
+        add("a purge not flagged", "purge_before")(lambda d: d["layers"][purged[0]].update(purge_before=False))
+    if len(notes_of(doc)) > 1:
+        add("later infeasible layers not warned", "not in warnings")(lambda d: d.update(warnings=[]))
+    add("a weaker concrete", "to carry")(lambda d: d["inputs"]["material"].update(safety_factor=1e4))
+    add("a wrong makespan", "makespan_s")(lambda d: d["totals"].update(makespan_s=d["totals"]["makespan_s"] + 100.0))
+    add("a wrong total deposition", "deposition_s")(lambda d: d["totals"].update(deposition_s=d["totals"]["deposition_s"] * 1.01))
+    events = doc["events"]
+    if len(events) >= 2:
+        add("events out of order", "not sorted")(
+            lambda d: d["events"].__setitem__(slice(0, 2), [d["events"][1], d["events"][0]]))
+
+        @add("an event during a layer", "overlaps floor")
+        def during(d):
+            e = d["events"][0]
+            l = d["layers"][-1]
+            e.update(start_s=l["start_s"] + 1.0, end_s=l["start_s"] + 1.0 + e["end_s"] - e["start_s"])
+    climbs = [n for n, e in enumerate(events) if e["kind"] == "climb"]
+    if climbs:
+        c = climbs[0]
+
+        @add("a climb before its anchors are strong", "under the anchor strength")
+        def early(d):
+            e = d["events"][c]
+            # Every anchor one hour old: far too young for any sensible anchor strength.
+            cast = max(p["end_s"] for p in d["events"][:c] if p["kind"] == "pipe")
+            shift = e["start_s"] - cast - 3600.0
+            e["start_s"] -= shift
+            e["end_s"] -= shift
+        add("a climb's phases not its duration", "its phases")(
+            lambda d: d["events"][c]["climb"].update(duration_s=d["events"][c]["climb"]["duration_s"] + 30.0))
+        add("a climb's anchor age", "age_s")(
+            lambda d: d["events"][c]["anchors"][0].update(age_s=d["events"][c]["anchors"][0]["age_s"] + 100.0))
+        add("a climb's anchor-strength reason", "no anchor needs that")(
+            lambda d: d["events"][c]["wait_reasons"].append(
+                {"kind": "anchor-strength", "required_s": 1.0, "detail": "x"}))
+        add("a pipe without its anchor", "no `anchor`")(
+            lambda d: next(e for e in d["events"] if e["kind"] == "pipe").pop("anchor"))
+    return out
+
+
+def notes_of(doc):
+    """The layers over the maximum interval of a document marked infeasible."""
+    return check(doc)[1]
+
+
+def self_test(text, doc):
+    missed = []
+    cases = corruptions(doc)
+    for name, change, expect in cases:
+        bad = json.loads(text)
+        change(bad)
+        try:
+            problems = check(bad)[0]
+        except NotASchedule as x:
+            problems = ["NOT A SCHEDULE: %s" % x]
+        if not any(expect in p for p in problems):
+            missed.append(name)
+            print("self-test: missed: %s (expected a problem with %r; got %d: %s)" % (
+                name, expect, len(problems), "; ".join(problems[:3]) or "none"))
+    print("self-test: %d of %d corruptions caught" % (len(cases) - len(missed), len(cases)))
+    return not missed and len(cases) >= 10
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("schedule", help="a schedule JSON written by `ccbuild schedule -o`")
+    parser.add_argument("--self-test", action="store_true",
+                        help="also corrupt the document in many ways and check each is caught")
+    args = parser.parse_args(argv)
+    began = time.monotonic()
+    try:
+        with open(args.schedule) as f:
+            text = f.read()
+        doc = json.loads(text)
+        problems, notes, stats = check(doc)
+    except (OSError, ValueError, NotASchedule) as x:
+        print("check_schedule: %s: not a schedule: %s" % (args.schedule, x), file=sys.stderr)
+        return 2
+    if stats["purges_naming_next"]:
+        print("note: %d purge event(s) name in after_layer the layer they precede, not the layer "
+              "before them (docs/schedule.md: \"after_layer\")" % stats["purges_naming_next"])
+    for n in notes[:5]:
+        print("info (infeasible, as the document says): " + n)
+    if len(notes) > 5:
+        print("info: %d more layers over the maximum interval" % (len(notes) - 5))
+    if problems:
+        for p in problems[:MAX_SHOWN]:
+            print("problem: " + p)
+        if len(problems) > MAX_SHOWN:
+            print("... and %d more" % (len(problems) - MAX_SHOWN))
+        print("%d problem(s) in %s" % (len(problems), args.schedule))
+        return 1
+    print("%s: %s (%.1f s)" % (args.schedule, summary(doc, stats), time.monotonic() - began))
+    if args.self_test:
+        return 0 if self_test(text, doc) else 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
