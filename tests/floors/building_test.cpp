@@ -1,6 +1,10 @@
 #include "ccbuild/floors/building.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/floors/slice.hpp"
@@ -50,6 +54,61 @@ TEST(Material, StandardMixLoadsAndInterpolates) {
   EXPECT_DOUBLE_EQ(m.strength_at_mpa(0.0), 0.005);
   EXPECT_NEAR(m.strength_at_mpa(7.5 * 60), 0.0125, 1e-12);  // half way to 15 min
   EXPECT_DOUBLE_EQ(m.strength_at_mpa(1e9), 20.0);
+}
+
+std::filesystem::path scratch() {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_floors_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(Material, SafetyFactorDefaultsAndKeepsItsRange) {
+  const auto dir = scratch();
+  auto with = [&](const std::string& extra) {
+    std::ofstream(dir / "m.yaml") << "name: m\ndensity_kg_m3: 2200\nmin_layer_interval_s: 1\n"
+                                     "max_layer_interval_s: 2\nstrength_curve:\n"
+                                     "  - {age_min: 0, strength_mpa: 1}\n"
+                                     "  - {age_min: 1, strength_mpa: 2}\n"
+                                  << extra;
+    return load_material_profile(dir / "m.yaml");
+  };
+  EXPECT_DOUBLE_EQ(with("").safety_factor, 1.5);
+  EXPECT_DOUBLE_EQ(with("safety_factor: 1\n").safety_factor, 1.0);
+  EXPECT_DOUBLE_EQ(with("safety_factor: 10\n").safety_factor, 10.0);
+  const InputError low = testing::expect_input_error([&] { with("safety_factor: 0.99\n"); });
+  EXPECT_EQ(low.first().field, "safety_factor");
+  EXPECT_EQ(low.first().line, 8);
+  EXPECT_EQ(testing::expect_input_error([&] { with("safety_factor: 10.01\n"); }).first().field,
+            "safety_factor");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Building, SlabStageInHoursWithItsDefault) {
+  const Building house = load_building(testing::source_path("config/buildings/house.yaml"));
+  EXPECT_DOUBLE_EQ(house.slab_stage_s, 8 * 3600.0);
+  const Building tower = load_building(testing::source_path("config/buildings/tower.yaml"));
+  EXPECT_DOUBLE_EQ(tower.slab_stage_s, 12 * 3600.0);
+  const auto dir = scratch();
+  std::filesystem::copy_file(data("plans/cottage.yaml"), dir / "plan.yaml",
+                             std::filesystem::copy_options::overwrite_existing);
+  auto with =
+      [&](const std::string& hours) {
+        std::ofstream(dir / "b.yaml")
+            << "units: m\nlayer_height: 0.5\nslab_stage_h: " << hours
+            << "\nmaterial: " << testing::source_path("config/materials/standard-mix.yaml").string()
+            << "\nmachine: " << testing::source_path("config/machines/cc-gantry.yaml").string()
+            << "\n"
+               "floors:\n  - {height: 3, plan: plan.yaml}\n";
+        return load_building(dir / "b.yaml");
+      };
+  EXPECT_DOUBLE_EQ(with("0").slab_stage_s, 0.0);
+  EXPECT_DOUBLE_EQ(with("720").slab_stage_s, 720 * 3600.0);
+  const InputError e = testing::expect_input_error([&] { with("720.5"); });
+  EXPECT_EQ(e.first().field, "slab_stage_h");
+  EXPECT_EQ(e.first().line, 3);
+  EXPECT_EQ(testing::expect_input_error([&] { with("-1"); }).first().field, "slab_stage_h");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "test_support.hpp"
 
@@ -63,6 +68,55 @@ TEST(MachineModel, NegativeSpeedIsRejected) {
   EXPECT_EQ(e.first().line, 4);
   EXPECT_EQ(e.first().field, "deposition_speed_m_s");
   EXPECT_TRUE(contains(e.what(), "must be more than 0 and at most 2 m/s, got -0.2 m/s"));
+}
+
+// The bundled gantry's profile with `extra` lines appended, next to its URDF.
+std::string gantry_with(const std::string& extra) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_profile_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ifstream in(testing::source_path("config/machines/cc-gantry.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string profile = text.str();
+  // Drop the bundled gantries' keys, so that `extra` sets them.
+  for (const char* key : {"nozzles:", "gantry_width_m:", "rail_axis:", "purge_s:"}) {
+    const auto at = profile.find(std::string("\n") + key);
+    if (at != std::string::npos) profile.erase(at + 1, profile.find('\n', at + 1) - at);
+  }
+  std::filesystem::copy_file(testing::source_path("config/machines/cc_gantry.urdf"),
+                             dir / "cc_gantry.urdf",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "p.yaml") << profile << extra;
+  return (dir / "p.yaml").string();
+}
+
+TEST(MachineModel, GantriesOnTheRailsAtTheirBoundaries) {
+  const MachineModel defaults = load_machine(gantry_with(""));
+  EXPECT_EQ(defaults.nozzles, 1);
+  EXPECT_EQ(defaults.rail_axis, 'x');
+  EXPECT_DOUBLE_EQ(defaults.gantry_width_m, 1.5);
+  EXPECT_DOUBLE_EQ(defaults.purge_s, 120.0);
+  const MachineModel most = load_machine(gantry_with("nozzles: 16\nrail_axis: y\npurge_s: 3600\n"));
+  EXPECT_EQ(most.nozzles, 16);
+  EXPECT_EQ(most.rail_axis, 'y');
+  EXPECT_DOUBLE_EQ(most.purge_s, 3600.0);
+  EXPECT_EQ(load_machine(gantry_with("nozzles: 1\n")).nozzles, 1);
+  const InputError none = expect_input_error([] { load_machine(gantry_with("nozzles: 0\n")); });
+  EXPECT_EQ(none.first().field, "nozzles");
+  EXPECT_TRUE(contains(none.what(), "1 to 16"));
+  EXPECT_EQ(expect_input_error([] { load_machine(gantry_with("nozzles: 17\n")); }).first().field,
+            "nozzles");
+  const InputError axis = expect_input_error([] { load_machine(gantry_with("rail_axis: z\n")); });
+  EXPECT_EQ(axis.first().field, "rail_axis");
+  EXPECT_TRUE(contains(axis.what(), "must be x or y, got 'z'"));
+  EXPECT_EQ(
+      expect_input_error([] { load_machine(gantry_with("purge_s: 3600.5\n")); }).first().field,
+      "purge_s");
+  EXPECT_EQ(
+      expect_input_error([] { load_machine(gantry_with("gantry_width_m: 0\n")); }).first().field,
+      "gantry_width_m");
+  std::filesystem::remove_all(std::filesystem::path(gantry_with("")).parent_path());
 }
 
 }  // namespace

@@ -16,18 +16,26 @@ ones, never used to compute them. It checks:
      last waypoint's;
   4. gantries: adjacent nozzles (rail order) a gantry width apart at every breakpoint
      of either (the paths are piecewise linear, so that is exact);
-  5. layers: each lasts its plan's layer time, none overlaps the previous one or its
-     move, the wait is the largest of its reasons, start-to-start intervals;
+  5. layers: each lasts its plan's layer time (and its nozzle times and longest idle
+     are its plan's, the idle within the machine's limit), none overlaps the previous
+     one or its move, the wait is the largest of its reasons, start-to-start intervals;
+     the time between two layers is the events', the climbs' waits, the move and the
+     wait, the pipes' as pipes_before_s; a purge exactly when the nozzle idled longer
+     than its limit;
   6. local intervals: per piece end, the time between the layer below depositing that
      point of the wall and this layer depositing it, compared with the document and
      with the material's minimum and maximum (an infeasible schedule must say so and
      may exceed the maximum);
   7. strength: the layer below is old enough, at every piece end, to carry the walls
-     from its bottom to this layer's top (density, g, safety factor, strength curve);
+     from its bottom to this layer's top (density, g, safety factor, strength curve),
+     older layers of the floor too (aged from their ends); each min-interval and
+     strength wait reason is the wait recomputed for it, and a needed wait has one;
   8. events: in time order, outside every layer, each after the layer it names; pipes
      name their anchor; purges before the layers that say so; a climb starts only when
      every anchor of its stage has reached the anchor strength, counted from the end
-     of the latest placement of that pipe; its duration is its phases' sum;
+     of the latest placement of that pipe (and its anchor-strength reasons are those
+     waits); it follows its stage's last layer; its duration is its phases' sum.
+     A purge's after_layer names the layer it precedes (as ccbuild writes it);
   9. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
      slabs and machine time are what the layers and events add up to.
 
@@ -468,6 +476,17 @@ def age_reaching(curve, mpa):
 def check_layers(doc, infos, problems):
     """Durations, order in time, waits, start-to-start intervals, nozzle times."""
     layers = doc["layers"]
+    from_plan = {}              # (plan, what) -> [first problem, how many layers]
+    limit = doc["inputs"]["machine"].get("nozzle_idle_limit_s")
+
+    def per_plan(what, text):
+        """A plan's number wrong in every layer using it: reported once, with a count."""
+        key = (layer["plan"], what)
+        if key in from_plan:
+            from_plan[key][1] += 1
+        else:
+            from_plan[key] = [len(problems), 1]
+            problems.append(text)
     for i, layer in enumerate(layers):
         where = "floor %d layer %d" % (layer["floor"], layer["layer"])
         info = infos[layer["plan"]]
@@ -478,12 +497,11 @@ def check_layers(doc, infos, problems):
         for name, value in (("deposition_s", info.deposition), ("airtime_s", info.airtime),
                             ("max_idle_s", info.max_idle)):
             if abs(layer[name] - value) > T_DOC:
-                problems.append("%s: %s %.6f, plan %s's paths give %.6f s" % (
+                per_plan(name, "%s: %s %.6f, plan %s's paths give %.6f s" % (
                     where, name, layer[name], layer["plan"], value))
-        limit = doc["inputs"]["machine"].get("nozzle_idle_limit_s")
         if isinstance(limit, (int, float)) and info.max_idle > limit + T_DOC:
-            problems.append("%s: plan %s idles a nozzle %.6f s between depositions, over the idle "
-                            "limit %g s" % (where, layer["plan"], info.max_idle, limit))
+            per_plan("idle", "%s: plan %s idles a nozzle %.6f s between depositions, over the idle "
+                     "limit %g s" % (where, layer["plan"], info.max_idle, limit))
         if i == 0:
             if layer["start_s"] < -T_DOC:
                 problems.append("%s: starts at %.6f s, before 0" % (where, layer["start_s"]))
@@ -516,6 +534,9 @@ def check_layers(doc, infos, problems):
             if abs(layer["z_bottom_m"] - below["z_m"]) > ROUND_P:
                 problems.append("%s: bottom %.6f m, the layer below's top is %.6f m" % (
                     where, layer["z_bottom_m"], below["z_m"]))
+    for index, count in from_plan.values():
+        if count > 1:
+            problems[index] += " (and in %d more layers using the plan)" % (count - 1)
 
 
 def pair_intervals(this, below):
@@ -1134,21 +1155,25 @@ def main(argv=None):
     except (OSError, ValueError, NotASchedule) as x:
         print("check_schedule: %s: not a schedule: %s" % (args.schedule, x), file=sys.stderr)
         return 2
+    note = ""
     if stats["purges_naming_next"]:
-        print("note: %d purge event(s) name in after_layer the layer they precede, not the layer "
-              "before them (docs/schedule.md: \"after_layer\")" % stats["purges_naming_next"])
+        note = "note: %d purge event(s) name in after_layer the layer they precede, not the layer " \
+               "before them (docs/schedule.md: \"after_layer\")" % stats["purges_naming_next"]
     for n in notes[:5]:
         print("info (infeasible, as the document says): " + n)
     if len(notes) > 5:
         print("info: %d more layers over the maximum interval" % (len(notes) - 5))
     if problems:
+        if note:
+            print(note)
         for p in problems[:MAX_SHOWN]:
             print("problem: " + p)
         if len(problems) > MAX_SHOWN:
             print("... and %d more" % (len(problems) - MAX_SHOWN))
         print("%d problem(s) in %s" % (len(problems), args.schedule))
         return 1
-    print("%s: %s (%.1f s)" % (args.schedule, summary(doc, stats), time.monotonic() - began))
+    print("%s: %s (%.1f s)%s" % (args.schedule, summary(doc, stats), time.monotonic() - began,
+                                 "; " + note if note else ""))
     if args.self_test:
         return 0 if self_test(text, doc) else 1
     return 0
