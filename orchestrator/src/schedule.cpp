@@ -220,7 +220,8 @@ class Scheduler {
   /// The fewest nozzles whose plan of `geometry` is usable and no longer than the maximum
   /// interval: below that, the next layer of the same geometry cannot keep its intervals,
   /// and a layer deposited slowly makes the one above it late at the pieces it did first.
-  /// `between_s`: the most time spent between two layers of the run (pipes).
+  /// `between_s`: the most time spent between two layers of the run (pipes). When no
+  /// count is fast enough, the fastest.
   int fewest_nozzles(int geometry, double between_s);
   void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
   /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
@@ -359,11 +360,18 @@ const Planned& Scheduler::planned(int geometry, int nozzles) {
 }
 
 int Scheduler::fewest_nozzles(int geometry, double between_s) {
+  int fastest = 1;
+  double fastest_s = kInf;
   for (int n = 1; n <= machine_.nozzles; ++n) {
     const Planned& p = planned(geometry, n);
-    if (p.usable && p.layer_time_s + between_s <= material_.max_layer_interval_s) return n;
+    if (!p.usable) continue;
+    if (p.layer_time_s + between_s <= material_.max_layer_interval_s) return n;
+    if (p.layer_time_s < fastest_s) {
+      fastest_s = p.layer_time_s;
+      fastest = n;
+    }
   }
-  return 1;
+  return fastest;  // none is fast enough: the fastest comes closest
 }
 
 std::string Scheduler::register_plan(const std::string& base, const Slice& slice, int nozzles,
@@ -941,10 +949,12 @@ Schedule Scheduler::run() {
       e.kind = Event::Kind::kPurge;
       e.start_s = out.start_s - machine_.purge_s;
       e.end_s = out.start_s;
-      e.floor = out.floor;
-      e.layer = out.layer;
-      e.detail = printf_string("the nozzle idled %.1f s, over its limit of %.1f s",
-                               e.start_s - previous_end_s, machine_.nozzle_idle_limit_s);
+      // Like every event, named after the layer it follows.
+      e.floor = schedule_.layers.back().floor;
+      e.layer = schedule_.layers.back().layer;
+      e.detail = printf_string(
+          "the nozzle idled %.1f s, over its limit of %.1f s, before floor %d layer %d",
+          e.start_s - previous_end_s, machine_.nozzle_idle_limit_s, out.floor, out.layer);
       schedule_.events.push_back(e);
     }
     layer_end_s_[i] = out.end_s;

@@ -91,6 +91,11 @@ void expect_schedule_rules(const Project& project, const Schedule& s) {
     if (!has_below || !l.local_interval_max_s) continue;
     EXPECT_NEAR(*l.interval_s, l.start_s - s.layers[i - 1].start_s, kTol_s);
     EXPECT_GE(*l.local_interval_min_s, m.min_layer_interval_s - kTol_s);
+    // The layer below carries the walls from its bottom to this layer's top, piece by
+    // piece: each is at least as old as its strength needs when it is covered.
+    const double stress_mpa = m.safety_factor * m.density_kg_m3 * 9.80665 * 1e-6 *
+                              (l.z_top_m - s.layers[i - 1].z_bottom_m);
+    EXPECT_GE(*l.local_interval_min_s, m.age_for_strength_s(stress_mpa) - kTol_s);
     if (s.feasible) {
       EXPECT_LE(*l.local_interval_max_s, m.max_layer_interval_s + kTol_s);
     }

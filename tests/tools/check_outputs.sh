@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs `ccbuild COMMAND ARGS --json --svg` and re-checks both outputs with the independent
 # checkers: for plan-layer check_plan.py and check_svg.py, for climb check_climbs.py and
-# the SVG parsed as XML with its groups present; with each JSON checker's self-test (it
-# must catch planted corruptions of this very output) when the run succeeded.
-# Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT plan-layer|climb ARGS...
+# the SVG parsed as XML with its groups present, for schedule check_schedule.py on its
+# -o file; with each JSON checker's self-test (it must catch planted corruptions of this
+# very output) when the run succeeded.
+# Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT plan-layer|climb|schedule ARGS...
 set -euo pipefail
 ccbuild=$1 python=$2 expected=$3 command=$4
 shift 4
@@ -11,7 +12,11 @@ here=$(cd "$(dirname "$0")" && pwd)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 set +e
-"$ccbuild" "$command" "$@" --json --svg "$out/out.svg" > "$out/out.json"
+if [ "$command" = schedule ]; then
+  "$ccbuild" schedule "$@" --quiet -o "$out/out.json" > "$out/summary.txt"
+else
+  "$ccbuild" "$command" "$@" --json --svg "$out/out.svg" > "$out/out.json"
+fi
 code=$?
 set -e
 if [ "$code" -ne "$expected" ]; then
@@ -36,6 +41,10 @@ if missing:
     sys.exit("check_outputs: the climbs' SVG lacks %s" % sorted(missing))
 PY
     checker=check_climbs.py
+    ;;
+  schedule)
+    "$python" "$here/check_schedule.py" "$out/out.json"
+    checker=check_schedule.py
     ;;
   *)
     echo "check_outputs.sh: no checker for '$command'" >&2

@@ -35,7 +35,6 @@ ones, never used to compute them. It checks:
      every anchor of its stage has reached the anchor strength, counted from the end
      of the latest placement of that pipe (and its anchor-strength reasons are those
      waits); it follows its stage's last layer; its duration is its phases' sum.
-     A purge's after_layer names the layer it precedes (as ccbuild writes it);
   9. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
      slabs and machine time are what the layers and events add up to.
 
@@ -688,8 +687,14 @@ def check_intervals(doc, infos, problems, notes, stats):
                                     bad.get("floor"), bad.get("layer"), bad.get("achieved_s"),
                                     layer["floor"], layer["layer"], largest))
             warned = " ".join(str(w) for w in doc["warnings"])
-            for layer, largest in overs[1:]:
+            # ccbuild names the next few and then says there are more; those beyond
+            # the named ones are then listed by their local_interval_max_s alone.
+            named = [w for w in doc["warnings"] if str(w).startswith("also infeasible: floor")]
+            more = any(str(w).startswith("also infeasible: more layers") for w in doc["warnings"])
+            for n, (layer, largest) in enumerate(overs[1:]):
                 name = "floor %d layer %d" % (layer["floor"], layer["layer"])
+                if more and n >= len(named):
+                    continue
                 if name + ":" not in warned:
                     problems.append("%s: over the maximum interval (%.6f s), not in warnings" % (name, largest))
         elif bad.get("kind") == "max-interval":
@@ -728,27 +733,18 @@ def check_events(doc, problems, stats):
                 where, e["start_s"], e["end_s"], layers[j]["floor"], layers[j]["layer"],
                 layers[j]["start_s"], layers[j]["end_s"]))
         after = index.get((e["floor"], e["after_layer"]))
-        if e["kind"] == "purge" and after is not None:
-            # ccbuild names, in a purge's after_layer, the layer the purge precedes (it
-            # ends at that layer's start), where docs/schedule.md's "after_layer" reads as
-            # the layer before: accepted, counted and reported as a note.
-            if abs(e["end_s"] - layers[after]["start_s"]) <= T_DOC:
-                stats["purges_naming_next"] += 1
-                after -= 1
-                if after < 0:
-                    continue
+        if e["kind"] == "purge":
+            purges_end.append(e["end_s"])
         if after is None:
             problems.append("%s: after floor %s layer %s, which is not in layers" % (
                 where, e["floor"], e["after_layer"]))
-        else:
+        elif after >= 0:
             nxt = layers[after + 1]["start_s"] if after + 1 < len(layers) else math.inf
             if e["start_s"] < layers[after]["end_s"] - T_DOC or e["end_s"] > nxt + T_DOC:
                 problems.append("%s: %.6f..%.6f s is not between floor %d layer %d's end %.6f s and "
                                 "the next layer's start %.6f s" % (
                                     where, e["start_s"], e["end_s"], e["floor"], e["after_layer"],
                                     layers[after]["end_s"], nxt))
-        if e["kind"] == "purge":
-            purges_end.append(e["end_s"])
         if e["kind"] == "pipe" and (e["anchor"].get("floor"), e["anchor"].get("after_layer")) != \
                 (e["floor"], e["after_layer"]):
             problems.append("%s: cast after floor %s layer %s, its anchor says floor %s layer %s" % (
@@ -759,6 +755,7 @@ def check_events(doc, problems, stats):
         if e["kind"] == "climb":
             check_climb(doc, i, e, curve, problems, stats)
     # A purge ends at the start of each layer that says so, and only there.
+    purges_end.sort()
     for l in layers:
         k = bisect.bisect_left(purges_end, l["start_s"] - T_DOC)
         has = k < len(purges_end) and abs(purges_end[k] - l["start_s"]) <= T_DOC
@@ -928,7 +925,7 @@ def check(doc):
     if doc.get("schema_version") != 1 or isinstance(doc.get("schema_version"), bool):
         raise NotASchedule("schema_version is %r, this checker reads 1" % doc.get("schema_version"))
     problems, notes = [], []
-    stats = {"ends": 0, "layers": 0, "pairs": 0, "climbs": 0, "anchors": 0, "purges_naming_next": 0}
+    stats = {"ends": 0, "layers": 0, "pairs": 0, "climbs": 0, "anchors": 0}
     check_structure(doc, problems)
     if problems:
         return problems, notes, stats
@@ -1155,25 +1152,18 @@ def main(argv=None):
     except (OSError, ValueError, NotASchedule) as x:
         print("check_schedule: %s: not a schedule: %s" % (args.schedule, x), file=sys.stderr)
         return 2
-    note = ""
-    if stats["purges_naming_next"]:
-        note = "note: %d purge event(s) name in after_layer the layer they precede, not the layer " \
-               "before them (docs/schedule.md: \"after_layer\")" % stats["purges_naming_next"]
     for n in notes[:5]:
         print("info (infeasible, as the document says): " + n)
     if len(notes) > 5:
         print("info: %d more layers over the maximum interval" % (len(notes) - 5))
     if problems:
-        if note:
-            print(note)
         for p in problems[:MAX_SHOWN]:
             print("problem: " + p)
         if len(problems) > MAX_SHOWN:
             print("... and %d more" % (len(problems) - MAX_SHOWN))
         print("%d problem(s) in %s" % (len(problems), args.schedule))
         return 1
-    print("%s: %s (%.1f s)%s" % (args.schedule, summary(doc, stats), time.monotonic() - began,
-                                 "; " + note if note else ""))
+    print("%s: %s (%.1f s)" % (args.schedule, summary(doc, stats), time.monotonic() - began))
     if args.self_test:
         return 0 if self_test(text, doc) else 1
     return 0
