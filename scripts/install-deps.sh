@@ -14,6 +14,7 @@ packages=(
   libsqlite3-dev libgtest-dev libgmock-dev libbenchmark-dev
   iproute2 util-linux
   python3
+  libjs-three chromium   # the report inlines three.js; its test opens it in headless Chromium
 )
 
 missing=()

@@ -16,5 +16,6 @@ echo "== ccbuild plan-layer $example --floor 0 --layer 12 --objective time --svg
 ./build/ccbuild plan-layer "$example" --floor 0 --layer 12 --objective time --force \
   --svg build/house-floor0-layer12.svg
 echo
-echo "== ccbuild schedule $example -o build/house.schedule.json"
-./build/ccbuild schedule "$example" --force -o build/house.schedule.json
+echo "== ccbuild schedule $example -o build/house.schedule.json --report build/house.report.html"
+./build/ccbuild schedule "$example" --force -o build/house.schedule.json \
+  --report build/house.report.html

@@ -161,5 +161,34 @@ TEST(DiffCommand, RefusesWhatIsNotASchedule) {
   fs::remove_all(dir);
 }
 
+TEST(ReportCommand, WritesOneSelfContainedPageAndNeverOverAnInput) {
+  const fs::path dir = scratch("report");
+  const std::string json = (dir / "s.json").string(), html = (dir / "r.html").string();
+  ASSERT_EQ(run_ccbuild("schedule config/buildings/house.yaml --quiet -o " + json).exit_code, 0);
+  const auto r = run_ccbuild("report " + json + " -o " + html);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "written to"));
+  const std::string page = slurp(html);
+  // Self-contained: the schedule, three.js and the report's script inline; nothing fetched.
+  EXPECT_TRUE(contains(page, "<script id=\"schedule-data\" type=\"application/json\">"));
+  EXPECT_TRUE(contains(page, "WebGLRenderer"));
+  EXPECT_TRUE(contains(page, "OrbitControls"));
+  EXPECT_EQ(page.find("src=\"http"), std::string::npos);
+  EXPECT_EQ(page.find("<link"), std::string::npos);
+  EXPECT_TRUE(contains(page, "<section id=\"gantt\">"));
+  // An existing output needs --force; the schedule it reads, never.
+  EXPECT_EQ(run_ccbuild("report " + json + " -o " + html).exit_code, 2);
+  EXPECT_EQ(run_ccbuild("report " + json + " -o " + html + " --force").exit_code, 0);
+  const std::string before = slurp(json);
+  const auto over = run_ccbuild("report " + json + " -o " + json + " --force");
+  EXPECT_EQ(over.exit_code, 2);
+  EXPECT_EQ(slurp(json), before);
+  // Not a schedule: exit 2, naming the file.
+  const auto foreign = run_ccbuild("report config/buildings/house.yaml -o " + html + " --force");
+  EXPECT_EQ(foreign.exit_code, 2);
+  EXPECT_TRUE(contains(foreign.err, "house.yaml"));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace ccbuild

@@ -2,7 +2,7 @@
 # Runs `ccbuild COMMAND ARGS --json --svg` and re-checks both outputs with the independent
 # checkers: for plan-layer check_plan.py and check_svg.py, for climb check_climbs.py and
 # the SVG parsed as XML with its groups present, for schedule check_schedule.py on its
-# -o file; with each JSON checker's self-test (it must catch planted corruptions of this
+# -o file and check_report.py (headless Chromium) on its --report; with each JSON checker's self-test (it must catch planted corruptions of this
 # very output) when the run succeeded.
 # Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT plan-layer|climb|schedule ARGS...
 set -euo pipefail
@@ -13,7 +13,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 set +e
 if [ "$command" = schedule ]; then
-  "$ccbuild" schedule "$@" --quiet -o "$out/out.json" > "$out/summary.txt"
+  "$ccbuild" schedule "$@" --quiet -o "$out/out.json" --report "$out/out.html" > "$out/summary.txt"
 else
   "$ccbuild" "$command" "$@" --json --svg "$out/out.svg" > "$out/out.json"
 fi
@@ -44,6 +44,8 @@ PY
     ;;
   schedule)
     "$python" "$here/check_schedule.py" "$out/out.json"
+    # The report, in headless Chromium: every section drawn, no console error.
+    "$python" "$here/check_report.py" "$out/out.html" $([ "$expected" -eq 1 ] && echo --infeasible)
     checker=check_schedule.py
     ;;
   *)

@@ -12,5 +12,6 @@ void add_sweep_command(CLI::App& app, int& exit_code);
 void add_climb_command(CLI::App& app, int& exit_code);
 void add_schedule_command(CLI::App& app, int& exit_code);
 void add_diff_command(CLI::App& app, int& exit_code);
+void add_report_command(CLI::App& app, int& exit_code);
 
 }  // namespace ccbuild::cli

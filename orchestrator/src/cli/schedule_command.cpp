@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/orchestrator/report.hpp"
 #include "ccbuild/orchestrator/schedule.hpp"
 #include "ccbuild/orchestrator/schedule_json.hpp"
 #include "cli_common.hpp"
@@ -19,6 +20,7 @@ struct ScheduleCommandOptions {
   std::string file;
   InputOptions input;
   std::string output;
+  std::string report;
   bool force = false;
   std::uint64_t seed = 1;
   int jobs = 0;
@@ -37,15 +39,19 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   const auto inputs = project.files_read();
   if (!o.output.empty()) check_output_path(o.output, o.force, inputs);
+  if (!o.report.empty()) check_output_path(o.report, o.force, inputs);
   orchestrator::ScheduleOptions options;
   options.seed = o.seed;
   options.jobs = o.jobs;
   options.layer_time_limit_s = o.layer_time_limit_s;
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const orchestrator::Schedule s = orchestrator::build_schedule(project, options);
-  if (!o.output.empty())
-    write_file_atomically(o.output, orchestrator::schedule_json(project, options, s).dump(1) + "\n",
-                          o.force, inputs);
+  if (!o.output.empty() || !o.report.empty()) {
+    const auto doc = orchestrator::schedule_json(project, options, s);
+    if (!o.output.empty()) write_file_atomically(o.output, doc.dump(1) + "\n", o.force, inputs);
+    if (!o.report.empty())
+      write_file_atomically(o.report, orchestrator::schedule_report_html(doc), o.force, inputs);
+  }
   exit_code = s.feasible ? kExitOk : kExitNo;
 
   std::cout << printf_string("%s on %s: %zu layers, %zu distinct plans, %s\n", o.file.c_str(),
@@ -105,6 +111,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       s.layer_planning_s + s.climb_planning_s + s.bookkeeping_s, s.layer_planning_s,
       s.plans_computed, s.climb_planning_s, s.bookkeeping_s);
   if (!o.output.empty()) std::cout << "schedule written to " << o.output << "\n";
+  if (!o.report.empty()) std::cout << "report written to " << o.report << "\n";
 }
 
 }  // namespace
@@ -132,8 +139,10 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       "config/machines/cc-climber.yaml");
   command->add_option("BUILDING", o->file, "Building file (or a lone plan)")->required();
   command->add_option("-o,--output", o->output, "Write the schedule JSON here");
+  command->add_option("--report", o->report,
+                      "Also write the HTML report (as `ccbuild report` draws it)");
   command->add_flag("--force", o->force,
-                    "Overwrite an existing -o file (never one this run reads)");
+                    "Overwrite an existing -o or --report file (never one this run reads)");
   command->add_option("--seed", o->seed, "Random seed: the same seed gives the same schedule")
       ->check(unsigned_integer())
       ->capture_default_str();

@@ -1,0 +1,682 @@
+// ccbuild schedule report: draws a schedule JSON (docs/schedule.md) embedded in the page.
+// Every section renders on its own; one that fails records its error (console and the
+// hidden #console-errors list) and leaves the others standing. Each rendered section
+// gets data-rendered="yes" (the report's own test reads it from the DOM).
+(function () {
+  'use strict';
+  var errors = [];
+  function recordError(message) {
+    errors.push(String(message));
+    var box = document.getElementById('console-errors');
+    if (box) {
+      box.textContent = errors.join('\n');
+      box.setAttribute('data-count', String(errors.length));
+    }
+  }
+  window.addEventListener('error', function (e) { recordError(e.message); });
+  var consoleError = console.error;
+  console.error = function () {
+    recordError(Array.prototype.join.call(arguments, ' '));
+    consoleError.apply(console, arguments);
+  };
+
+  var S = JSON.parse(document.getElementById('schedule-data').textContent);
+  var NS = 'http://www.w3.org/2000/svg';
+  var COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf'];
+  var REASON_COLORS = { 'min-interval': '#f2a900', 'strength': '#8e44ad', 'anchor-strength': '#c0392b',
+                        'slab': '#7f8c8d', 'none': '#95a5a6' };
+  var EVENT_COLORS = { pipe: '#16a085', purge: '#e67e22', slab: '#7f8c8d', climb: '#2c3e50' };
+  var mat = S.inputs.material;
+  var machine = S.inputs.machine;
+  var tooltip = document.getElementById('tooltip');
+
+  // ---------------------------------------------------------------- helpers -----
+  function el(tag, attrs, parent, text) {
+    var e = document.createElement(tag);
+    for (var k in attrs || {}) e.setAttribute(k, attrs[k]);
+    if (text !== undefined) e.textContent = text;
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+  function svg(tag, attrs, parent, text) {
+    var e = document.createElementNS(NS, tag);
+    for (var k in attrs || {}) e.setAttribute(k, attrs[k]);
+    if (text !== undefined) e.textContent = text;
+    if (parent) parent.appendChild(e);
+    return e;
+  }
+  function duration(s) {
+    if (s === null || s === undefined || !isFinite(s)) return '-';
+    var a = Math.abs(s);
+    if (a >= 2 * 86400) return (s / 86400).toFixed(2) + ' d';
+    if (a >= 2 * 3600) return (s / 3600).toFixed(2) + ' h';
+    if (a >= 120) return (s / 60).toFixed(1) + ' min';
+    return s.toFixed(1) + ' s';
+  }
+  function clock(s) {  // day and time of day from the schedule's start
+    var d = Math.floor(s / 86400), r = s - 86400 * d;
+    var h = Math.floor(r / 3600), m = Math.floor((r - 3600 * h) / 60);
+    return 'day ' + (d + 1) + ' ' + (h < 10 ? '0' : '') + h + ':' + (m < 10 ? '0' : '') + m;
+  }
+  function showTip(evt, text) {
+    tooltip.textContent = text;
+    tooltip.style.display = 'block';
+    tooltip.style.left = Math.min(evt.clientX + 14, window.innerWidth - 430) + 'px';
+    tooltip.style.top = (evt.clientY + 14) + 'px';
+  }
+  function hideTip() { tooltip.style.display = 'none'; }
+  function hover(node, text) {
+    node.addEventListener('mousemove', function (e) { showTip(e, typeof text === 'function' ? text() : text); });
+    node.addEventListener('mouseleave', hideTip);
+  }
+  function strengthAt(age) {  // linear between points, flat outside
+    var c = mat.strength_curve;
+    if (age <= c[0].age_s) return c[0].strength_mpa;
+    for (var i = 1; i < c.length; i++)
+      if (age <= c[i].age_s)
+        return c[i - 1].strength_mpa + (age - c[i - 1].age_s) / (c[i].age_s - c[i - 1].age_s) *
+          (c[i].strength_mpa - c[i - 1].strength_mpa);
+    return c[c.length - 1].strength_mpa;
+  }
+  function layerName(l) { return 'floor ' + l.floor + ' layer ' + l.layer; }
+  function section(id, fn) {
+    var node = document.getElementById(id);
+    try {
+      fn(node);
+      node.setAttribute('data-rendered', 'yes');
+    } catch (e) {
+      node.setAttribute('data-rendered', 'failed');
+      el('p', { 'class': 'banner bad' }, node, 'This section could not be drawn: ' + e.message);
+      console.error(id + ': ' + (e.stack || e.message));
+    }
+  }
+  // A linear scale from [d0, d1] to [r0, r1].
+  function scale(d0, d1, r0, r1) {
+    var f = function (v) { return r0 + (v - d0) / ((d1 - d0) || 1) * (r1 - r0); };
+    f.d0 = d0; f.d1 = d1;
+    return f;
+  }
+  function ticks(d0, d1, count) {
+    var step = Math.pow(10, Math.floor(Math.log10((d1 - d0) / count || 1)));
+    var err = (d1 - d0) / count / step;
+    if (err >= 7.5) step *= 10; else if (err >= 3.5) step *= 5; else if (err >= 1.5) step *= 2;
+    var out = [];
+    for (var v = Math.ceil(d0 / step) * step; v <= d1 + 1e-9 * step; v += step) out.push(v);
+    return out;
+  }
+  function timeTicks(t0, t1) {  // in whole hours or days when the span allows
+    var span = t1 - t0, units = [60, 600, 1800, 3600, 4 * 3600, 12 * 3600, 86400, 2 * 86400, 7 * 86400];
+    var step = units[units.length - 1];
+    for (var i = 0; i < units.length; i++) if (span / units[i] <= 10) { step = units[i]; break; }
+    var out = [];
+    for (var v = Math.ceil(t0 / step) * step; v <= t1; v += step) out.push(v);
+    return out;
+  }
+
+  // Where each plan deposits each wall: spans by wall id, times from the layer's start.
+  var depositCache = {};
+  function deposits(planKey) {
+    if (depositCache[planKey]) return depositCache[planKey];
+    var byWall = {};
+    S.plans[planKey].nozzles.forEach(function (n) {
+      var w = n.waypoints;
+      for (var k = 0; k + 1 < w.length; k++) {
+        if (!w[k].extruding) continue;
+        (byWall[w[k].wall] = byWall[w[k].wall] || []).push(
+          { ax: w[k].x_m, ay: w[k].y_m, bx: w[k + 1].x_m, by: w[k + 1].y_m, ta: w[k].t_s, tb: w[k + 1].t_s });
+      }
+    });
+    return (depositCache[planKey] = byWall);
+  }
+  // [earliest, latest] time a plan passes point (x, y) of wall `wall`, or null.
+  function timesAt(planKey, wall, x, y) {
+    var spans = deposits(planKey)[wall];
+    if (!spans) return null;
+    var lo = Infinity, hi = -Infinity;
+    spans.forEach(function (s) {
+      var dx = s.bx - s.ax, dy = s.by - s.ay, len2 = dx * dx + dy * dy;
+      var u = len2 > 0 ? Math.max(0, Math.min(1, ((x - s.ax) * dx + (y - s.ay) * dy) / len2)) : 0;
+      var px = s.ax + u * dx - x, py = s.ay + u * dy - y;
+      if (px * px + py * py > 4e-6) return;
+      var t = s.ta + u * (s.tb - s.ta);
+      lo = Math.min(lo, t); hi = Math.max(hi, t);
+    });
+    return lo === Infinity ? null : [lo, hi];
+  }
+
+  var layers = S.layers;
+  var makespan = S.totals.makespan_s || 1;
+  var floors = [];
+  layers.forEach(function (l) { if (floors.indexOf(l.floor) < 0) floors.push(l.floor); });
+
+  // ---------------------------------------------------------------- summary -----
+  section('summary', function (node) {
+    var top = document.getElementById('verdict');
+    if (!S.feasible) {
+      var b = el('div', { 'class': 'banner bad', id: 'infeasible' }, top);
+      var inf = S.infeasibility || {};
+      el('div', {}, b, 'NOT FEASIBLE: ' + (inf.message || 'see the warnings'));
+      if (inf.fix) el('div', { 'class': 'fix' }, b, 'Fix: ' + inf.fix.text);
+      if (inf.floor !== undefined) el('div', { 'class': 'fix' }, b, 'Where: floor ' + inf.floor + ' layer ' + inf.layer +
+        ' (chosen in the interval heat map below)');
+    } else {
+      el('div', { 'class': 'banner good' }, top, 'Feasible: every layer within the material\'s interval window and strength, every climb on strong anchors.');
+    }
+    var t = el('table', { 'class': 'kv' }, node);
+    function row(k, v) { var r = el('tr', {}, t); el('td', {}, r, k); el('td', {}, r, v); }
+    row('building', S.inputs.name + ' (' + S.inputs.building + ', ' + layers.length + ' layers on ' + floors.length + ' floors)');
+    row('machine', machine.name + ' - ' + machine.kind + ', up to ' + machine.nozzles + ' nozzle(s), gantries ' +
+      machine.gantry_width_m + ' m wide on ' + machine.rail_axis + ' rails');
+    row('material', mat.name + ' - interval ' + mat.min_layer_interval_s + ' to ' + mat.max_layer_interval_s +
+      ' s, safety factor ' + mat.safety_factor);
+    row('seed', String(S.inputs.seed));
+    var T = S.totals;
+    row('makespan', duration(T.makespan_s) + ' (machine busy ' + duration(T.machine_s) + ')');
+    row('nozzle time', 'deposition ' + duration(T.deposition_s) + ', airtime ' + duration(T.airtime_s));
+    row('other', 'waits ' + duration(T.waits_s) + ', climbs ' + duration(T.climbs_s) + ', slabs ' +
+      duration(T.slabs_s) + ', pipes ' + duration(T.pipes_s) + ', purges ' + duration(T.purges_s) +
+      ', moves ' + duration(T.moves_s));
+    var warnings = (S.warnings || []).slice();
+    var cold = layers.filter(function (l) {
+      return l.local_interval_max_s !== null && l.local_interval_max_s > 0.95 * mat.max_layer_interval_s &&
+        l.local_interval_max_s <= mat.max_layer_interval_s;
+    });
+    if (cold.length)
+      warnings.push(cold.length + ' layer(s) within 5% of the maximum interval (closest to a cold joint): ' +
+        cold.slice(0, 5).map(layerName).join(', ') + (cold.length > 5 ? ', ...' : ''));
+    var idle = layers.filter(function (l) { return l.max_idle_s > 0.8 * machine.nozzle_idle_limit_s; });
+    if (idle.length)
+      warnings.push(idle.length + ' layer(s) with an air move over 80% of the nozzle idle limit');
+    if (warnings.length) {
+      el('h3', {}, node, 'Warnings');
+      var ul = el('ul', { 'class': 'warnings' }, node);
+      warnings.forEach(function (w) { el('li', {}, ul, w); });
+    }
+  });
+
+  // ---------------------------------------------------------------- Gantt -------
+  section('gantt', function (node) {
+    var W = Math.max(900, node.clientWidth - 40), left = 110, right = 10, rowH = 18;
+    var rows = floors.map(function (f) { return { key: 'floor' + f, label: 'floor ' + f }; });
+    rows.push({ key: 'waits', label: 'waits' });
+    ['pipe', 'purge', 'slab', 'climb'].forEach(function (k) {
+      if (S.events.some(function (e) { return e.kind === k; })) rows.push({ key: k, label: k + 's' });
+    });
+    var H = 24 + rows.length * rowH + 24;
+    var wrap = el('div', { 'class': 'gantt-wrap' }, node);
+    var root = svg('svg', { width: W, height: H, id: 'gantt-svg' }, wrap);
+    var rowY = {};
+    rows.forEach(function (r, i) {
+      rowY[r.key] = 20 + i * rowH;
+      svg('rect', { x: 0, y: rowY[r.key], width: W, height: rowH, fill: i % 2 ? '#fafbfc' : '#f0f2f5' }, root);
+      svg('text', { x: 4, y: rowY[r.key] + 13 }, root, r.label);
+    });
+    var axis = svg('g', {}, root);
+    var bars = svg('g', {}, root);
+    var items = [];
+    function add(row, t0, t1, color, text, cls) {
+      items.push({ row: row, t0: t0, t1: t1, color: color, text: text, cls: cls || 'gantt-bar' });
+    }
+    layers.forEach(function (l) {
+      add('floor' + l.floor, l.start_s, l.end_s, COLORS[(l.nozzles - 1) % COLORS.length],
+        layerName(l) + '\n' + clock(l.start_s) + ' to ' + clock(l.end_s) + ' (' + duration(l.end_s - l.start_s) +
+        ')\n' + l.nozzles + ' nozzle(s), ' + l.method + ', plan ' + l.plan +
+        (l.interval_s !== null ? '\ninterval ' + duration(l.interval_s) + ', per piece ' + duration(l.local_interval_min_s) +
+          ' to ' + duration(l.local_interval_max_s) : ''));
+      if (l.wait_before_s > 0) {
+        var main = l.wait_reasons.slice().sort(function (a, b) { return b.required_s - a.required_s; })[0];
+        add('waits', l.start_s - l.wait_before_s - (l.purge_before ? machine.purge_s : 0),
+          l.start_s - (l.purge_before ? machine.purge_s : 0), REASON_COLORS[main ? main.kind : 'none'] || '#999',
+          'wait of ' + duration(l.wait_before_s) + ' before ' + layerName(l) + '\n' +
+          l.wait_reasons.map(function (r) { return r.kind + ' (' + duration(r.required_s) + '): ' + r.detail; }).join('\n'));
+      }
+    });
+    S.events.forEach(function (e) {
+      var text = e.kind + ': ' + e.detail + '\n' + clock(e.start_s) + ' to ' + clock(e.end_s) + ' (' + duration(e.end_s - e.start_s) + ')';
+      if (e.kind === 'climb') {
+        if (e.wait_before_s > 0)
+          add('waits', e.start_s - e.wait_before_s, e.start_s, REASON_COLORS['anchor-strength'],
+            'climb ' + e.from_stage + ' -> ' + e.to_stage + ' waits ' + duration(e.wait_before_s) + ' for its anchors\n' +
+            e.wait_reasons.map(function (r) { return r.detail; }).slice(0, 4).join('\n'));
+        var t = e.start_s;
+        (e.climb.phases || []).forEach(function (p, i) {
+          add('climb', t, t + p.duration_s, i % 2 ? '#34495e' : '#5d6d7e',
+            'climb ' + e.from_stage + ' -> ' + e.to_stage + ': ' + p.kind + (p.unit ? ' ' + p.unit : '') + ', ' +
+            duration(p.duration_s) + (p.strokes ? ', ' + p.strokes + ' strokes' : ''), 'gantt-bar gantt-phase');
+          t += p.duration_s;
+        });
+      } else {
+        add(e.kind, e.start_s, e.end_s, EVENT_COLORS[e.kind] || '#555', text);
+      }
+    });
+    var view = [0, makespan];
+    function draw() {
+      var x = scale(view[0], view[1], left, W - right);
+      while (axis.firstChild) axis.removeChild(axis.firstChild);
+      timeTicks(view[0], view[1]).forEach(function (v) {
+        svg('line', { x1: x(v), x2: x(v), y1: 16, y2: H - 20, stroke: '#c8ced8' }, axis);
+        svg('text', { x: x(v) + 2, y: H - 8 }, axis, clock(v));
+      });
+      items.forEach(function (it) {
+        var x0 = x(it.t0), x1 = x(it.t1);
+        var visible = x1 >= left && x0 <= W - right;
+        var w = Math.max(1, Math.min(x1, W - right) - Math.max(x0, left));
+        it.node.setAttribute('x', Math.max(x0, left));
+        it.node.setAttribute('width', visible ? w : 0);
+      });
+    }
+    items.forEach(function (it) {
+      it.node = svg('rect', { 'class': it.cls, y: rowY[it.row] + 2, height: rowH - 4, fill: it.color }, bars);
+      hover(it.node, it.text);
+    });
+    draw();
+    // Zoom with the wheel around the pointer, pan by dragging, double-click: everything.
+    root.addEventListener('wheel', function (e) {
+      e.preventDefault();
+      var box = root.getBoundingClientRect(), f = e.deltaY > 0 ? 1.25 : 0.8;
+      var at = view[0] + (e.clientX - box.left - left) / (W - left - right) * (view[1] - view[0]);
+      view = [at - (at - view[0]) * f, at + (view[1] - at) * f];
+      if (view[1] - view[0] < 60) view = [at - 30, at + 30];
+      draw();
+    }, { passive: false });
+    var drag = null;
+    root.addEventListener('mousedown', function (e) { drag = { x: e.clientX, view: view.slice() }; });
+    window.addEventListener('mouseup', function () { drag = null; });
+    window.addEventListener('mousemove', function (e) {
+      if (!drag) return;
+      var dt = (e.clientX - drag.x) / (W - left - right) * (drag.view[1] - drag.view[0]);
+      view = [drag.view[0] - dt, drag.view[1] - dt];
+      draw();
+    });
+    root.addEventListener('dblclick', function () { view = [0, makespan]; draw(); });
+    var legend = el('div', { 'class': 'legend' }, node);
+    for (var n = 1; n <= machine.nozzles; n++)
+      el('span', {}, legend).innerHTML = '<i style="background:' + COLORS[(n - 1) % COLORS.length] + '"></i>layer, ' + n + ' nozzle(s)';
+    Object.keys(REASON_COLORS).forEach(function (k) {
+      if (k !== 'none' && k !== 'slab') el('span', {}, legend).innerHTML = '<i style="background:' + REASON_COLORS[k] + '"></i>wait: ' + k;
+    });
+    el('p', { 'class': 'hint' }, node, 'Wheel: zoom around the pointer. Drag: pan. Double-click: the whole build. Hover a bar for what, when and why.');
+  });
+
+  // ---------------------------------------------------------------- intervals ---
+  section('intervals', function (node) {
+    var W = Math.max(900, node.clientWidth - 40), H = 260, left = 60, bottom = 30;
+    var root = svg('svg', { width: W, height: H, id: 'interval-chart' }, node);
+    var ymax = mat.max_layer_interval_s * 1.15;
+    layers.forEach(function (l) { if (l.local_interval_max_s) ymax = Math.max(ymax, l.local_interval_max_s * 1.05); });
+    var x = scale(0, layers.length, left, W - 10), y = scale(0, ymax, H - bottom, 10);
+    svg('rect', { x: left, width: W - 10 - left, y: y(mat.max_layer_interval_s),
+                  height: y(mat.min_layer_interval_s) - y(mat.max_layer_interval_s), fill: '#e3f2e5' }, root);
+    ticks(0, ymax, 6).forEach(function (v) {
+      svg('line', { x1: left, x2: W - 10, y1: y(v), y2: y(v), stroke: '#e3e6ea' }, root);
+      svg('text', { x: 4, y: y(v) + 4 }, root, duration(v));
+    });
+    [[mat.min_layer_interval_s, 'min'], [mat.max_layer_interval_s, 'max']].forEach(function (m) {
+      svg('line', { x1: left, x2: W - 10, y1: y(m[0]), y2: y(m[0]), stroke: '#2e7d32', 'stroke-dasharray': '4 3' }, root);
+      svg('text', { x: W - 40, y: y(m[0]) - 3 }, root, m[1]);
+    });
+    var start = 0;
+    floors.forEach(function (f) {
+      svg('text', { x: x(start) + 2, y: H - 8 }, root, 'floor ' + f);
+      start += layers.filter(function (l) { return l.floor === f; }).length;
+    });
+    layers.forEach(function (l, i) {
+      if (l.local_interval_max_s === null) return;
+      var over = l.local_interval_max_s > mat.max_layer_interval_s + 1e-6;
+      var bar = svg('line', { 'class': 'interval-bar', x1: x(i + 0.5), x2: x(i + 0.5), y1: y(l.local_interval_min_s),
+                              y2: y(l.local_interval_max_s), stroke: over ? '#c62828' : '#1f77b4', 'stroke-width': 3 }, root);
+      hover(bar, layerName(l) + '\nper piece: ' + duration(l.local_interval_min_s) + ' to ' + duration(l.local_interval_max_s) +
+        '\nstart to start: ' + duration(l.interval_s) + (over ? '\nOVER THE MAXIMUM: a cold joint' : ''));
+      svg('circle', { cx: x(i + 0.5), cy: y(l.interval_s), r: 1.8, fill: '#333' }, root);
+    });
+    el('p', { 'class': 'hint' }, node, 'Each bar: the local intervals of one layer, from its tightest wall piece end to its loosest; the dot: start to start. Green band: the material\'s [min, max].');
+  });
+
+  // ---------------------------------------------------------------- heat map ----
+  section('heatmap', function (node) {
+    var controls = el('div', { 'class': 'controls' }, node);
+    el('label', {}, controls, 'Layer: ');
+    var select = el('select', { id: 'heatmap-layer' }, controls);
+    var candidates = [];
+    layers.forEach(function (l, i) {
+      if (l.local_interval_max_s === null) return;
+      candidates.push(i);
+      el('option', { value: String(i) }, select, layerName(l) + ' (up to ' + duration(l.local_interval_max_s) + ')');
+    });
+    var holder = el('div', {}, node);
+    var note = el('p', { 'class': 'hint' }, node);
+    function draw(i) {
+      while (holder.firstChild) holder.removeChild(holder.firstChild);
+      var l = layers[i], below = layers[i - 1], plan = S.plans[l.plan];
+      var pts = [];
+      plan.pieces.forEach(function (p) { pts.push(p.start_m, p.end_m); });
+      var xs = pts.map(function (p) { return p[0]; }), ys = pts.map(function (p) { return p[1]; });
+      var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs), y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
+      var W = Math.max(700, node.clientWidth - 40);
+      var k = Math.min((W - 40) / Math.max(x1 - x0, 1e-6), 520 / Math.max(y1 - y0, 1e-6)), H = (y1 - y0) * k + 40;
+      var root = svg('svg', { width: W, height: H, id: 'heatmap-svg' }, holder);
+      var X = function (v) { return 20 + (v - x0) * k; }, Y = function (v) { return H - 20 - (v - y0) * k; };
+      var lo = mat.min_layer_interval_s, hi = mat.max_layer_interval_s;
+      function color(v) {
+        if (v === null) return '#bbb';
+        var u = Math.max(0, Math.min(1, (v - lo) / (hi - lo)));
+        if (v > hi + 1e-6) return '#7b0000';
+        var r = Math.round(u < 0.5 ? 60 + 390 * u : 255), g = Math.round(u < 0.5 ? 180 : 180 - 300 * (u - 0.5));
+        return 'rgb(' + r + ',' + Math.max(0, g) + ',60)';
+      }
+      var worst = null;
+      plan.pieces.forEach(function (p) {
+        var ends = [p.start_m, p.end_m].map(function (pt) {
+          var up = timesAt(l.plan, p.wall, pt[0], pt[1]), down = timesAt(below.plan, p.wall, pt[0], pt[1]);
+          if (!up || !down) return null;
+          return l.start_s + up[1] - (below.start_s + down[0]);
+        }).filter(function (v) { return v !== null; });
+        var v = ends.length ? Math.max.apply(null, ends) : null;
+        if (v !== null && (worst === null || v > worst.v)) worst = { v: v, p: p };
+        var line = svg('line', { 'class': 'heat-piece', x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]),
+                                 y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': 5, 'stroke-linecap': 'round' }, root);
+        hover(line, 'wall ' + p.wall + ' piece ' + p.piece + '\n' + (v === null ? 'no wall under it' :
+          'covered ' + duration(v) + ' after the piece under it (maximum ' + duration(hi) + ')'));
+      });
+      note.textContent = 'Each piece coloured by its longest local interval, from green (the minimum, ' + duration(lo) +
+        ') to red (the maximum, ' + duration(hi) + '); dark red: over it; grey: over an opening.' +
+        (worst ? ' Closest to a cold joint: wall ' + worst.p.wall + ' piece ' + worst.p.piece + ', ' + duration(worst.v) + '.' : '');
+    }
+    select.addEventListener('change', function () { draw(+select.value); });
+    if (!candidates.length) { el('p', {}, node, 'No layer stands on another layer of its floor.'); return; }
+    // The layer closest to a cold joint, or the infeasible one.
+    var pick = candidates[0];
+    candidates.forEach(function (i) { if (layers[i].local_interval_max_s > layers[pick].local_interval_max_s) pick = i; });
+    if (!S.feasible && S.infeasibility)
+      candidates.forEach(function (i) {
+        if (layers[i].floor === S.infeasibility.floor && layers[i].layer === S.infeasibility.layer) pick = i;
+      });
+    select.value = String(pick);
+    draw(pick);
+  });
+
+  // ---------------------------------------------------------------- strength ----
+  section('strength', function (node) {
+    var climbs = S.events.filter(function (e) { return e.kind === 'climb'; });
+    if (climbs.length) {
+      el('h3', {}, node, 'Anchors at each climb');
+      var W = Math.max(900, node.clientWidth - 40), H = 200, left = 60;
+      var root = svg('svg', { width: W, height: H, id: 'anchor-chart' }, node);
+      var all = [];
+      climbs.forEach(function (c) { c.anchors.forEach(function (a) { all.push({ c: c, a: a }); }); });
+      var ymax = 0;
+      all.forEach(function (p) { ymax = Math.max(ymax, p.a.strength_mpa, p.a.required_mpa); });
+      ymax *= 1.15;
+      var x = scale(0, all.length, left, W - 10), y = scale(0, ymax, H - 30, 10);
+      ticks(0, ymax, 5).forEach(function (v) {
+        svg('line', { x1: left, x2: W - 10, y1: y(v), y2: y(v), stroke: '#e3e6ea' }, root);
+        svg('text', { x: 4, y: y(v) + 4 }, root, v + ' MPa');
+      });
+      all.forEach(function (p, i) {
+        var ok = p.a.strength_mpa >= p.a.required_mpa - 1e-9;
+        var bar = svg('rect', { 'class': 'anchor-bar', x: x(i) + 1, width: Math.max(1, x(i + 1) - x(i) - 2),
+                                y: y(p.a.strength_mpa), height: y(0) - y(p.a.strength_mpa), fill: ok ? '#2e7d32' : '#c62828' }, root);
+        svg('line', { x1: x(i), x2: x(i + 1), y1: y(p.a.required_mpa), y2: y(p.a.required_mpa), stroke: '#000', 'stroke-width': 2 }, root);
+        hover(bar, 'climb ' + p.c.from_stage + ' -> ' + p.c.to_stage + ', anchor ' + p.a.id + ' (unit ' + p.a.unit + ')\nage ' +
+          duration(p.a.age_s) + ': ' + p.a.strength_mpa.toFixed(2) + ' MPa, required ' + p.a.required_mpa + ' MPa');
+      });
+      climbs.forEach(function (c, k) {
+        var i = all.findIndex(function (p) { return p.c === c; });
+        svg('text', { x: x(i) + 2, y: H - 12 }, root, 'climb ' + c.from_stage + '->' + c.to_stage);
+      });
+    }
+    el('h3', {}, node, 'Buildability: the layer below against the walls above it');
+    var W2 = Math.max(900, node.clientWidth - 40), H2 = 220, left2 = 60;
+    var root2 = svg('svg', { width: W2, height: H2, id: 'margin-chart' }, node);
+    var g = 9.80665, pts = [];
+    layers.forEach(function (l, i) {
+      if (l.local_interval_min_s === null || i === 0) return;
+      var below = layers[i - 1];
+      var need = mat.safety_factor * mat.density_kg_m3 * g * (l.z_m - below.z_bottom_m) * 1e-6;
+      pts.push({ t: l.start_s, m: strengthAt(l.local_interval_min_s) / need, l: l, need: need });
+    });
+    var mmax = 2;
+    pts.forEach(function (p) { mmax = Math.max(mmax, Math.min(p.m, 20)); });
+    var x2 = scale(0, makespan, left2, W2 - 10), y2 = scale(0, mmax * 1.05, H2 - 30, 10);
+    ticks(0, mmax, 5).forEach(function (v) {
+      svg('line', { x1: left2, x2: W2 - 10, y1: y2(v), y2: y2(v), stroke: v === 1 ? '#c62828' : '#e3e6ea' }, root2);
+      svg('text', { x: 4, y: y2(v) + 4 }, root2, v + 'x');
+    });
+    timeTicks(0, makespan).forEach(function (v) { svg('text', { x: x2(v), y: H2 - 10 }, root2, clock(v)); });
+    pts.forEach(function (p) {
+      var c = svg('circle', { 'class': 'margin-dot', cx: x2(p.t), cy: y2(Math.min(p.m, mmax)), r: 2.2,
+                              fill: p.m < 1 ? '#c62828' : '#1f77b4' }, root2);
+      hover(c, layerName(p.l) + '\nthe layer below, covered after ' + duration(p.l.local_interval_min_s) + ', is ' +
+        p.m.toFixed(2) + ' times as strong as ' + p.need.toFixed(4) + ' MPa (stress x safety factor)');
+    });
+    el('p', { 'class': 'hint' }, node, 'Strength of the layer just below, at the age its tightest piece is covered, over the stress of the walls from its bottom up (with the safety factor). Under 1x (red line) it could not carry them.');
+  });
+
+  // ---------------------------------------------------------------- tool paths --
+  section('toolpaths', function (node) {
+    var box = el('div', { 'class': 'plans' }, node);
+    Object.keys(S.plans).forEach(function (key) {
+      var plan = S.plans[key];
+      var users = layers.filter(function (l) { return l.plan === key; });
+      var card = el('div', { 'class': 'plan-card layer-plan' }, box);
+      el('h3', {}, card, key + ': ' + plan.nozzles_used + ' nozzle(s), ' + plan.method + ', ' + duration(plan.layer_time_s) +
+        ', ' + users.length + ' layer(s)');
+      var xs = [], ys = [];
+      plan.pieces.forEach(function (p) { xs.push(p.start_m[0], p.end_m[0]); ys.push(p.start_m[1], p.end_m[1]); });
+      var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs), y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
+      var W = 420, k = (W - 20) / Math.max(x1 - x0, y1 - y0, 1e-6), H = (y1 - y0) * k + 20;
+      var root = svg('svg', { width: W, height: H }, card);
+      var X = function (v) { return 10 + (v - x0) * k; }, Y = function (v) { return H - 10 - (v - y0) * k; };
+      plan.pieces.forEach(function (p) {
+        svg('line', { x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]), y2: Y(p.end_m[1]), stroke: '#d5d9e0', 'stroke-width': 4 }, root);
+      });
+      plan.nozzles.forEach(function (n, ni) {
+        var w = n.waypoints, color = COLORS[ni % COLORS.length];
+        var dep = '', air = '';
+        for (var j = 0; j + 1 < w.length; j++) {
+          var seg = 'M' + X(w[j].x_m).toFixed(1) + ' ' + Y(w[j].y_m).toFixed(1) + 'L' + X(w[j + 1].x_m).toFixed(1) + ' ' + Y(w[j + 1].y_m).toFixed(1);
+          if (w[j].extruding) dep += seg; else if (w[j].x_m !== w[j + 1].x_m || w[j].y_m !== w[j + 1].y_m) air += seg;
+        }
+        svg('path', { d: dep, stroke: color, 'stroke-width': 1.6, fill: 'none' }, root);
+        var a = svg('path', { d: air, stroke: color, 'stroke-width': 0.8, 'stroke-dasharray': '3 2', fill: 'none', opacity: 0.7 }, root);
+        if (w.length) {
+          var s = svg('circle', { cx: X(w[0].x_m), cy: Y(w[0].y_m), r: 4, fill: '#fff', stroke: color, 'stroke-width': 2 }, root);
+          hover(s, 'nozzle ' + (ni + 1) + ' starts here');
+        }
+        hover(a, 'nozzle ' + (ni + 1) + ': air moves (dashed)');
+      });
+      // x/t (or y/t) of each nozzle over the layer: the gantries' positions on the rails.
+      var axis = machine.rail_axis === 'y' ? 'y_m' : 'x_m';
+      var TH = 120, tx = scale(0, plan.layer_time_s || 1, 40, W - 6), r0 = axis === 'x_m' ? x0 : y0, r1 = axis === 'x_m' ? x1 : y1;
+      var ty = scale(r0, r1, TH - 16, 6);
+      var chart = svg('svg', { width: W, height: TH, 'class': 'xt-chart' }, card);
+      svg('text', { x: 2, y: 12 }, chart, axis[0] + ' (m)');
+      svg('text', { x: W - 60, y: TH - 3 }, chart, 't: ' + duration(plan.layer_time_s));
+      plan.nozzles.forEach(function (n, ni) {
+        var d = n.waypoints.map(function (p, j) { return (j ? 'L' : 'M') + tx(p.t_s).toFixed(1) + ' ' + ty(p[axis]).toFixed(1); }).join('');
+        svg('path', { d: d, stroke: COLORS[ni % COLORS.length], fill: 'none', 'stroke-width': 1.2 }, chart);
+      });
+    });
+    el('p', { 'class': 'hint' }, node, 'Each distinct plan: deposition solid, air moves dashed, each nozzle\'s start a circle; beside it, each gantry\'s position on the rails over the layer\'s time.');
+  });
+
+  // ---------------------------------------------------------------- 3-D ---------
+  section('playback', function (node) {
+    var canvas = document.getElementById('playback-canvas');
+    if (typeof THREE === 'undefined') throw new Error('three.js is missing from the report');
+    var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true, preserveDrawingBuffer: true });
+    if (!renderer.getContext()) throw new Error('no WebGL context');
+    canvas.setAttribute('data-webgl', 'yes');
+    renderer.setPixelRatio(window.devicePixelRatio || 1);
+    var width = canvas.clientWidth || 900, height = canvas.clientHeight || 520;
+    renderer.setSize(width, height, false);
+    var scene = new THREE.Scene();
+    scene.background = new THREE.Color(0xdfe6ee);
+    scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+    var sun = new THREE.DirectionalLight(0xffffff, 0.6);
+    sun.position.set(1, -2, 3);
+    scene.add(sun);
+    // The building: every deposited span a box (z up), its vertices carrying the time the
+    // nozzle passes them; the shader hides what is not yet deposited at the current time.
+    var pos = [], tdep = [], idx = [];
+    var xmin = Infinity, xmax = -Infinity, ymin = Infinity, ymax = -Infinity, zmax = 0;
+    var half = (machine.nozzle_width_m || 0.15) / 2, lh = S.inputs.layer_height_m;
+    layers.forEach(function (l) {
+      var plan = S.plans[l.plan];
+      plan.nozzles.forEach(function (n) {
+        var w = n.waypoints;
+        for (var k = 0; k + 1 < w.length; k++) {
+          if (!w[k].extruding) continue;
+          var ax = w[k].x_m, ay = w[k].y_m, bx = w[k + 1].x_m, by = w[k + 1].y_m;
+          var dx = bx - ax, dy = by - ay, len = Math.sqrt(dx * dx + dy * dy) || 1;
+          var nx = -dy / len * half, ny = dx / len * half, z0 = l.z_bottom_m, z1 = l.z_m;
+          var ta = l.start_s + w[k].t_s, tb = l.start_s + w[k + 1].t_s, base = pos.length / 3;
+          [[ax, ay, ta], [bx, by, tb]].forEach(function (e) {
+            [[1, z0], [-1, z0], [-1, z1], [1, z1]].forEach(function (c) {
+              pos.push(e[0] + c[0] * nx, e[1] + c[0] * ny, c[1]);
+              tdep.push(e[2]);
+            });
+          });
+          // Faces: the two sides, the top and the ends (quads as two triangles); the bottom
+          // lies on the layer below.
+          [[1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7], [0, 3, 2, 1], [4, 5, 6, 7]].forEach(function (q) {
+            idx.push(base + q[0], base + q[1], base + q[2], base + q[0], base + q[2], base + q[3]);
+          });
+          xmin = Math.min(xmin, ax, bx); xmax = Math.max(xmax, ax, bx);
+          ymin = Math.min(ymin, ay, by); ymax = Math.max(ymax, ay, by); zmax = Math.max(zmax, z1);
+        }
+      });
+    });
+    var geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
+    // Times relative to an origin kept small, so that single precision keeps seconds.
+    var t0 = 0, rel = new Float32Array(tdep.length), scaleT = 1 / 60;
+    for (var i = 0; i < tdep.length; i++) rel[i] = (tdep[i] - t0) * scaleT;
+    geometry.setAttribute('tdep', new THREE.BufferAttribute(rel, 1));
+    geometry.setIndex(idx.length > 65535 ? new THREE.Uint32BufferAttribute(idx, 1) : new THREE.Uint16BufferAttribute(idx, 1));
+    geometry.computeVertexNormals();
+    var material = new THREE.ShaderMaterial({
+      uniforms: { uTime: { value: 0 } },
+      vertexShader: 'attribute float tdep; varying float vT; varying vec3 vN; void main() { vT = tdep; vN = normal;' +
+        ' gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 1.0); }',
+      fragmentShader: 'uniform float uTime; varying float vT; varying vec3 vN; void main() { if (vT > uTime) discard;' +
+        ' float l = 0.55 + 0.45 * abs(dot(normalize(vN), normalize(vec3(0.3, -0.5, 0.8))));' +
+        ' vec3 c = uTime - vT < 10.0 ? vec3(0.85, 0.45, 0.2) : vec3(0.72, 0.70, 0.66); gl_FragColor = vec4(c * l, 1.0); }'
+    });
+    scene.add(new THREE.Mesh(geometry, material));
+    var cx = (xmin + xmax) / 2, cy = (ymin + ymax) / 2, size = Math.max(xmax - xmin, ymax - ymin, zmax, 1);
+    var ground = new THREE.Mesh(new THREE.PlaneGeometry(size * 1.6, size * 1.6), new THREE.MeshLambertMaterial({ color: 0xb9c2b0 }));
+    ground.position.set(cx, cy, -0.01);
+    scene.add(ground);
+    // Nozzles and, for a climbing machine, the platform at its stage's height.
+    var nozzles = [];
+    for (var n = 0; n < machine.nozzles; n++) {
+      var s = new THREE.Mesh(new THREE.SphereGeometry(size / 120 + 0.1, 12, 8), new THREE.MeshLambertMaterial({ color: COLORS[n % COLORS.length] }));
+      s.visible = false;
+      scene.add(s);
+      nozzles.push(s);
+    }
+    var stages = S.stages || [], platform = null;
+    if (stages.length) {
+      platform = new THREE.Mesh(new THREE.BoxGeometry(xmax - xmin + 2, ymax - ymin + 2, 0.25),
+        new THREE.MeshLambertMaterial({ color: 0x2c3e50, transparent: true, opacity: 0.35 }));
+      platform.position.set(cx, cy, stages[0].platform_z_m);
+      scene.add(platform);
+    }
+    var climbs = S.events.filter(function (e) { return e.kind === 'climb'; });
+    var camera = new THREE.PerspectiveCamera(40, width / height, 0.1, size * 20);
+    camera.up.set(0, 0, 1);
+    camera.position.set(cx + size * 0.9, cy - size * 1.3, zmax + size * 0.8);
+    var controls = THREE.OrbitControls ? new THREE.OrbitControls(camera, canvas) : null;
+    if (controls) { controls.target.set(cx, cy, zmax / 3); controls.update(); }
+    else camera.lookAt(cx, cy, zmax / 3);
+    var starts = layers.map(function (l) { return l.start_s; });
+    function layerAt(t) {  // the last layer started by t
+      var lo = 0, hi = starts.length - 1;
+      if (t < starts[0]) return -1;
+      while (lo < hi) { var mid = (lo + hi + 1) >> 1; if (starts[mid] <= t) lo = mid; else hi = mid - 1; }
+      return lo;
+    }
+    var label = document.getElementById('playback-time');
+    var slider = document.getElementById('playback-slider');
+    slider.max = String(makespan);
+    function show(t) {
+      material.uniforms.uTime.value = (t - t0) * scaleT;
+      var i = layerAt(t), what = 'before the first layer';
+      if (i >= 0) {
+        var l = layers[i], plan = S.plans[l.plan], rt = t - l.start_s;
+        what = rt < l.end_s - l.start_s ? 'printing ' + layerName(l) + ' (' + l.nozzles + ' nozzle(s))' : 'after ' + layerName(l);
+        nozzles.forEach(function (s, ni) {
+          var w = plan.nozzles[ni] && plan.nozzles[ni].waypoints;
+          s.visible = !!(w && w.length);
+          if (!s.visible) return;
+          var k = 0;
+          while (k + 1 < w.length && w[k + 1].t_s <= rt) k++;
+          var a = w[k], b = w[Math.min(k + 1, w.length - 1)], u = b.t_s > a.t_s ? Math.max(0, Math.min(1, (rt - a.t_s) / (b.t_s - a.t_s))) : 0;
+          var dz = l.z_m - plan.z_top_m;
+          s.position.set(a.x_m + u * (b.x_m - a.x_m), a.y_m + u * (b.y_m - a.y_m), a.z_m + dz + u * (b.z_m - a.z_m) + 0.1);
+        });
+      }
+      if (platform) {
+        var z = stages[0].platform_z_m;
+        climbs.forEach(function (c) {
+          if (t >= c.end_s) z = stages[c.to_stage].platform_z_m;
+          else if (t > c.start_s) {
+            what = 'climbing from stage ' + c.from_stage + ' to ' + c.to_stage;
+            var u = (t - c.start_s) / (c.end_s - c.start_s);
+            z = stages[c.from_stage].platform_z_m + u * (stages[c.to_stage].platform_z_m - stages[c.from_stage].platform_z_m);
+          }
+        });
+        platform.position.z = z;
+      }
+      label.textContent = clock(t) + ' - ' + what;
+      renderer.render(scene, camera);
+    }
+    var playing = false, speed = 2000, now = 0, last = null;
+    var play = document.getElementById('playback-play');
+    var speedSelect = document.getElementById('playback-speed');
+    speedSelect.addEventListener('change', function () { speed = +speedSelect.value; });
+    play.addEventListener('click', function () {
+      playing = !playing;
+      play.textContent = playing ? 'Pause' : 'Play';
+      last = null;
+      if (playing) requestAnimationFrame(step);
+    });
+    slider.addEventListener('input', function () { now = +slider.value; show(now); });
+    function step(ts) {
+      if (!playing) return;
+      if (last !== null) now = Math.min(makespan, now + (ts - last) / 1000 * speed);
+      last = ts;
+      slider.value = String(now);
+      show(now);
+      if (now >= makespan) { playing = false; play.textContent = 'Play'; return; }
+      requestAnimationFrame(step);
+    }
+    if (controls) controls.addEventListener('change', function () { show(now); });
+    // Open on the finished building.
+    now = makespan;
+    slider.value = String(now);
+    show(now);
+    node.setAttribute('data-triangles', String(idx.length / 3));
+    // How many colours the drawing has (a blank canvas has one): read back on a grid.
+    var gl = renderer.getContext(), px = new Uint8Array(4), seen = {};
+    for (var gx = 0; gx < 24; gx++)
+      for (var gy = 0; gy < 24; gy++) {
+        gl.readPixels(Math.floor((gx + 0.5) * gl.drawingBufferWidth / 24), Math.floor((gy + 0.5) * gl.drawingBufferHeight / 24),
+                      1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+        seen[px.join(',')] = 1;
+      }
+    canvas.setAttribute('data-colours', String(Object.keys(seen).length));
+    // What one frame of the playback costs here (software WebGL in tests: an upper bound).
+    var began = performance.now();
+    for (var f = 0; f < 5; f++) {
+      show(makespan * (0.5 + f / 10));
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);  // waits for the frame
+    }
+    show(now);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    canvas.setAttribute('data-frame-ms', ((performance.now() - began) / 6).toFixed(1));
+  });
+
+  document.body.setAttribute('data-ready', 'yes');
+})();

@@ -1,0 +1,56 @@
+// ccbuild report SCHEDULE.json -o report.html: the schedule drawn in one self-contained
+// HTML page (Gantt, intervals, strength, tool paths, 3-D playback).
+
+#include <iostream>
+#include <memory>
+
+#include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/orchestrator/report.hpp"
+#include "ccbuild/orchestrator/schedule_diff.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace ccbuild::cli {
+namespace {
+
+struct ReportCommandOptions {
+  std::string schedule;
+  std::string output;
+  bool force = false;
+};
+
+void run_report(const ReportCommandOptions& o, int& exit_code) {
+  check_output_path(o.output, o.force, {o.schedule});
+  const auto schedule = orchestrator::read_schedule_file(o.schedule);
+  const std::string html = orchestrator::schedule_report_html(schedule);
+  write_file_atomically(o.output, html, o.force, {o.schedule});
+  std::cout << printf_string(
+      "report of %s written to %s (%.1f MB)%s\n", o.schedule.c_str(), o.output.c_str(),
+      html.size() / 1e6, schedule.value("feasible", false) ? "" : "; the schedule is NOT feasible");
+  exit_code = kExitOk;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ReportCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "report",
+      "Draw a schedule (from `ccbuild schedule -o`) as one self-contained HTML page that any "
+      "current browser opens without a network: a summary and its warnings (an infeasible "
+      "schedule says so first, and where), a Gantt of the whole build (wheel to zoom, drag to "
+      "pan, hover for what, when and why), each layer's intervals against the material's band "
+      "and one layer's local intervals as a heat map on its plan, the anchors' strength at "
+      "every climb and the buildability margin over time, every distinct plan's tool path with "
+      "its gantries' x/t curves, and a 3-D playback of the build with a time slider.\n"
+      "Examples:\n"
+      "  ccbuild schedule config/buildings/tower.yaml -o tower.json\n"
+      "  ccbuild report tower.json -o tower.html\n"
+      "  ccbuild schedule config/buildings/house.yaml --report house.html");
+  command->add_option("SCHEDULE", o->schedule, "A schedule JSON file")->required();
+  command->add_option("-o,--output", o->output, "The HTML file to write")->required();
+  command->add_flag("--force", o->force, "Overwrite an existing output file");
+  command->callback([o, &exit_code] { run_report(*o, exit_code); });
+}
+
+}  // namespace ccbuild::cli

@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""Opens a ccbuild report (HTML) in headless Chromium and checks that it rendered.
+
+Reads only the report and what Chromium makes of it: the DOM after the page's scripts
+ran (--dump-dom) and a screenshot. Checks that every section rendered (the page marks
+each with data-rendered="yes", or "failed" with the error), that the DOM holds the
+Gantt's bars, the interval chart, the heat map's pieces, one card per plan, the strength
+charts and a WebGL canvas that drew something (its colours read back on a grid), that no
+error reached the console (the page collects them in #console-errors), that an
+infeasible schedule's report says so before anything else, and that the screenshot is
+not blank. Chromium missing is a failure, not a skip: scripts/install-deps.sh installs it.
+
+Usage: check_report.py REPORT.html [--infeasible] [--min-plans N]
+Exit 0 when every check passes, 1 otherwise.
+"""
+import argparse
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+SECTIONS = ["summary", "gantt", "intervals", "heatmap", "strength", "toolpaths", "playback"]
+
+
+def chromium():
+    for name in ("chromium", "chromium-browser", "google-chrome"):
+        path = shutil.which(name)
+        if path:
+            return path
+    sys.exit("check_report: Chromium is not installed (Debian: apt-get install chromium; "
+             "scripts/install-deps.sh installs it)")
+
+
+def run_chromium(browser, url, extra, out_dir):
+    cmd = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
+           "--enable-unsafe-swiftshader", "--hide-scrollbars", "--window-size=1400,2400",
+           "--virtual-time-budget=20000", "--user-data-dir=" + os.path.join(out_dir, "profile")] + extra + [url]
+    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=240,
+                          cwd=out_dir, env=dict(os.environ, HOME=out_dir))
+
+
+def png_not_blank(path):
+    """(ok, why): the screenshot decodes and its filtered rows are not all zero (a blank
+    image's rows filter to zeros; a drawn page's do not)."""
+    data = open(path, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        return False, "not a PNG"
+    pos, idat, width, height = 8, b"", 0, 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        pos += 12 + n
+        if kind == b"IHDR":
+            width, height = struct.unpack(">II", body[:8])
+        elif kind == b"IDAT":
+            idat += body
+    raw = zlib.decompress(idat)
+    nonzero = len(raw) - raw.count(0)
+    share = nonzero / max(1, len(raw))
+    if width < 100 or height < 100:
+        return False, "%dx%d" % (width, height)
+    if share < 0.002:  # a blank page: 0.0002; the house report: 0.018
+        return False, "%.4f of its bytes differ from their neighbours: blank" % share
+    return True, "%dx%d, %.1f%% of bytes vary" % (width, height, 100 * share)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("report")
+    ap.add_argument("--infeasible", action="store_true", help="the schedule is infeasible: the report must say so first")
+    ap.add_argument("--min-plans", type=int, default=1)
+    args = ap.parse_args()
+    browser = chromium()
+    report = os.path.abspath(args.report)
+    if not os.path.isfile(report):
+        sys.exit("check_report: %s: no such file" % args.report)
+    problems = []
+    with tempfile.TemporaryDirectory() as out:
+        url = "file://" + report
+        dom_run = run_chromium(browser, url, ["--dump-dom"], out)
+        dom = dom_run.stdout.decode("utf-8", "replace")
+        if dom_run.returncode != 0 or "<body" not in dom:
+            sys.exit("check_report: chromium --dump-dom failed (%d): %s" % (
+                dom_run.returncode, dom_run.stderr.decode("utf-8", "replace")[-2000:]))
+        shot = os.path.join(out, "shot.png")
+        shot_run = run_chromium(browser, url, ["--screenshot=" + shot], out)
+        if not os.path.exists(shot):
+            problems.append("no screenshot (chromium exit %d)" % shot_run.returncode)
+        else:
+            ok, why = png_not_blank(shot)
+            if not ok:
+                problems.append("the screenshot is blank: " + why)
+            else:
+                print("screenshot: " + why)
+
+    for sid in SECTIONS:
+        m = re.search(r'<section id="%s"[^>]*data-rendered="(\w+)"' % sid, dom)
+        if not m:
+            problems.append("section %s: not rendered (no data-rendered)" % sid)
+        elif m.group(1) != "yes":
+            problems.append("section %s: %s" % (sid, m.group(1)))
+    if 'data-ready="yes"' not in dom:
+        problems.append("the page's script did not finish (no data-ready on body)")
+    counts = {
+        "Gantt bars": len(re.findall(r'class="gantt-bar', dom)),
+        "interval bars": len(re.findall(r'class="interval-bar"', dom)),
+        "heat-map pieces": len(re.findall(r'class="heat-piece"', dom)),
+        "plan cards": len(re.findall(r'class="plan-card layer-plan"', dom)),
+        "buildability points": len(re.findall(r'class="margin-dot"', dom)),
+        "x/t charts": len(re.findall(r'class="xt-chart"', dom)),
+    }
+    for what, n in counts.items():
+        if n == 0:
+            problems.append("no %s in the DOM" % what)
+    if counts["plan cards"] < args.min_plans:
+        problems.append("%d plan cards, expected at least %d" % (counts["plan cards"], args.min_plans))
+    canvas = re.search(r'<canvas id="playback-canvas"([^>]*)>', dom)
+    if not canvas:
+        problems.append("no playback canvas")
+    else:
+        attrs = canvas.group(1)
+        if 'data-webgl="yes"' not in attrs:
+            problems.append("the playback canvas has no WebGL context")
+        colours = re.search(r'data-colours="(\d+)"', attrs)
+        if not colours or int(colours.group(1)) < 4:
+            problems.append("the 3-D view drew %s colours: blank" % (colours.group(1) if colours else "no"))
+    errors = re.search(r'<pre id="console-errors" data-count="(\d+)"[^>]*>(.*?)</pre>', dom, re.S)
+    if not errors:
+        problems.append("no #console-errors element")
+    elif errors.group(1) != "0":
+        problems.append("console errors: " + errors.group(2)[:1500])
+    infeasible = dom.find('id="infeasible"')
+    if args.infeasible:
+        summary = dom.find('<section id="summary"')
+        if infeasible < 0:
+            problems.append("the report of an infeasible schedule does not say so")
+        elif summary >= 0 and infeasible > summary:
+            problems.append("the infeasibility is not the first thing the report says")
+        elif "NOT FEASIBLE" not in dom[infeasible:infeasible + 2000]:
+            problems.append("the infeasible banner lacks its message")
+    elif infeasible >= 0:
+        problems.append("a feasible schedule's report says it is infeasible")
+    if problems:
+        for p in problems:
+            print("problem: " + p)
+        return 1
+    print("OK: %s rendered every section: %s; %s" % (
+        args.report, ", ".join("%d %s" % (n, w) for w, n in counts.items()),
+        re.search(r'data-triangles="(\d+)"', dom).group(1) + " triangles in the 3-D view, " +
+        (re.search(r'data-frame-ms="([\d.]+)"', dom) or re.search("()", "")).group(1) + " ms a frame"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
