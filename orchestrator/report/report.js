@@ -470,15 +470,33 @@
       plan.pieces.forEach(function (p) {
         svg('line', { x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]), y2: Y(p.end_m[1]), stroke: '#d5d9e0', 'stroke-width': 4 }, root);
       });
+      // Several nozzles: each one's section along the rails, tinted behind its walls.
+      var railX = machine.rail_axis !== 'y';
+      if (plan.nozzles.length > 1)
+        plan.nozzles.forEach(function (n, ni) {
+          var lo = Infinity, hi = -Infinity;
+          n.waypoints.forEach(function (p) { if (p.extruding) { var r = railX ? p.x_m : p.y_m; lo = Math.min(lo, r); hi = Math.max(hi, r); } });
+          if (lo > hi) return;
+          var band = railX ? { x: X(lo), y: Y(y1), width: X(hi) - X(lo), height: Y(y0) - Y(y1) }
+                           : { x: X(x0), y: Y(hi), width: X(x1) - X(x0), height: Y(lo) - Y(hi) };
+          band.fill = COLORS[ni % COLORS.length]; band.opacity = 0.08; band['class'] = 'nozzle-section';
+          hover(svg('rect', band, root), 'nozzle ' + (ni + 1) + ' works between ' + lo.toFixed(2) + ' and ' + hi.toFixed(2) + ' m along the rails');
+        });
       plan.nozzles.forEach(function (n, ni) {
         var w = n.waypoints, color = COLORS[ni % COLORS.length];
-        var dep = '', air = '';
+        var dep = '', air = '', lifted = '';
         for (var j = 0; j + 1 < w.length; j++) {
           var seg = 'M' + X(w[j].x_m).toFixed(1) + ' ' + Y(w[j].y_m).toFixed(1) + 'L' + X(w[j + 1].x_m).toFixed(1) + ' ' + Y(w[j + 1].y_m).toFixed(1);
-          if (w[j].extruding) dep += seg; else if (w[j].x_m !== w[j + 1].x_m || w[j].y_m !== w[j + 1].y_m) air += seg;
+          if (w[j].extruding) dep += seg;
+          else if (w[j].x_m !== w[j + 1].x_m || w[j].y_m !== w[j + 1].y_m) {
+            // Raised over walls already built in this layer: the nozzle is above the top.
+            if (w[j].z_m > plan.z_top_m + 1e-6 || w[j + 1].z_m > plan.z_top_m + 1e-6) lifted += seg; else air += seg;
+          }
         }
         svg('path', { d: dep, stroke: color, 'stroke-width': 1.6, fill: 'none' }, root);
         var a = svg('path', { d: air, stroke: color, 'stroke-width': 0.8, 'stroke-dasharray': '3 2', fill: 'none', opacity: 0.7 }, root);
+        if (lifted) hover(svg('path', { d: lifted, stroke: '#c62828', 'stroke-width': 1.2, 'stroke-dasharray': '3 2', fill: 'none' }, root),
+          'nozzle ' + (ni + 1) + ': lifted over built walls (red dashed)');
         if (w.length) {
           var s = svg('circle', { cx: X(w[0].x_m), cy: Y(w[0].y_m), r: 4, fill: '#fff', stroke: color, 'stroke-width': 2 }, root);
           hover(s, 'nozzle ' + (ni + 1) + ' starts here');
@@ -497,7 +515,7 @@
         svg('path', { d: d, stroke: COLORS[ni % COLORS.length], fill: 'none', 'stroke-width': 1.2 }, chart);
       });
     });
-    el('p', { 'class': 'hint' }, node, 'Each distinct plan: deposition solid, air moves dashed, each nozzle\'s start a circle; beside it, each gantry\'s position on the rails over the layer\'s time.');
+    el('p', { 'class': 'hint' }, node, 'Each distinct plan: deposition solid, air moves dashed (red: lifted over walls built), each nozzle\'s start a circle and its section tinted; beside it, each gantry\'s position on the rails over the layer\'s time.');
   });
 
   // ---------------------------------------------------------------- 3-D ---------
@@ -516,29 +534,39 @@
     var sun = new THREE.DirectionalLight(0xffffff, 0.6);
     sun.position.set(1, -2, 3);
     scene.add(sun);
-    // The building: every deposited span a box (z up), its vertices carrying the time the
-    // nozzle passes them; the shader hides what is not yet deposited at the current time.
+    // The building: consecutive layers of a floor that share a plan make one run, and
+    // each span the plan deposits is one box through the whole run (z up). Its vertices
+    // carry the time the nozzle passes them: at the bottom, in the run's first layer; at
+    // the top, in its last; the shader hides what is not deposited yet at the current
+    // time, so the run grows layer by layer in between (linearly in height, which the
+    // steady intervals of a run make close). One box a span and a run keeps the building
+    // to tens of thousands of triangles.
     var pos = [], tdep = [], idx = [];
     var xmin = Infinity, xmax = -Infinity, ymin = Infinity, ymax = -Infinity, zmax = 0;
-    var half = (machine.nozzle_width_m || 0.15) / 2, lh = S.inputs.layer_height_m;
+    var half = (machine.nozzle_width_m || 0.15) / 2;
+    var runs = [];
     layers.forEach(function (l) {
-      var plan = S.plans[l.plan];
+      var last = runs[runs.length - 1];
+      if (last && last.plan === l.plan && last.floor === l.floor) last.top = l;
+      else runs.push({ plan: l.plan, floor: l.floor, bottom: l, top: l });
+    });
+    runs.forEach(function (run) {
+      var plan = S.plans[run.plan], z0 = run.bottom.z_bottom_m, z1 = run.top.z_m;
       plan.nozzles.forEach(function (n) {
         var w = n.waypoints;
         for (var k = 0; k + 1 < w.length; k++) {
           if (!w[k].extruding) continue;
           var ax = w[k].x_m, ay = w[k].y_m, bx = w[k + 1].x_m, by = w[k + 1].y_m;
           var dx = bx - ax, dy = by - ay, len = Math.sqrt(dx * dx + dy * dy) || 1;
-          var nx = -dy / len * half, ny = dx / len * half, z0 = l.z_bottom_m, z1 = l.z_m;
-          var ta = l.start_s + w[k].t_s, tb = l.start_s + w[k + 1].t_s, base = pos.length / 3;
-          [[ax, ay, ta], [bx, by, tb]].forEach(function (e) {
+          var nx = -dy / len * half, ny = dx / len * half, base = pos.length / 3;
+          [[ax, ay, w[k].t_s], [bx, by, w[k + 1].t_s]].forEach(function (e) {
             [[1, z0], [-1, z0], [-1, z1], [1, z1]].forEach(function (c) {
               pos.push(e[0] + c[0] * nx, e[1] + c[0] * ny, c[1]);
-              tdep.push(e[2]);
+              tdep.push((c[1] === z0 ? run.bottom.start_s : run.top.start_s) + e[2]);
             });
           });
           // Faces: the two sides, the top and the ends (quads as two triangles); the bottom
-          // lies on the layer below.
+          // lies on what is below.
           [[1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7], [0, 3, 2, 1], [4, 5, 6, 7]].forEach(function (q) {
             idx.push(base + q[0], base + q[1], base + q[2], base + q[0], base + q[2], base + q[3]);
           });
