@@ -202,62 +202,46 @@ def house():
     return ground, upper
 
 
+def flats_floor(width, bathrooms=True, lobbies=True, closets=True):
+    """A floor of flats `width` ft long and 52 ft deep: a corridor between y 22 and 30,
+    flats 16 ft wide on both sides, each split into bedroom and living room; optionally a
+    bathroom (south), a lobby (north) and a closet off the bedroom."""
+    f = Floor(width, 52)
+    f.hline(22, 0, width)
+    f.hline(30, 0, width)
+    flats = width // 16
+    for k in range(1, flats):
+        f.vline(16 * k, 0, 22)
+        f.vline(16 * k, 30, 52)
+    for k in range(flats):
+        x0 = 16 * k
+        f.hline(12, x0, x0 + 10)           # bedroom / living split
+        f.vline(x0 + 10, 0, 12)
+        if bathrooms:
+            f.hline(16, x0 + 10, x0 + 16)
+            f.vline(x0 + 10, 16, 22)
+        f.hline(40, x0 + 6, x0 + 16)       # north flats, mirrored
+        f.vline(x0 + 6, 40, 52)
+        if lobbies:
+            f.hline(36, x0, x0 + 6)
+            f.vline(x0 + 6, 30, 36)
+        if closets:
+            f.vline(x0 + 4, 12, 16)
+            f.hline(16, x0, x0 + 4)
+    return f
+
+
 def apartment():
-    typical = Floor(128, 52)
-    typical.hline(22, 0, 128)
-    typical.hline(30, 0, 128)
-    for k in range(1, 8):
-        typical.vline(16 * k, 0, 22)
-        typical.vline(16 * k, 30, 52)
-    for k in range(8):
-        x0 = 16 * k
-        typical.hline(12, x0, x0 + 10)       # bedroom / living split
-        typical.vline(x0 + 10, 0, 12)
-        typical.hline(16, x0 + 10, x0 + 16)  # bathroom
-        typical.vline(x0 + 10, 16, 22)
-        typical.hline(40, x0 + 6, x0 + 16)   # north flats, mirrored
-        typical.vline(x0 + 6, 40, 52)
-        typical.hline(36, x0, x0 + 6)
-        typical.vline(x0 + 6, 30, 36)
-        typical.vline(x0 + 4, 12, 16)        # closet off the bedroom
-        typical.hline(16, x0, x0 + 4)
-    top = Floor(96, 52)
-    top.hline(22, 0, 96)
-    top.hline(30, 0, 96)
-    for k in range(1, 6):
-        top.vline(16 * k, 0, 22)
-        top.vline(16 * k, 30, 52)
-    for k in range(6):
-        x0 = 16 * k
-        top.hline(12, x0, x0 + 10)
-        top.vline(x0 + 10, 0, 12)
-        top.hline(16, x0 + 10, x0 + 16)
-        top.vline(x0 + 10, 16, 22)
-        top.hline(40, x0 + 6, x0 + 16)
-        top.vline(x0 + 6, 40, 52)
-        top.hline(36, x0, x0 + 6)
-        top.vline(x0 + 6, 30, 36)
-    return typical, top
+    """The apartment block's typical floor (128 ft) and its set-back top (96 ft)."""
+    return flats_floor(128), flats_floor(96, closets=False)
 
 
 def tower_flats():
     """The ten-storey tower's upper floors: the apartment block's footprint with fewer
-    partitions (open-plan flats: no closets, no bathroom walls), so that one nozzle keeps
-    its layers within the material's interval; its ground floor (the apartment block's
-    typical floor) is denser and takes more nozzles."""
-    flats = Floor(128, 52)
-    flats.hline(22, 0, 128)
-    flats.hline(30, 0, 128)
-    for k in range(1, 8):
-        flats.vline(16 * k, 0, 22)
-        flats.vline(16 * k, 30, 52)
-    for k in range(8):
-        x0 = 16 * k
-        flats.hline(12, x0, x0 + 10)
-        flats.vline(x0 + 10, 0, 12)
-        flats.hline(40, x0 + 6, x0 + 16)
-        flats.vline(x0 + 6, 40, 52)
-    return flats
+    partitions (open-plan flats: no closets, bathrooms or lobbies), so that one nozzle
+    keeps its layers within the material's interval; its ground floor (the apartment
+    block's typical floor) is denser and takes more nozzles."""
+    return flats_floor(128, bathrooms=False, lobbies=False, closets=False)
 
 
 def write(path, text):

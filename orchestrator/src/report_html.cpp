@@ -5,6 +5,7 @@
 
 #include "ccbuild/common/input_error.hpp"
 #include "report_assets.hpp"
+#include "svg.hpp"
 
 namespace ccbuild::orchestrator {
 namespace {
@@ -26,29 +27,6 @@ std::string script_safe(std::string text) {
   return text;
 }
 
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string text_of(const nlohmann::json& j, const char* key) {
   const auto it = j.find(key);
   return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
@@ -68,13 +46,13 @@ std::string schedule_report_html(const nlohmann::json& schedule, const ReportOpt
   std::string html;
   html.reserve(schedule.size() + three.size() + 200'000);
   html += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>";
-  html += html_escape("ccbuild schedule: " + name);
+  html += svg::escape("ccbuild schedule: " + name);
   html += "</title>\n<style>\n";
   html += detail::kReportCss;
-  html += "</style>\n</head>\n<body>\n<header><h1>" + html_escape(name) +
-          "</h1><div class=\"sub\">schedule of " + html_escape(text_of(inputs, "building")) +
+  html += "</style>\n</head>\n<body>\n<header><h1>" + svg::escape(name) +
+          "</h1><div class=\"sub\">schedule of " + svg::escape(text_of(inputs, "building")) +
           ", seed " + inputs.value("seed", nlohmann::json(0)).dump() + ", ccbuild " +
-          html_escape(text_of(schedule, "ccbuild_version")) + "</div></header>\n<main>\n";
+          svg::escape(text_of(schedule, "ccbuild_version")) + "</div></header>\n<main>\n";
   html += R"(<div id="verdict"></div>
 <section id="summary"><h2>Summary</h2></section>
 <section id="gantt"><h2>The build over time</h2></section>

@@ -19,13 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::contains;
 using testing::run_ccbuild;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::slurp;
 
 // `text` with its one occurrence of `from` replaced by `to` (the test fails when
 // `from` is not there exactly once: the fixture would no longer be what it says).

@@ -87,7 +87,8 @@ TEST(HostileInput, FixturesAreRefusedWithAReason) {
        "the building is 25.00 m tall, and the nozzle lifts 0.15 m over its walls, but the "
        "machine's z joint reaches 18.00 m"},
       {"plan-layer tests/data/hostile/thick_wall.yaml",
-       "walls[0].thickness: wall 1 is 0.600 m thick, but the nozzle of CC gantry, up to three nozzles "
+       "walls[0].thickness: wall 1 is 0.600 m thick, but the nozzle of CC gantry, up to three "
+       "nozzles "
        "lays 0.150 m in one pass"},
       {"plan-layer tests/data/hostile/high_window.yaml",
        "head (3.500 m) is above the floor height (3.000 m)"},

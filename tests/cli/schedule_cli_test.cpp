@@ -18,13 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::contains;
 using testing::run_ccbuild;
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::slurp;
 
 fs::path scratch(const std::string& name) {
   const fs::path dir =

@@ -21,10 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::contains;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+using testing::slurp;
 
 const machine::ClimbingMachine& climber() {
   static const machine::MachineProfile profile =

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 
 #include "ccbuild/common/input_error.hpp"
@@ -18,6 +20,14 @@ inline std::filesystem::path source_path(const std::string& relative) {
 
 inline std::string data(const std::string& relative) {
   return (source_path("tests/data") / relative).string();
+}
+
+/// A file's whole content.
+inline std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 /// Runs `action`, expects an InputError, and returns it for further checks.
