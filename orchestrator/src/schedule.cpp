@@ -12,16 +12,19 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "schedule_deposits.hpp"
 
 namespace ccbuild::orchestrator {
 namespace {
 
+using detail::DepositIndex;
+using detail::index_of;
+using detail::interval_offsets;
+using detail::IntervalOffsets;
+using detail::label_pieces;
 using Clock = std::chrono::steady_clock;
 constexpr double kGravity_m_s2 = 9.80665;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-/// A point lies on a deposited span when this close to it: layers merge points closer
-/// than 1 mm, so a section's cut may move a wall end by up to that.
-constexpr double kOnSpan_m = 2e-3;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -69,35 +72,6 @@ void run_parallel(std::vector<std::function<void()>>& tasks, int jobs,
   if (failure) std::rethrow_exception(failure);
 }
 
-/// A stretch a nozzle deposits: from a to b, between the times ta and tb (plan time).
-struct Span {
-  Eigen::Vector2d a, b;
-  double ta = 0.0, tb = 0.0;
-};
-
-/// When each point of a wall is deposited in one plan, by wall id.
-struct DepositIndex {
-  std::unordered_map<std::int64_t, std::vector<Span>> spans;
-  /// Earliest and latest time the nozzles pass `p` on wall `wall` depositing; false when
-  /// no span of that wall passes it.
-  bool times_at(std::int64_t wall, const Eigen::Vector2d& p, double& lo, double& hi) const {
-    const auto it = spans.find(wall);
-    if (it == spans.end()) return false;
-    bool found = false;
-    for (const Span& s : it->second) {
-      const Eigen::Vector2d d = s.b - s.a;
-      const double len2 = d.squaredNorm();
-      const double u = len2 > 0 ? std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0) : 0.0;
-      if ((s.a + u * d - p).norm() > kOnSpan_m) continue;
-      const double t = s.ta + u * (s.tb - s.ta);
-      lo = found ? std::min(lo, t) : t;
-      hi = found ? std::max(hi, t) : t;
-      found = true;
-    }
-    return found;
-  }
-};
-
 /// One geometry planned at one nozzle count.
 struct Planned {
   bool usable = false;
@@ -109,78 +83,6 @@ struct Planned {
   std::vector<std::vector<planner::Waypoint>> waypoints;  ///< per nozzle, layer time
   double planning_s = 0.0;
 };
-
-/// Labels each extruding waypoint with the wall and 1-based piece of `layer` it lies on.
-void label_pieces(std::vector<planner::Waypoint>& path, const floors::Layer& layer) {
-  std::unordered_map<std::int64_t, std::vector<int>> by_wall;
-  for (int s = 0; s < static_cast<int>(layer.segments.size()); ++s)
-    by_wall[layer.segments[s].wall_id].push_back(s);
-  auto on = [&](int s, const Eigen::Vector2d& p) {
-    const auto& seg = layer.segments[s];
-    const Eigen::Vector2d a = layer.start_m(seg), d = layer.end_m(seg) - a;
-    const double u = std::clamp((p - a).dot(d) / std::max(d.squaredNorm(), 1e-18), 0.0, 1.0);
-    return (a + u * d - p).norm() <= kOnSpan_m;
-  };
-  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-    if (!path[k].extruding) continue;
-    const Eigen::Vector2d mid = 0.5 * (path[k].position_m + path[k + 1].position_m);
-    int found = -1;
-    if (auto it = by_wall.find(path[k].wall); it != by_wall.end())
-      for (int s : it->second)
-        if (on(s, mid)) found = s;
-    for (int s = 0; found < 0 && s < static_cast<int>(layer.segments.size()); ++s)
-      if (on(s, mid)) found = s;
-    CCBUILD_CHECK(found >= 0,
-                  printf_string("a deposited span of wall %lld from (%.4f, %.4f) to "
-                                "(%.4f, %.4f) lies on no wall piece of its layer",
-                                static_cast<long long>(path[k].wall), path[k].position_m.x(),
-                                path[k].position_m.y(), path[k + 1].position_m.x(),
-                                path[k + 1].position_m.y()));
-    path[k].wall = layer.segments[found].wall_id;
-    path[k].piece = layer.segments[found].piece + 1;
-  }
-}
-
-DepositIndex index_of(const std::vector<std::vector<planner::Waypoint>>& nozzles) {
-  DepositIndex index;
-  for (const auto& path : nozzles)
-    for (std::size_t k = 0; k + 1 < path.size(); ++k)
-      if (path[k].extruding)
-        index.spans[path[k].wall].push_back(
-            {path[k].position_m, path[k + 1].position_m, path[k].t_s, path[k + 1].t_s});
-  return index;
-}
-
-/// The local intervals between a layer and the one it is deposited on, less the
-/// difference of their starts: interval at an end = start_above - start_below + offset.
-struct IntervalOffsets {
-  int ends = 0;  ///< piece ends of the upper layer over a wall of the lower one
-  double min_offset_s = kInf, max_offset_s = -kInf;
-  PieceEnd min_at, max_at;
-};
-
-IntervalOffsets interval_offsets(const floors::Layer& upper, const DepositIndex& upper_index,
-                                 const DepositIndex& lower_index) {
-  IntervalOffsets out;
-  for (const auto& seg : upper.segments)
-    for (int end = 0; end < 2; ++end) {
-      const Eigen::Vector2d p = end == 0 ? upper.start_m(seg) : upper.end_m(seg);
-      double up_lo, up_hi, low_lo, low_hi;
-      if (!upper_index.times_at(seg.wall_id, p, up_lo, up_hi)) continue;
-      if (!lower_index.times_at(seg.wall_id, p, low_lo, low_hi)) continue;  // over an opening
-      ++out.ends;
-      const PieceEnd where{seg.wall_id, seg.piece + 1, p.x(), p.y()};
-      if (up_lo - low_hi < out.min_offset_s) {
-        out.min_offset_s = up_lo - low_hi;
-        out.min_at = where;
-      }
-      if (up_hi - low_lo > out.max_offset_s) {
-        out.max_offset_s = up_hi - low_lo;
-        out.max_at = where;
-      }
-    }
-  return out;
-}
 
 std::string where_text(int floor, int layer) {
   return "floor " + std::to_string(floor) + " layer " + std::to_string(layer);
@@ -245,6 +147,14 @@ class Scheduler {
   /// carry (each at its age from its end), and why; `impossible` when one never can.
   double strength_ready_s(int i, int first_checked, double earliest_s, WaitReason& reason,
                           bool& impossible) const;
+  /// Slices the building, places the climbing stages, plans every geometry with one
+  /// nozzle and every climb (in parallel), then the slow geometries with more nozzles.
+  void prepare();
+  /// Plans and times global layer i (false: no plan at all, the schedule stops there).
+  bool schedule_layer(int i);
+  /// What follows layer i: its pipes, the slab at a floor's top, a climb (false: the
+  /// climb can never start, the schedule stops there).
+  bool after_layer(int i);
   void fail(Infeasibility infeasibility);
   /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's.
   void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
@@ -270,6 +180,18 @@ class Scheduler {
   Schedule schedule_;
   std::vector<double> layer_end_s_;  ///< per global layer, once scheduled
   int further_failures_ = 0;
+
+  // Prepared once.
+  std::vector<climb::ClimbPlan> climbs_;  ///< climb c goes from stage c to c + 1
+  std::map<std::pair<int, int>, std::vector<climb::Anchor>> pipes_after_;  ///< (floor, layer)
+  std::map<std::pair<int, int>, int> climb_after_;  ///< (floor, layer) -> climb index
+  std::vector<double> run_between_s_;  ///< per global layer: the most pipe time in its run
+  // The state between layers.
+  std::map<std::string, double> pipe_done_s_;  ///< anchor id @ floor -> when it was cast
+  double previous_end_s_ = 0.0;                ///< the machine is free from here
+  double ready_extra_s_ = 0.0;                 ///< pipes, slab and climb after the previous layer
+  double pipes_before_s_ = 0.0;                ///< cast after the previous layer
+  std::string previous_key_;
 };
 
 Planned Scheduler::plan(int geometry, int nozzles) const {
@@ -441,7 +363,7 @@ const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& bel
     Keyed best{kInf, k, false};
     int owner = 0;
     for (int n = 0; n < nozzles; ++n) {
-      double a_lo = kInf, a_hi, b_lo = kInf, b_hi;
+      double a_lo = kInf, a_hi = kInf, b_lo = kInf, b_hi = kInf;
       const bool at_a = by_nozzle[n].times_at(seg.wall_id, layer.start_m(seg), a_lo, a_hi);
       const bool at_b = by_nozzle[n].times_at(seg.wall_id, layer.end_m(seg), b_lo, b_hi);
       if (!at_a && !at_b) continue;
@@ -622,8 +544,7 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer
   inf.fix = fix;
 }
 
-Schedule Scheduler::run() {
-  const auto started = Clock::now();
+void Scheduler::prepare() {
   const floors::Building& b = project_.building;
   // Every layer with walls, bottom to top; geometries by first appearance.
   std::map<floors::GeometryKey, int> geometry_of;
@@ -641,7 +562,6 @@ Schedule Scheduler::run() {
 
   // Climbing machine: stages (breaking at floor tops where the reach allows) and their
   // climbs, planned in parallel with the first layer plans.
-  std::vector<climb::ClimbPlan> climbs;
   std::vector<double> climb_planning_s;
   if (project_.climber) {
     climb::StageOptions stage_options;
@@ -657,7 +577,7 @@ Schedule Scheduler::run() {
     }
   }
   const int climb_count = std::max(0, static_cast<int>(schedule_.stages.size()) - 1);
-  climbs.resize(climb_count);
+  climbs_.resize(climb_count);
   climb_planning_s.assign(climb_count, 0.0);
   {
     std::vector<std::function<void()>> tasks;
@@ -672,8 +592,8 @@ Schedule Scheduler::run() {
         climb::ClimbOptions o;
         o.seed = options_.seed;
         o.time_limit_s = options_.climb_time_limit_s;
-        climbs[c] = climb::plan_climb(*project_.climber, b, schedule_.stages[c],
-                                      schedule_.stages[c + 1], o);
+        climbs_[c] = climb::plan_climb(*project_.climber, b, schedule_.stages[c],
+                                       schedule_.stages[c + 1], o);
         climb_planning_s[c] = seconds_since(t0);
       });
     const auto t0 = Clock::now();
@@ -711,19 +631,17 @@ Schedule Scheduler::run() {
           key.first + 1, key.second, options_.layer_time_limit_s));
 
   // Pipes cast after each layer, and the climb after each stage's last layer.
-  std::map<std::pair<int, int>, std::vector<climb::Anchor>> pipes_after;
-  std::map<std::pair<int, int>, int> climb_after;  // -> climb index
   for (std::size_t s = 0; s < schedule_.stages.size(); ++s) {
     const auto& st = schedule_.stages[s];
     for (const auto& a : st.anchors)
-      if (a.floor >= 0) pipes_after[{a.floor, a.layer}].push_back(a);
-    if (static_cast<int>(s) < climb_count) climb_after[{st.last.floor, st.last.layer}] = s;
+      if (a.floor >= 0) pipes_after_[{a.floor, a.layer}].push_back(a);
+    if (static_cast<int>(s) < climb_count)
+      climb_after_[{st.last.floor, st.last.layer}] = static_cast<int>(s);
   }
-  std::map<std::string, double> pipe_done_s;  // anchor id + floor -> when cast
 
   // Per layer: the most pipe time between two layers of its run (consecutive layers of
   // one floor and geometry), so that the run gets nozzles enough for it.
-  std::vector<double> run_between_s(count, 0.0);
+  run_between_s_.assign(count, 0.0);
   for (int first = 0; first < count;) {
     int last = first;
     while (last + 1 < count && slices_[last + 1].floor == slices_[first].floor &&
@@ -731,338 +649,347 @@ Schedule Scheduler::run() {
       ++last;
     double most_s = 0.0;
     for (int k = first; k <= last; ++k)
-      if (auto it = pipes_after.find({slices_[k].floor, slices_[k].layer.index});
-          it != pipes_after.end())
+      if (auto it = pipes_after_.find({slices_[k].floor, slices_[k].layer.index});
+          it != pipes_after_.end())
         most_s = std::max(most_s, it->second.size() * project_.climber->pipe_embed_s);
-    std::fill(run_between_s.begin() + first, run_between_s.begin() + last + 1, most_s);
+    std::fill(run_between_s_.begin() + first, run_between_s_.begin() + last + 1, most_s);
     first = last + 1;
   }
-  const auto book_started = Clock::now();
-  const double planning_before_s = schedule_.layer_planning_s;
-  double previous_end_s = 0.0;  // the machine is free from here
-  double ready_extra_s = 0.0;   // pipes, slab, climb time after the previous layer
-  std::string previous_key;
-  double pipes_before_s = 0.0;  // cast after the previous layer
-  int last_floor = -1;
-  for (int i = 0; i < count; ++i) {
-    const Slice& slice = slices_[i];
-    ScheduledLayer out;
-    out.floor = slice.floor;
-    out.layer = slice.layer.index;
-    out.z_bottom_m = slice.layer.z_bottom_m;
-    out.z_top_m = slice.layer.z_top_m;
-    out.geometry = slice.geometry + 1;
-    const bool same_floor = i > 0 && slices_[i - 1].floor == slice.floor;
-    const ScheduledLayer* below = same_floor ? &schedule_.layers.back() : nullptr;
+}
 
-    // The layers further below: each must carry the walls up to this layer's top, at its
-    // age from its end (the one just below is checked piece by piece, with each plan).
-    WaitReason strength;
-    bool impossible = false;
-    const double strong_s =
-        strength_ready_s(i, below ? i - 1 : i, previous_end_s, strength, impossible);
-    if (impossible) {
-      Infeasibility inf;
-      inf.kind = "strength";
-      inf.floor = slice.floor;
-      inf.layer = slice.layer.index;
-      inf.message = where_text(slice.floor, slice.layer.index) + ": " + strength.detail;
-      inf.fix = "a stronger material, or lower floors";
-      fail(inf);
-    }
-    // The stress on the layer just below, from its bottom to this layer's top, and the age
-    // its concrete needs for it.
-    const double below_age_s =
-        below ? material_.age_for_strength_s(material_.safety_factor * stress_per_m_mpa_ *
-                                             (slice.layer.z_top_m - below->z_bottom_m))
-              : 0.0;
-    if (below && !std::isfinite(below_age_s) && !impossible) {
-      Infeasibility inf;
-      inf.kind = "strength";
-      inf.floor = slice.floor;
-      inf.layer = slice.layer.index;
-      inf.message = printf_string(
-          "%s: floor %d layer %d would carry %.3f m of wall, more than the material ever "
-          "carries with the safety factor %.2f",
-          where_text(slice.floor, slice.layer.index).c_str(), below->floor, below->layer,
-          slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor);
-      inf.fix = "a stronger material, or thinner layers";
-      fail(inf);
-    }
+bool Scheduler::schedule_layer(int i) {
+  const int count = static_cast<int>(slices_.size());
+  (void)count;
+  const Slice& slice = slices_[i];
+  ScheduledLayer out;
+  out.floor = slice.floor;
+  out.layer = slice.layer.index;
+  out.z_bottom_m = slice.layer.z_bottom_m;
+  out.z_top_m = slice.layer.z_top_m;
+  out.geometry = slice.geometry + 1;
+  const bool same_floor = i > 0 && slices_[i - 1].floor == slice.floor;
+  const ScheduledLayer* below = same_floor ? &schedule_.layers.back() : nullptr;
 
-    // Try the fewest nozzles fast enough up to the machine's count: the first plan that
-    // keeps every interval (at one nozzle, where the geometry changes, also the plan that
-    // follows the order of the layer below).
-    struct Choice {
-      int nozzles = 0;
-      std::string key;
-      const Planned* planned = nullptr;
-      double start_s = 0.0, move_s = 0.0, wait_s = 0.0;
-      std::vector<WaitReason> reasons;
-      bool purge = false;
-      IntervalOffsets offsets;
-      double local_max_s = -kInf;
-      bool ok = false;
+  // The layers further below: each must carry the walls up to this layer's top, at its
+  // age from its end (the one just below is checked piece by piece, with each plan).
+  WaitReason strength;
+  bool impossible = false;
+  const double strong_s =
+      strength_ready_s(i, below ? i - 1 : i, previous_end_s_, strength, impossible);
+  if (impossible) {
+    Infeasibility inf;
+    inf.kind = "strength";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.message = where_text(slice.floor, slice.layer.index) + ": " + strength.detail;
+    inf.fix = "a stronger material, or lower floors";
+    fail(inf);
+  }
+  // The stress on the layer just below, from its bottom to this layer's top, and the age
+  // its concrete needs for it.
+  const double below_age_s =
+      below ? material_.age_for_strength_s(material_.safety_factor * stress_per_m_mpa_ *
+                                           (slice.layer.z_top_m - below->z_bottom_m))
+            : 0.0;
+  if (below && !std::isfinite(below_age_s) && !impossible) {
+    Infeasibility inf;
+    inf.kind = "strength";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.message = printf_string(
+        "%s: floor %d layer %d would carry %.3f m of wall, more than the material ever "
+        "carries with the safety factor %.2f",
+        where_text(slice.floor, slice.layer.index).c_str(), below->floor, below->layer,
+        slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor);
+    inf.fix = "a stronger material, or thinner layers";
+    fail(inf);
+  }
+
+  // Try the fewest nozzles fast enough up to the machine's count: the first plan that
+  // keeps every interval (at one nozzle, where the geometry changes, also the plan that
+  // follows the order of the layer below).
+  struct Choice {
+    int nozzles = 0;
+    std::string key;
+    const Planned* planned = nullptr;
+    double start_s = 0.0, move_s = 0.0, wait_s = 0.0;
+    std::vector<WaitReason> reasons;
+    bool purge = false;
+    IntervalOffsets offsets;
+    double local_max_s = -kInf;
+    bool ok = false;
+  };
+  std::optional<Choice> best;
+  std::vector<std::string> refusals;
+  auto consider = [&](int n, const std::string& key, const Planned& p) {
+    Choice c;
+    c.nozzles = n;
+    c.key = key;
+    c.planned = &p;
+    c.move_s = previous_key_.empty() ? 0.0 : move_between(previous_key_, c.key);
+    const double earliest_s = previous_end_s_ + ready_extra_s_ + c.move_s;
+    double start_s = earliest_s;
+    auto require = [&](double need_s, const char* kind, const std::string& detail) {
+      if (need_s <= earliest_s + 1e-9) return;
+      c.reasons.push_back({kind, need_s - earliest_s, detail});
+      start_s = std::max(start_s, need_s);
     };
-    std::optional<Choice> best;
-    std::vector<std::string> refusals;
-    auto consider = [&](int n, const std::string& key, const Planned& p) {
-      Choice c;
-      c.nozzles = n;
-      c.key = key;
-      c.planned = &p;
-      c.move_s = previous_key.empty() ? 0.0 : move_between(previous_key, c.key);
-      const double earliest_s = previous_end_s + ready_extra_s + c.move_s;
-      double start_s = earliest_s;
-      auto require = [&](double need_s, const char* kind, const std::string& detail) {
-        if (need_s <= earliest_s + 1e-9) return;
-        c.reasons.push_back({kind, need_s - earliest_s, detail});
-        start_s = std::max(start_s, need_s);
-      };
-      if (below) {
-        c.offsets = offsets(slice, c.key, below->plan);
-        if (c.offsets.ends > 0) {
-          const double earliest_local_s = earliest_s - below->start_s + c.offsets.min_offset_s;
-          require(below->start_s + material_.min_layer_interval_s - c.offsets.min_offset_s,
-                  "min-interval",
-                  printf_string("%s would be covered %.1f s after it was deposited, under the "
-                                "minimum interval of %.1f s",
-                                piece_text(c.offsets.min_at).c_str(), earliest_local_s,
-                                material_.min_layer_interval_s));
-          if (std::isfinite(below_age_s))
-            require(below->start_s + below_age_s - c.offsets.min_offset_s, "strength",
-                    printf_string("%s (floor %d layer %d) would carry %.3f m of wall %.1f s "
-                                  "after it was deposited; with the safety factor %.2f its "
-                                  "concrete needs %.1f s",
-                                  piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
-                                  slice.layer.z_top_m - below->z_bottom_m, earliest_local_s,
-                                  material_.safety_factor, below_age_s));
-        }
-      }
-      if (!impossible && std::isfinite(strong_s)) {
-        strength.required_s = 0.0;
-        if (strong_s > earliest_s + 1e-9) require(strong_s, "strength", strength.detail);
-      }
-      c.wait_s = start_s - earliest_s;
-      // The nozzle idles from the previous layer's end: past the limit it is purged.
-      if (!previous_key.empty() && start_s - previous_end_s > machine_.nozzle_idle_limit_s + 1e-9) {
-        c.purge = true;
-        start_s += machine_.purge_s;
-      }
-      c.start_s = start_s;
-      if (below && c.offsets.ends > 0) {
-        c.local_max_s = start_s - below->start_s + c.offsets.max_offset_s;
-        c.ok = c.local_max_s <= material_.max_layer_interval_s + 1e-9;
-        if (!c.ok)
-          refusals.push_back(printf_string(
-              "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
-              n == 1 ? "" : "s", p.method.c_str(), piece_text(c.offsets.max_at).c_str(),
-              c.local_max_s, material_.max_layer_interval_s));
-      } else {
-        c.ok = true;
-      }
-      const bool done = c.ok;
-      if (c.ok || !best || c.local_max_s < best->local_max_s) best = std::move(c);
-      return done;
-    };
-    // A layer like the one below first tries the same plan: every interval is then the
-    // same, start to start.
-    bool placed = false;
-    if (below && slices_[i - 1].geometry == slice.geometry)
-      placed = consider(below->nozzles, below->plan, *registered_.at(below->plan));
-    for (int n = fewest_nozzles(slice.geometry, run_between_s[i]); !placed && n <= machine_.nozzles;
-         ++n) {
-      const Planned& p = planned(slice.geometry, n);
-      if (p.usable && consider(n, plan_key(slice, n), p)) break;
-      if (!p.usable)
-        refusals.push_back(
-            printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
-      if (below && n == below->nozzles) {
-        const Planned& f = follow_plan(slice, below->plan);
-        if (f.usable && consider(n, register_plan(follow_key(slice, below->plan), slice, n, f), f))
-          break;
-        if (!f.usable)
-          refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
-                                           n == 1 ? "" : "s", f.why_not.c_str()));
-      }
-    }
-    if (!best) {
-      // No nozzle count has a plan at all.
-      Infeasibility inf;
-      inf.kind = "no-plan";
-      inf.floor = slice.floor;
-      inf.layer = slice.layer.index;
-      std::string why;
-      for (const auto& r : refusals) why += (why.empty() ? "" : "; ") + r;
-      inf.message = where_text(slice.floor, slice.layer.index) + ": no usable plan: " + why;
-      inf.fix = "see `ccbuild plan-layer` on this layer";
-      fail(inf);
-      break;
-    }
-    if (!best->ok) {
-      Infeasibility inf;
-      inf.kind = "max-interval";
-      inf.floor = slice.floor;
-      inf.layer = slice.layer.index;
-      inf.required_s = material_.max_layer_interval_s;
-      inf.achieved_s = best->local_max_s;
-      inf.message = printf_string(
-          "%s: %s is covered %.1f s after it was deposited with %d nozzle%s (the best of the "
-          "counts the machine allows), over the material's maximum interval of %.1f s by %.1f s",
-          where_text(slice.floor, slice.layer.index).c_str(),
-          piece_text(best->offsets.max_at).c_str(), best->local_max_s, best->nozzles,
-          best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
-          best->local_max_s - material_.max_layer_interval_s);
-      if (schedule_.feasible) {  // the first one: compute its fixes
-        const Planned& p = *best->planned;
-        compute_fix(inf, slice, p.layer_time_s, p.deposition_s / best->nozzles);
-        inf.message += "; fix: " + inf.fix;
-      }
-      fail(inf);
-    }
-    const Planned& p = *best->planned;
-    out.plan = best->key;
-    out.nozzles = best->nozzles;
-    out.method = p.method;
-    out.start_s = best->start_s;
-    out.end_s = best->start_s + p.layer_time_s;
-    out.deposition_s = p.deposition_s;
-    out.airtime_s = p.airtime_s;
-    out.max_idle_s = p.max_idle_s;
-    out.move_before_s = best->move_s;
-    out.pipes_before_s = pipes_before_s;
-    out.wait_before_s = best->wait_s;
-    out.wait_reasons = best->reasons;
-    out.purge_before = best->purge;
     if (below) {
-      out.interval_s = out.start_s - below->start_s;
-      if (best->offsets.ends > 0) {
-        out.local_interval_min_s = out.start_s - below->start_s + best->offsets.min_offset_s;
-        out.local_interval_max_s = out.start_s - below->start_s + best->offsets.max_offset_s;
-        out.local_min_at = best->offsets.min_at;
-        out.local_max_at = best->offsets.max_at;
-        out.piece_ends_checked = best->offsets.ends;
+      c.offsets = offsets(slice, c.key, below->plan);
+      if (c.offsets.ends > 0) {
+        const double earliest_local_s = earliest_s - below->start_s + c.offsets.min_offset_s;
+        require(below->start_s + material_.min_layer_interval_s - c.offsets.min_offset_s,
+                "min-interval",
+                printf_string("%s would be covered %.1f s after it was deposited, under the "
+                              "minimum interval of %.1f s",
+                              piece_text(c.offsets.min_at).c_str(), earliest_local_s,
+                              material_.min_layer_interval_s));
+        if (std::isfinite(below_age_s))
+          require(below->start_s + below_age_s - c.offsets.min_offset_s, "strength",
+                  printf_string("%s (floor %d layer %d) would carry %.3f m of wall %.1f s "
+                                "after it was deposited; with the safety factor %.2f its "
+                                "concrete needs %.1f s",
+                                piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
+                                slice.layer.z_top_m - below->z_bottom_m, earliest_local_s,
+                                material_.safety_factor, below_age_s));
       }
     }
-    if (best->purge) {
-      Event e;
-      e.kind = Event::Kind::kPurge;
-      e.start_s = out.start_s - machine_.purge_s;
-      e.end_s = out.start_s;
-      // Like every event, named after the layer it follows.
-      e.floor = schedule_.layers.back().floor;
-      e.layer = schedule_.layers.back().layer;
-      e.detail = printf_string(
-          "the nozzle idled %.1f s, over its limit of %.1f s, before floor %d layer %d",
-          e.start_s - previous_end_s, machine_.nozzle_idle_limit_s, out.floor, out.layer);
-      schedule_.events.push_back(e);
+    if (!impossible && std::isfinite(strong_s)) {
+      strength.required_s = 0.0;
+      if (strong_s > earliest_s + 1e-9) require(strong_s, "strength", strength.detail);
     }
-    layer_end_s_[i] = out.end_s;
-    previous_end_s = out.end_s;
-    previous_key = out.plan;
-    last_floor = out.floor;
-    schedule_.layers.push_back(out);
-    ready_extra_s = 0.0;
-
-    // After the layer: its pipes, then (at a floor's top) the slab, then a climb.
-    double t = out.end_s;
-    pipes_before_s = 0.0;
-    if (auto it = pipes_after.find({out.floor, out.layer}); it != pipes_after.end())
-      for (const auto& a : it->second) {
-        Event e;
-        e.kind = Event::Kind::kPipe;
-        e.start_s = t;
-        e.end_s = t += project_.climber->pipe_embed_s;
-        pipes_before_s += project_.climber->pipe_embed_s;
-        e.floor = out.floor;
-        e.layer = out.layer;
-        e.anchor = a;
-        e.detail = "pipe " + a.id + " for unit " + project_.climber->units[a.unit].name;
-        pipe_done_s[a.id + "@" + std::to_string(a.floor)] = e.end_s;
-        schedule_.events.push_back(e);
-      }
-    const bool floor_top = i + 1 == count || slices_[i + 1].floor != out.floor;
-    if (floor_top && i + 1 < count) {
-      Event e;
-      e.kind = Event::Kind::kSlab;
-      e.start_s = t;
-      e.end_s = t += b.slab_stage_s;
-      e.floor = out.floor;
-      e.layer = out.layer;
-      e.detail = "slab over floor " + std::to_string(out.floor);
-      schedule_.events.push_back(e);
+    c.wait_s = start_s - earliest_s;
+    // The nozzle idles from the previous layer's end: past the limit it is purged.
+    if (!previous_key_.empty() && start_s - previous_end_s_ > machine_.nozzle_idle_limit_s + 1e-9) {
+      c.purge = true;
+      start_s += machine_.purge_s;
     }
-    if (auto it = climb_after.find({out.floor, out.layer}); it != climb_after.end()) {
-      const int c = it->second;
-      const climb::ClimbStage& to = schedule_.stages[c + 1];
-      Event e;
-      e.kind = Event::Kind::kClimb;
-      ClimbEvent ce;
-      ce.from_stage = c;
-      ce.to_stage = c + 1;
-      ce.plan = climbs[c];
-      double ready_s = t;
-      const double strength_mpa = project_.climber->anchor_strength_mpa;
-      const double age_needed_s = material_.age_for_strength_s(strength_mpa);
-      for (const auto& a : to.anchors) {
-        const auto cast = pipe_done_s.find(a.id + "@" + std::to_string(a.floor));
-        const double cast_s = cast == pipe_done_s.end() ? 0.0 : cast->second;
-        if (cast_s + age_needed_s > ready_s + 1e-9) {
-          ce.wait_reasons.push_back(
-              {"anchor-strength", cast_s + age_needed_s - t,
-               printf_string("anchor %s (unit %s, cast %s) reaches %.1f MPa %.1f h after it "
-                             "was cast",
-                             a.id.c_str(), project_.climber->units[a.unit].name.c_str(),
-                             where_text(a.floor, a.layer).c_str(), strength_mpa,
-                             age_needed_s / 3600.0)});
-          ready_s = cast_s + age_needed_s;
-        }
-      }
-      if (!std::isfinite(age_needed_s)) {
-        Infeasibility inf;
-        inf.kind = "climb";
-        inf.floor = out.floor;
-        inf.layer = out.layer;
-        inf.message = printf_string(
-            "climb %d -> %d: the material never reaches the anchors' strength of %.1f MPa", c,
-            c + 1, strength_mpa);
-        inf.fix = "a material that reaches the anchor strength, or a lower anchor_strength_mpa";
-        fail(inf);
+    c.start_s = start_s;
+    if (below && c.offsets.ends > 0) {
+      c.local_max_s = start_s - below->start_s + c.offsets.max_offset_s;
+      c.ok = c.local_max_s <= material_.max_layer_interval_s + 1e-9;
+      if (!c.ok)
+        refusals.push_back(printf_string(
+            "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
+            n == 1 ? "" : "s", p.method.c_str(), piece_text(c.offsets.max_at).c_str(),
+            c.local_max_s, material_.max_layer_interval_s));
+    } else {
+      c.ok = true;
+    }
+    const bool done = c.ok;
+    if (c.ok || !best || c.local_max_s < best->local_max_s) best = std::move(c);
+    return done;
+  };
+  // A layer like the one below first tries the same plan: every interval is then the
+  // same, start to start.
+  bool placed = false;
+  if (below && slices_[i - 1].geometry == slice.geometry)
+    placed = consider(below->nozzles, below->plan, *registered_.at(below->plan));
+  for (int n = fewest_nozzles(slice.geometry, run_between_s_[i]); !placed && n <= machine_.nozzles;
+       ++n) {
+    const Planned& p = planned(slice.geometry, n);
+    if (p.usable && consider(n, plan_key(slice, n), p)) break;
+    if (!p.usable)
+      refusals.push_back(printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
+    if (below && n == below->nozzles) {
+      const Planned& f = follow_plan(slice, below->plan);
+      if (f.usable && consider(n, register_plan(follow_key(slice, below->plan), slice, n, f), f))
         break;
-      }
-      ce.wait_before_s = ready_s - t;
-      ce.start_s = ready_s;
-      ce.end_s = ready_s + ce.plan.duration_s;
-      for (const auto& a : to.anchors) {
-        const auto cast = pipe_done_s.find(a.id + "@" + std::to_string(a.floor));
-        const double age_s = ce.start_s - (cast == pipe_done_s.end() ? 0.0 : cast->second);
-        ce.anchors.push_back({a.id, project_.climber->units[a.unit].name, age_s,
-                              material_.strength_at_mpa(age_s), strength_mpa});
-      }
-      if (!ce.plan.status) {
-        Infeasibility inf;
-        inf.kind = "climb";
-        inf.floor = out.floor;
-        inf.layer = out.layer;
-        inf.message = printf_string("climb %d -> %d: ", c, c + 1) + ce.plan.status.to_string();
-        inf.fix = "see `ccbuild climb` for this building and machine";
-        fail(inf);
-      }
-      e.start_s = ce.start_s;
-      e.end_s = ce.end_s;
+      if (!f.usable)
+        refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
+                                         n == 1 ? "" : "s", f.why_not.c_str()));
+    }
+  }
+  if (!best) {
+    // No nozzle count has a plan at all.
+    Infeasibility inf;
+    inf.kind = "no-plan";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    std::string why;
+    for (const auto& r : refusals) why += (why.empty() ? "" : "; ") + r;
+    inf.message = where_text(slice.floor, slice.layer.index) + ": no usable plan: " + why;
+    inf.fix = "see `ccbuild plan-layer` on this layer";
+    fail(inf);
+    return false;
+  }
+  if (!best->ok) {
+    Infeasibility inf;
+    inf.kind = "max-interval";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.required_s = material_.max_layer_interval_s;
+    inf.achieved_s = best->local_max_s;
+    inf.message = printf_string(
+        "%s: %s is covered %.1f s after it was deposited with %d nozzle%s (the best of the "
+        "counts the machine allows), over the material's maximum interval of %.1f s by %.1f s",
+        where_text(slice.floor, slice.layer.index).c_str(),
+        piece_text(best->offsets.max_at).c_str(), best->local_max_s, best->nozzles,
+        best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
+        best->local_max_s - material_.max_layer_interval_s);
+    if (schedule_.feasible) {  // the first one: compute its fixes
+      const Planned& p = *best->planned;
+      compute_fix(inf, slice, p.layer_time_s, p.deposition_s / best->nozzles);
+      inf.message += "; fix: " + inf.fix;
+    }
+    fail(inf);
+  }
+  const Planned& p = *best->planned;
+  out.plan = best->key;
+  out.nozzles = best->nozzles;
+  out.method = p.method;
+  out.start_s = best->start_s;
+  out.end_s = best->start_s + p.layer_time_s;
+  out.deposition_s = p.deposition_s;
+  out.airtime_s = p.airtime_s;
+  out.max_idle_s = p.max_idle_s;
+  out.move_before_s = best->move_s;
+  out.pipes_before_s = pipes_before_s_;
+  out.wait_before_s = best->wait_s;
+  out.wait_reasons = best->reasons;
+  out.purge_before = best->purge;
+  if (below) {
+    out.interval_s = out.start_s - below->start_s;
+    if (best->offsets.ends > 0) {
+      out.local_interval_min_s = out.start_s - below->start_s + best->offsets.min_offset_s;
+      out.local_interval_max_s = out.start_s - below->start_s + best->offsets.max_offset_s;
+      out.local_min_at = best->offsets.min_at;
+      out.local_max_at = best->offsets.max_at;
+      out.piece_ends_checked = best->offsets.ends;
+    }
+  }
+  if (best->purge) {
+    Event e;
+    e.kind = Event::Kind::kPurge;
+    e.start_s = out.start_s - machine_.purge_s;
+    e.end_s = out.start_s;
+    // Like every event, named after the layer it follows.
+    e.floor = schedule_.layers.back().floor;
+    e.layer = schedule_.layers.back().layer;
+    e.detail = printf_string(
+        "the nozzle idled %.1f s, over its limit of %.1f s, before floor %d layer %d",
+        e.start_s - previous_end_s_, machine_.nozzle_idle_limit_s, out.floor, out.layer);
+    schedule_.events.push_back(e);
+  }
+  layer_end_s_[i] = out.end_s;
+  previous_end_s_ = out.end_s;
+  previous_key_ = out.plan;
+  schedule_.layers.push_back(out);
+  ready_extra_s_ = 0.0;
+
+  return true;
+}
+
+bool Scheduler::after_layer(int i) {
+  const floors::Building& b = project_.building;
+  const int count = static_cast<int>(slices_.size());
+  const ScheduledLayer& out = schedule_.layers.back();
+  // After the layer: its pipes, then (at a floor's top) the slab, then a climb.
+  double t = out.end_s;
+  pipes_before_s_ = 0.0;
+  if (auto it = pipes_after_.find({out.floor, out.layer}); it != pipes_after_.end())
+    for (const auto& a : it->second) {
+      Event e;
+      e.kind = Event::Kind::kPipe;
+      e.start_s = t;
+      e.end_s = t += project_.climber->pipe_embed_s;
+      pipes_before_s_ += project_.climber->pipe_embed_s;
       e.floor = out.floor;
       e.layer = out.layer;
-      e.detail = printf_string("climb from stage %d to %d", c, c + 1);
-      t = e.end_s;
-      e.climb = std::move(ce);
-      schedule_.events.push_back(std::move(e));
+      e.anchor = a;
+      e.detail = "pipe " + a.id + " for unit " + project_.climber->units[a.unit].name;
+      pipe_done_s_[a.id + "@" + std::to_string(a.floor)] = e.end_s;
+      schedule_.events.push_back(e);
     }
-    ready_extra_s = t - out.end_s;
+  const bool floor_top = i + 1 == count || slices_[i + 1].floor != out.floor;
+  if (floor_top && i + 1 < count) {
+    Event e;
+    e.kind = Event::Kind::kSlab;
+    e.start_s = t;
+    e.end_s = t += b.slab_stage_s;
+    e.floor = out.floor;
+    e.layer = out.layer;
+    e.detail = "slab over floor " + std::to_string(out.floor);
+    schedule_.events.push_back(e);
+  }
+  if (auto it = climb_after_.find({out.floor, out.layer}); it != climb_after_.end()) {
+    const int c = it->second;
+    const climb::ClimbStage& to = schedule_.stages[c + 1];
+    Event e;
+    e.kind = Event::Kind::kClimb;
+    ClimbEvent ce;
+    ce.from_stage = c;
+    ce.to_stage = c + 1;
+    ce.plan = climbs_[c];
+    double ready_s = t;
+    const double strength_mpa = project_.climber->anchor_strength_mpa;
+    const double age_needed_s = material_.age_for_strength_s(strength_mpa);
+    for (const auto& a : to.anchors) {
+      const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
+      const double cast_s = cast == pipe_done_s_.end() ? 0.0 : cast->second;
+      if (cast_s + age_needed_s > ready_s + 1e-9) {
+        ce.wait_reasons.push_back(
+            {"anchor-strength", cast_s + age_needed_s - t,
+             printf_string("anchor %s (unit %s, cast %s) reaches %.1f MPa %.1f h after it "
+                           "was cast",
+                           a.id.c_str(), project_.climber->units[a.unit].name.c_str(),
+                           where_text(a.floor, a.layer).c_str(), strength_mpa,
+                           age_needed_s / 3600.0)});
+        ready_s = cast_s + age_needed_s;
+      }
+    }
+    if (!std::isfinite(age_needed_s)) {
+      Infeasibility inf;
+      inf.kind = "climb";
+      inf.floor = out.floor;
+      inf.layer = out.layer;
+      inf.message = printf_string(
+          "climb %d -> %d: the material never reaches the anchors' strength of %.1f MPa", c, c + 1,
+          strength_mpa);
+      inf.fix = "a material that reaches the anchor strength, or a lower anchor_strength_mpa";
+      fail(inf);
+      return false;
+    }
+    ce.wait_before_s = ready_s - t;
+    ce.start_s = ready_s;
+    ce.end_s = ready_s + ce.plan.duration_s;
+    for (const auto& a : to.anchors) {
+      const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
+      const double age_s = ce.start_s - (cast == pipe_done_s_.end() ? 0.0 : cast->second);
+      ce.anchors.push_back({a.id, project_.climber->units[a.unit].name, age_s,
+                            material_.strength_at_mpa(age_s), strength_mpa});
+    }
+    if (!ce.plan.status) {
+      Infeasibility inf;
+      inf.kind = "climb";
+      inf.floor = out.floor;
+      inf.layer = out.layer;
+      inf.message = printf_string("climb %d -> %d: ", c, c + 1) + ce.plan.status.to_string();
+      inf.fix = "see `ccbuild climb` for this building and machine";
+      fail(inf);
+    }
+    e.start_s = ce.start_s;
+    e.end_s = ce.end_s;
+    e.floor = out.floor;
+    e.layer = out.layer;
+    e.detail = printf_string("climb from stage %d to %d", c, c + 1);
+    t = e.end_s;
+    e.climb = std::move(ce);
+    schedule_.events.push_back(std::move(e));
+  }
+  ready_extra_s_ = t - out.end_s;
+  return true;
+}
+
+Schedule Scheduler::run() {
+  const auto started = Clock::now();
+  prepare();
+  const int count = static_cast<int>(slices_.size());
+  for (int i = 0; i < count; ++i) {
+    if (!schedule_layer(i) || !after_layer(i)) break;
     if (options_.progress && (i + 1) % 25 == 0)
       progress(printf_string("scheduled %d of %d layers", i + 1, count));
   }
-  (void)last_floor;
-
   std::stable_sort(schedule_.events.begin(), schedule_.events.end(),
                    [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
   ScheduleTotals& tot = schedule_.totals;
@@ -1098,8 +1025,6 @@ Schedule Scheduler::run() {
   }
   schedule_.bookkeeping_s =
       seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
-  (void)book_started;
-  (void)planning_before_s;
   return std::move(schedule_);
 }
 
