@@ -1,0 +1,30 @@
+#pragma once
+// A schedule (its JSON, docs/schedule.md) as the jobs the dispatcher sends, machine by
+// machine (docs/dispatch.md): each layer a deposit job per nozzle with its timed path in
+// chunks of at most ccbuild_path_chunk_t::MAX_POINTS waypoints; pipes, purges, slabs and
+// each climb's phases as jobs of the first gantry. Job ids increase in schedule order
+// (by planned start), from 1; the same schedule gives the same jobs.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "ccbuild_lcm/ccbuild_job_t.hpp"
+#include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
+
+namespace ccbuild::orchestrator {
+
+/// Gantry k (from 0, in rail order) is machine "gantry-<k+1>".
+std::string gantry_id(int nozzle);
+
+struct DispatchJob {
+  ccbuild_lcm::ccbuild_job_t job;                         ///< utime and seq are set when sent
+  std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks;  ///< job.chunk_count of them
+};
+
+/// Every job of `schedule`, in the order they are to be sent (by planned start, then
+/// gantry). Throws InputError (field of the schedule) when the document lacks what a job
+/// needs.
+std::vector<DispatchJob> jobs_of_schedule(const nlohmann::json& schedule);
+
+}  // namespace ccbuild::orchestrator
