@@ -5,12 +5,20 @@
 #include "ccbuild/orchestrator/dispatch_jobs.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <memory>
+#include <set>
 
 #include <lcm/lcm-cpp.hpp>
 
 #include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/sim_machine.hpp"
+#include "ccbuild/orchestrator/dispatcher.hpp"
 #include "ccbuild/orchestrator/schedule.hpp"
 #include "ccbuild/orchestrator/schedule_json.hpp"
+#include "ccbuild_lcm/ccbuild_fault_t.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::orchestrator {
@@ -125,6 +133,123 @@ TEST(Bus, DeliversTypedMessagesAndCountsMalformedOnes) {
   EXPECT_EQ(malformed[0], "CCBUILD_JOB_gantry-1");
   EXPECT_EQ(testing::expect_input_error([] { machine::Bus("nosuch://x"); }).first().field,
             "--lcm-url");
+}
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("ccbuild_dispatch_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// Steps the dispatcher and the machine on one memq:// bus, a millisecond of real time a
+// step, until the dispatcher is done or `steps` have passed.
+void run(machine::Bus& bus, Dispatcher& d, machine::SimMachine& sim, int steps) {
+  for (int k = 0; k < steps && !d.finished(); ++k) {
+    d.step(1e-3);
+    bus.handle(0);
+    sim.step(1e-3);
+    bus.handle(0);
+  }
+}
+
+TEST(Dispatch, TheHouseRunsEveryJobExactlyOnceInOrder) {
+  const auto dir = scratch("once");
+  machine::Bus bus("memq://");
+  const auto jobs = jobs_of_schedule(house_schedule());
+  Journal journal(dir / "journal.sqlite");
+  machine::SimOptions so;
+  so.speed = 1e6;
+  so.state_file = dir / "gantry-1.state";
+  machine::SimMachine sim(bus, so);
+  DispatchOptions o;
+  o.speed = so.speed;
+  Dispatcher d(bus, jobs, journal, o);
+  run(bus, d, sim, 100'000);
+  ASSERT_TRUE(d.finished());
+  // The machine's own record: every job once, in schedule order.
+  ASSERT_EQ(sim.executed().size(), jobs.size());
+  for (std::size_t k = 0; k < jobs.size(); ++k) EXPECT_EQ(sim.executed()[k], jobs[k].job.job_id);
+  for (const auto& [id, state] : journal.states()) EXPECT_EQ(state, "done") << id;
+  // Each job started no earlier than planned and ran for its planned duration.
+  for (const auto& j : jobs) {
+    const auto& [start_s, end_s] = d.executed().at(j.job.job_id);
+    EXPECT_GE(start_s, j.job.start_s - 1e-6);
+    EXPECT_NEAR(end_s - start_s, j.job.duration_s, 1e-6);
+  }
+  EXPECT_EQ(sim.faults(), 0);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Dispatch, ARestartedDispatcherAndMachineLoseNothingAndRunNothingTwice) {
+  const auto dir = scratch("resume");
+  machine::Bus bus("memq://");
+  const auto jobs = jobs_of_schedule(house_schedule());
+  machine::SimOptions so;
+  so.speed = 1e6;
+  so.state_file = dir / "gantry-1.state";
+  DispatchOptions o;
+  o.speed = so.speed;
+  o.ack_timeout_s = 0.01;
+  o.done_slack_s = 0.01;
+  auto sim = std::make_unique<machine::SimMachine>(bus, so);
+  {
+    Journal journal(dir / "journal.sqlite");
+    Dispatcher first(bus, jobs, journal, o);
+    run(bus, first, *sim, 40);  // part of the way, then "killed"
+    ASSERT_FALSE(first.finished());
+  }
+  const std::size_t before = sim->executed().size();
+  ASSERT_GT(before, 0u);
+  // The machine restarts from its state file too.
+  machine::Bus bus2("memq://");
+  sim = std::make_unique<machine::SimMachine>(bus2, so);
+  EXPECT_EQ(sim->executed().size(), before);
+  Journal journal(dir / "journal.sqlite");
+  Dispatcher second(bus2, jobs, journal, o);
+  run(bus2, second, *sim, 100'000);
+  ASSERT_TRUE(second.finished());
+  const auto& ran = sim->executed();
+  EXPECT_EQ(std::set<std::int64_t>(ran.begin(), ran.end()).size(), ran.size()) << "a job ran twice";
+  EXPECT_EQ(ran.size(), jobs.size()) << "a job was lost";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Dispatch, AMachineRefusesJobsOutOfOrderAndPathsThatDoNotAddUp) {
+  machine::Bus bus("memq://");
+  auto jobs = jobs_of_schedule(house_schedule());
+  machine::SimOptions so;
+  so.speed = 1e9;
+  machine::SimMachine sim(bus, so);
+  std::vector<std::int8_t> faults;
+  bus.subscribe<ccbuild_lcm::ccbuild_fault_t>(
+      machine::channel("FAULT", "gantry-1"),
+      [&](const ccbuild_lcm::ccbuild_fault_t& f) { faults.push_back(f.kind); });
+  auto send = [&](const DispatchJob& d) {
+    bus.publish(machine::channel("JOB", "gantry-1"), d.job);
+    for (const auto& c : d.chunks) bus.publish(machine::channel("PATH", "gantry-1"), c);
+    bus.handle(0);
+    for (int k = 0; k < 5; ++k) {
+      sim.step(1.0);
+      bus.handle(0);
+    }
+  };
+  send(jobs[2]);
+  ASSERT_EQ(sim.executed().size(), 1u);
+  send(jobs[1]);  // older than the one run: refused
+  EXPECT_EQ(sim.executed().size(), 1u);
+  ASSERT_EQ(faults.size(), 1u);
+  EXPECT_EQ(faults[0], +ccbuild_lcm::ccbuild_fault_t::OUT_OF_ORDER);
+  DispatchJob short_path = jobs[3];
+  short_path.job.point_count += 1;  // one waypoint missing from its chunks
+  send(short_path);
+  EXPECT_EQ(sim.executed().size(), 1u);
+  ASSERT_EQ(faults.size(), 2u);
+  EXPECT_EQ(faults[1], +ccbuild_lcm::ccbuild_fault_t::PATH_MISMATCH);
+  send(jobs[2]);  // a repeat of one it ran: acknowledged, not run again
+  EXPECT_EQ(sim.executed().size(), 1u);
+  EXPECT_EQ(faults.size(), 2u);
 }
 
 }  // namespace
