@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The dry-run as separate processes over udpm:// in a network namespace of its own (never
+# on the shared network): `ccbuild dry-run` and one `ccbuild-sim` per gantry. Checks the
+# exit code, that every job was executed, and, from the simulated machines' own records
+# (not the orchestrator's), that each job ran exactly once.
+# Usage: dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
+set -euo pipefail
+ccbuild=$1
+shift
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+unshare -n sh -c 'ip link set lo up && ip link set lo multicast on &&
+  ip route add 224.0.0.0/4 dev lo && exec "$@"' sh \
+  "$ccbuild" dry-run "$@" --state-dir "$out/state" --journal "$out/journal.sqlite" \
+  > "$out/summary.txt" 2> "$out/progress.txt" || { cat "$out/summary.txt" "$out/progress.txt"; exit 1; }
+cat "$out/summary.txt"
+line=$(grep -E '^[^ ]+: [0-9]+ of [0-9]+ jobs executed on [0-9]+ machine' "$out/summary.txt")
+done_jobs=$(echo "$line" | sed -E 's/.*: ([0-9]+) of ([0-9]+) jobs.*/\1/')
+all_jobs=$(echo "$line" | sed -E 's/.*: ([0-9]+) of ([0-9]+) jobs.*/\2/')
+machines=$(echo "$line" | sed -E 's/.*executed on ([0-9]+) machine.*/\1/')
+[ "$done_jobs" = "$all_jobs" ] || { echo "only $done_jobs of $all_jobs jobs executed"; exit 1; }
+records=$(ls "$out"/state/*.state | wc -l)
+[ "$records" = "$machines" ] || { echo "$records machine records for $machines machines"; exit 1; }
+ran=$(cat "$out"/state/*.state | awk '{print $1}' | sort | wc -l)
+unique=$(cat "$out"/state/*.state | awk '{print $1}' | sort -u | wc -l)
+[ "$ran" = "$unique" ] || { echo "a job ran twice: $ran runs of $unique jobs"; exit 1; }
+[ "$unique" = "$all_jobs" ] || { echo "the machines ran $unique of $all_jobs jobs"; exit 1; }
+echo "dry_run_netns: $all_jobs jobs on $machines machines, each run exactly once by the machines' own records"
