@@ -1,10 +1,17 @@
 #include "ccbuild/machine/bus.hpp"
 
+#include <chrono>
 #include <lcm/lcm-cpp.hpp>
 
 #include "ccbuild/common/input_error.hpp"
 
 namespace ccbuild::machine {
+
+std::int64_t utime_now() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
 
 std::string channel(const std::string& kind, const std::string& machine_id) {
   return "CCBUILD_" + kind + "_" + machine_id;

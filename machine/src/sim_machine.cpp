@@ -18,16 +18,6 @@
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::machine {
-namespace {
-
-std::int64_t utime_now() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
-
 SimMachine::SimMachine(Bus& bus, SimOptions options) : bus_(bus), options_(std::move(options)) {
   if (!options_.state_file.empty()) {
     std::ifstream in(options_.state_file);
@@ -74,10 +64,10 @@ void SimMachine::on_job(const ccbuild_lcm::ccbuild_job_t& job) {
   }
   if (!executed_.empty() && job.job_id < executed_.back()) {
     acknowledge(job.job_id, false, false, "older than the last job run");
-    fault(job.job_id, ccbuild_lcm::ccbuild_fault_t::OUT_OF_ORDER,
-          printf_string("job %lld arrived after job %lld was run",
-                        static_cast<long long>(job.job_id),
-                        static_cast<long long>(executed_.back())));
+    fault(
+        job.job_id, ccbuild_lcm::ccbuild_fault_t::OUT_OF_ORDER,
+        printf_string("job %lld arrived after job %lld was run", static_cast<long long>(job.job_id),
+                      static_cast<long long>(executed_.back())));
     return;
   }
   if (job.chunk_count < 0 || job.point_count < 0 || !(job.duration_s >= 0.0)) {
@@ -135,11 +125,8 @@ void SimMachine::step(double real_dt_s) {
   if (current_) {
     current_->elapsed_s += real_dt_s * options_.speed;
     clock_s_ = current_->started_s + std::min(current_->elapsed_s, current_->job.duration_s);
-    ccbuild_lcm::ccbuild_progress_t p;
-    p.utime = utime_now();
-    p.machine_id = options_.machine_id;
+    auto p = stamped<ccbuild_lcm::ccbuild_progress_t>();
     p.job_id = current_->job.job_id;
-    p.seq = next_seq();
     p.fraction = current_->job.duration_s > 0
                      ? std::min(1.0, current_->elapsed_s / current_->job.duration_s)
                      : 1.0;
@@ -173,11 +160,8 @@ void SimMachine::finish() {
 
 void SimMachine::acknowledge(std::int64_t job_id, bool accepted, bool duplicate,
                              const std::string& reason) {
-  ccbuild_lcm::ccbuild_ack_t a;
-  a.utime = utime_now();
-  a.machine_id = options_.machine_id;
+  auto a = stamped<ccbuild_lcm::ccbuild_ack_t>();
   a.job_id = job_id;
-  a.seq = next_seq();
   a.accepted = accepted;
   a.duplicate = duplicate;
   a.reason = reason;
@@ -186,22 +170,16 @@ void SimMachine::acknowledge(std::int64_t job_id, bool accepted, bool duplicate,
 
 void SimMachine::fault(std::int64_t job_id, std::int8_t kind, const std::string& message) {
   ++faults_;
-  ccbuild_lcm::ccbuild_fault_t f;
-  f.utime = utime_now();
-  f.machine_id = options_.machine_id;
+  auto f = stamped<ccbuild_lcm::ccbuild_fault_t>();
   f.job_id = job_id;
-  f.seq = next_seq();
   f.kind = kind;
   f.message = message;
   bus_.publish(channel("FAULT", options_.machine_id), f);
 }
 
 void SimMachine::publish_done(std::int64_t job_id, double started_s, double finished_s) {
-  ccbuild_lcm::ccbuild_done_t d;
-  d.utime = utime_now();
-  d.machine_id = options_.machine_id;
+  auto d = stamped<ccbuild_lcm::ccbuild_done_t>();
   d.job_id = job_id;
-  d.seq = next_seq();
   d.ok = true;
   d.started_s = started_s;
   d.finished_s = finished_s;
@@ -211,10 +189,7 @@ void SimMachine::publish_done(std::int64_t job_id, double started_s, double fini
 
 void SimMachine::publish_status() {
   last_status_s_ = clock_s_;
-  ccbuild_lcm::ccbuild_status_t s;
-  s.utime = utime_now();
-  s.machine_id = options_.machine_id;
-  s.seq = next_seq();
+  auto s = stamped<ccbuild_lcm::ccbuild_status_t>();
   s.state = current_ ? ccbuild_lcm::ccbuild_status_t::BUSY : ccbuild_lcm::ccbuild_status_t::IDLE;
   s.current_job_id = current_ ? current_->job.job_id : 0;
   s.jobs_done = static_cast<std::int64_t>(executed_.size());

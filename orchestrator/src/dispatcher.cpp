@@ -10,16 +10,6 @@
 #include "ccbuild_lcm/ccbuild_fault_t.hpp"
 
 namespace ccbuild::orchestrator {
-namespace {
-
-std::int64_t utime_now() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
-
 Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
   if (sqlite3_open(path_.c_str(), &db_) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
@@ -42,7 +32,9 @@ Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
   }
 }
 
-Journal::~Journal() { sqlite3_close(db_); }
+Journal::~Journal() {
+  sqlite3_close(db_);
+}
 
 void Journal::record(std::int64_t job_id, const std::string& machine_id, const std::string& state) {
   sqlite3_stmt* stmt = nullptr;
@@ -55,7 +47,7 @@ void Journal::record(std::int64_t job_id, const std::string& machine_id, const s
   sqlite3_bind_int64(stmt, 1, job_id);
   sqlite3_bind_text(stmt, 2, machine_id.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(stmt, 3, state.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_int64(stmt, 4, utime_now());
+  sqlite3_bind_int64(stmt, 4, machine::utime_now());
   const int status = sqlite3_step(stmt);
   sqlite3_finalize(stmt);
   CCBUILD_CHECK(status == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
@@ -64,10 +56,9 @@ void Journal::record(std::int64_t job_id, const std::string& machine_id, const s
 std::map<std::int64_t, std::string> Journal::states() const {
   std::map<std::int64_t, std::string> out;
   sqlite3_stmt* stmt = nullptr;
-  CCBUILD_CHECK(
-      sqlite3_prepare_v2(db_, "SELECT job_id, state FROM job_state", -1, &stmt, nullptr) ==
-          SQLITE_OK,
-      "journal: " + std::string(sqlite3_errmsg(db_)));
+  CCBUILD_CHECK(sqlite3_prepare_v2(db_, "SELECT job_id, state FROM job_state", -1, &stmt,
+                                   nullptr) == SQLITE_OK,
+                "journal: " + std::string(sqlite3_errmsg(db_)));
   while (sqlite3_step(stmt) == SQLITE_ROW)
     out[sqlite3_column_int64(stmt, 0)] =
         reinterpret_cast<const char*>(sqlite3_column_text(stmt, 1));
@@ -107,7 +98,7 @@ bool Dispatcher::finished() const {
 
 void Dispatcher::send(std::size_t index) {
   DispatchJob& d = jobs_[index];
-  d.job.utime = utime_now();
+  d.job.utime = machine::utime_now();
   d.job.seq = ++seq_;
   bus_.publish(machine::channel("JOB", d.job.machine_id), d.job);
   for (auto& c : d.chunks) {

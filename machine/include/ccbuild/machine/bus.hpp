@@ -18,6 +18,9 @@ class ReceiveBuffer;
 
 namespace ccbuild::machine {
 
+/// Now, in microseconds since the Unix epoch (every message's `utime`).
+std::int64_t utime_now();
+
 /// The channel of one kind of message for one machine: "CCBUILD_JOB_gantry-1". Kinds:
 /// JOB, PATH, ACK, PROGRESS, DONE, STATUS, FAULT, COMMAND.
 std::string channel(const std::string& kind, const std::string& machine_id);

@@ -71,6 +71,15 @@ class SimMachine {
   void publish_done(std::int64_t job_id, double started_s, double finished_s);
   void publish_status();
   std::int64_t next_seq() { return ++seq_; }
+  /// A message with its header filled in: utime, this machine, the next seq.
+  template <class Message>
+  Message stamped() {
+    Message m;
+    m.utime = utime_now();
+    m.machine_id = options_.machine_id;
+    m.seq = next_seq();
+    return m;
+  }
 
   Bus& bus_;
   SimOptions options_;
