@@ -57,10 +57,31 @@ void Bus::on_malformed(std::function<void(const std::string&, int)> handler) {
   malformed_handler_ = std::move(handler);
 }
 
-int Bus::handle(int timeout_ms) {
-  handled_ = 0;
-  while (lcm_->handleTimeout(handled_ == 0 ? timeout_ms : 0) > 0) {
+void Bus::log_to(const std::string& path) {
+  log_ = std::make_unique<lcm::LogFile>(path, "w");
+  if (!log_->good()) {
+    log_.reset();
+    throw InputError(path, 0, "--log", "cannot be created for the LCM log");
   }
+  lcm_->subscribe(".*", &Bus::log_event, this);
+}
+
+void Bus::log_event(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  lcm::LogEvent event;
+  event.eventnum = logged_++;
+  event.timestamp = buffer->recv_utime;
+  event.channel = channel;
+  event.datalen = static_cast<int32_t>(buffer->data_size);
+  event.data = buffer->data;
+  log_->writeEvent(&event);
+}
+
+int Bus::handle(int timeout_ms) {
+  // Waits once, then takes what has already arrived (a bounded number, so that a busy
+  // bus still lets its caller step).
+  handled_ = 0;
+  int arrived = lcm_->handleTimeout(timeout_ms);
+  for (int more = 0; arrived > 0 && more < 1000; ++more) arrived = lcm_->handleTimeout(0);
   return handled_;
 }
 

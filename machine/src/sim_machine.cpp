@@ -116,7 +116,7 @@ void SimMachine::try_start() {
     }
     acknowledge(job.job_id, true, false, "");
     clock_s_ = std::max(clock_s_, job.start_s);  // idle time passes at once
-    current_ = Running{job, clock_s_, 0.0};
+    current_ = Running{job, clock_s_, 0.0, 0.0};
     return;
   }
 }
@@ -125,16 +125,25 @@ void SimMachine::step(double real_dt_s) {
   if (current_) {
     current_->elapsed_s += real_dt_s * options_.speed;
     clock_s_ = current_->started_s + std::min(current_->elapsed_s, current_->job.duration_s);
-    auto p = stamped<ccbuild_lcm::ccbuild_progress_t>();
-    p.job_id = current_->job.job_id;
-    p.fraction = current_->job.duration_s > 0
-                     ? std::min(1.0, current_->elapsed_s / current_->job.duration_s)
-                     : 1.0;
-    p.sim_time_s = clock_s_;
-    bus_.publish(channel("PROGRESS", options_.machine_id), p);
+    const double fraction = current_->job.duration_s > 0
+                                ? std::min(1.0, current_->elapsed_s / current_->job.duration_s)
+                                : 1.0;
+    // Progress in tenths, not at every step: the bus stays quiet.
+    if (fraction >= current_->reported + 0.1 || fraction >= 1.0) {
+      current_->reported = fraction;
+      auto p = stamped<ccbuild_lcm::ccbuild_progress_t>();
+      p.job_id = current_->job.job_id;
+      p.fraction = fraction;
+      p.sim_time_s = clock_s_;
+      bus_.publish(channel("PROGRESS", options_.machine_id), p);
+    }
     if (current_->elapsed_s >= current_->job.duration_s) finish();
   }
-  if (clock_s_ - last_status_s_ >= options_.status_period_s || !current_) publish_status();
+  // Status every status_period_s of the machine's clock, and while it waits at least
+  // four times a real second: the heartbeat.
+  real_since_status_s_ += real_dt_s;
+  if (clock_s_ - last_status_s_ >= options_.status_period_s || real_since_status_s_ >= 0.25)
+    publish_status();
   try_start();
 }
 
@@ -189,6 +198,7 @@ void SimMachine::publish_done(std::int64_t job_id, double started_s, double fini
 
 void SimMachine::publish_status() {
   last_status_s_ = clock_s_;
+  real_since_status_s_ = 0.0;
   auto s = stamped<ccbuild_lcm::ccbuild_status_t>();
   s.state = current_ ? ccbuild_lcm::ccbuild_status_t::BUSY : ccbuild_lcm::ccbuild_status_t::IDLE;
   s.current_job_id = current_ ? current_->job.job_id : 0;

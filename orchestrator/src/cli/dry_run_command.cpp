@@ -33,6 +33,7 @@ struct DryRunOptions {
   double speed = 10'000.0;
   std::string journal;
   std::string state_dir;
+  std::string log;
   bool external = false;
   double timeout_s = 600.0;
 };
@@ -94,6 +95,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
   orchestrator::Journal journal(journal_path);
   machine::Bus bus(o.lcm_url);
+  if (!o.log.empty()) bus.log_to(o.log);
   long malformed = 0;
   bus.on_malformed([&](const std::string& channel, int size) {
     ++malformed;
@@ -149,6 +151,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       "sent again; %ld faults; %ld malformed messages rejected\n",
       late, duration(worst_late_s).c_str(), dispatcher.resent(), dispatcher.faults(), malformed);
   std::cout << "journal: " << journal_path.string() << "\n";
+  if (!o.log.empty())
+    std::cout << printf_string("LCM log: %s, %ld messages (lcm-logplayer replays it)\n",
+                               o.log.c_str(), bus.logged());
   exit_code = complete && dispatcher.faults() == 0 ? kExitOk : kExitNo;
   if (!complete) std::cout << "NOT complete: timed out after " << duration(o.timeout_s) << "\n";
   if (o.journal.empty()) {
@@ -183,6 +188,8 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
   command->add_option("--state-dir", o->state_dir,
                       "Where the simulated machines keep their records (<machine>.state: the "
                       "jobs each ran), kept after the run; default: a temporary folder");
+  command->add_option("--log", o->log,
+                      "Write the whole conversation as an LCM log (lcm-logger's format) here");
   command->add_flag("--external", o->external, "Use machines already on the bus");
   command->add_option("--timeout", o->timeout_s, "Give up after this many real seconds")
       ->check(number_in(Range::above(0.0, 86400.0), "s"))

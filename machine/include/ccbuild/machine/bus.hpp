@@ -13,6 +13,7 @@
 
 namespace lcm {
 class LCM;
+class LogFile;
 class ReceiveBuffer;
 }  // namespace lcm
 
@@ -59,6 +60,12 @@ class Bus {
   /// Messages that did not decode, so far.
   long malformed_count() const { return malformed_; }
 
+  /// Writes every message on the bus (whatever its channel, whoever sent it) to an LCM
+  /// log at `path`, in the format lcm-logger writes, so that lcm-logplayer and lcm-spy
+  /// replay it. Throws InputError (field `--log`) when the file cannot be created.
+  void log_to(const std::string& path);
+  long logged() const { return logged_; }
+
   /// Handles the messages that arrive within `timeout_ms` (at least one if any does);
   /// returns how many were handled.
   int handle(int timeout_ms);
@@ -68,8 +75,11 @@ class Bus {
   void publish_bytes(const std::string& channel, const std::vector<std::uint8_t>& bytes);
   void subscribe_bytes(const std::string& channel, Decoder decoder);
   void receive(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  void log_event(const lcm::ReceiveBuffer* buffer, const std::string& channel);
 
   std::unique_ptr<lcm::LCM> lcm_;
+  std::unique_ptr<lcm::LogFile> log_;
+  long logged_ = 0;
   std::vector<std::pair<std::string, Decoder>> decoders_;
   std::function<void(const std::string&, int)> malformed_handler_;
   long malformed_ = 0;

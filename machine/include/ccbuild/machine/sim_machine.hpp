@@ -26,7 +26,8 @@ struct SimOptions {
   std::string machine_id = "gantry-1";
   /// Simulated seconds per real second while a job runs.
   double speed = 10'000.0;
-  /// Status (the heartbeat) every this many simulated seconds, and at least once a step.
+  /// Status (the heartbeat) every this many simulated seconds, and four times a real
+  /// second at least.
   double status_period_s = 60.0;
   /// The machine's own record: one line per job done ("job_id start_s end_s"), appended
   /// and flushed to disk before the job is reported done. Empty: kept in memory only.
@@ -60,6 +61,7 @@ class SimMachine {
     ccbuild_lcm::ccbuild_job_t job;
     double started_s = 0.0;
     double elapsed_s = 0.0;
+    double reported = 0.0;  ///< the fraction last published
   };
 
   void on_job(const ccbuild_lcm::ccbuild_job_t& job);
@@ -89,6 +91,7 @@ class SimMachine {
   std::map<std::int64_t, std::pair<double, double>> done_;  ///< job -> (start, end)
   double clock_s_ = 0.0;
   double last_status_s_ = -1e300;
+  double real_since_status_s_ = 0.0;
   std::int64_t seq_ = 0;
   long faults_ = 0;
 };
