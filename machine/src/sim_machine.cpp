@@ -18,7 +18,8 @@
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::machine {
-SimMachine::SimMachine(Bus& bus, SimOptions options) : bus_(bus), options_(std::move(options)) {
+SimMachine::SimMachine(Bus& bus, SimOptions options)
+    : bus_(bus), options_(std::move(options)), rng_(options_.seed) {
   if (!options_.state_file.empty()) {
     std::ifstream in(options_.state_file);
     std::string line;
@@ -39,11 +40,33 @@ SimMachine::SimMachine(Bus& bus, SimOptions options) : bus_(bus), options_(std::
   }
   const std::string id = options_.machine_id;
   bus_.subscribe<ccbuild_lcm::ccbuild_job_t>(
-      channel("JOB", id), [this](const ccbuild_lcm::ccbuild_job_t& j) { on_job(j); });
+      channel("JOB", id),
+      [this](const ccbuild_lcm::ccbuild_job_t& j) { arrive([this, j] { on_job(j); }); });
   bus_.subscribe<ccbuild_lcm::ccbuild_path_chunk_t>(
-      channel("PATH", id), [this](const ccbuild_lcm::ccbuild_path_chunk_t& c) { on_chunk(c); });
+      channel("PATH", id),
+      [this](const ccbuild_lcm::ccbuild_path_chunk_t& c) { arrive([this, c] { on_chunk(c); }); });
   bus_.subscribe<ccbuild_lcm::ccbuild_command_t>(channel("COMMAND", id),
                                                  [](const ccbuild_lcm::ccbuild_command_t&) {});
+}
+
+void SimMachine::arrive(std::function<void()> handle) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  if (u(rng_) < options_.drop) return;
+  if (u(rng_) < options_.reorder) {
+    held_.push_back(std::move(handle));
+    return;
+  }
+  handle();
+  if (u(rng_) < options_.duplicate) handle();
+  // What was held back comes after this one.
+  std::vector<std::function<void()>> held;
+  held.swap(held_);
+  for (auto& h : held) h();
+}
+
+bool SimMachine::lost() {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  return options_.drop > 0.0 && u(rng_) < options_.drop;
 }
 
 void SimMachine::on_job(const ccbuild_lcm::ccbuild_job_t& job) {
@@ -135,7 +158,7 @@ void SimMachine::step(double real_dt_s) {
       p.job_id = current_->job.job_id;
       p.fraction = fraction;
       p.sim_time_s = clock_s_;
-      bus_.publish(channel("PROGRESS", options_.machine_id), p);
+      send("PROGRESS", p);
     }
     if (current_->elapsed_s >= current_->job.duration_s) finish();
   }
@@ -174,7 +197,7 @@ void SimMachine::acknowledge(std::int64_t job_id, bool accepted, bool duplicate,
   a.accepted = accepted;
   a.duplicate = duplicate;
   a.reason = reason;
-  bus_.publish(channel("ACK", options_.machine_id), a);
+  send("ACK", a);
 }
 
 void SimMachine::fault(std::int64_t job_id, std::int8_t kind, const std::string& message) {
@@ -183,7 +206,7 @@ void SimMachine::fault(std::int64_t job_id, std::int8_t kind, const std::string&
   f.job_id = job_id;
   f.kind = kind;
   f.message = message;
-  bus_.publish(channel("FAULT", options_.machine_id), f);
+  send("FAULT", f);
 }
 
 void SimMachine::publish_done(std::int64_t job_id, double started_s, double finished_s) {
@@ -193,7 +216,7 @@ void SimMachine::publish_done(std::int64_t job_id, double started_s, double fini
   d.started_s = started_s;
   d.finished_s = finished_s;
   d.detail = "";
-  bus_.publish(channel("DONE", options_.machine_id), d);
+  send("DONE", d);
 }
 
 void SimMachine::publish_status() {
@@ -207,7 +230,7 @@ void SimMachine::publish_status() {
   s.x_m = s.y_m = s.z_m = 0.0;
   s.heading_cumulative_rad = 0.0;
   s.pump_on = current_ && current_->job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT;
-  bus_.publish(channel("STATUS", options_.machine_id), s);
+  send("STATUS", s);
 }
 
 }  // namespace ccbuild::machine

@@ -40,6 +40,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.001, 86400.0))
       ->capture_default_str();
   app.add_option("--state", state, "Its record of the jobs it ran (appended; read at start)");
+  app.add_option("--drop", options.drop, "Injected: the probability a message is lost")
+      ->check(CLI::Range(0.0, 0.9));
+  app.add_option("--duplicate", options.duplicate, "Injected: ... that one is handled twice")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--reorder", options.reorder, "Injected: ... that one is held behind the next")
+      ->check(CLI::Range(0.0, 0.9));
+  app.add_option("--seed", options.seed, "Seed of the injected faults")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   options.state_file = state;
   try {

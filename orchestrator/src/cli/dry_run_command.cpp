@@ -34,9 +34,36 @@ struct DryRunOptions {
   std::string journal;
   std::string state_dir;
   std::string log;
+  std::string inject;  ///< "drop=0.1,duplicate=0.1,reorder=0.1"
+  std::uint64_t seed = 1;
+  double retry_after_s = 1.0;
   bool external = false;
   double timeout_s = 600.0;
 };
+
+/// --inject "drop=0.1,duplicate=0.1,reorder=0.1": each fault and its probability.
+/// Throws InputError (field --inject) for anything else.
+std::vector<std::pair<std::string, double>> injected(const std::string& text) {
+  std::vector<std::pair<std::string, double>> out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, end - at);
+    const std::size_t eq = item.find('=');
+    const std::string name = item.substr(0, eq);
+    char* stop = nullptr;
+    const double p = eq == std::string::npos ? -1 : std::strtod(item.c_str() + eq + 1, &stop);
+    if ((name != "drop" && name != "duplicate" && name != "reorder") || eq == std::string::npos ||
+        *stop != '\0' || !(p >= 0.0 && p <= 0.9))
+      throw InputError("", 0, "--inject",
+                       "expected drop=P, duplicate=P or reorder=P (P from 0 to 0.9), "
+                       "comma-separated; got '" +
+                           item + "'");
+    out.emplace_back(name, p);
+    at = end + 1;
+  }
+  return out;
+}
 
 /// The simulated machines, one process each; stopped (SIGTERM) when this goes.
 class Machines {
@@ -48,13 +75,29 @@ class Machines {
     for (const auto& id : ids) {
       const std::string state = (state_dir / (id + ".state")).string();
       const std::string speed = std::to_string(o.speed);
+      std::vector<std::string> args = {"ccbuild-sim",
+                                       "--machine-id",
+                                       id,
+                                       "--lcm-url",
+                                       o.lcm_url,
+                                       "--speed",
+                                       speed,
+                                       "--state",
+                                       state,
+                                       "--seed",
+                                       std::to_string(o.seed)};
+      for (const auto& [name, p] : injected(o.inject)) {
+        args.push_back("--" + name);
+        args.push_back(std::to_string(p));
+      }
       const pid_t pid = ::fork();
       CCBUILD_CHECK(pid >= 0, "fork failed");
       if (pid == 0) {
         ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the dry-run
-        ::execl(sim.c_str(), "ccbuild-sim", "--machine-id", id.c_str(), "--lcm-url",
-                o.lcm_url.c_str(), "--speed", speed.c_str(), "--state", state.c_str(),
-                static_cast<char*>(nullptr));
+        std::vector<char*> argv;
+        for (auto& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ::execv(sim.c_str(), argv.data());
         ::_exit(127);
       }
       pids_.push_back(pid);
@@ -86,6 +129,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     schedule = orchestrator::schedule_json(project, options,
                                            orchestrator::build_schedule(project, options));
   }
+  injected(o.inject);  // checked before anything starts
   auto jobs = orchestrator::jobs_of_schedule(schedule);
   std::set<std::string> ids;
   for (const auto& j : jobs) ids.insert(j.job.machine_id);
@@ -108,6 +152,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (!o.external) machines = std::make_unique<Machines>(ids, o, state_dir);
   orchestrator::DispatchOptions d;
   d.speed = o.speed;
+  d.ack_timeout_s = o.retry_after_s;
+  d.done_slack_s = 2.0 * o.retry_after_s;
   orchestrator::Dispatcher dispatcher(bus, jobs, journal, d);
   std::cerr << printf_string("dry-run: %zu jobs to %zu machine(s) at %.0fx over %s\n", jobs.size(),
                              ids.size(), o.speed, o.lcm_url.c_str());
@@ -190,6 +236,18 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
                       "jobs each ran), kept after the run; default: a temporary folder");
   command->add_option("--log", o->log,
                       "Write the whole conversation as an LCM log (lcm-logger's format) here");
+  command->add_option("--inject", o->inject,
+                      "Network faults the simulated machines inject into what they receive and "
+                      "send: drop=P, duplicate=P, reorder=P (probabilities per message)");
+  command->add_option("--seed", o->seed, "Seed of the injected faults")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  command
+      ->add_option("--retry-after", o->retry_after_s,
+                   "Send a job again when not acknowledged within this many real seconds "
+                   "(or not done within its expected time plus twice this)")
+      ->check(number_in(Range::above(0.0, 600.0), "s"))
+      ->capture_default_str();
   command->add_flag("--external", o->external, "Use machines already on the bus");
   command->add_option("--timeout", o->timeout_s, "Give up after this many real seconds")
       ->check(number_in(Range::above(0.0, 86400.0), "s"))

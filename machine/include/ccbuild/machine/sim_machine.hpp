@@ -10,8 +10,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -32,6 +34,11 @@ struct SimOptions {
   /// The machine's own record: one line per job done ("job_id start_s end_s"), appended
   /// and flushed to disk before the job is reported done. Empty: kept in memory only.
   std::filesystem::path state_file;
+  /// Faults of the network, injected into what this machine receives and sends, each
+  /// with its probability per message (seeded): a message lost, handled twice, or held
+  /// back behind the next ones.
+  double drop = 0.0, duplicate = 0.0, reorder = 0.0;
+  std::uint64_t seed = 1;
 };
 
 class SimMachine {
@@ -73,6 +80,14 @@ class SimMachine {
   void publish_done(std::int64_t job_id, double started_s, double finished_s);
   void publish_status();
   std::int64_t next_seq() { return ++seq_; }
+  /// Takes an incoming message through the injected network faults.
+  void arrive(std::function<void()> handle);
+  /// Whether an outgoing message is lost (injected).
+  bool lost();
+  template <class Message>
+  void send(const std::string& kind, const Message& message) {
+    if (!lost()) bus_.publish(channel(kind, options_.machine_id), message);
+  }
   /// A message with its header filled in: utime, this machine, the next seq.
   template <class Message>
   Message stamped() {
@@ -94,6 +109,8 @@ class SimMachine {
   double real_since_status_s_ = 0.0;
   std::int64_t seq_ = 0;
   long faults_ = 0;
+  std::mt19937_64 rng_;
+  std::vector<std::function<void()>> held_;  ///< reordered: handled after the next ones
 };
 
 }  // namespace ccbuild::machine
