@@ -37,6 +37,7 @@ Journal::~Journal() {
 }
 
 void Journal::record(std::int64_t job_id, const std::string& machine_id, const std::string& state) {
+  const auto started = std::chrono::steady_clock::now();
   sqlite3_stmt* stmt = nullptr;
   CCBUILD_CHECK(sqlite3_prepare_v2(db_,
                                    "INSERT INTO job_state (job_id, machine_id, state, utime) "
@@ -51,6 +52,8 @@ void Journal::record(std::int64_t job_id, const std::string& machine_id, const s
   const int status = sqlite3_step(stmt);
   sqlite3_finalize(stmt);
   CCBUILD_CHECK(status == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  ++writes_;
+  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
 std::map<std::int64_t, std::string> Journal::states() const {

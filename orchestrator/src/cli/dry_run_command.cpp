@@ -196,10 +196,13 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       "deviations: %ld jobs started more than 1 s after their planned start (worst %s); %ld "
       "sent again; %ld faults; %ld malformed messages rejected\n",
       late, duration(worst_late_s).c_str(), dispatcher.resent(), dispatcher.faults(), malformed);
-  std::cout << "journal: " << journal_path.string() << "\n";
+  std::cout << printf_string("journal: %s, %ld writes in %.2f s (%.1f%% of the run)\n",
+                             journal_path.string().c_str(), journal.writes(), journal.write_s(),
+                             real_s > 0 ? 100.0 * journal.write_s() / real_s : 0.0);
   if (!o.log.empty())
-    std::cout << printf_string("LCM log: %s, %ld messages (lcm-logplayer replays it)\n",
-                               o.log.c_str(), bus.logged());
+    std::cout << printf_string(
+        "LCM log: %s, %ld messages, %.0f a second (lcm-logplayer replays it)\n", o.log.c_str(),
+        bus.logged(), real_s > 0 ? bus.logged() / real_s : 0.0);
   exit_code = complete && dispatcher.faults() == 0 ? kExitOk : kExitNo;
   if (!complete) std::cout << "NOT complete: timed out after " << duration(o.timeout_s) << "\n";
   if (o.journal.empty()) {

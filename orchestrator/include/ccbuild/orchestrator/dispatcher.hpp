@@ -38,16 +38,21 @@ class Journal {
   void record(std::int64_t job_id, const std::string& machine_id, const std::string& state);
   /// The state of every job recorded.
   std::map<std::int64_t, std::string> states() const;
+  /// Records written, and the wall-clock seconds they took (each synced to disk).
+  long writes() const { return writes_; }
+  double write_s() const { return write_s_; }
 
  private:
   sqlite3* db_ = nullptr;
+  long writes_ = 0;
+  double write_s_ = 0.0;
   std::string path_;
 };
 
 struct DispatchOptions {
-  double ack_timeout_s = 1.0;   ///< real seconds before a job is sent again
-  double done_slack_s = 2.0;    ///< beyond its expected real duration, before it is sent again
-  double speed = 10'000.0;      ///< the machines' speed factor (for the expected duration)
+  double ack_timeout_s = 1.0;  ///< real seconds before a job is sent again
+  double done_slack_s = 2.0;   ///< beyond its expected real duration, before it is sent again
+  double speed = 10'000.0;     ///< the machines' speed factor (for the expected duration)
 };
 
 class Dispatcher {
