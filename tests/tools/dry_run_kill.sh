@@ -4,13 +4,16 @@
 # by the simulated machines' own records. Each run in a network namespace of its own.
 # Usage: dry_run_kill.sh SEED CCBUILD ARGS...   (needs root for unshare -n)
 set -euo pipefail
+# As root, a network namespace; otherwise a user namespace with one (needs unprivileged
+# user namespaces).
+if [ "$(id -u)" -eq 0 ]; then netns="unshare -n"; else netns="unshare -rn"; fi
 seed=$1 ccbuild=$2
 shift 2
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 RANDOM=$seed
 run() {
-  unshare -n sh -c 'ip link set lo up && ip link set lo multicast on &&
+  $netns sh -c 'ip link set lo up && ip link set lo multicast on &&
     ip route add 224.0.0.0/4 dev lo && exec "$@"' sh \
     "$ccbuild" dry-run "$@" --state-dir "$out/state" --journal "$out/journal.sqlite" \
     --seed "$seed"
@@ -18,7 +21,7 @@ run() {
 kills=0
 for attempt in 1 2 3; do
   after=$(( (RANDOM % 20) + 15 ))  # tenths of a second: 1.5 to 3.4 s
-  if timeout -s KILL "$((after / 10)).$((after % 10))" bash -c "$(declare -f run); out=$out ccbuild=$ccbuild seed=$seed run $(printf '%q ' "$@")" \
+  if timeout -s KILL "$((after / 10)).$((after % 10))" bash -c "$(declare -f run); out=$out ccbuild=$ccbuild seed=$seed netns='$netns' run $(printf '%q ' "$@")" \
       > "$out/run$attempt.txt" 2>&1; then
     break
   fi

@@ -5,11 +5,14 @@
 # (not the orchestrator's), that each job ran exactly once.
 # Usage: dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
 set -euo pipefail
+# As root, a network namespace; otherwise a user namespace with one (needs unprivileged
+# user namespaces).
+if [ "$(id -u)" -eq 0 ]; then netns="unshare -n"; else netns="unshare -rn"; fi
 ccbuild=$1
 shift
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-unshare -n sh -c 'ip link set lo up && ip link set lo multicast on &&
+$netns sh -c 'ip link set lo up && ip link set lo multicast on &&
   ip route add 224.0.0.0/4 dev lo && exec "$@"' sh \
   "$ccbuild" dry-run "$@" --state-dir "$out/state" --journal "$out/journal.sqlite" \
   --log "$out/conversation.lcmlog" \
