@@ -223,7 +223,9 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       "again when an answer is late (a machine never runs a job twice), every step written "
       "to the SQLite journal first (--journal: a dry-run restarted on it goes on where it "
       "stopped). Ends with planned against executed. Exit 0 when every job ran without a "
-      "fault, 1 otherwise. Work in progress (issue 13): no watchdog or fault injection yet.\n"
+      "fault, 1 otherwise. Run it in a network namespace of its own (docs/dispatch.md). "
+      "Work in progress (issue 13): no site watchdog, machine faults or common layer starts "
+      "yet.\n"
       "Examples:\n"
       "  ccbuild dry-run config/buildings/house.yaml\n"
       "  ccbuild dry-run house.schedule.json --speed 100000 --journal house.journal");
