@@ -243,7 +243,11 @@ TEST(ClimbCommand, TheTimeLimitHolds) {
       "--time-limit 0.01");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_TRUE(contains(r.out, "NOT feasible: time-limit: ")) << r.out;
-  EXPECT_TRUE(contains(r.out, "the climb's planning time (0.01 s) ran out")) << r.out;
+  // Where the 10 ms run out depends on the machine's speed: before a phase starts, or
+  // inside one; either way the answer says so.
+  EXPECT_TRUE(r.out.find("the climb's planning time (0.01 s) ran out") != std::string::npos ||
+              r.out.find("no motion within the time") != std::string::npos)
+      << r.out;
 }
 
 TEST(ClimbCommand, AFixedGantryNeedsNoClimbs) {
