@@ -2,10 +2,12 @@
 
 #include <unistd.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "ccbuild/common/format.hpp"
@@ -18,8 +20,86 @@
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::machine {
+namespace {
+using ccbuild_lcm::ccbuild_fault_t;
+using ccbuild_lcm::ccbuild_job_t;
+
+constexpr double kEndMatch_m = 0.02;  ///< piece ends this close are the same end
+constexpr double kIntervalSlack_s = 1e-3;
+constexpr std::int64_t kReplayAge_us = 120'000'000;  ///< older than the newest by this: a replay
+constexpr std::size_t kSeenKept = 8192;
+
+/// Whether `value` exceeds `limit` beyond rounding.
+bool over(double value, double limit) {
+  return value > limit * (1.0 + 1e-6) + 1e-9;
+}
+
+/// The ends of each extruding run of one wall piece: (waypoint, wall) pairs.
+std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const TimedPath& p) {
+  std::vector<std::pair<std::size_t, std::int64_t>> ends;
+  std::size_t k = 0;
+  while (k + 1 < p.size()) {
+    if (!p.extruding[k]) {
+      ++k;
+      continue;
+    }
+    const std::size_t first = k;
+    while (k + 1 < p.size() && p.extruding[k] && p.wall[k] == p.wall[first] &&
+           p.piece[k] == p.piece[first])
+      ++k;
+    ends.emplace_back(first, p.wall[first]);
+    ends.emplace_back(k, p.wall[first]);
+  }
+  return ends;
+}
+}  // namespace
+
+std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineModel& m,
+                                                                const TimedPath& p,
+                                                                bool check_z_range) {
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const auto outside = [&](const char* axis, double v, double lo, double hi) {
+      return v < lo - 1e-9 || v > hi + 1e-9
+                 ? std::optional(std::pair<std::int8_t, std::string>(
+                       ccbuild_fault_t::JOINT_LIMIT,
+                       printf_string("waypoint %zu: %s = %.4f outside [%.4f, %.4f]", k, axis, v, lo,
+                                     hi)))
+                 : std::nullopt;
+    };
+    if (auto b = outside("x", p.x_m[k], m.x.min_m, m.x.max_m)) return b;
+    if (auto b = outside("y", p.y_m[k], m.y.min_m, m.y.max_m)) return b;
+    if (check_z_range)
+      if (auto b = outside("z", p.z_m[k], m.z.min_m, m.z.max_m)) return b;
+    if (auto b = outside("heading (the stopper)", p.heading_rad[k], m.stopper_min_rad,
+                         m.stopper_max_rad))
+      return b;
+    if (k == 0) continue;
+    const double dt = p.t_s[k] - p.t_s[k - 1];
+    const struct {
+      const char* axis;
+      double delta, limit;
+    } moves[] = {{"x", p.x_m[k] - p.x_m[k - 1], m.x.speed_m_s},
+                 {"y", p.y_m[k] - p.y_m[k - 1], m.y.speed_m_s},
+                 {"z", p.z_m[k] - p.z_m[k - 1], m.z.speed_m_s},
+                 {"heading", p.heading_rad[k] - p.heading_rad[k - 1], m.rotation_speed_rad_s}};
+    for (const auto& move : moves) {
+      if (std::abs(move.delta) <= 1e-9) continue;
+      if (dt <= 0.0 || over(std::abs(move.delta) / dt, move.limit))
+        return std::pair<std::int8_t, std::string>(
+            ccbuild_fault_t::VELOCITY_LIMIT,
+            printf_string("waypoints %zu-%zu: %s moves %.4f in %.4f s, over its limit of %.4f/s",
+                          k - 1, k, move.axis, move.delta, dt, move.limit));
+    }
+  }
+  return std::nullopt;
+}
+
 SimMachine::SimMachine(Bus& bus, SimOptions options)
-    : bus_(bus), options_(std::move(options)), rng_(options_.seed) {
+    : bus_(bus),
+      options_(std::move(options)),
+      position_(options_.home),
+      pin_failures_left_(options_.pin_failures),
+      rng_(options_.seed) {
   if (!options_.state_file.empty()) {
     std::ifstream in(options_.state_file);
     std::string line;
@@ -29,24 +109,68 @@ SimMachine::SimMachine(Bus& bus, SimOptions options)
       if (line.empty()) continue;
       std::istringstream words(line);
       std::int64_t job = 0;
-      double start_s = 0.0, end_s = 0.0;
-      if (!(words >> job >> start_s >> end_s) || job <= 0 || !std::isfinite(end_s))
+      Done d{0.0, 0.0, {}, true, -1, ""};
+      if (!(words >> job >> d.start_s >> d.end_s >> d.at[0] >> d.at[1] >> d.at[2] >> d.at[3]) ||
+          job <= 0 || !std::isfinite(d.end_s))
         throw InputError(options_.state_file.string(), number, "",
-                         "expected 'job_id start_s end_s', got '" + line + "'");
-      done_[job] = {start_s, end_s};
+                         "expected 'job_id start_s end_s x_m y_m z_m heading_rad "
+                         "[fault waypoints_done]', got '" +
+                             line + "'");
+      if (words >> d.detail) {
+        d.ok = false;
+        if (!(words >> d.stopped_at))
+          throw InputError(options_.state_file.string(), number, "",
+                           "expected the waypoints done after the fault, got '" + line + "'");
+        if (d.detail == "clog") clogged_once_ = true;
+      }
+      done_[job] = d;
       executed_.push_back(job);
-      clock_s_ = std::max(clock_s_, end_s);
+      position_ = d.at;
+      clock_s_ = std::max(clock_s_, d.end_s);
     }
   }
   const std::string id = options_.machine_id;
-  bus_.subscribe<ccbuild_lcm::ccbuild_job_t>(
-      channel("JOB", id),
-      [this](const ccbuild_lcm::ccbuild_job_t& j) { arrive([this, j] { on_job(j); }); });
+  bus_.subscribe<ccbuild_lcm::ccbuild_job_t>(channel("JOB", id),
+                                             [this](const ccbuild_lcm::ccbuild_job_t& j) {
+                                               if (!replayed("JOB", j.utime, j.seq))
+                                                 arrive([this, j] { on_job(j); });
+                                             });
   bus_.subscribe<ccbuild_lcm::ccbuild_path_chunk_t>(
-      channel("PATH", id),
-      [this](const ccbuild_lcm::ccbuild_path_chunk_t& c) { arrive([this, c] { on_chunk(c); }); });
-  bus_.subscribe<ccbuild_lcm::ccbuild_command_t>(channel("COMMAND", id),
-                                                 [](const ccbuild_lcm::ccbuild_command_t&) {});
+      channel("PATH", id), [this](const ccbuild_lcm::ccbuild_path_chunk_t& c) {
+        if (!replayed("PATH", c.utime, c.seq)) arrive([this, c] { on_chunk(c); });
+      });
+  bus_.subscribe<ccbuild_lcm::ccbuild_command_t>(
+      channel("COMMAND", id), [this](const ccbuild_lcm::ccbuild_command_t& c) {
+        if (c.machine_id != options_.machine_id) {
+          std::cerr << "ccbuild-sim " << options_.machine_id << ": rejected a command for '"
+                    << c.machine_id << "'\n";
+          return;
+        }
+        if (!replayed("COMMAND", c.utime, c.seq)) on_command(c.command, c.reason);
+      });
+}
+
+bool SimMachine::replayed(const std::string& kind, std::int64_t utime, std::int64_t seq) {
+  const auto key = std::make_tuple(kind, utime, seq);
+  const bool seen = seen_.count(key) > 0;
+  const bool stale = utime < newest_utime_ - kReplayAge_us;
+  if (seen || stale) {
+    ++replays_;
+    std::cerr << printf_string(
+        "ccbuild-sim %s: rejected a replayed message on %s (utime %lld, seq %lld: %s)\n",
+        options_.machine_id.c_str(), channel(kind, options_.machine_id).c_str(),
+        static_cast<long long>(utime), static_cast<long long>(seq),
+        seen ? "seen before" : "over two minutes older than the newest");
+    return true;
+  }
+  seen_.insert(key);
+  seen_order_.push_back(key);
+  if (seen_order_.size() > kSeenKept) {
+    seen_.erase(seen_order_.front());
+    seen_order_.pop_front();
+  }
+  newest_utime_ = std::max(newest_utime_, utime);
+  return false;
 }
 
 void SimMachine::arrive(std::function<void()> handle) {
@@ -69,33 +193,55 @@ bool SimMachine::lost() {
   return options_.drop > 0.0 && u(rng_) < options_.drop;
 }
 
+void SimMachine::on_command(std::int8_t command, const std::string& reason) {
+  using ccbuild_lcm::ccbuild_command_t;
+  std::cerr << "ccbuild-sim " << options_.machine_id << ": "
+            << (command == ccbuild_command_t::PAUSE    ? "paused"
+                : command == ccbuild_command_t::RESUME ? "resumed"
+                                                       : "aborted")
+            << (reason.empty() ? "" : " (" + reason + ")") << "\n";
+  if (command == ccbuild_command_t::PAUSE) paused_ = true;
+  if (command == ccbuild_command_t::RESUME) paused_ = false;
+  if (command == ccbuild_command_t::ABORT) {
+    aborted_ = true;
+    paused_ = true;
+  }
+  publish_status();
+}
+
 void SimMachine::on_job(const ccbuild_lcm::ccbuild_job_t& job) {
   if (job.machine_id != options_.machine_id) {
-    fault(job.job_id, ccbuild_lcm::ccbuild_fault_t::MALFORMED,
+    fault(job.job_id, ccbuild_fault_t::MALFORMED,
           "a job for machine '" + job.machine_id + "' on " + options_.machine_id + "'s channel");
     return;
   }
   // Seen before: done, or running now. Say so again; never run it twice.
   if (const auto it = done_.find(job.job_id); it != done_.end()) {
     acknowledge(job.job_id, true, true, "");
-    publish_done(job.job_id, it->second.first, it->second.second);
+    const Done& d = it->second;
+    publish_done(job.job_id, d.start_s, d.end_s, d.ok, d.stopped_at, d.detail);
     return;
   }
   if (current_ && current_->job.job_id == job.job_id) {
     acknowledge(job.job_id, true, true, "");
     return;
   }
+  if (aborted_) {
+    acknowledge(job.job_id, false, false, "aborted: takes no more jobs");
+    return;
+  }
   if (!executed_.empty() && job.job_id < executed_.back()) {
     acknowledge(job.job_id, false, false, "older than the last job run");
     fault(
-        job.job_id, ccbuild_lcm::ccbuild_fault_t::OUT_OF_ORDER,
+        job.job_id, ccbuild_fault_t::OUT_OF_ORDER,
         printf_string("job %lld arrived after job %lld was run", static_cast<long long>(job.job_id),
                       static_cast<long long>(executed_.back())));
     return;
   }
-  if (job.chunk_count < 0 || job.point_count < 0 || !(job.duration_s >= 0.0)) {
+  if (job.chunk_count < 0 || job.point_count < 0 || !(job.duration_s >= 0.0) ||
+      !std::isfinite(job.start_s)) {
     acknowledge(job.job_id, false, false, "negative counts or duration");
-    fault(job.job_id, ccbuild_lcm::ccbuild_fault_t::MALFORMED, "negative counts or duration");
+    fault(job.job_id, ccbuild_fault_t::MALFORMED, "negative counts or duration");
     return;
   }
   Received& r = received_[job.job_id];
@@ -105,89 +251,221 @@ void SimMachine::on_job(const ccbuild_lcm::ccbuild_job_t& job) {
 
 void SimMachine::on_chunk(const ccbuild_lcm::ccbuild_path_chunk_t& chunk) {
   if (done_.count(chunk.job_id) || (current_ && current_->job.job_id == chunk.job_id)) return;
+  if (chunk.machine_id != options_.machine_id || chunk.n < 0 ||
+      chunk.n > ccbuild_lcm::ccbuild_path_chunk_t::MAX_POINTS) {
+    fault(chunk.job_id, ccbuild_fault_t::MALFORMED,
+          "a path chunk for '" + chunk.machine_id + "' with " + std::to_string(chunk.n) +
+              " points on " + options_.machine_id + "'s channel");
+    return;
+  }
   Received& r = received_[chunk.job_id];
   r.chunks[chunk.chunk_index] = chunk;
   try_start();
 }
 
+std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
+    const ccbuild_lcm::ccbuild_job_t& job, const TimedPath& path, double start_s) const {
+  if (options_.model)
+    if (auto breach = limit_breach(*options_.model, path, options_.check_z_range)) return breach;
+  if (job.kind != ccbuild_job_t::DEPOSIT || job.layer <= 0) return std::nullopt;
+  // Each piece end against the same end of the layer below, if this machine laid it.
+  const auto below = deposited_.find({job.floor, job.layer - 1});
+  if (below == deposited_.end()) return std::nullopt;
+  for (const auto& [k, wall] : piece_ends(path)) {
+    for (const PieceEnd& e : below->second) {
+      if (e.wall != wall || std::abs(e.x_m - path.x_m[k]) > kEndMatch_m ||
+          std::abs(e.y_m - path.y_m[k]) > kEndMatch_m)
+        continue;
+      const double interval_s = start_s + path.t_s[k] - e.t_s;
+      const char* what = nullptr;
+      std::int8_t kind = 0;
+      if (interval_s > options_.max_interval_s + kIntervalSlack_s) {
+        what = "a cold joint: covered %.1f s after it was deposited, over the maximum %.1f s";
+        kind = ccbuild_fault_t::COLD_JOINT;
+      } else if (interval_s < options_.min_interval_s - kIntervalSlack_s) {
+        what = "too early: covered %.1f s after it was deposited, under the minimum %.1f s";
+        kind = ccbuild_fault_t::TOO_EARLY;
+      }
+      if (!what) continue;
+      return std::pair<std::int8_t, std::string>(
+          kind, printf_string("floor %d layer %d, wall %lld at (%.3f, %.3f) m: ", job.floor,
+                              job.layer, static_cast<long long>(wall), path.x_m[k], path.y_m[k]) +
+                    printf_string(what, interval_s,
+                                  kind == ccbuild_fault_t::COLD_JOINT ? options_.max_interval_s
+                                                                      : options_.min_interval_s));
+    }
+  }
+  return std::nullopt;
+}
+
 void SimMachine::try_start() {
-  if (current_) return;
+  if (current_ || aborted_) return;
   // The lowest job whose job message and every chunk have arrived.
   for (auto it = received_.begin(); it != received_.end(); ++it) {
     Received& r = it->second;
     if (r.job.job_id == 0 || !r.complete()) continue;
-    int points = 0;
-    double last_t = 0.0;
+    TimedPath path;
     bool ordered = true;
     for (const auto& [index, c] : r.chunks) {
-      points += c.n;
       for (int k = 0; k < c.n; ++k) {
-        ordered = ordered && c.t_s[k] >= last_t - 1e-9;
-        last_t = c.t_s[k];
+        ordered = ordered && (path.t_s.empty() || c.t_s[k] >= path.t_s.back() - 1e-9);
+        path.t_s.push_back(c.t_s[k]);
+        path.x_m.push_back(c.x_m[k]);
+        path.y_m.push_back(c.y_m[k]);
+        path.z_m.push_back(c.z_m[k]);
+        path.heading_rad.push_back(c.heading_rad[k]);
+        path.extruding.push_back(c.extruding[k]);
+        path.wall.push_back(c.wall[k]);
+        path.piece.push_back(c.piece[k]);
       }
     }
     const auto job = r.job;
     received_.erase(it);
-    if (points != job.point_count || !ordered ||
+    const double last_t = path.t_s.empty() ? 0.0 : path.t_s.back();
+    if (static_cast<int>(path.size()) != job.point_count || !ordered ||
         (job.chunk_count > 0 && last_t > job.duration_s + 1e-6)) {
       acknowledge(job.job_id, false, false, "its path does not match the job");
-      fault(job.job_id, ccbuild_lcm::ccbuild_fault_t::PATH_MISMATCH,
-            printf_string("job %lld: %d points of %d, times %s, path ends at %.3f s of %.3f s",
-                          static_cast<long long>(job.job_id), points, job.point_count,
+      fault(job.job_id, ccbuild_fault_t::PATH_MISMATCH,
+            printf_string("job %lld: %zu points of %d, times %s, path ends at %.3f s of %.3f s",
+                          static_cast<long long>(job.job_id), path.size(), job.point_count,
                           ordered ? "increasing" : "going back", last_t, job.duration_s));
       return;
     }
+    const double start_s = std::max(clock_s_, job.start_s);  // idle time passes at once
+    if (const auto why = refusal(job, path, start_s)) {
+      acknowledge(job.job_id, false, false, why->second);
+      fault(job.job_id, why->first, why->second);
+      return;
+    }
     acknowledge(job.job_id, true, false, "");
-    clock_s_ = std::max(clock_s_, job.start_s);  // idle time passes at once
-    current_ = Running{job, clock_s_, 0.0, 0.0};
+    clock_s_ = start_s;
+    Running run;
+    run.job = job;
+    run.path = std::move(path);
+    run.started_s = clock_s_;
+    // Injected: a clog part-way through the layer, at the first extruding waypoint past
+    // 40% of its time; a pin that misses its pipe at the end of its insertion.
+    if (job.kind == ccbuild_job_t::DEPOSIT && job.floor == options_.clog_floor &&
+        job.layer == options_.clog_layer && !clogged_once_) {
+      for (std::size_t k = 1; k < run.path.size(); ++k)
+        if (run.path.extruding[k] && run.path.t_s[k] >= 0.4 * job.duration_s) {
+          run.stop_fault = ccbuild_fault_t::PUMP_CLOG;
+          run.stop_elapsed_s = run.path.t_s[k];
+          run.stop_point = static_cast<int>(k);
+          run.stop_message =
+              printf_string("the pump clogged at waypoint %zu of %zu, (%.3f, %.3f) m", k,
+                            run.path.size(), run.path.x_m[k], run.path.y_m[k]);
+          break;
+        }
+    }
+    if (job.kind == ccbuild_job_t::CLIMB_PHASE &&
+        job.detail.find(": insert") != std::string::npos && pin_failures_left_ > 0) {
+      --pin_failures_left_;
+      run.stop_fault = ccbuild_fault_t::PIN_MISSED;
+      run.stop_elapsed_s = job.duration_s;
+      run.stop_point = 0;
+      run.stop_message = "the pin did not find its pipe (" + job.detail + ")";
+    }
+    current_ = std::move(run);
     return;
   }
 }
 
+void SimMachine::follow(double elapsed_s) {
+  const TimedPath& p = current_->path;
+  if (p.size() == 0) return;
+  const auto it = std::upper_bound(p.t_s.begin(), p.t_s.end(), elapsed_s);
+  const std::size_t k = static_cast<std::size_t>(it - p.t_s.begin());
+  std::array<double, 4> at;
+  if (k == 0 || k >= p.size()) {
+    const std::size_t j = k == 0 ? 0 : p.size() - 1;
+    at = {p.x_m[j], p.y_m[j], p.z_m[j], p.heading_rad[j]};
+  } else {
+    const double span = p.t_s[k] - p.t_s[k - 1];
+    const double f = span > 0.0 ? (elapsed_s - p.t_s[k - 1]) / span : 1.0;
+    const auto lerp = [&](const std::vector<double>& v) {
+      return v[k - 1] + f * (v[k] - v[k - 1]);
+    };
+    at = {lerp(p.x_m), lerp(p.y_m), lerp(p.z_m), lerp(p.heading_rad)};
+  }
+  // A stalled rail axis stays where it stopped; the others follow the path.
+  const int rail = options_.model && options_.model->rail_axis == 'y' ? 1 : 0;
+  if (stalled_rail_m_) at[rail] = *stalled_rail_m_;
+  position_ = at;
+}
+
 void SimMachine::step(double real_dt_s) {
-  if (current_) {
-    current_->elapsed_s += real_dt_s * options_.speed;
-    clock_s_ = current_->started_s + std::min(current_->elapsed_s, current_->job.duration_s);
-    const double fraction = current_->job.duration_s > 0
-                                ? std::min(1.0, current_->elapsed_s / current_->job.duration_s)
-                                : 1.0;
+  if (options_.stall_at_s >= 0.0 && !stalled_rail_m_ && clock_s_ >= options_.stall_at_s) {
+    const int rail = options_.model && options_.model->rail_axis == 'y' ? 1 : 0;
+    stalled_rail_m_ = position_[rail];
+    std::cerr << printf_string("ccbuild-sim %s: (injected) the rail axis stalled at %.3f m\n",
+                               options_.machine_id.c_str(), *stalled_rail_m_);
+  }
+  if (current_ && !paused_) {
+    Running& run = *current_;
+    run.elapsed_s += real_dt_s * options_.speed;
+    const double end_s = run.stop_fault ? run.stop_elapsed_s : run.job.duration_s;
+    clock_s_ = run.started_s + std::min(run.elapsed_s, end_s);
+    follow(std::min(run.elapsed_s, end_s));
+    const double fraction =
+        run.job.duration_s > 0 ? std::min(1.0, run.elapsed_s / run.job.duration_s) : 1.0;
     // Progress in tenths, not at every step: the bus stays quiet.
-    if (fraction >= current_->reported + 0.1 || fraction >= 1.0) {
-      current_->reported = fraction;
+    if (fraction >= run.reported + 0.1 || fraction >= 1.0) {
+      run.reported = fraction;
       auto p = stamped<ccbuild_lcm::ccbuild_progress_t>();
-      p.job_id = current_->job.job_id;
+      p.job_id = run.job.job_id;
       p.fraction = fraction;
       p.sim_time_s = clock_s_;
       send("PROGRESS", p);
     }
-    if (current_->elapsed_s >= current_->job.duration_s) finish();
+    if (run.elapsed_s >= end_s) finish(run.stop_fault == 0);
   }
   // Status every status_period_s of the machine's clock, and while it waits at least
   // four times a real second: the heartbeat.
   real_since_status_s_ += real_dt_s;
   if (clock_s_ - last_status_s_ >= options_.status_period_s || real_since_status_s_ >= 0.25)
     publish_status();
-  try_start();
+  if (!paused_) try_start();
 }
 
-void SimMachine::finish() {
-  const Running run = *current_;
-  const double end_s = run.started_s + run.job.duration_s;
+void SimMachine::finish(bool completed) {
+  const Running run = std::move(*current_);
+  current_.reset();
+  const double end_s = run.started_s + (completed ? run.job.duration_s : run.stop_elapsed_s);
+  const std::string fault_word = completed                                      ? ""
+                                 : run.stop_fault == ccbuild_fault_t::PUMP_CLOG ? "clog"
+                                                                                : "pin-missed";
+  const int stopped_at = completed ? -1 : run.stop_point;
   // The record first: a machine that dies now still knows the job is done.
   if (!options_.state_file.empty()) {
     FILE* f = std::fopen(options_.state_file.c_str(), "a");
     CCBUILD_CHECK(f != nullptr, "cannot append to " + options_.state_file.string());
-    std::fprintf(f, "%lld %.6f %.6f\n", static_cast<long long>(run.job.job_id), run.started_s,
-                 end_s);
+    std::fprintf(f, "%lld %.6f %.6f %.6f %.6f %.6f %.6f", static_cast<long long>(run.job.job_id),
+                 run.started_s, end_s, position_[0], position_[1], position_[2], position_[3]);
+    if (!completed) std::fprintf(f, " %s %d", fault_word.c_str(), stopped_at);
+    std::fprintf(f, "\n");
     std::fflush(f);
     ::fsync(::fileno(f));
     std::fclose(f);
   }
-  done_[run.job.job_id] = {run.started_s, end_s};
+  done_[run.job.job_id] = {run.started_s, end_s, position_, completed, stopped_at, fault_word};
   executed_.push_back(run.job.job_id);
-  current_.reset();
   clock_s_ = end_s;
-  publish_done(run.job.job_id, run.started_s, end_s);
+  if (run.stop_fault == ccbuild_fault_t::PUMP_CLOG) clogged_once_ = true;
+  // The piece ends it laid, for the interval check of the layer above.
+  if (run.job.kind == ccbuild_job_t::DEPOSIT) {
+    auto& ends = deposited_[{run.job.floor, run.job.layer}];
+    for (const auto& [k, wall] : piece_ends(run.path))
+      if (completed || static_cast<int>(k) <= run.stop_point)
+        ends.push_back({wall, run.path.x_m[k], run.path.y_m[k], run.started_s + run.path.t_s[k]});
+  }
+  if (options_.crash_after_jobs > 0 && ++jobs_run_here_ == options_.crash_after_jobs) {
+    std::cerr << "ccbuild-sim " << options_.machine_id << ": (injected) crashed after "
+              << jobs_run_here_ << " jobs\n";
+    std::_Exit(70);
+  }
+  if (!completed) fault(run.job.job_id, run.stop_fault, run.stop_message);
+  publish_done(run.job.job_id, run.started_s, end_s, completed, stopped_at, fault_word);
 }
 
 void SimMachine::acknowledge(std::int64_t job_id, bool accepted, bool duplicate,
@@ -202,6 +480,7 @@ void SimMachine::acknowledge(std::int64_t job_id, bool accepted, bool duplicate,
 
 void SimMachine::fault(std::int64_t job_id, std::int8_t kind, const std::string& message) {
   ++faults_;
+  std::cerr << "ccbuild-sim " << options_.machine_id << ": fault: " << message << "\n";
   auto f = stamped<ccbuild_lcm::ccbuild_fault_t>();
   f.job_id = job_id;
   f.kind = kind;
@@ -209,27 +488,35 @@ void SimMachine::fault(std::int64_t job_id, std::int8_t kind, const std::string&
   send("FAULT", f);
 }
 
-void SimMachine::publish_done(std::int64_t job_id, double started_s, double finished_s) {
+void SimMachine::publish_done(std::int64_t job_id, double started_s, double finished_s, bool ok,
+                              int stopped_at, const std::string& detail) {
   auto d = stamped<ccbuild_lcm::ccbuild_done_t>();
   d.job_id = job_id;
-  d.ok = true;
+  d.ok = ok;
   d.started_s = started_s;
   d.finished_s = finished_s;
-  d.detail = "";
+  d.stopped_at = stopped_at;
+  d.detail = detail;
   send("DONE", d);
 }
 
 void SimMachine::publish_status() {
+  using ccbuild_lcm::ccbuild_status_t;
   last_status_s_ = clock_s_;
   real_since_status_s_ = 0.0;
-  auto s = stamped<ccbuild_lcm::ccbuild_status_t>();
-  s.state = current_ ? ccbuild_lcm::ccbuild_status_t::BUSY : ccbuild_lcm::ccbuild_status_t::IDLE;
+  auto s = stamped<ccbuild_status_t>();
+  s.state = aborted_   ? ccbuild_status_t::ABORTED
+            : paused_  ? ccbuild_status_t::PAUSED
+            : current_ ? ccbuild_status_t::BUSY
+                       : ccbuild_status_t::IDLE;
   s.current_job_id = current_ ? current_->job.job_id : 0;
   s.jobs_done = static_cast<std::int64_t>(executed_.size());
   s.sim_time_s = clock_s_;
-  s.x_m = s.y_m = s.z_m = 0.0;
-  s.heading_cumulative_rad = 0.0;
-  s.pump_on = current_ && current_->job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT;
+  s.x_m = position_[0];
+  s.y_m = position_[1];
+  s.z_m = position_[2];
+  s.heading_cumulative_rad = position_[3];
+  s.pump_on = current_ && !paused_ && current_->job.kind == ccbuild_job_t::DEPOSIT;
   send("STATUS", s);
 }
 

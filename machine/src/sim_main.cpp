@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <iostream>
 
 #include "ccbuild/common/input_error.hpp"
@@ -23,13 +24,17 @@ int main(int argc, char** argv) {
       "for its machine id as a real machine would, runs them on its own clock at --speed "
       "(idle time passes at once), keeps its own record of the jobs it ran in --state (read "
       "back when it restarts), acknowledges a job it has seen again without running it "
-      "twice, and refuses jobs out of order or with paths that do not add up (a fault). "
+      "twice, and refuses jobs out of order, paths that do not add up or break its URDF's "
+      "limits (--machine), and layers that would cover its layer below too early or too late "
+      "(--min-interval, --max-interval), with a fault. Replayed messages are rejected. "
+      "Machine faults can be injected (--clog-at, --pin-failures, --crash-after, --stall-at). "
       "`ccbuild dry-run` starts one per gantry.\n"
       "Example: ccbuild-sim --machine-id gantry-1 --state gantry-1.state",
       "ccbuild-sim");
   ccbuild::machine::SimOptions options;
   std::string url = "udpm://239.255.76.67:7667?ttl=0";
   std::string state;
+  bool climbing = false;
   app.add_option("--machine-id", options.machine_id, "The machine it is")->capture_default_str();
   app.add_option("--lcm-url", url, "LCM provider URL (ttl=0: this host only)")
       ->capture_default_str();
@@ -47,10 +52,60 @@ int main(int argc, char** argv) {
   app.add_option("--reorder", options.reorder, "Injected: ... that one is held behind the next")
       ->check(CLI::Range(0.0, 0.9));
   app.add_option("--seed", options.seed, "Seed of the injected faults")->capture_default_str();
+  std::string profile, clog_at;
+  std::vector<double> home;
+  app.add_option("--home", home,
+                 "Where the nozzle is parked before its first job: X Y Z HEADING "
+                 "(m, rad)")
+      ->expected(4);
+  app.add_option("--machine", profile,
+                 "Its machine profile: axis ranges, stopper and velocity limits from the URDF "
+                 "it names (paths outside them are refused); default: unchecked");
+  app.add_flag("--climbing", climbing, "A climbing machine: nozzle heights not held to z range");
+  app.add_option("--min-interval", options.min_interval_s,
+                 "The material's minimum layer interval, s (a layer covering this machine's "
+                 "layer below sooner is refused: too early)")
+      ->check(CLI::Range(0.0, 1e7));
+  app.add_option("--max-interval", options.max_interval_s,
+                 "... its maximum, s (covered later: a cold joint)")
+      ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--clog-at", clog_at,
+                 "Injected: the pump clogs part-way through this layer, FLOOR:LAYER (from 0)");
+  app.add_option("--pin-failures", options.pin_failures,
+                 "Injected: the first N pin insertions miss their pipe")
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--crash-after", options.crash_after_jobs,
+                 "Injected: the process ends (exit 70) right after recording its N-th job")
+      ->check(CLI::Range(0L, 100000000L));
+  app.add_option("--stall-at", options.stall_at_s,
+                 "Injected: the rail axis stalls from this schedule time on, s (the drive does "
+                 "not notice)")
+      ->check(CLI::Range(0.0, 1e9));
   CLI11_PARSE(app, argc, argv);
   options.state_file = state;
+  options.check_z_range = !climbing;
+  if (home.size() == 4) options.home = {home[0], home[1], home[2], home[3]};
   try {
+    if (!clog_at.empty()) {
+      const auto colon = clog_at.find(':');
+      char *end1 = nullptr, *end2 = nullptr;
+      const std::string floor = clog_at.substr(0, colon);
+      const std::string layer = colon == std::string::npos ? "" : clog_at.substr(colon + 1);
+      options.clog_floor = static_cast<int>(std::strtol(floor.c_str(), &end1, 10));
+      options.clog_layer = static_cast<int>(std::strtol(layer.c_str(), &end2, 10));
+      if (floor.empty() || layer.empty() || *end1 || *end2 || options.clog_floor < 0 ||
+          options.clog_layer < 0)
+        throw ccbuild::InputError("", 0, "--clog-at",
+                                  "expected FLOOR:LAYER (numbers from 0), got '" + clog_at + "'");
+    }
+    if (!profile.empty())
+      options.model = std::make_shared<const ccbuild::machine::MachineModel>(
+          ccbuild::machine::load_machine(profile));
     ccbuild::machine::Bus bus(url);
+    bus.on_malformed([&](const std::string& channel, int size) {
+      std::cerr << "ccbuild-sim " << options.machine_id << ": rejected a message on " << channel
+                << " (" << size << " bytes) that does not decode as its channel's type\n";
+    });
     ccbuild::machine::SimMachine sim(bus, options);
     std::signal(SIGTERM, on_stop);
     std::signal(SIGINT, on_stop);
@@ -61,8 +116,9 @@ int main(int argc, char** argv) {
       sim.step(std::chrono::duration<double>(now - last).count());
       last = now;
     }
-    std::cerr << "ccbuild-sim " << options.machine_id << ": stopped after " << sim.executed().size()
-              << " jobs\n";
+    std::cerr << "ccbuild-sim " << options.machine_id << ": stopped; " << sim.executed().size()
+              << " jobs in its record, " << sim.replays_rejected() << " replayed and "
+              << bus.malformed_count() << " malformed messages rejected\n";
     return 0;
   } catch (const ccbuild::InputError& e) {
     std::cerr << "ccbuild-sim: error: " << e.what() << "\n";

@@ -131,7 +131,7 @@ std::vector<DispatchJob> jobs_of_schedule(const json& schedule) {
     return a.job.machine_id < b.job.machine_id;
   });
   for (std::size_t k = 0; k < jobs.size(); ++k) {
-    jobs[k].job.job_id = static_cast<std::int64_t>(k + 1);
+    jobs[k].job.job_id = static_cast<std::int64_t>(10 * (k + 1));
     for (auto& c : jobs[k].chunks) c.job_id = jobs[k].job.job_id;
   }
   return jobs;

@@ -2,14 +2,125 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <chrono>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild_lcm/ccbuild_ack_t.hpp"
-#include "ccbuild_lcm/ccbuild_done_t.hpp"
-#include "ccbuild_lcm/ccbuild_fault_t.hpp"
+#include "ccbuild_lcm/ccbuild_command_t.hpp"
 
 namespace ccbuild::orchestrator {
+namespace {
+using ccbuild_lcm::ccbuild_fault_t;
+using ccbuild_lcm::ccbuild_job_t;
+using ccbuild_lcm::ccbuild_path_chunk_t;
+
+/// A statement, its parameters bound by the caller; finalized when it goes.
+class Statement {
+ public:
+  Statement(sqlite3* db, const char* sql_text) {
+    CCBUILD_CHECK(sqlite3_prepare_v2(db, sql_text, -1, &stmt_, nullptr) == SQLITE_OK,
+                  "journal: " + std::string(sqlite3_errmsg(db)));
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  sqlite3_stmt* operator*() const { return stmt_; }
+
+ private:
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+std::string text(sqlite3_stmt* s, int column) {
+  const auto* t = sqlite3_column_text(s, column);
+  return t ? reinterpret_cast<const char*>(t) : "";
+}
+
+/// The path of `job` from waypoint `from` on, its times from there, in fresh chunks.
+std::vector<ccbuild_path_chunk_t> rest_of_path(const DispatchJob& job, int from, double& t0_s) {
+  ccbuild_path_chunk_t all;
+  for (const auto& c : job.chunks) {
+    all.t_s.insert(all.t_s.end(), c.t_s.begin(), c.t_s.end());
+    all.x_m.insert(all.x_m.end(), c.x_m.begin(), c.x_m.end());
+    all.y_m.insert(all.y_m.end(), c.y_m.begin(), c.y_m.end());
+    all.z_m.insert(all.z_m.end(), c.z_m.begin(), c.z_m.end());
+    all.heading_rad.insert(all.heading_rad.end(), c.heading_rad.begin(), c.heading_rad.end());
+    all.extruding.insert(all.extruding.end(), c.extruding.begin(), c.extruding.end());
+    all.wall.insert(all.wall.end(), c.wall.begin(), c.wall.end());
+    all.piece.insert(all.piece.end(), c.piece.begin(), c.piece.end());
+  }
+  const int total = static_cast<int>(all.t_s.size());
+  from = std::clamp(from, 0, std::max(0, total - 1));
+  t0_s = total > 0 ? all.t_s[from] : 0.0;
+  const int per = ccbuild_path_chunk_t::MAX_POINTS;
+  const int count = (total - from + per - 1) / per;
+  std::vector<ccbuild_path_chunk_t> out;
+  for (int c = 0; c < count; ++c) {
+    ccbuild_path_chunk_t chunk;
+    chunk.utime = 0;
+    chunk.machine_id = job.job.machine_id;
+    chunk.job_id = 0;
+    chunk.seq = 0;
+    chunk.chunk_index = c;
+    chunk.chunk_count = count;
+    const int a = from + c * per, b = std::min(total, a + per);
+    chunk.n = b - a;
+    for (int k = a; k < b; ++k) {
+      chunk.t_s.push_back(all.t_s[k] - t0_s);
+      chunk.x_m.push_back(all.x_m[k]);
+      chunk.y_m.push_back(all.y_m[k]);
+      chunk.z_m.push_back(all.z_m[k]);
+      chunk.heading_rad.push_back(all.heading_rad[k]);
+      chunk.extruding.push_back(all.extruding[k]);
+      chunk.wall.push_back(all.wall[k]);
+      chunk.piece.push_back(all.piece[k]);
+    }
+    out.push_back(std::move(chunk));
+  }
+  return out;
+}
+}  // namespace
+
+std::string fault_name(std::int8_t kind) {
+  switch (kind) {
+    case ccbuild_fault_t::JOINT_LIMIT:
+      return "JOINT_LIMIT";
+    case ccbuild_fault_t::VELOCITY_LIMIT:
+      return "VELOCITY_LIMIT";
+    case ccbuild_fault_t::PATH_MISMATCH:
+      return "PATH_MISMATCH";
+    case ccbuild_fault_t::OUT_OF_ORDER:
+      return "OUT_OF_ORDER";
+    case ccbuild_fault_t::COLD_JOINT:
+      return "COLD_JOINT";
+    case ccbuild_fault_t::TOO_EARLY:
+      return "TOO_EARLY";
+    case ccbuild_fault_t::ANCHOR_TOO_YOUNG:
+      return "ANCHOR_TOO_YOUNG";
+    case ccbuild_fault_t::PIN_MISSED:
+      return "PIN_MISSED";
+    case ccbuild_fault_t::PUMP_CLOG:
+      return "PUMP_CLOG";
+    case ccbuild_fault_t::AXIS_STALLED:
+      return "AXIS_STALLED";
+    case ccbuild_fault_t::MALFORMED:
+      return "MALFORMED";
+    default:
+      return "STOP";
+  }
+}
+
+std::string policy_of(std::int8_t kind) {
+  switch (kind) {
+    case ccbuild_fault_t::PIN_MISSED:
+      return "retry";
+    case ccbuild_fault_t::PUMP_CLOG:
+      return "re-plan the rest of the layer";
+    case ccbuild_fault_t::MALFORMED:
+      return "ignore";
+    default:
+      return "stop";
+  }
+}
+
 Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
   if (sqlite3_open(path_.c_str(), &db_) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
@@ -21,7 +132,12 @@ Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
   const char* setup =
       "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL;"
       "CREATE TABLE IF NOT EXISTS job_state (job_id INTEGER PRIMARY KEY, machine_id TEXT NOT "
-      "NULL, state TEXT NOT NULL, utime INTEGER NOT NULL);";
+      "NULL, state TEXT NOT NULL, started_s REAL NOT NULL, finished_s REAL NOT NULL, "
+      "stopped_at INTEGER NOT NULL, utime INTEGER NOT NULL);"
+      "CREATE TABLE IF NOT EXISTS fault (id INTEGER PRIMARY KEY AUTOINCREMENT, machine_id TEXT "
+      "NOT NULL, job_id INTEGER NOT NULL, kind INTEGER NOT NULL, message TEXT NOT NULL, policy "
+      "TEXT NOT NULL, utime INTEGER NOT NULL);"
+      "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state LIMIT 0;";
   char* error = nullptr;
   if (sqlite3_exec(db_, setup, nullptr, nullptr, &error) != SQLITE_OK) {
     const std::string why = error ? error : "unknown";
@@ -36,50 +152,96 @@ Journal::~Journal() {
   sqlite3_close(db_);
 }
 
-void Journal::record(std::int64_t job_id, const std::string& machine_id, const std::string& state) {
+void Journal::record(std::int64_t job_id, const JournalRow& row) {
   const auto started = std::chrono::steady_clock::now();
-  sqlite3_stmt* stmt = nullptr;
-  CCBUILD_CHECK(sqlite3_prepare_v2(db_,
-                                   "INSERT INTO job_state (job_id, machine_id, state, utime) "
-                                   "VALUES (?1, ?2, ?3, ?4) ON CONFLICT(job_id) DO UPDATE SET "
-                                   "state = excluded.state, utime = excluded.utime",
-                                   -1, &stmt, nullptr) == SQLITE_OK,
-                "journal: " + std::string(sqlite3_errmsg(db_)));
-  sqlite3_bind_int64(stmt, 1, job_id);
-  sqlite3_bind_text(stmt, 2, machine_id.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_text(stmt, 3, state.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_int64(stmt, 4, machine::utime_now());
-  const int status = sqlite3_step(stmt);
-  sqlite3_finalize(stmt);
-  CCBUILD_CHECK(status == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  Statement s(db_,
+              "INSERT INTO job_state (job_id, machine_id, state, started_s, finished_s, "
+              "stopped_at, utime) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(job_id) DO "
+              "UPDATE SET state = excluded.state, started_s = excluded.started_s, finished_s = "
+              "excluded.finished_s, stopped_at = excluded.stopped_at, utime = excluded.utime");
+  sqlite3_bind_int64(*s, 1, job_id);
+  sqlite3_bind_text(*s, 2, row.machine_id.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(*s, 3, row.state.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_double(*s, 4, row.started_s);
+  sqlite3_bind_double(*s, 5, row.finished_s);
+  sqlite3_bind_int(*s, 6, row.stopped_at);
+  sqlite3_bind_int64(*s, 7, machine::utime_now());
+  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
   ++writes_;
   write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
+void Journal::record_fault(const FaultRecord& f) {
+  const auto started = std::chrono::steady_clock::now();
+  Statement s(db_,
+              "INSERT INTO fault (machine_id, job_id, kind, message, policy, utime) VALUES (?1, "
+              "?2, ?3, ?4, ?5, ?6)");
+  sqlite3_bind_text(*s, 1, f.machine_id.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(*s, 2, f.job_id);
+  sqlite3_bind_int(*s, 3, f.kind);
+  sqlite3_bind_text(*s, 4, f.message.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(*s, 5, f.policy.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(*s, 6, machine::utime_now());
+  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  ++writes_;
+  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+std::map<std::int64_t, JournalRow> Journal::rows() const {
+  std::map<std::int64_t, JournalRow> out;
+  Statement s(db_,
+              "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state");
+  while (sqlite3_step(*s) == SQLITE_ROW)
+    out[sqlite3_column_int64(*s, 0)] = {text(*s, 1), text(*s, 2), sqlite3_column_double(*s, 3),
+                                        sqlite3_column_double(*s, 4), sqlite3_column_int(*s, 5)};
+  return out;
+}
+
 std::map<std::int64_t, std::string> Journal::states() const {
   std::map<std::int64_t, std::string> out;
-  sqlite3_stmt* stmt = nullptr;
-  CCBUILD_CHECK(sqlite3_prepare_v2(db_, "SELECT job_id, state FROM job_state", -1, &stmt,
-                                   nullptr) == SQLITE_OK,
-                "journal: " + std::string(sqlite3_errmsg(db_)));
-  while (sqlite3_step(stmt) == SQLITE_ROW)
-    out[sqlite3_column_int64(stmt, 0)] =
-        reinterpret_cast<const char*>(sqlite3_column_text(stmt, 1));
-  sqlite3_finalize(stmt);
+  for (const auto& [id, row] : rows()) out[id] = row.state;
+  return out;
+}
+
+std::vector<FaultRecord> Journal::faults() const {
+  std::vector<FaultRecord> out;
+  Statement s(db_, "SELECT machine_id, job_id, kind, message, policy FROM fault ORDER BY id");
+  while (sqlite3_step(*s) == SQLITE_ROW)
+    out.push_back({text(*s, 0), sqlite3_column_int64(*s, 1),
+                   static_cast<std::int8_t>(sqlite3_column_int(*s, 2)), text(*s, 3), text(*s, 4)});
   return out;
 }
 
 Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal& journal,
                        DispatchOptions options)
     : bus_(bus), jobs_(std::move(jobs)), journal_(journal), options_(options) {
-  const auto states = journal_.states();
   for (std::size_t k = 0; k < jobs_.size(); ++k) {
-    const auto& job = jobs_[k].job;
-    Queue& q = queues_[job.machine_id];
-    q.jobs.push_back(k);
-    const auto it = states.find(job.job_id);
-    if (it != states.end() && it->second == "done" && q.next + 1 == q.jobs.size()) ++q.next;
+    origin_.push_back(k);
+    index_of_[jobs_[k].job.job_id] = k;
+    queues_[jobs_[k].job.machine_id].jobs.push_back(k);
   }
+  ended_.assign(jobs_.size(), false);
+  // Back where the journal left off: the jobs ended, and the recovery jobs they made (in
+  // order, so that the same ones are made again).
+  const auto rows = journal_.rows();
+  for (std::size_t k = 0; k < jobs_.size(); ++k) {  // jobs_ grows as recoveries are made
+    const auto it = rows.find(jobs_[k].job.job_id);
+    if (it == rows.end()) continue;
+    const JournalRow& row = it->second;
+    if (row.state == "done") {
+      ended_[k] = true;
+      executed_[jobs_[k].job.job_id] = {row.started_s, row.finished_s};
+      const DispatchJob& o = jobs_[origin_[k]];
+      delay_s_ = std::max(delay_s_, row.finished_s - (o.job.start_s + o.job.duration_s));
+    } else if (row.state == "clogged" || row.state == "pin-missed") {
+      ended_[k] = true;
+      executed_[jobs_[k].job.job_id] = {row.started_s, row.finished_s};
+      if (!recover(k, row)) stopped_ = "the journal ends on a fault with no recovery left";
+    }
+  }
+  for (auto& [machine, q] : queues_)
+    while (q.next < q.jobs.size() && ended_[q.jobs[q.next]]) ++q.next;
+  for (const auto& f : journal_.faults()) fault_records_.push_back(f);
   for (const auto& [machine, q] : queues_) {
     bus_.subscribe<ccbuild_lcm::ccbuild_ack_t>(
         machine::channel("ACK", machine),
@@ -89,18 +251,101 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
         [this](const ccbuild_lcm::ccbuild_done_t& d) { on_done(d); });
     bus_.subscribe<ccbuild_lcm::ccbuild_fault_t>(
         machine::channel("FAULT", machine),
-        [this](const ccbuild_lcm::ccbuild_fault_t&) { ++faults_; });
+        [this](const ccbuild_lcm::ccbuild_fault_t& f) { on_fault(f); });
   }
 }
 
 bool Dispatcher::finished() const {
+  if (stopped_) return true;
   for (const auto& [machine, q] : queues_)
     if (q.next < q.jobs.size()) return false;
   return true;
 }
 
+void Dispatcher::stop(const std::string& reason) {
+  if (stopped_) return;
+  journal_.record_fault({"", 0, 0, reason, "stop"});
+  stopped_ = reason;
+  for (const auto& [machine, q] : queues_) {
+    ccbuild_lcm::ccbuild_command_t c;
+    c.utime = machine::utime_now();
+    c.machine_id = machine;
+    c.seq = ++seq_;
+    c.command = ccbuild_lcm::ccbuild_command_t::PAUSE;
+    c.reason = reason;
+    bus_.publish(machine::channel("COMMAND", machine), c);
+  }
+}
+
+bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
+  const std::size_t origin = origin_[index];
+  // Recovery jobs take the ids after their origin's (ids go in tens).
+  std::int64_t id = jobs_[origin].job.job_id;
+  for (const auto& [other, k] : index_of_)
+    if (origin_[k] == origin) id = std::max(id, other);
+  std::vector<DispatchJob> made;
+  const DispatchJob& ended = jobs_[index];
+  if (row.state == "clogged") {
+    DispatchJob purge;
+    purge.job = ended.job;
+    purge.job.kind = ccbuild_job_t::PURGE;
+    purge.job.start_s = row.finished_s;
+    purge.job.duration_s = options_.purge_s;
+    purge.job.plan = "";
+    purge.job.detail = "purge after the clog in job " + std::to_string(ended.job.job_id);
+    purge.job.chunk_count = purge.job.point_count = 0;
+    made.push_back(purge);
+    DispatchJob rest;
+    rest.job = ended.job;
+    double t0_s = 0.0;
+    rest.chunks = rest_of_path(ended, row.stopped_at, t0_s);
+    rest.job.start_s = row.finished_s + options_.purge_s;
+    rest.job.duration_s = ended.job.duration_s - t0_s;
+    rest.job.detail = ended.job.detail + ", the rest from waypoint " +
+                      std::to_string(row.stopped_at) + " (after a clog)";
+    rest.job.chunk_count = static_cast<std::int32_t>(rest.chunks.size());
+    rest.job.point_count = 0;
+    for (const auto& c : rest.chunks) rest.job.point_count += c.n;
+    made.push_back(rest);
+  } else if (row.state == "pin-missed") {
+    int attempts = 1;
+    for (std::size_t k = 0; k < jobs_.size(); ++k) attempts += k != origin && origin_[k] == origin;
+    if (attempts >= options_.pin_attempts) return false;
+    DispatchJob again = ended;
+    again.job.detail = jobs_[origin].job.detail + ", attempt " + std::to_string(attempts + 1);
+    made.push_back(again);
+  } else {
+    return false;
+  }
+  if (id + static_cast<std::int64_t>(made.size()) >= jobs_[origin].job.job_id + 10) return false;
+  Queue& q = queues_[ended.job.machine_id];
+  auto at = std::find(q.jobs.begin(), q.jobs.end(), index);
+  for (auto& m : made) {
+    m.job.job_id = ++id;
+    for (auto& c : m.chunks) c.job_id = m.job.job_id;
+    jobs_.push_back(std::move(m));
+    origin_.push_back(origin);
+    ended_.push_back(false);
+    index_of_[id] = jobs_.size() - 1;
+    at = q.jobs.insert(at + 1, jobs_.size() - 1);
+  }
+  return true;
+}
+
+bool Dispatcher::released(std::size_t index) const {
+  // Every job planned to start before this one's (its origin's) has ended, and so have
+  // the jobs recovering from them: a layer's jobs go out together.
+  const double start_s = jobs_[origin_[index]].job.start_s;
+  for (std::size_t k = 0; k < jobs_.size(); ++k)
+    if (!ended_[k] && jobs_[origin_[k]].job.start_s < start_s) return false;
+  return true;
+}
+
 void Dispatcher::send(std::size_t index) {
-  DispatchJob& d = jobs_[index];
+  DispatchJob d = jobs_[index];
+  // A common start for the jobs released together: planned, plus the delay so far
+  // (recovery jobs carry their own starts).
+  if (origin_[index] == index) d.job.start_s += delay_s_;
   d.job.utime = machine::utime_now();
   d.job.seq = ++seq_;
   bus_.publish(machine::channel("JOB", d.job.machine_id), d.job);
@@ -122,10 +367,10 @@ Dispatcher::Queue* Dispatcher::queue_of(const std::string& machine_id, std::int6
 
 void Dispatcher::on_ack(const ccbuild_lcm::ccbuild_ack_t& ack) {
   Queue* q = queue_of(ack.machine_id, ack.job_id);
-  if (!q || q->wait != Queue::Wait::kAck) return;
+  if (!q || q->wait != Queue::Wait::kAck || stopped_) return;
   if (!ack.accepted) {
     journal_.record(ack.job_id, ack.machine_id, "refused");
-    q->wait = Queue::Wait::kSend;  // sent again after the timeout; a fault says why
+    q->wait = Queue::Wait::kSend;  // sent again after the timeout; its fault's policy rules
     return;
   }
   journal_.record(ack.job_id, ack.machine_id, "acked");
@@ -133,22 +378,67 @@ void Dispatcher::on_ack(const ccbuild_lcm::ccbuild_ack_t& ack) {
   q->waited_s = 0.0;
 }
 
+void Dispatcher::on_fault(const ccbuild_lcm::ccbuild_fault_t& f) {
+  const FaultRecord record{f.machine_id, f.job_id, f.kind, f.message, policy_of(f.kind)};
+  // Once per fault: a machine repeats a job's fault only with a new message.
+  for (const auto& seen : fault_records_)
+    if (seen.machine_id == record.machine_id && seen.job_id == record.job_id &&
+        seen.kind == record.kind && seen.message == record.message)
+      return;
+  journal_.record_fault(record);
+  fault_records_.push_back(record);
+  if (record.policy == "stop") stop(f.machine_id + ": " + fault_name(f.kind) + ": " + f.message);
+}
+
+void Dispatcher::advance(Queue& q, std::size_t index, const JournalRow& row) {
+  ended_[index] = true;
+  executed_[jobs_[index].job.job_id] = {row.started_s, row.finished_s};
+  ++q.next;
+  q.wait = Queue::Wait::kSend;
+  q.waited_s = 0.0;
+}
+
 void Dispatcher::on_done(const ccbuild_lcm::ccbuild_done_t& done) {
   Queue* q = queue_of(done.machine_id, done.job_id);
   if (!q) return;
-  journal_.record(done.job_id, done.machine_id, "done");
-  executed_[done.job_id] = {done.started_s, done.finished_s};
-  ++q->next;
-  q->wait = Queue::Wait::kSend;
-  q->waited_s = 0.0;
+  const std::size_t index = q->jobs[q->next];
+  JournalRow row{done.machine_id, "done", done.started_s, done.finished_s, done.stopped_at};
+  if (done.ok) {
+    journal_.record(done.job_id, row);
+    const DispatchJob& o = jobs_[origin_[index]];
+    delay_s_ = std::max(delay_s_, done.finished_s - (o.job.start_s + o.job.duration_s));
+    advance(*q, index, row);
+    return;
+  }
+  row.state = done.detail == "clog" ? "clogged" : done.detail == "pin-missed" ? "pin-missed" : "";
+  if (row.state.empty()) {
+    journal_.record(done.job_id, JournalRow{done.machine_id, "failed", done.started_s,
+                                            done.finished_s, done.stopped_at});
+    advance(*q, index, row);
+    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " ended: " + done.detail);
+    return;
+  }
+  journal_.record(done.job_id, row);  // before the recovery jobs are made
+  if (!recover(index, row)) {
+    advance(*queue_of(done.machine_id, done.job_id), index, row);
+    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " (" + row.state +
+         "): no recovery left");
+    return;
+  }
+  advance(*queue_of(done.machine_id, done.job_id), index, row);
 }
 
 void Dispatcher::step(double real_dt_s) {
+  if (stopped_) return;
   for (auto& [machine, q] : queues_) {
     if (q.next >= q.jobs.size()) continue;
     const std::size_t index = q.jobs[q.next];
     const auto& job = jobs_[index].job;
     q.waited_s += real_dt_s;
+    if (q.wait == Queue::Wait::kSend && !released(index)) {
+      q.waited_s = 0.0;
+      continue;
+    }
     const double done_within_s = job.duration_s / options_.speed + options_.done_slack_s;
     const bool due = q.wait == Queue::Wait::kSend ||
                      (q.wait == Queue::Wait::kAck && q.waited_s > options_.ack_timeout_s) ||

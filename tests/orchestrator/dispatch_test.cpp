@@ -43,7 +43,7 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
   int deposits = 0, slabs = 0, purges = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const auto& j = jobs[k].job;
-    EXPECT_EQ(j.job_id, static_cast<std::int64_t>(k + 1));
+    EXPECT_EQ(j.job_id, static_cast<std::int64_t>(10 * (k + 1)));
     if (k > 0) {
       EXPECT_LE(jobs[k - 1].job.start_s, j.start_s);  // schedule order
     }
@@ -226,9 +226,16 @@ TEST(Dispatch, AMachineRefusesJobsOutOfOrderAndPathsThatDoNotAddUp) {
   bus.subscribe<ccbuild_lcm::ccbuild_fault_t>(
       machine::channel("FAULT", "gantry-1"),
       [&](const ccbuild_lcm::ccbuild_fault_t& f) { faults.push_back(f.kind); });
-  auto send = [&](const DispatchJob& d) {
+  std::int64_t seq = 0;
+  auto send = [&](DispatchJob d) {
+    d.job.utime = machine::utime_now();
+    d.job.seq = ++seq;
     bus.publish(machine::channel("JOB", "gantry-1"), d.job);
-    for (const auto& c : d.chunks) bus.publish(machine::channel("PATH", "gantry-1"), c);
+    for (auto& c : d.chunks) {
+      c.utime = d.job.utime;
+      c.seq = ++seq;
+      bus.publish(machine::channel("PATH", "gantry-1"), c);
+    }
     bus.handle(0);
     for (int k = 0; k < 5; ++k) {
       sim.step(1.0);

@@ -6,19 +6,26 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/orchestrator/dispatcher.hpp"
 #include "ccbuild/orchestrator/schedule.hpp"
 #include "ccbuild/orchestrator/schedule_diff.hpp"
 #include "ccbuild/orchestrator/schedule_json.hpp"
+#include "ccbuild/orchestrator/site_watchdog.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -39,78 +46,171 @@ struct DryRunOptions {
   double retry_after_s = 1.0;
   bool external = false;
   double timeout_s = 600.0;
+  double status_period_s = 0.0;  ///< 0: chosen from the speed
+  bool no_watchdog = false;
+  bool force = false;
 };
 
-/// --inject "drop=0.1,duplicate=0.1,reorder=0.1": each fault and its probability.
-/// Throws InputError (field --inject) for anything else.
-std::vector<std::pair<std::string, double>> injected(const std::string& text) {
-  std::vector<std::pair<std::string, double>> out;
+/// What --inject asks for: network faults with their probabilities, and machine faults
+/// with the machine they happen on.
+struct Injected {
+  std::vector<std::pair<std::string, double>> network;  ///< drop, duplicate, reorder
+  /// machine -> its ccbuild-sim flags ("--clog-at", "0:3"), ...
+  std::map<std::string, std::vector<std::string>> machine;
+};
+
+/// --inject "drop=0.1,duplicate=0.1,reorder=0.1,clog=0:3,pin=1,crash=5,stall=gantry-2@60":
+/// each fault and its value; a machine fault happens on gantry-1 unless MACHINE@ names
+/// another. Throws InputError (field --inject) for anything else.
+Injected injected(const std::string& text) {
+  Injected out;
   std::size_t at = 0;
+  const auto bad = [](const std::string& item, const std::string& why) {
+    return InputError("", 0, "--inject",
+                      why + " in '" + item +
+                          "'; expected comma-separated drop=P, duplicate=P, reorder=P (P from "
+                          "0 to 0.9), clog=[MACHINE@]FLOOR:LAYER, pin=[MACHINE@]N, "
+                          "crash=[MACHINE@]N or stall=[MACHINE@]SECONDS");
+  };
   while (at < text.size()) {
     const std::size_t end = std::min(text.find(',', at), text.size());
     const std::string item = text.substr(at, end - at);
-    const std::size_t eq = item.find('=');
-    const std::string name = item.substr(0, eq);
-    char* stop = nullptr;
-    const double p = eq == std::string::npos ? -1 : std::strtod(item.c_str() + eq + 1, &stop);
-    if ((name != "drop" && name != "duplicate" && name != "reorder") || eq == std::string::npos ||
-        *stop != '\0' || !(p >= 0.0 && p <= 0.9))
-      throw InputError("", 0, "--inject",
-                       "expected drop=P, duplicate=P or reorder=P (P from 0 to 0.9), "
-                       "comma-separated; got '" +
-                           item + "'");
-    out.emplace_back(name, p);
     at = end + 1;
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos) throw bad(item, "no '='");
+    const std::string name = item.substr(0, eq);
+    std::string value = item.substr(eq + 1);
+    if (name == "drop" || name == "duplicate" || name == "reorder") {
+      char* stop = nullptr;
+      const double p = std::strtod(value.c_str(), &stop);
+      if (value.empty() || *stop != '\0' || !(p >= 0.0 && p <= 0.9))
+        throw bad(item, "a probability from 0 to 0.9 expected");
+      out.network.emplace_back(name, p);
+      continue;
+    }
+    std::string machine = orchestrator::gantry_id(0);
+    if (const std::size_t amp = value.find('@'); amp != std::string::npos) {
+      machine = value.substr(0, amp);
+      value = value.substr(amp + 1);
+    }
+    char* stop = nullptr;
+    if (name == "clog") {
+      const std::size_t colon = value.find(':');
+      const long floor = std::strtol(value.c_str(), &stop, 10);
+      if (colon == std::string::npos || stop != value.c_str() + colon || floor < 0)
+        throw bad(item, "FLOOR:LAYER expected");
+      const long layer = std::strtol(value.c_str() + colon + 1, &stop, 10);
+      if (*stop != '\0' || layer < 0 || colon + 1 == value.size())
+        throw bad(item, "FLOOR:LAYER expected");
+      out.machine[machine].insert(out.machine[machine].end(), {"--clog-at", value});
+    } else if (name == "pin" || name == "crash") {
+      const long n = std::strtol(value.c_str(), &stop, 10);
+      if (value.empty() || *stop != '\0' || n < 1 || n > 100000)
+        throw bad(item, "a count from 1 expected");
+      out.machine[machine].insert(out.machine[machine].end(),
+                                  {name == "pin" ? "--pin-failures" : "--crash-after", value});
+    } else if (name == "stall") {
+      const double t = std::strtod(value.c_str(), &stop);
+      if (value.empty() || *stop != '\0' || !(t >= 0.0 && t <= 1e9))
+        throw bad(item, "a schedule time in seconds expected");
+      out.machine[machine].insert(out.machine[machine].end(), {"--stall-at", value});
+    } else {
+      throw bad(item, "unknown fault '" + name + "'");
+    }
   }
   return out;
 }
 
-/// The simulated machines, one process each; stopped (SIGTERM) when this goes.
+/// The simulated machines, one process each; stopped (SIGTERM) when this goes. One that
+/// ends by itself (a crash) is started again on its own record, without the crash.
 class Machines {
  public:
-  Machines(const std::set<std::string>& ids, const DryRunOptions& o, const fs::path& state_dir) {
-    const fs::path sim = fs::read_symlink("/proc/self/exe").parent_path() / "ccbuild-sim";
-    if (!fs::exists(sim))
-      throw InputError(sim.string(), 0, "", "ccbuild-sim not found beside ccbuild (build it)");
+  Machines(const std::vector<std::string>& ids, const std::vector<orchestrator::DispatchJob>& jobs,
+           std::vector<std::string> common, const Injected& inject, const fs::path& state_dir)
+      : sim_(fs::read_symlink("/proc/self/exe").parent_path() / "ccbuild-sim") {
+    if (!fs::exists(sim_))
+      throw InputError(sim_.string(), 0, "", "ccbuild-sim not found beside ccbuild (build it)");
     for (const auto& id : ids) {
-      const std::string state = (state_dir / (id + ".state")).string();
-      const std::string speed = std::to_string(o.speed);
-      std::vector<std::string> args = {"ccbuild-sim",
-                                       "--machine-id",
-                                       id,
-                                       "--lcm-url",
-                                       o.lcm_url,
-                                       "--speed",
-                                       speed,
-                                       "--state",
-                                       state,
-                                       "--seed",
-                                       std::to_string(o.seed)};
-      for (const auto& [name, p] : injected(o.inject)) {
-        args.push_back("--" + name);
-        args.push_back(std::to_string(p));
-      }
-      const pid_t pid = ::fork();
-      CCBUILD_CHECK(pid >= 0, "fork failed");
-      if (pid == 0) {
-        ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the dry-run
-        std::vector<char*> argv;
-        for (auto& a : args) argv.push_back(a.data());
-        argv.push_back(nullptr);
-        ::execv(sim.c_str(), argv.data());
-        ::_exit(127);
-      }
-      pids_.push_back(pid);
+      std::vector<std::string> args = {"ccbuild-sim", "--machine-id", id, "--state",
+                                       (state_dir / (id + ".state")).string()};
+      args.insert(args.end(), common.begin(), common.end());
+      // Parked where its first path starts.
+      for (const auto& j : jobs)
+        if (j.job.machine_id == id && !j.chunks.empty()) {
+          const auto& c = j.chunks.front();
+          args.insert(args.end(),
+                      {"--home", printf_string("%.17g", c.x_m[0]), printf_string("%.17g", c.y_m[0]),
+                       printf_string("%.17g", c.z_m[0]), printf_string("%.17g", c.heading_rad[0])});
+          break;
+        }
+      const auto it = inject.machine.find(id);
+      if (it != inject.machine.end()) args.insert(args.end(), it->second.begin(), it->second.end());
+      running_.push_back({id, args, start(args)});
     }
   }
   ~Machines() {
-    for (pid_t pid : pids_) ::kill(pid, SIGTERM);
-    for (pid_t pid : pids_) ::waitpid(pid, nullptr, 0);
+    for (const auto& m : running_) ::kill(m.pid, SIGTERM);
+    for (const auto& m : running_) ::waitpid(m.pid, nullptr, 0);
+  }
+  /// Starts again the machines that ended; returns what happened, in words.
+  std::vector<std::string> restart_ended() {
+    std::vector<std::string> said;
+    for (auto& m : running_) {
+      int status = 0;
+      if (::waitpid(m.pid, &status, WNOHANG) != m.pid) continue;
+      said.push_back(printf_string("%s ended (%s %d); started again on its own record",
+                                   m.id.c_str(), WIFEXITED(status) ? "exit code" : "signal",
+                                   WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status)));
+      // It crashed once; it runs on without that fault.
+      for (std::size_t k = 0; k + 1 < m.args.size(); ++k)
+        if (m.args[k] == "--crash-after") m.args.erase(m.args.begin() + k, m.args.begin() + k + 2);
+      m.pid = start(m.args);
+    }
+    return said;
   }
 
  private:
-  std::vector<pid_t> pids_;
+  pid_t start(std::vector<std::string> args) {
+    const pid_t pid = ::fork();
+    CCBUILD_CHECK(pid >= 0, "fork failed");
+    if (pid == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the dry-run
+      std::vector<char*> argv;
+      for (auto& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      ::execv(sim_.c_str(), argv.data());
+      ::_exit(127);
+    }
+    return pid;
+  }
+  struct Running {
+    std::string id;
+    std::vector<std::string> args;
+    pid_t pid;
+  };
+  fs::path sim_;
+  std::vector<Running> running_;
 };
+
+/// The machine profile a schedule was made with: --machine, the building's, or the one
+/// among the schedule's input files that loads as the machine it names.
+std::string machine_profile(const nlohmann::json& schedule, const DryRunOptions& o,
+                            const std::optional<orchestrator::Project>& project) {
+  if (project) return project->machine->source_file;
+  if (!o.input.machine.empty()) return o.input.machine;
+  const std::string name = schedule.at("inputs").at("machine").at("name").get<std::string>();
+  for (const auto& f : schedule.at("inputs").at("files")) {
+    const fs::path path = f.at("path").get<std::string>();
+    if (path.extension() != ".yaml" && path.extension() != ".json") continue;
+    try {
+      if (machine::load_machine(path).name == name) return path.string();
+    } catch (const InputError&) {
+    }
+  }
+  throw InputError(o.file, 0, "inputs.machine",
+                   "the machine profile '" + name +
+                       "' is not among the schedule's files here; name it with --machine");
+}
 
 std::string duration(double s) {
   if (s >= 2 * 86400.0) return printf_string("%.2f d", s / 86400.0);
@@ -121,18 +221,52 @@ std::string duration(double s) {
 void run_dry_run(const DryRunOptions& o, int& exit_code) {
   // A schedule file as it is; a building scheduled first.
   nlohmann::json schedule;
+  std::optional<orchestrator::Project> project;
   if (fs::path(o.file).extension() == ".json") {
     schedule = orchestrator::read_schedule_file(o.file);
   } else {
-    const orchestrator::Project project = open_input(o.file, o.input);
+    project = open_input(o.file, o.input);
     orchestrator::ScheduleOptions options;
-    schedule = orchestrator::schedule_json(project, options,
-                                           orchestrator::build_schedule(project, options));
+    schedule = orchestrator::schedule_json(*project, options,
+                                           orchestrator::build_schedule(*project, options));
   }
-  injected(o.inject);  // checked before anything starts
+  const Injected inject = injected(o.inject);  // checked before anything starts
+  if (!o.log.empty() && fs::exists(o.log) && !o.force)
+    throw InputError(o.log, 0, "--log", "exists already; --force to overwrite it");
   auto jobs = orchestrator::jobs_of_schedule(schedule);
-  std::set<std::string> ids;
-  for (const auto& j : jobs) ids.insert(j.job.machine_id);
+  std::vector<std::string> ids;  // in rail order
+  for (int k = 0;; ++k) {
+    const std::string id = orchestrator::gantry_id(k);
+    if (std::none_of(jobs.begin(), jobs.end(),
+                     [&](const orchestrator::DispatchJob& j) { return j.job.machine_id == id; }))
+      break;
+    ids.push_back(id);
+  }
+  nlohmann::json machine_json, material_json;
+  try {
+    machine_json = schedule.at("inputs").at("machine");
+    material_json = schedule.at("inputs").at("material");
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(o.file, 0, "inputs", "the schedule names no machine or material");
+  }
+  const std::string profile = machine_profile(schedule, o, project);
+  const char rail_axis = machine_json.value("rail_axis", std::string("x")) == "y" ? 'y' : 'x';
+  const double gantry_width_m = machine_json.value("gantry_width_m", 1.5);
+  const double rail_speed_m_s =
+      machine_json.value(rail_axis == 'y' ? "y_speed_m_s" : "x_speed_m_s", 0.5);
+  const bool climbing = machine_json.value("kind", std::string("fixed gantry")) != "fixed gantry";
+  // Statuses at a fixed rate of machine time, no more than 200 a real second.
+  const double status_period_s =
+      o.status_period_s > 0.0 ? o.status_period_s : std::max(1.0, o.speed * 0.005);
+  // What two gantries close between two statuses and a pause reaching them (20 ms real).
+  const double margin_m = 2.0 * rail_speed_m_s * (status_period_s + o.speed * 0.02);
+  double planned_gap_m = std::numeric_limits<double>::infinity();
+  for (const auto& [key, plan] : schedule.at("plans").items())
+    if (plan.contains("min_gap_m") && plan["min_gap_m"].is_number())
+      planned_gap_m = std::min(planned_gap_m, plan["min_gap_m"].get<double>());
+  const bool several = ids.size() > 1;
+  const bool guard = several && !o.no_watchdog && gantry_width_m + margin_m < planned_gap_m;
+
   const fs::path work =
       fs::temp_directory_path() / ("ccbuild-dry-run-" + std::to_string(::getpid()));
   fs::create_directories(work);
@@ -149,53 +283,159 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   std::unique_ptr<Machines> machines;
   const fs::path state_dir = o.state_dir.empty() ? work : fs::path(o.state_dir);
   if (!o.state_dir.empty()) fs::create_directories(state_dir);
-  if (!o.external) machines = std::make_unique<Machines>(ids, o, state_dir);
+  if (!o.external) {
+    std::vector<std::string> common = {
+        "--lcm-url",
+        o.lcm_url,
+        "--speed",
+        printf_string("%.17g", o.speed),
+        "--seed",
+        std::to_string(o.seed),
+        "--status-period",
+        printf_string("%.17g", status_period_s),
+        "--machine",
+        profile,
+        "--min-interval",
+        printf_string("%.17g", material_json.value("min_layer_interval_s", 0.0)),
+        "--max-interval",
+        printf_string("%.17g", material_json.value("max_layer_interval_s", 1e9))};
+    if (climbing) common.push_back("--climbing");
+    for (const auto& [name, p] : inject.network) {
+      common.push_back("--" + name);
+      common.push_back(printf_string("%.17g", p));
+    }
+    machines = std::make_unique<Machines>(ids, jobs, common, inject, state_dir);
+  }
   orchestrator::DispatchOptions d;
   d.speed = o.speed;
   d.ack_timeout_s = o.retry_after_s;
   d.done_slack_s = 2.0 * o.retry_after_s;
+  d.purge_s = machine_json.value("purge_s", 120.0);
   orchestrator::Dispatcher dispatcher(bus, jobs, journal, d);
+  std::optional<orchestrator::SiteWatchdog> watchdog;
+  if (several) {
+    orchestrator::WatchdogOptions w;
+    w.machines = ids;
+    w.rail_axis = rail_axis;
+    w.gantry_width_m = gantry_width_m;
+    w.margin_m = guard ? margin_m : 0.0;
+    w.max_span_s = guard ? 1e9 : 1.0;  // auditing: only where both reported that closely
+    watchdog.emplace(bus, w);
+  }
   std::cerr << printf_string("dry-run: %zu jobs to %zu machine(s) at %.0fx over %s\n", jobs.size(),
                              ids.size(), o.speed, o.lcm_url.c_str());
+  if (several && guard)
+    std::cerr << printf_string(
+        "dry-run: site watchdog guarding the rails: every machine paused below %.3f m (the "
+        "gantry width %.3f m plus %.3f m the gantries can close between statuses every %.3g s "
+        "of machine time)\n",
+        gantry_width_m + margin_m, gantry_width_m, margin_m, status_period_s);
+  else if (several)
+    std::cerr << printf_string(
+        "dry-run: site watchdog %s: at %.0fx the gantries can close %.1f m between statuses, "
+        "more than the plans leave (%.3f m over the gantry width); gaps are measured where both "
+        "reported within 1 s of machine time, a collision stops the run (guarding needs a "
+        "lower --speed)\n",
+        o.no_watchdog ? "off (--no-watchdog)" : "cannot guard", o.speed, margin_m,
+        planned_gap_m - gantry_width_m);
+  std::vector<std::string> events;
   const auto started = std::chrono::steady_clock::now();
   auto last = started, last_line = started;
   while (!dispatcher.finished()) {
     bus.handle(1);
     const auto now = std::chrono::steady_clock::now();
-    dispatcher.step(std::chrono::duration<double>(now - last).count());
+    const double dt_s = std::chrono::duration<double>(now - last).count();
     last = now;
+    dispatcher.step(dt_s);
+    if (watchdog)
+      if (const auto why = watchdog->check(dt_s)) {
+        events.push_back(*why);
+        std::cerr << "dry-run: " << *why << "\n";
+        dispatcher.stop(*why);  // guarding: before they touch; else: they collided
+      }
+    if (machines)
+      for (const auto& said : machines->restart_ended()) {
+        events.push_back(said);
+        std::cerr << "dry-run: " << said << "\n";
+      }
     if (now - last_line > std::chrono::seconds(2)) {
       last_line = now;
-      std::cerr << printf_string("dry-run: %zu of %zu jobs done, %ld sent again, %ld faults\n",
-                                 dispatcher.executed().size(), jobs.size(), dispatcher.resent(),
-                                 dispatcher.faults());
+      std::cerr << printf_string(
+          "dry-run: %zu of %zu jobs done, %ld sent again, %ld faults, %.0f s behind schedule\n",
+          dispatcher.executed().size(), dispatcher.jobs().size(), dispatcher.resent(),
+          dispatcher.faults(), dispatcher.delay_s());
     }
     if (std::chrono::duration<double>(now - started).count() > o.timeout_s) break;
   }
   const double real_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  // The last words (pauses, statuses) land before the machines stop.
+  for (auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(300);
+       std::chrono::steady_clock::now() < end;)
+    bus.handle(10);
   machines.reset();
-  // Planned against executed.
-  double latest_s = 0.0, worst_late_s = 0.0;
-  long late = 0;
-  for (const auto& j : jobs) {
+
+  // Planned against executed, layer by layer.
+  std::map<std::pair<int, int>, std::array<double, 4>> layers;  // planned start/end, started/ended
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto& j : dispatcher.jobs()) {
+    if (j.job.kind != ccbuild_lcm::ccbuild_job_t::DEPOSIT) continue;
+    auto& l =
+        layers.try_emplace({j.job.floor, j.job.layer}, std::array<double, 4>{inf, -inf, inf, -inf})
+            .first->second;
+    if (j.job.job_id % 10 == 0) {
+      l[0] = std::min(l[0], j.job.start_s);
+      l[1] = std::max(l[1], j.job.start_s + j.job.duration_s);
+    }
     const auto it = dispatcher.executed().find(j.job.job_id);
     if (it == dispatcher.executed().end()) continue;
-    const double late_s = it->second.first - j.job.start_s;
-    latest_s = std::max(latest_s, it->second.second);
-    if (late_s > 1.0) ++late;
-    worst_late_s = std::max(worst_late_s, late_s);
+    l[2] = std::min(l[2], it->second.first);
+    l[3] = std::max(l[3], it->second.second);
   }
-  const bool complete = dispatcher.finished();
+  double latest_s = 0.0;
+  for (const auto& [id, span] : dispatcher.executed()) latest_s = std::max(latest_s, span.second);
   std::cout << printf_string(
       "%s: %zu of %zu jobs executed on %zu machine(s) in %.1f s (%.0fx), finished at %s of "
       "schedule time\n",
-      o.file.c_str(), dispatcher.executed().size(), jobs.size(), ids.size(), real_s, o.speed,
-      duration(latest_s).c_str());
+      o.file.c_str(), dispatcher.executed().size(), dispatcher.jobs().size(), ids.size(), real_s,
+      o.speed, duration(latest_s).c_str());
+  std::cout << "layer            planned start  started        deviation   planned end    ended\n";
+  long late_layers = 0, missing_layers = 0;
+  double worst_s = 0.0;
+  for (const auto& [key, l] : layers) {
+    const bool ran = std::isfinite(l[2]);
+    const double dev_s = ran ? l[2] - l[0] : 0.0;
+    late_layers += ran && std::abs(dev_s) > 1.0;
+    missing_layers += !ran;
+    worst_s = std::max(worst_s, std::abs(dev_s));
+    std::cout << printf_string(
+        "floor %2d layer %3d  %-13s  %-13s  %-10s  %-13s  %s\n", key.first, key.second,
+        duration(l[0]).c_str(), ran ? duration(l[2]).c_str() : "not run",
+        ran ? printf_string("%+.1f s", dev_s).c_str() : "-", duration(l[1]).c_str(),
+        std::isfinite(l[3]) ? duration(l[3]).c_str() : "-");
+  }
   std::cout << printf_string(
-      "deviations: %ld jobs started more than 1 s after their planned start (worst %s); %ld "
-      "sent again; %ld faults; %ld malformed messages rejected\n",
-      late, duration(worst_late_s).c_str(), dispatcher.resent(), dispatcher.faults(), malformed);
+      "deviations: %ld of %zu layers started more than 1 s off their planned start (worst "
+      "%s), %ld not run; %.1f s behind schedule at the end; %ld jobs sent again; %ld malformed "
+      "messages rejected here\n",
+      late_layers, layers.size(), duration(worst_s).c_str(), missing_layers, dispatcher.delay_s(),
+      dispatcher.resent(), malformed);
+  std::cout << printf_string("faults: %ld\n", dispatcher.faults());
+  for (const auto& f : dispatcher.fault_records())
+    std::cout << printf_string(
+        "  %s job %lld: %s: %s -> %s\n", f.machine_id.empty() ? "dispatcher" : f.machine_id.c_str(),
+        static_cast<long long>(f.job_id), orchestrator::fault_name(f.kind).c_str(),
+        f.message.c_str(), f.policy.c_str());
+  for (const auto& e : events) std::cout << "event: " << e << "\n";
+  bool collided = false;
+  if (watchdog) {
+    collided = watchdog->smallest_gap_m() < gantry_width_m;
+    std::cout << printf_string(
+        "gantry gaps: %ld measured from the machines' statuses%s, the smallest %.3f m (gantry "
+        "width %.3f m)%s\n",
+        watchdog->gaps_measured(), guard ? "" : " (only where both reported within 1 s)",
+        watchdog->smallest_gap_m(), gantry_width_m, collided ? ": COLLISION" : "");
+  }
   std::cout << printf_string("journal: %s, %ld writes in %.2f s (%.1f%% of the run)\n",
                              journal_path.string().c_str(), journal.writes(), journal.write_s(),
                              real_s > 0 ? 100.0 * journal.write_s() / real_s : 0.0);
@@ -203,8 +443,14 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     std::cout << printf_string(
         "LCM log: %s, %ld messages, %.0f a second (lcm-logplayer replays it)\n", o.log.c_str(),
         bus.logged(), real_s > 0 ? bus.logged() / real_s : 0.0);
-  exit_code = complete && dispatcher.faults() == 0 ? kExitOk : kExitNo;
-  if (!complete) std::cout << "NOT complete: timed out after " << duration(o.timeout_s) << "\n";
+  const bool complete = dispatcher.finished() && !dispatcher.stopped();
+  if (dispatcher.stopped())
+    std::cout << "STOPPED safely: " << *dispatcher.stopped() << "\n";
+  else if (!complete)
+    std::cout << "NOT complete: timed out after " << duration(o.timeout_s) << "\n";
+  exit_code = complete && !collided ? kExitOk : kExitNo;
+  std::cout << (exit_code == kExitOk ? "completed within its constraints\n"
+                                     : "NOT completed within its constraints\n");
   if (o.journal.empty()) {
     std::error_code ec;
     fs::remove_all(work, ec);
@@ -219,16 +465,24 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       "dry-run",
       "Run a schedule against simulated machines over LCM, as it would go to hardware: one "
       "ccbuild-sim process per gantry (or machines already on the bus with --external), "
-      "each job sent with its path in chunks under 64 kB, acknowledged and completed, sent "
-      "again when an answer is late (a machine never runs a job twice), every step written "
-      "to the SQLite journal first (--journal: a dry-run restarted on it goes on where it "
-      "stopped). Ends with planned against executed. Exit 0 when every job ran without a "
-      "fault, 1 otherwise. Run it in a network namespace of its own (docs/dispatch.md). "
-      "Work in progress (issue 13): no site watchdog, machine faults or common layer starts "
-      "yet.\n"
+      "each checking the jobs against its URDF's limits and the material's interval window. "
+      "A layer's jobs go out together with a common start; each job's path in chunks under "
+      "64 kB; acknowledged and completed, sent again when an answer is late (a machine never "
+      "runs a job twice); every step written to the SQLite journal first (--journal: a "
+      "dry-run restarted on it goes on where it stopped). Faults meet their policy: a pin "
+      "that missed is tried again, a clog is purged and the rest of its layer re-planned, "
+      "anything else stops every machine safely. With several gantries a site watchdog "
+      "pauses them all before two come closer than the gantry width (at speeds where "
+      "statuses come often enough; else it audits the gaps). A machine that crashes is "
+      "started again on its own record. Ends with planned against executed, layer by "
+      "layer, every fault and what was done. Exit 0 when the building was completed within "
+      "its constraints, 1 otherwise. Run it in a network namespace of its own "
+      "(docs/dispatch.md).\n"
       "Examples:\n"
       "  ccbuild dry-run config/buildings/house.yaml\n"
-      "  ccbuild dry-run house.schedule.json --speed 100000 --journal house.journal");
+      "  ccbuild dry-run house.schedule.json --speed 100000 --journal house.journal\n"
+      "  ccbuild dry-run config/buildings/house.yaml --inject drop=0.1,clog=0:5 --seed 3\n"
+      "  ccbuild dry-run twin.schedule.json --speed 20 --inject stall=gantry-1@20");
   command->add_option("FILE", o->file, "A building, or a schedule JSON")->required();
   command->add_option("--lcm-url", o->lcm_url, "LCM provider URL (ttl=0: this host only)")
       ->capture_default_str();
@@ -242,8 +496,12 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
   command->add_option("--log", o->log,
                       "Write the whole conversation as an LCM log (lcm-logger's format) here");
   command->add_option("--inject", o->inject,
-                      "Network faults the simulated machines inject into what they receive and "
-                      "send: drop=P, duplicate=P, reorder=P (probabilities per message)");
+                      "Faults to inject, comma-separated. Network (into what the machines "
+                      "receive and send, probabilities per message): drop=P, duplicate=P, "
+                      "reorder=P. Machine (on gantry-1 unless MACHINE@ names another): "
+                      "clog=FLOOR:LAYER (the pump clogs part-way through that layer), pin=N "
+                      "(the first N pin insertions miss), crash=N (the process dies right "
+                      "after its N-th job), stall=SECONDS (the rail axis stalls from then on)");
   command->add_option("--seed", o->seed, "Seed of the injected faults")
       ->check(unsigned_integer())
       ->capture_default_str();
@@ -254,6 +512,15 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       ->check(number_in(Range::above(0.0, 600.0), "s"))
       ->capture_default_str();
   command->add_flag("--external", o->external, "Use machines already on the bus");
+  command
+      ->add_option("--status-period", o->status_period_s,
+                   "The machines' status every this many seconds of machine time (default: "
+                   "1 s, or what keeps them under 200 a real second)")
+      ->check(number_in(Range::above(0.0, 86400.0), "s"));
+  command->add_flag("--no-watchdog", o->no_watchdog,
+                    "Let gantries collide: the site watchdog only measures the gaps (to "
+                    "show what it prevents)");
+  command->add_flag("--force", o->force, "Overwrite the --log file when it exists");
   command->add_option("--timeout", o->timeout_s, "Give up after this many real seconds")
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();

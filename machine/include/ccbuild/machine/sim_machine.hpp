@@ -1,24 +1,38 @@
 #pragma once
 // The simulated machine behind `ccbuild-sim` (docs/dispatch.md): it takes jobs over the
-// bus as a real machine would, runs them on its own clock at a speed factor, and keeps
-// its own record of what it ran, in a state file written before it says a job is done,
-// so that a restarted machine knows what it has done. A job it has seen is acknowledged
-// again and never run twice; a job older than the last one it ran is refused with a
-// fault (out of order), as is a job whose path does not add up. Idle time between jobs
-// passes at once (a job starts at its planned start or when it arrives, whichever is
-// later on the machine's clock). Not thread-safe: step() and the bus run in one thread.
+// bus as a real machine would, runs them on its own clock at a speed factor, follows their
+// timed paths (its status reports where the nozzle is), and keeps its own record of what
+// it ran, in a state file written before it says a job is done, so that a restarted
+// machine knows what it has done. A job it has seen is acknowledged again and never run
+// twice. It refuses, with a fault: a job older than the last one it ran (out of order), a
+// path that does not add up, a path outside its axis ranges or stopper or faster than an
+// axis's velocity limit (from its URDF), and a layer that would cover its layer below too
+// early or too late for the material's interval window (each piece end it deposited is
+// kept). Idle time between jobs passes at once (a job starts at its planned start or when
+// it arrives, whichever is later on the machine's clock). A message seen before (the same
+// utime and seq) or older than two minutes is a replay: rejected and logged. Faults of
+// the machine can be injected: a pump clog part-way through a layer, a pin that misses
+// its pipe, a crash right after a job is recorded, a rail axis that stalls (the drive
+// does not notice: the site watchdog must). Not thread-safe: step() and the bus run in
+// one thread.
 
+#include <array>
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
 
@@ -31,21 +45,65 @@ struct SimOptions {
   /// Status (the heartbeat) every this many simulated seconds, and four times a real
   /// second at least.
   double status_period_s = 60.0;
-  /// The machine's own record: one line per job done ("job_id start_s end_s"), appended
-  /// and flushed to disk before the job is reported done. Empty: kept in memory only.
+  /// The machine's own record: one line per job run ("job_id start_s end_s x_m y_m z_m
+  /// heading_rad", where it ended, then the fault it ended on and the waypoints done, if
+  /// any), appended and flushed to disk before the job is reported done. Empty: kept in
+  /// memory only.
   std::filesystem::path state_file;
   /// Faults of the network, injected into what this machine receives and sends, each
   /// with its probability per message (seeded): a message lost, handled twice, or held
   /// back behind the next ones.
   double drop = 0.0, duplicate = 0.0, reorder = 0.0;
   std::uint64_t seed = 1;
+  /// Where the nozzle is parked before its first job: x, y, z (m), heading (rad).
+  std::array<double, 4> home{0.0, 0.0, 0.0, 0.0};
+
+  /// Its axis ranges, stopper and velocity limits (load_machine: from its URDF); null:
+  /// unchecked.
+  std::shared_ptr<const MachineModel> model;
+  /// Whether nozzle heights are checked against the z range (not on a climbing machine,
+  /// whose gantry climbs with the building).
+  bool check_z_range = true;
+  /// The material's interval window, s: a piece end may be covered this long after the
+  /// same end on the layer below was deposited (by this machine), no sooner, no later.
+  double min_interval_s = 0.0;
+  double max_interval_s = std::numeric_limits<double>::infinity();
+
+  /// Injected machine faults. The pump clogs part-way through the deposit of this layer
+  /// (once):
+  int clog_floor = -1, clog_layer = -1;
+  /// The first this many pin insertions (climb phases "insert") miss their pipe.
+  int pin_failures = 0;
+  /// The process ends (exit code 70) right after the N-th job it ran is recorded, before
+  /// it says so; 0: never.
+  long crash_after_jobs = 0;
+  /// From this schedule time on, the rail axis stays where it is while the job goes on
+  /// (the drive does not notice); negative: never.
+  double stall_at_s = -1.0;
 };
+
+/// A timed path as the machine follows it (the waypoints of a job's chunks, in order).
+struct TimedPath {
+  std::vector<double> t_s, x_m, y_m, z_m, heading_rad;
+  std::vector<bool> extruding;
+  std::vector<std::int64_t> wall;
+  std::vector<std::int32_t> piece;
+  std::size_t size() const { return t_s.size(); }
+};
+
+/// Why `path` breaks `model`'s limits (a fault kind and the words), or nothing: a
+/// waypoint outside an axis range (z only when `check_z_range`) or the stopper is a
+/// JOINT_LIMIT; a segment faster along an axis, or in heading, than its velocity limit
+/// is a VELOCITY_LIMIT.
+std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineModel& model,
+                                                                const TimedPath& path,
+                                                                bool check_z_range);
 
 class SimMachine {
  public:
   /// Subscribes to its machine's channels on `bus` (which must outlive it) and reads its
   /// state file when there is one. Throws InputError naming the state file when it
-  /// cannot be read or a line is not "job_id start_s end_s".
+  /// cannot be read or a line is not "job_id start_s end_s x y z heading [fault done]".
   SimMachine(Bus& bus, SimOptions options);
 
   /// Lets `real_dt_s` seconds of real time pass: runs the current job on (or starts the
@@ -56,7 +114,12 @@ class SimMachine {
   const std::vector<std::int64_t>& executed() const { return executed_; }
   double clock_s() const { return clock_s_; }
   bool busy() const { return current_.has_value(); }
+  bool paused() const { return paused_; }
   long faults() const { return faults_; }
+  /// Messages rejected as replays (seen before, or too old).
+  long replays_rejected() const { return replays_; }
+  /// The nozzle's position now: x, y, z (m) and cumulative heading (rad).
+  std::array<double, 4> position() const { return position_; }
 
  private:
   struct Received {
@@ -66,19 +129,41 @@ class SimMachine {
   };
   struct Running {
     ccbuild_lcm::ccbuild_job_t job;
+    TimedPath path;
     double started_s = 0.0;
     double elapsed_s = 0.0;
     double reported = 0.0;  ///< the fraction last published
+    /// Injected: the job ends on this fault at stop_elapsed_s, with stop_point waypoints
+    /// done.
+    std::int8_t stop_fault = 0;
+    double stop_elapsed_s = 0.0;
+    int stop_point = -1;
+    std::string stop_message;
+  };
+  /// A piece end deposited: which wall, where, when (schedule s).
+  struct PieceEnd {
+    std::int64_t wall;
+    double x_m, y_m, t_s;
   };
 
   void on_job(const ccbuild_lcm::ccbuild_job_t& job);
   void on_chunk(const ccbuild_lcm::ccbuild_path_chunk_t& chunk);
+  void on_command(std::int8_t command, const std::string& reason);
+  /// Whether a message with this header was seen before or is too old (then logged).
+  bool replayed(const std::string& channel, std::int64_t utime, std::int64_t seq);
   void try_start();
+  /// Why the machine refuses to start `job` with `path` at `start_s` (kind, words).
+  std::optional<std::pair<std::int8_t, std::string>> refusal(const ccbuild_lcm::ccbuild_job_t& job,
+                                                             const TimedPath& path,
+                                                             double start_s) const;
   void acknowledge(std::int64_t job_id, bool accepted, bool duplicate, const std::string& reason);
   void fault(std::int64_t job_id, std::int8_t kind, const std::string& message);
-  void finish();
-  void publish_done(std::int64_t job_id, double started_s, double finished_s);
+  /// Ends the current job (completed, or on its injected fault) and records it.
+  void finish(bool completed);
+  void publish_done(std::int64_t job_id, double started_s, double finished_s, bool ok,
+                    int stopped_at, const std::string& detail);
   void publish_status();
+  void follow(double elapsed_s);
   std::int64_t next_seq() { return ++seq_; }
   /// Takes an incoming message through the injected network faults.
   void arrive(std::function<void()> handle);
@@ -98,19 +183,38 @@ class SimMachine {
     return m;
   }
 
+  struct Done {
+    double start_s, end_s;
+    std::array<double, 4> at;
+    bool ok;
+    int stopped_at;
+    std::string detail;
+  };
+
   Bus& bus_;
   SimOptions options_;
   std::map<std::int64_t, Received> received_;
   std::optional<Running> current_;
   std::vector<std::int64_t> executed_;
-  std::map<std::int64_t, std::pair<double, double>> done_;  ///< job -> (start, end)
+  std::map<std::int64_t, Done> done_;
+  /// Piece ends deposited per (floor, layer).
+  std::map<std::pair<int, int>, std::vector<PieceEnd>> deposited_;
   double clock_s_ = 0.0;
   double last_status_s_ = -1e300;
   double real_since_status_s_ = 0.0;
+  std::array<double, 4> position_{0.0, 0.0, 0.0, 0.0};
+  bool paused_ = false, aborted_ = false, clogged_once_ = false;
+  int pin_failures_left_ = 0;
+  long jobs_run_here_ = 0;
+  std::optional<double> stalled_rail_m_;
   std::int64_t seq_ = 0;
-  long faults_ = 0;
+  long faults_ = 0, replays_ = 0;
   std::mt19937_64 rng_;
   std::vector<std::function<void()>> held_;  ///< reordered: handled after the next ones
+  /// Message headers seen (channel kind, utime, seq), the last few thousand.
+  std::set<std::tuple<std::string, std::int64_t, std::int64_t>> seen_;
+  std::deque<std::tuple<std::string, std::int64_t, std::int64_t>> seen_order_;
+  std::int64_t newest_utime_ = 0;
 };
 
 }  // namespace ccbuild::machine
