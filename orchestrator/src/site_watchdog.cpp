@@ -56,12 +56,19 @@ std::optional<std::string> SiteWatchdog::check(double real_dt_s) {
     ++gaps_measured_;
     smallest_gap_m_ = std::min(smallest_gap_m_, gap_m);
     if (!tripped_ && !why && gap_m < options_.gantry_width_m + options_.margin_m)
-      why = printf_string(
-          "site watchdog: at %.1f s of machine time %s at %.3f m and %s at %.3f m on the rails "
-          "are %.3f m apart, under the gantry width %.3f m plus the margin %.3f m: every "
-          "machine paused",
-          t_s, options_.machines[k].c_str(), *rail_a, options_.machines[k + 1].c_str(), *rail_b,
-          gap_m, options_.gantry_width_m, options_.margin_m);
+      why = options_.margin_m > 0.0
+                ? printf_string(
+                      "site watchdog: at %.1f s of machine time %s at %.3f m and %s at %.3f m on "
+                      "the rails are %.3f m apart, under the gantry width %.3f m plus the margin "
+                      "%.3f m: every machine paused",
+                      t_s, options_.machines[k].c_str(), *rail_a, options_.machines[k + 1].c_str(),
+                      *rail_b, gap_m, options_.gantry_width_m, options_.margin_m)
+                : printf_string(
+                      "gantries collided: at %.1f s of machine time %s at %.3f m and %s at %.3f "
+                      "m on the rails are %.3f m apart, under the gantry width %.3f m: every "
+                      "machine paused",
+                      t_s, options_.machines[k].c_str(), *rail_a, options_.machines[k + 1].c_str(),
+                      *rail_b, gap_m, options_.gantry_width_m);
   }
   if (why) tripped_ = true;
   return why;

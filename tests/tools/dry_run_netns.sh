@@ -3,7 +3,10 @@
 # on the shared network): `ccbuild dry-run` and one `ccbuild-sim` per gantry. Checks the
 # exit code, that every job was executed, and, from the simulated machines' own records
 # (not the orchestrator's), that each job ran exactly once.
-# Usage: dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
+# The journal must be consistent: every job done, or ended on a fault whose recovery job
+# is done; no fault met by stopping. Lines the summary must hold can be given in EXPECT
+# (one extended regular expression per line).
+# Usage: [EXPECT=...] dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
 set -euo pipefail
 # As root, a network namespace; otherwise a user namespace with one (needs unprivileged
 # user namespaces).
@@ -34,4 +37,27 @@ head -c 4 "$out/conversation.lcmlog" | od -An -tx1 | grep -q "ed a1 da 01" ||
   { echo "the LCM log does not start with lcm-logger's sync word"; exit 1; }
 logged=$(grep -a -c "CCBUILD_JOB_" "$out/conversation.lcmlog" || true)
 [ "$logged" -ge 1 ] || { echo "no job in the LCM log"; exit 1; }
+python3 - "$out/journal.sqlite" <<'PY'
+import sqlite3, sys
+db = sqlite3.connect(sys.argv[1])
+rows = dict(db.execute("SELECT job_id, state FROM job_state"))
+for job, state in sorted(rows.items()):
+    if state == "done":
+        continue
+    if state in ("clogged", "pin-missed") and any(
+            other > job and other // 10 == job // 10 and s == "done" for other, s in rows.items()):
+        continue
+    sys.exit("journal: job %d is '%s' with no recovery done" % (job, state))
+stops = db.execute("SELECT message FROM fault WHERE policy = 'stop'").fetchall()
+if stops:
+    sys.exit("journal: stopped: %s" % stops)
+print("journal: %d jobs, consistent; faults: %s" % (len(rows), db.execute(
+    "SELECT group_concat(kind || ' ' || policy, '; ') FROM fault").fetchone()[0]))
+PY
+while IFS= read -r pattern; do
+  [ -z "$pattern" ] && continue
+  grep -Eq -- "$pattern" "$out/summary.txt" "$out/progress.txt" ||
+    { echo "expected a line matching '$pattern'"; cat "$out/progress.txt"; exit 1; }
+  echo "found: $pattern"
+done <<< "${EXPECT:-}"
 echo "dry_run_netns: $all_jobs jobs on $machines machines, each run exactly once by the machines' own records"

@@ -265,7 +265,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     if (plan.contains("min_gap_m") && plan["min_gap_m"].is_number())
       planned_gap_m = std::min(planned_gap_m, plan["min_gap_m"].get<double>());
   const bool several = ids.size() > 1;
-  const bool guard = several && !o.no_watchdog && gantry_width_m + margin_m < planned_gap_m;
+  const bool can_guard = several && gantry_width_m + margin_m < planned_gap_m;
+  const bool guard = can_guard && !o.no_watchdog;
 
   const fs::path work =
       fs::temp_directory_path() / ("ccbuild-dry-run-" + std::to_string(::getpid()));
@@ -319,7 +320,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     w.rail_axis = rail_axis;
     w.gantry_width_m = gantry_width_m;
     w.margin_m = guard ? margin_m : 0.0;
-    w.max_span_s = guard ? 1e9 : 1.0;  // auditing: only where both reported that closely
+    w.max_span_s = can_guard ? 1e9 : 1.0;  // else only where both reported that closely
     watchdog.emplace(bus, w);
   }
   std::cerr << printf_string("dry-run: %zu jobs to %zu machine(s) at %.0fx over %s\n", jobs.size(),
@@ -330,14 +331,16 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         "gantry width %.3f m plus %.3f m the gantries can close between statuses every %.3g s "
         "of machine time)\n",
         gantry_width_m + margin_m, gantry_width_m, margin_m, status_period_s);
+  else if (several && o.no_watchdog)
+    std::cerr << "dry-run: site watchdog off (--no-watchdog): gaps are measured, a collision "
+                 "stops the run\n";
   else if (several)
     std::cerr << printf_string(
         "dry-run: site watchdog %s: at %.0fx the gantries can close %.1f m between statuses, "
         "more than the plans leave (%.3f m over the gantry width); gaps are measured where both "
         "reported within 1 s of machine time, a collision stops the run (guarding needs a "
         "lower --speed)\n",
-        o.no_watchdog ? "off (--no-watchdog)" : "cannot guard", o.speed, margin_m,
-        planned_gap_m - gantry_width_m);
+        "cannot guard", o.speed, margin_m, planned_gap_m - gantry_width_m);
   std::vector<std::string> events;
   const auto started = std::chrono::steady_clock::now();
   auto last = started, last_line = started;
@@ -433,7 +436,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     std::cout << printf_string(
         "gantry gaps: %ld measured from the machines' statuses%s, the smallest %.3f m (gantry "
         "width %.3f m)%s\n",
-        watchdog->gaps_measured(), guard ? "" : " (only where both reported within 1 s)",
+        watchdog->gaps_measured(), can_guard ? "" : " (only where both reported within 1 s)",
         watchdog->smallest_gap_m(), gantry_width_m, collided ? ": COLLISION" : "");
   }
   std::cout << printf_string("journal: %s, %ld writes in %.2f s (%.1f%% of the run)\n",
