@@ -1,0 +1,370 @@
+// What the simulated machine refuses and what the dispatcher does about faults: the
+// machine's limits from its URDF (the examples' paths keep them; a path just over one
+// does not), the material's interval window at its boundary, the site watchdog at the
+// gantry width plus its margin, a pin that misses (tried again, then a safe stop) and a
+// clog (purged, the rest of the layer re-planned, the same recovery after a restart).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/machine/sim_machine.hpp"
+#include "ccbuild/orchestrator/dispatch_jobs.hpp"
+#include "ccbuild/orchestrator/dispatcher.hpp"
+#include "ccbuild/orchestrator/site_watchdog.hpp"
+#include "test_support.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include "ccbuild_lcm/ccbuild_fault_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
+#pragma GCC diagnostic pop
+
+namespace ccbuild::orchestrator {
+namespace {
+
+using ccbuild_lcm::ccbuild_fault_t;
+using ccbuild_lcm::ccbuild_job_t;
+using ccbuild_lcm::ccbuild_path_chunk_t;
+
+machine::TimedPath path_of(const DispatchJob& d) {
+  machine::TimedPath p;
+  for (const auto& c : d.chunks)
+    for (int k = 0; k < c.n; ++k) {
+      p.t_s.push_back(c.t_s[k]);
+      p.x_m.push_back(c.x_m[k]);
+      p.y_m.push_back(c.y_m[k]);
+      p.z_m.push_back(c.z_m[k]);
+      p.heading_rad.push_back(c.heading_rad[k]);
+      p.extruding.push_back(c.extruding[k]);
+      p.wall.push_back(c.wall[k]);
+      p.piece.push_back(c.piece[k]);
+    }
+  return p;
+}
+
+nlohmann::json golden(const std::string& name) {
+  std::ifstream in(testing::source_path("tests/regression/" + name + ".schedule.json"));
+  return nlohmann::json::parse(in);
+}
+
+TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {
+  const struct {
+    const char* building;
+    const char* machine;
+    bool check_z;
+  } cases[] = {{"house", "cc-gantry", true},
+               {"apartment", "cc-gantry", true},
+               {"tower", "cc-climber", false}};
+  for (const auto& c : cases) {
+    const auto model = machine::load_machine(
+        testing::source_path(std::string("config/machines/") + c.machine + ".yaml"));
+    int checked = 0;
+    for (const auto& job : jobs_of_schedule(golden(c.building))) {
+      if (job.chunks.empty()) continue;
+      const auto breach = machine::limit_breach(model, path_of(job), c.check_z);
+      EXPECT_FALSE(breach) << c.building << " job " << job.job.job_id << ": " << breach->second;
+      ++checked;
+    }
+    EXPECT_GT(checked, 10) << c.building;
+  }
+}
+
+machine::TimedPath two_points(double t_s, double x0, double x1) {
+  machine::TimedPath p;
+  for (int k = 0; k < 2; ++k) {
+    p.t_s.push_back(k * t_s);
+    p.x_m.push_back(k ? x1 : x0);
+    p.y_m.push_back(1.0);
+    p.z_m.push_back(1.0);
+    p.heading_rad.push_back(0.0);
+    p.extruding.push_back(k == 0);
+    p.wall.push_back(k == 0 ? 1 : 0);
+    p.piece.push_back(k == 0 ? 1 : 0);
+  }
+  return p;
+}
+
+TEST(SimMachine, LimitsHoldAtTheirBoundary) {
+  const auto m = machine::MachineModel::defaults();  // x 0..50 m at 0.5 m/s
+  ASSERT_DOUBLE_EQ(m.x.speed_m_s, 0.5);
+  ASSERT_DOUBLE_EQ(m.x.max_m, 50.0);
+  EXPECT_FALSE(machine::limit_breach(m, two_points(10.0, 0.0, 5.0), true));  // exactly 0.5 m/s
+  const auto fast = machine::limit_breach(m, two_points(10.0, 0.0, 5.01), true);
+  ASSERT_TRUE(fast);
+  EXPECT_EQ(fast->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  EXPECT_FALSE(machine::limit_breach(m, two_points(100.0, 0.0, 50.0), true));  // at its end
+  const auto beyond = machine::limit_breach(m, two_points(100.0, 0.0, 50.01), true);
+  ASSERT_TRUE(beyond);
+  EXPECT_EQ(beyond->first, +ccbuild_fault_t::JOINT_LIMIT);
+  // Both ends of a move count: it may not start outside either.
+  const auto start_outside = machine::limit_breach(m, two_points(200.0, -0.01, 10.0), true);
+  ASSERT_TRUE(start_outside);
+  EXPECT_EQ(start_outside->first, +ccbuild_fault_t::JOINT_LIMIT);
+  // The stopper, and a turn faster than the nozzle's rotation.
+  auto turn = two_points(4.0, 1.0, 1.0);
+  turn.heading_rad = {0.0, m.stopper_max_rad};
+  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  turn.heading_rad = {0.0, m.stopper_max_rad + 0.01};
+  ASSERT_TRUE(machine::limit_breach(m, turn, true));
+  turn.t_s = {0.0, 3.9};
+  turn.heading_rad = {0.0, m.stopper_max_rad};
+  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  // Heights: outside z range is refused, unless the machine climbs.
+  auto high = two_points(10.0, 1.0, 1.0);
+  high.z_m = {m.z.max_m + 0.5, m.z.max_m + 0.5};
+  EXPECT_TRUE(machine::limit_breach(m, high, true));
+  EXPECT_FALSE(machine::limit_breach(m, high, false));
+}
+
+/// A deposit job of one wall piece from (0, 0) to (1, 0) in 5 s, for `layer` of floor 0.
+DispatchJob piece_job(std::int64_t id, int layer, double start_s) {
+  DispatchJob d;
+  d.job.utime = 0;
+  d.job.machine_id = "gantry-1";
+  d.job.job_id = id;
+  d.job.seq = 0;
+  d.job.kind = ccbuild_job_t::DEPOSIT;
+  d.job.floor = 0;
+  d.job.layer = layer;
+  d.job.nozzle = 0;
+  d.job.start_s = start_s;
+  d.job.duration_s = 5.0;
+  d.job.plan = "g1n1";
+  d.job.detail = "test";
+  ccbuild_path_chunk_t c;
+  c.utime = 0;
+  c.machine_id = "gantry-1";
+  c.job_id = id;
+  c.seq = 0;
+  c.chunk_index = 0;
+  c.chunk_count = 1;
+  c.n = 2;
+  c.t_s = {0.0, 5.0};
+  c.x_m = {0.0, 1.0};
+  c.y_m = {0.0, 0.0};
+  c.z_m = {0.1 * (layer + 1), 0.1 * (layer + 1)};
+  c.heading_rad = {0.0, 0.0};
+  c.extruding = {true, false};
+  c.wall = {1, 0};
+  c.piece = {1, 0};
+  d.chunks = {c};
+  d.job.chunk_count = 1;
+  d.job.point_count = 2;
+  return d;
+}
+
+/// Runs `jobs` through a dispatcher and a machine on one memq:// bus until done.
+struct Rig {
+  explicit Rig(machine::SimOptions so, std::vector<DispatchJob> jobs,
+               std::filesystem::path journal_path = ":memory:", DispatchOptions o = {})
+      : bus("memq://"), journal(journal_path), sim(bus, so) {
+    o.speed = so.speed;
+    o.ack_timeout_s = 0.05;
+    o.done_slack_s = 0.05;
+    dispatcher = std::make_unique<Dispatcher>(bus, std::move(jobs), journal, o);
+  }
+  void run(int steps = 200'000) {
+    for (int k = 0; k < steps && !dispatcher->finished(); ++k) {
+      dispatcher->step(1e-3);
+      bus.handle(0);
+      sim.step(1e-3);
+      bus.handle(0);
+    }
+  }
+  std::set<std::int8_t> fault_kinds() const {
+    std::set<std::int8_t> out;
+    for (const auto& f : dispatcher->fault_records()) out.insert(f.kind);
+    return out;
+  }
+  machine::Bus bus;
+  Journal journal;
+  machine::SimMachine sim;
+  std::unique_ptr<Dispatcher> dispatcher;
+};
+
+machine::SimOptions window(double min_s, double max_s) {
+  machine::SimOptions so;
+  so.speed = 1e4;
+  so.min_interval_s = min_s;
+  so.max_interval_s = max_s;
+  return so;
+}
+
+TEST(SimMachine, TheIntervalWindowHoldsAtItsBoundary) {
+  // Layer 1 covers the piece exactly as long after layer 0 as the start times differ.
+  const struct {
+    double interval_s;
+    std::int8_t fault;  // 0: accepted
+  } cases[] = {{500.0, 0},
+               {500.01, ccbuild_fault_t::COLD_JOINT},
+               {60.0, 0},
+               {59.99, ccbuild_fault_t::TOO_EARLY}};
+  for (const auto& c : cases) {
+    Rig rig(window(60.0, 500.0), {piece_job(10, 0, 0.0), piece_job(20, 1, c.interval_s)});
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished()) << c.interval_s;
+    if (c.fault == 0) {
+      EXPECT_FALSE(rig.dispatcher->stopped()) << c.interval_s;
+      EXPECT_EQ(rig.sim.executed().size(), 2u) << c.interval_s;
+    } else {
+      ASSERT_TRUE(rig.dispatcher->stopped()) << c.interval_s;
+      EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{c.fault}) << c.interval_s;
+      EXPECT_EQ(rig.sim.executed().size(), 1u) << "the refused layer ran: " << c.interval_s;
+    }
+  }
+}
+
+DispatchJob climb_phase(std::int64_t id, const std::string& what, double start_s,
+                        double duration_s) {
+  DispatchJob d = piece_job(id, -1, start_s);
+  d.job.kind = ccbuild_job_t::CLIMB_PHASE;
+  d.job.floor = 0;
+  d.job.layer = -1;
+  d.job.nozzle = -1;
+  d.job.duration_s = duration_s;
+  d.job.plan = "";
+  d.job.detail = "climb from stage 0 to 1: " + what;
+  d.chunks.clear();
+  d.job.chunk_count = d.job.point_count = 0;
+  return d;
+}
+
+TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
+  const std::vector<DispatchJob> climb = {climb_phase(10, "insert U1", 0.0, 60.0),
+                                          climb_phase(20, "lift", 60.0, 100.0)};
+  {
+    machine::SimOptions so = window(0.0, 1e9);
+    so.pin_failures = 2;  // the third attempt finds its pipe
+    Rig rig(so, climb);
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    EXPECT_FALSE(rig.dispatcher->stopped());
+    EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 11, 12, 20}));
+    EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{ccbuild_fault_t::PIN_MISSED});
+    EXPECT_DOUBLE_EQ(rig.dispatcher->delay_s(), 120.0);  // two insertions more
+    EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(20).first, 180.0);
+    const auto states = rig.journal.states();
+    EXPECT_EQ(states.at(10), "pin-missed");
+    EXPECT_EQ(states.at(11), "pin-missed");
+    EXPECT_EQ(states.at(12), "done");
+    EXPECT_EQ(states.at(20), "done");
+  }
+  {
+    machine::SimOptions so = window(0.0, 1e9);
+    so.pin_failures = 3;  // never: stop after the third
+    Rig rig(so, climb);
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->stopped());
+    EXPECT_NE(rig.dispatcher->stopped()->find("no recovery left"), std::string::npos);
+    EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 11, 12}));
+    const auto states = rig.journal.states();
+    EXPECT_EQ(states.count(20), 0u) << "the lift was sent after a pin that never held";
+    const auto faults = rig.journal.faults();
+    ASSERT_EQ(faults.size(), 4u);  // three misses, then the stop
+    EXPECT_EQ(faults.back().policy, "stop");
+  }
+}
+
+TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_clog_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto jobs = jobs_of_schedule(golden("house"));
+  machine::SimOptions so = window(0.0, 1e9);
+  so.speed = 1e6;
+  so.clog_floor = 0;
+  so.clog_layer = 2;
+  so.state_file = dir / "gantry-1.state";
+  std::vector<DispatchJob> made_first;
+  {
+    Rig rig(so, jobs, dir / "journal.sqlite");
+    // Until the recovery jobs exist, then "killed".
+    for (int k = 0; k < 200'000 && rig.dispatcher->jobs().size() == jobs.size(); ++k) rig.run(1);
+    ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2);
+    made_first.assign(rig.dispatcher->jobs().begin() + jobs.size(), rig.dispatcher->jobs().end());
+  }
+  machine::SimOptions again = so;
+  again.clog_floor = -1;
+  Rig rig(again, jobs, dir / "journal.sqlite");
+  ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2) << "the recovery was not made again";
+  const auto& purge = rig.dispatcher->jobs()[jobs.size()];
+  const auto& rest = rig.dispatcher->jobs()[jobs.size() + 1];
+  EXPECT_EQ(purge.job.job_id, made_first[0].job.job_id);
+  EXPECT_EQ(rest.job.job_id, made_first[1].job.job_id);
+  EXPECT_EQ(purge.job.kind, +ccbuild_job_t::PURGE);
+  EXPECT_DOUBLE_EQ(purge.job.duration_s, 120.0);
+  // The rest is the clogged path from where it stopped, its times from there.
+  const auto rows = rig.journal.rows();
+  const std::int64_t clogged = purge.job.job_id - 1;
+  ASSERT_EQ(rows.at(clogged).state, "clogged");
+  const int stopped_at = rows.at(clogged).stopped_at;
+  const DispatchJob* original = nullptr;
+  for (const auto& j : jobs)
+    if (j.job.job_id == clogged) original = &j;
+  ASSERT_NE(original, nullptr);
+  const auto whole = path_of(*original), tail = path_of(rest);
+  ASSERT_EQ(tail.size(), whole.size() - stopped_at);
+  EXPECT_DOUBLE_EQ(tail.t_s.front(), 0.0);
+  EXPECT_DOUBLE_EQ(tail.x_m.front(), whole.x_m[stopped_at]);
+  EXPECT_DOUBLE_EQ(tail.x_m.back(), whole.x_m.back());
+  EXPECT_NEAR(rest.job.duration_s + whole.t_s[stopped_at], original->job.duration_s, 1e-9);
+  EXPECT_NEAR(rest.job.start_s, rows.at(clogged).finished_s + 120.0, 1e-9);
+  rig.run();
+  ASSERT_TRUE(rig.dispatcher->finished());
+  EXPECT_FALSE(rig.dispatcher->stopped());
+  const auto& ran = rig.sim.executed();
+  EXPECT_EQ(std::set<std::int64_t>(ran.begin(), ran.end()).size(), ran.size()) << "a job ran twice";
+  EXPECT_EQ(ran.size(), jobs.size() + 2);
+  EXPECT_NEAR(rig.dispatcher->delay_s(), 120.0, 1e-6);
+  std::filesystem::remove_all(dir);
+}
+
+void status(machine::Bus& bus, const std::string& id, double t_s, double x_m) {
+  static std::int64_t seq = 0;
+  ccbuild_lcm::ccbuild_status_t s{};
+  s.utime = machine::utime_now();
+  s.machine_id = id;
+  s.seq = ++seq;
+  s.state = ccbuild_lcm::ccbuild_status_t::BUSY;
+  s.sim_time_s = t_s;
+  s.x_m = x_m;
+  bus.publish(machine::channel("STATUS", id), s);
+  bus.handle(0);
+}
+
+TEST(SiteWatchdog, PausesBelowTheGantryWidthPlusItsMarginNotAtIt) {
+  machine::Bus bus("memq://");
+  WatchdogOptions w;
+  w.machines = {"gantry-1", "gantry-2"};
+  w.gantry_width_m = 1.5;
+  w.margin_m = 0.5;
+  SiteWatchdog dog(bus, w);
+  status(bus, "gantry-1", 0.0, 0.0);
+  status(bus, "gantry-2", 0.0, 2.0);  // exactly width plus margin
+  EXPECT_FALSE(dog.check(0.01));
+  EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+  // gantry-1 moves up at 0.1 m/s; gantry-2 reports at 5 s: gantry-1 is at 0.5 m then.
+  status(bus, "gantry-1", 10.0, 1.0);
+  status(bus, "gantry-2", 5.0, 2.501);
+  EXPECT_FALSE(dog.check(0.01));
+  EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
+  status(bus, "gantry-2", 10.0, 2.999);  // 1.999 m: under by a millimetre
+  const auto why = dog.check(0.01);
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("every machine paused"), std::string::npos);
+  EXPECT_FALSE(dog.check(0.01)) << "said twice";
+  // Another machine's status on gantry-2's channel is not believed.
+  EXPECT_TRUE(dog.silent().empty());
+  EXPECT_EQ(dog.check(5.0), std::nullopt);
+  EXPECT_EQ(dog.silent().size(), 2u);
+}
+
+}  // namespace
+}  // namespace ccbuild::orchestrator
