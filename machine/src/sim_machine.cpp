@@ -267,6 +267,21 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
     const ccbuild_lcm::ccbuild_job_t& job, const TimedPath& path, double start_s) const {
   if (options_.model)
     if (auto breach = limit_breach(*options_.model, path, options_.check_z_range)) return breach;
+  // A pin into an anchor younger than the anchor strength needs.
+  if (job.kind == ccbuild_job_t::CLIMB_PHASE && options_.anchor_min_age_s > 0.0) {
+    const auto at = job.detail.find(": insert ");
+    if (at != std::string::npos) {
+      const std::string unit = job.detail.substr(at + 9);
+      const auto pipe = pipes_.find(unit);
+      if (pipe != pipes_.end() && start_s - pipe->second < options_.anchor_min_age_s - 1e-3)
+        return std::pair<std::int8_t, std::string>(
+            ccbuild_fault_t::ANCHOR_TOO_YOUNG,
+            printf_string("%s: unit %s's anchor is %.1f s old, it needs %.1f s to be strong "
+                          "enough",
+                          job.detail.c_str(), unit.c_str(), start_s - pipe->second,
+                          options_.anchor_min_age_s));
+    }
+  }
   if (job.kind != ccbuild_job_t::DEPOSIT || job.layer <= 0) return std::nullopt;
   // Each piece end against the same end of the layer below, if this machine laid it.
   const auto below = deposited_.find({job.floor, job.layer - 1});
@@ -452,6 +467,11 @@ void SimMachine::finish(bool completed) {
   executed_.push_back(run.job.job_id);
   clock_s_ = end_s;
   if (run.stop_fault == ccbuild_fault_t::PUMP_CLOG) clogged_once_ = true;
+  // The pipes it placed, for the anchors' age.
+  if (run.job.kind == ccbuild_job_t::PIPE && completed) {
+    const auto at = run.job.detail.find(" for unit ");
+    if (at != std::string::npos) pipes_[run.job.detail.substr(at + 10)] = end_s;
+  }
   // The piece ends it laid, for the interval check of the layer above.
   if (run.job.kind == ccbuild_job_t::DEPOSIT) {
     auto& ends = deposited_[{run.job.floor, run.job.layer}];

@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-interval", options.max_interval_s,
                  "... its maximum, s (covered later: a cold joint)")
       ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--anchor-min-age", options.anchor_min_age_s,
+                 "How old an anchor must be before a unit pins into it, s (a pin sooner after "
+                 "the unit's last pipe is refused: anchor too young)")
+      ->check(CLI::Range(0.0, 1e9));
   app.add_option("--clog-at", clog_at,
                  "Injected: the pump clogs part-way through this layer, FLOOR:LAYER (from 0)");
   app.add_option("--pin-failures", options.pin_failures,

@@ -271,6 +271,28 @@ TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
   }
 }
 
+TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
+  DispatchJob pipe = climb_phase(10, "", 0.0, 120.0);
+  pipe.job.kind = ccbuild_job_t::PIPE;
+  pipe.job.detail = "pipe A1 for unit U1";
+  for (const double age_s : {3600.0, 3599.99}) {
+    machine::SimOptions so = window(0.0, 1e9);
+    so.anchor_min_age_s = 3600.0;
+    Rig rig(so, {pipe, climb_phase(20, "insert U2", 120.0, 60.0),
+                 climb_phase(30, "insert U1", 120.0 + age_s, 60.0)});
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    if (age_s >= 3600.0) {
+      EXPECT_FALSE(rig.dispatcher->stopped());
+      EXPECT_EQ(rig.sim.executed().size(), 3u);
+    } else {
+      ASSERT_TRUE(rig.dispatcher->stopped());
+      EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{ccbuild_fault_t::ANCHOR_TOO_YOUNG});
+      EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 20}));  // U2 has no pipe yet
+    }
+  }
+}
+
 TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
   const auto dir =
       std::filesystem::temp_directory_path() / ("ccbuild_clog_" + std::to_string(::getpid()));

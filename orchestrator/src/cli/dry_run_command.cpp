@@ -20,6 +20,7 @@
 #include <set>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/orchestrator/dispatcher.hpp"
 #include "ccbuild/orchestrator/schedule.hpp"
@@ -300,7 +301,18 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         printf_string("%.17g", material_json.value("min_layer_interval_s", 0.0)),
         "--max-interval",
         printf_string("%.17g", material_json.value("max_layer_interval_s", 1e9))};
-    if (climbing) common.push_back("--climbing");
+    if (climbing) {
+      common.push_back("--climbing");
+      // The age at which the material reaches the anchor strength the climber needs.
+      floors::MaterialProfile material;
+      for (const auto& p : material_json.at("strength_curve"))
+        material.strength_curve.push_back(
+            {p.at("age_s").get<double>(), p.at("strength_mpa").get<double>()});
+      const double age_s =
+          material.age_for_strength_s(machine_json.value("anchor_strength_mpa", 0.0));
+      if (std::isfinite(age_s) && age_s > 0.0)
+        common.insert(common.end(), {"--anchor-min-age", printf_string("%.17g", age_s)});
+    }
     for (const auto& [name, p] : inject.network) {
       common.push_back("--" + name);
       common.push_back(printf_string("%.17g", p));

@@ -6,15 +6,15 @@
 // machine knows what it has done. A job it has seen is acknowledged again and never run
 // twice. It refuses, with a fault: a job older than the last one it ran (out of order), a
 // path that does not add up, a path outside its axis ranges or stopper or faster than an
-// axis's velocity limit (from its URDF), and a layer that would cover its layer below too
+// axis's velocity limit (from its URDF), a layer that would cover its layer below too
 // early or too late for the material's interval window (each piece end it deposited is
-// kept). Idle time between jobs passes at once (a job starts at its planned start or when
-// it arrives, whichever is later on the machine's clock). A message seen before (the same
-// utime and seq) or older than two minutes is a replay: rejected and logged. Faults of
-// the machine can be injected: a pump clog part-way through a layer, a pin that misses
-// its pipe, a crash right after a job is recorded, a rail axis that stalls (the drive
-// does not notice: the site watchdog must). Not thread-safe: step() and the bus run in
-// one thread.
+// kept), and a pin inserted into an anchor younger than the anchor strength needs. Idle time
+// between jobs passes at once (a job starts at its planned start or when it arrives, whichever is
+// later on the machine's clock). A message seen before (the same utime and seq) or older than two
+// minutes is a replay: rejected and logged. Faults of the machine can be injected: a pump clog
+// part-way through a layer, a pin that misses its pipe, a crash right after a job is recorded, a
+// rail axis that stalls (the drive does not notice: the site watchdog must). Not thread-safe:
+// step() and the bus run in one thread.
 
 #include <array>
 #include <cstdint>
@@ -68,6 +68,11 @@ struct SimOptions {
   /// same end on the layer below was deposited (by this machine), no sooner, no later.
   double min_interval_s = 0.0;
   double max_interval_s = std::numeric_limits<double>::infinity();
+  /// How old an anchor must be before a unit pins into it, s (the age at which the
+  /// material reaches the machine's anchor strength): an insertion ("climb ...: insert
+  /// U1") sooner after the unit's last pipe ("pipe A1 for unit U1") was placed is refused
+  /// (anchor too young). 0: unchecked.
+  double anchor_min_age_s = 0.0;
 
   /// Injected machine faults. The pump clogs part-way through the deposit of this layer
   /// (once):
@@ -197,6 +202,8 @@ class SimMachine {
   std::optional<Running> current_;
   std::vector<std::int64_t> executed_;
   std::map<std::int64_t, Done> done_;
+  /// When the last pipe of each climbing unit was placed (schedule s), by unit name.
+  std::map<std::string, double> pipes_;
   /// Piece ends deposited per (floor, layer).
   std::map<std::pair<int, int>, std::vector<PieceEnd>> deposited_;
   double clock_s_ = 0.0;
