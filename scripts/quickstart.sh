@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Quick start, step 1: install what is missing, build, and run the main job (the whole
-# schedule) on the bundled example building.
+# schedule) on the bundled example building, ending with its dry-run against simulated
+# machines over LCM.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh
@@ -19,3 +20,6 @@ echo
 echo "== ccbuild schedule $example -o build/house.schedule.json --report build/house.report.html"
 ./build/ccbuild schedule "$example" --force -o build/house.schedule.json \
   --report build/house.report.html
+echo
+echo "== ccbuild dry-run build/house.schedule.json (simulated machines over LCM, in a network namespace of its own)"
+./scripts/in-netns.sh ./build/ccbuild dry-run build/house.schedule.json

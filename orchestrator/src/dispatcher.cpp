@@ -252,7 +252,21 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
     bus_.subscribe<ccbuild_lcm::ccbuild_fault_t>(
         machine::channel("FAULT", machine),
         [this](const ccbuild_lcm::ccbuild_fault_t& f) { on_fault(f); });
+    bus_.subscribe<ccbuild_lcm::ccbuild_status_t>(machine::channel("STATUS", machine),
+                                                  [this](const ccbuild_lcm::ccbuild_status_t& s) {
+                                                    const auto it = queues_.find(s.machine_id);
+                                                    if (it == queues_.end()) return;
+                                                    it->second.heard = true;
+                                                    it->second.silent_s = 0.0;
+                                                  });
   }
+}
+
+std::vector<std::pair<std::string, double>> Dispatcher::silent(double silence_s) const {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [machine, q] : queues_)
+    if (!q.heard || q.silent_s > silence_s) out.emplace_back(machine, q.silent_s);
+  return out;
 }
 
 bool Dispatcher::finished() const {
@@ -431,7 +445,8 @@ void Dispatcher::on_done(const ccbuild_lcm::ccbuild_done_t& done) {
 void Dispatcher::step(double real_dt_s) {
   if (stopped_) return;
   for (auto& [machine, q] : queues_) {
-    if (q.next >= q.jobs.size()) continue;
+    q.silent_s += real_dt_s;
+    if (q.next >= q.jobs.size() || !q.heard) continue;  // nothing to a machine not heard
     const std::size_t index = q.jobs[q.next];
     const auto& job = jobs_[index].job;
     q.waited_s += real_dt_s;

@@ -375,6 +375,10 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       }
     if (now - last_line > std::chrono::seconds(2)) {
       last_line = now;
+      for (const auto& [machine, silent_s] : dispatcher.silent(3.0))
+        std::cerr << printf_string(
+            "dry-run: %s not heard from %s\n", machine.c_str(),
+            silent_s > 3.0 ? printf_string("for %.0f s", silent_s).c_str() : "yet");
       std::cerr << printf_string(
           "dry-run: %zu of %zu jobs done, %ld sent again, %ld faults, %.0f s behind schedule\n",
           dispatcher.executed().size(), dispatcher.jobs().size(), dispatcher.resent(),
@@ -431,8 +435,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   std::cout << printf_string(
       "deviations: %ld of %zu layers started more than 1 s off their planned start (worst "
-      "%s), %ld not run; %.1f s behind schedule at the end; %ld jobs sent again; %ld malformed "
-      "messages rejected here\n",
+      "%s), %ld not run; %.1f s behind schedule at the end; jobs sent again: %ld; malformed "
+      "messages rejected here: %ld\n",
       late_layers, layers.size(), duration(worst_s).c_str(), missing_layers, dispatcher.delay_s(),
       dispatcher.resent(), malformed);
   std::cout << printf_string("faults: %ld\n", dispatcher.faults());
@@ -492,7 +496,7 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       "started again on its own record. Ends with planned against executed, layer by "
       "layer, every fault and what was done. Exit 0 when the building was completed within "
       "its constraints, 1 otherwise. Run it in a network namespace of its own "
-      "(docs/dispatch.md).\n"
+      "(scripts/in-netns.sh; docs/dispatch.md).\n"
       "Examples:\n"
       "  ccbuild dry-run config/buildings/house.yaml\n"
       "  ccbuild dry-run house.schedule.json --speed 100000 --journal house.journal\n"

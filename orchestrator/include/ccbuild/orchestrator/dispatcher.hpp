@@ -25,6 +25,7 @@
 #include "ccbuild_lcm/ccbuild_ack_t.hpp"
 #include "ccbuild_lcm/ccbuild_done_t.hpp"
 #include "ccbuild_lcm/ccbuild_fault_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 struct sqlite3;
 
@@ -123,6 +124,9 @@ class Dispatcher {
   const std::vector<DispatchJob>& jobs() const { return jobs_; }
   /// The delay the run has built up against the schedule, s.
   double delay_s() const { return delay_s_; }
+  /// Machines not heard from (no status) for longer than `silence_s` real seconds, or
+  /// never, and for how long.
+  std::vector<std::pair<std::string, double>> silent(double silence_s) const;
 
  private:
   struct Queue {
@@ -130,6 +134,8 @@ class Dispatcher {
     std::size_t next = 0;           ///< the job in flight (or next to send)
     enum class Wait { kSend, kAck, kDone } wait = Wait::kSend;
     double waited_s = 0.0;
+    bool heard = false;     ///< a status has come from the machine
+    double silent_s = 0.0;  ///< real seconds since its last status
   };
   void send(std::size_t index);
   void on_ack(const ccbuild_lcm::ccbuild_ack_t& ack);
