@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <iostream>
 #include <sstream>
 
 #include "ccbuild/common/format.hpp"
@@ -28,6 +27,11 @@ constexpr double kEndMatch_m = 0.02;  ///< piece ends this close are the same en
 constexpr double kIntervalSlack_s = 1e-3;
 constexpr std::int64_t kReplayAge_us = 120'000'000;  ///< older than the newest by this: a replay
 constexpr std::size_t kSeenKept = 8192;
+
+/// One line of the machine's log on stderr, in one write (machines share the terminal).
+void say(const std::string& line) {
+  std::fwrite(line.data(), 1, line.size(), stderr);
+}
 
 /// Whether `value` exceeds `limit` beyond rounding.
 bool over(double value, double limit) {
@@ -142,8 +146,8 @@ SimMachine::SimMachine(Bus& bus, SimOptions options)
   bus_.subscribe<ccbuild_lcm::ccbuild_command_t>(
       channel("COMMAND", id), [this](const ccbuild_lcm::ccbuild_command_t& c) {
         if (c.machine_id != options_.machine_id) {
-          std::cerr << "ccbuild-sim " << options_.machine_id << ": rejected a command for '"
-                    << c.machine_id << "'\n";
+          say(std::string() + "ccbuild-sim " + options_.machine_id + ": rejected a command for '" +
+              c.machine_id + "'\n");
           return;
         }
         if (!replayed("COMMAND", c.utime, c.seq)) on_command(c.command, c.reason);
@@ -156,11 +160,11 @@ bool SimMachine::replayed(const std::string& kind, std::int64_t utime, std::int6
   const bool stale = utime < newest_utime_ - kReplayAge_us;
   if (seen || stale) {
     ++replays_;
-    std::cerr << printf_string(
+    say(printf_string(
         "ccbuild-sim %s: rejected a replayed message on %s (utime %lld, seq %lld: %s)\n",
         options_.machine_id.c_str(), channel(kind, options_.machine_id).c_str(),
         static_cast<long long>(utime), static_cast<long long>(seq),
-        seen ? "seen before" : "over two minutes older than the newest");
+        seen ? "seen before" : "over two minutes older than the newest"));
     return true;
   }
   seen_.insert(key);
@@ -176,6 +180,10 @@ bool SimMachine::replayed(const std::string& kind, std::int64_t utime, std::int6
 void SimMachine::arrive(std::function<void()> handle) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   if (u(rng_) < options_.drop) return;
+  if (options_.delay > 0.0 && u(rng_) < options_.delay) {
+    delayed_.emplace_back(real_s_ + u(rng_) * options_.delay_max_s, std::move(handle));
+    return;
+  }
   if (u(rng_) < options_.reorder) {
     held_.push_back(std::move(handle));
     return;
@@ -195,11 +203,11 @@ bool SimMachine::lost() {
 
 void SimMachine::on_command(std::int8_t command, const std::string& reason) {
   using ccbuild_lcm::ccbuild_command_t;
-  std::cerr << "ccbuild-sim " << options_.machine_id << ": "
-            << (command == ccbuild_command_t::PAUSE    ? "paused"
-                : command == ccbuild_command_t::RESUME ? "resumed"
-                                                       : "aborted")
-            << (reason.empty() ? "" : " (" + reason + ")") << "\n";
+  say("ccbuild-sim " + options_.machine_id + ": " +
+      (command == ccbuild_command_t::PAUSE    ? "paused"
+       : command == ccbuild_command_t::RESUME ? "resumed"
+                                              : "aborted") +
+      (reason.empty() ? "" : " (" + reason + ")") + "\n");
   if (command == ccbuild_command_t::PAUSE) paused_ = true;
   if (command == ccbuild_command_t::RESUME) paused_ = false;
   if (command == ccbuild_command_t::ABORT) {
@@ -410,11 +418,23 @@ void SimMachine::follow(double elapsed_s) {
 }
 
 void SimMachine::step(double real_dt_s) {
+  real_s_ += real_dt_s;
+  if (!delayed_.empty()) {
+    std::vector<std::function<void()>> due;
+    for (auto it = delayed_.begin(); it != delayed_.end();)
+      if (it->first <= real_s_) {
+        due.push_back(std::move(it->second));
+        it = delayed_.erase(it);
+      } else {
+        ++it;
+      }
+    for (auto& handle : due) handle();
+  }
   if (options_.stall_at_s >= 0.0 && !stalled_rail_m_ && clock_s_ >= options_.stall_at_s) {
     const int rail = options_.model && options_.model->rail_axis == 'y' ? 1 : 0;
     stalled_rail_m_ = position_[rail];
-    std::cerr << printf_string("ccbuild-sim %s: (injected) the rail axis stalled at %.3f m\n",
-                               options_.machine_id.c_str(), *stalled_rail_m_);
+    say(printf_string("ccbuild-sim %s: (injected) the rail axis stalled at %.3f m\n",
+                      options_.machine_id.c_str(), *stalled_rail_m_));
   }
   if (current_ && !paused_) {
     Running& run = *current_;
@@ -480,8 +500,8 @@ void SimMachine::finish(bool completed) {
         ends.push_back({wall, run.path.x_m[k], run.path.y_m[k], run.started_s + run.path.t_s[k]});
   }
   if (options_.crash_after_jobs > 0 && ++jobs_run_here_ == options_.crash_after_jobs) {
-    std::cerr << "ccbuild-sim " << options_.machine_id << ": (injected) crashed after "
-              << jobs_run_here_ << " jobs\n";
+    say(std::string() + "ccbuild-sim " + options_.machine_id + ": (injected) crashed after " +
+        std::to_string(jobs_run_here_) + " jobs\n");
     std::_Exit(70);
   }
   if (!completed) fault(run.job.job_id, run.stop_fault, run.stop_message);
@@ -500,7 +520,7 @@ void SimMachine::acknowledge(std::int64_t job_id, bool accepted, bool duplicate,
 
 void SimMachine::fault(std::int64_t job_id, std::int8_t kind, const std::string& message) {
   ++faults_;
-  std::cerr << "ccbuild-sim " << options_.machine_id << ": fault: " << message << "\n";
+  say(std::string() + "ccbuild-sim " + options_.machine_id + ": fault: " + message + "\n");
   auto f = stamped<ccbuild_lcm::ccbuild_fault_t>();
   f.job_id = job_id;
   f.kind = kind;

@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/machine/bus.hpp"
@@ -51,6 +52,12 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--reorder", options.reorder, "Injected: ... that one is held behind the next")
       ->check(CLI::Range(0.0, 0.9));
+  app.add_option("--delay", options.delay,
+                 "Injected: ... that one is held back for up to --delay-max real seconds")
+      ->check(CLI::Range(0.0, 0.9));
+  app.add_option("--delay-max", options.delay_max_s, "The longest injected delay, real s")
+      ->check(CLI::Range(0.0, 60.0))
+      ->capture_default_str();
   app.add_option("--seed", options.seed, "Seed of the injected faults")->capture_default_str();
   std::string profile, clog_at;
   std::vector<double> home;
@@ -120,9 +127,12 @@ int main(int argc, char** argv) {
       sim.step(std::chrono::duration<double>(now - last).count());
       last = now;
     }
-    std::cerr << "ccbuild-sim " << options.machine_id << ": stopped; " << sim.executed().size()
-              << " jobs in its record, " << sim.replays_rejected() << " replayed and "
-              << bus.malformed_count() << " malformed messages rejected\n";
+    // One write, so that machines stopping together do not mix their lines.
+    std::ostringstream said;
+    said << "ccbuild-sim " << options.machine_id << ": stopped; " << sim.executed().size()
+         << " jobs in its record, " << sim.replays_rejected() << " replayed and "
+         << bus.malformed_count() << " malformed messages rejected\n";
+    std::cerr << said.str() << std::flush;
     return 0;
   } catch (const ccbuild::InputError& e) {
     std::cerr << "ccbuild-sim: error: " << e.what() << "\n";

@@ -67,11 +67,12 @@ Injected injected(const std::string& text) {
   Injected out;
   std::size_t at = 0;
   const auto bad = [](const std::string& item, const std::string& why) {
-    return InputError("", 0, "--inject",
-                      why + " in '" + item +
-                          "'; expected comma-separated drop=P, duplicate=P, reorder=P (P from "
-                          "0 to 0.9), clog=[MACHINE@]FLOOR:LAYER, pin=[MACHINE@]N, "
-                          "crash=[MACHINE@]N or stall=[MACHINE@]SECONDS");
+    return InputError(
+        "", 0, "--inject",
+        why + " in '" + item +
+            "'; expected comma-separated drop=P, duplicate=P, reorder=P, delay=P (P from "
+            "0 to 0.9), clog=[MACHINE@]FLOOR:LAYER, pin=[MACHINE@]N, "
+            "crash=[MACHINE@]N or stall=[MACHINE@]SECONDS");
   };
   while (at < text.size()) {
     const std::size_t end = std::min(text.find(',', at), text.size());
@@ -81,7 +82,7 @@ Injected injected(const std::string& text) {
     if (eq == std::string::npos) throw bad(item, "no '='");
     const std::string name = item.substr(0, eq);
     std::string value = item.substr(eq + 1);
-    if (name == "drop" || name == "duplicate" || name == "reorder") {
+    if (name == "drop" || name == "duplicate" || name == "reorder" || name == "delay") {
       char* stop = nullptr;
       const double p = std::strtod(value.c_str(), &stop);
       if (value.empty() || *stop != '\0' || !(p >= 0.0 && p <= 0.9))
@@ -514,13 +515,14 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
                       "jobs each ran), kept after the run; default: a temporary folder");
   command->add_option("--log", o->log,
                       "Write the whole conversation as an LCM log (lcm-logger's format) here");
-  command->add_option("--inject", o->inject,
-                      "Faults to inject, comma-separated. Network (into what the machines "
-                      "receive and send, probabilities per message): drop=P, duplicate=P, "
-                      "reorder=P. Machine (on gantry-1 unless MACHINE@ names another): "
-                      "clog=FLOOR:LAYER (the pump clogs part-way through that layer), pin=N "
-                      "(the first N pin insertions miss), crash=N (the process dies right "
-                      "after its N-th job), stall=SECONDS (the rail axis stalls from then on)");
+  command->add_option(
+      "--inject", o->inject,
+      "Faults to inject, comma-separated. Network (into what the machines "
+      "receive and send, probabilities per message): drop=P, duplicate=P, "
+      "reorder=P, delay=P (held up to 0.5 s). Machine (on gantry-1 unless MACHINE@ names another): "
+      "clog=FLOOR:LAYER (the pump clogs part-way through that layer), pin=N "
+      "(the first N pin insertions miss), crash=N (the process dies right "
+      "after its N-th job), stall=SECONDS (the rail axis stalls from then on)");
   command->add_option("--seed", o->seed, "Seed of the injected faults")
       ->check(unsigned_integer())
       ->capture_default_str();

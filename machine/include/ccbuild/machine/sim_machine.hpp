@@ -51,9 +51,10 @@ struct SimOptions {
   /// memory only.
   std::filesystem::path state_file;
   /// Faults of the network, injected into what this machine receives and sends, each
-  /// with its probability per message (seeded): a message lost, handled twice, or held
-  /// back behind the next ones.
-  double drop = 0.0, duplicate = 0.0, reorder = 0.0;
+  /// with its probability per message (seeded): a message lost, handled twice, held
+  /// back behind the next ones, or held back for up to delay_max_s of real time.
+  double drop = 0.0, duplicate = 0.0, reorder = 0.0, delay = 0.0;
+  double delay_max_s = 0.5;
   std::uint64_t seed = 1;
   /// Where the nozzle is parked before its first job: x, y, z (m), heading (rad).
   std::array<double, 4> home{0.0, 0.0, 0.0, 0.0};
@@ -218,6 +219,9 @@ class SimMachine {
   long faults_ = 0, replays_ = 0;
   std::mt19937_64 rng_;
   std::vector<std::function<void()>> held_;  ///< reordered: handled after the next ones
+  /// Delayed: handled once the real time passes the first.
+  std::vector<std::pair<double, std::function<void()>>> delayed_;
+  double real_s_ = 0.0;  ///< real seconds stepped
   /// Message headers seen (channel kind, utime, seq), the last few thousand.
   std::set<std::tuple<std::string, std::int64_t, std::int64_t>> seen_;
   std::deque<std::tuple<std::string, std::int64_t, std::int64_t>> seen_order_;
