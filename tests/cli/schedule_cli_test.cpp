@@ -186,3 +186,40 @@ TEST(ReportCommand, WritesOneSelfContainedPageAndNeverOverAnInput) {
 
 }  // namespace
 }  // namespace ccbuild
+
+namespace ccbuild {
+namespace {
+
+// Bad input to `ccbuild dry-run` is refused (exit 2, naming the flag or file) before any
+// machine starts or any message is sent, and no file the user gave is touched.
+TEST(DryRunCommand, BadInputIsExitTwoBeforeAnythingStarts) {
+  const std::string schedule = "tests/regression/house.schedule.json";
+  for (const std::string inject : {"clog=0", "clog=0:x", "drop=1.5", "delay=-0.1", "pin=0",
+                                   "crash=x", "stall=-1", "wobble=1", "drop"}) {
+    const auto r = testing::run_ccbuild("dry-run " + schedule + " --inject " + inject);
+    EXPECT_EQ(r.exit_code, 2) << inject;
+    EXPECT_TRUE(testing::contains(r.err, "--inject")) << inject << ": " << r.err;
+  }
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_dry_run_cli" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path log = dir / "old.lcmlog", journal = dir / "notes.txt";
+  std::ofstream(log) << "precious";
+  std::ofstream(journal) << "not a journal, and precious too";
+  const auto kept = testing::run_ccbuild("dry-run " + schedule + " --log " + log.string());
+  EXPECT_EQ(kept.exit_code, 2);
+  EXPECT_TRUE(testing::contains(kept.err, "--force")) << kept.err;
+  EXPECT_EQ(testing::slurp(log), "precious");
+  const auto wrong = testing::run_ccbuild("dry-run " + schedule + " --journal " + journal.string());
+  EXPECT_EQ(wrong.exit_code, 2);
+  EXPECT_TRUE(testing::contains(wrong.err, "notes.txt")) << wrong.err;
+  EXPECT_EQ(testing::slurp(journal), "not a journal, and precious too");
+  EXPECT_EQ(testing::run_ccbuild("dry-run " + schedule + " --speed 0").exit_code, 2);
+  EXPECT_EQ(testing::run_ccbuild("dry-run config/machines/cc-gantry.yaml").exit_code, 2);
+  const auto not_schedule = testing::run_ccbuild("dry-run tests/data/plans/cottage.json");
+  EXPECT_EQ(not_schedule.exit_code, 2) << not_schedule.err;
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ccbuild
