@@ -221,6 +221,7 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
     queues_[jobs_[k].job.machine_id].jobs.push_back(k);
   }
   ended_.assign(jobs_.size(), false);
+  after_layer_.assign(jobs_.size(), false);
   // Back where the journal left off: the jobs ended, and the recovery jobs they made (in
   // order, so that the same ones are made again).
   const auto rows = journal_.rows();
@@ -291,14 +292,120 @@ void Dispatcher::stop(const std::string& reason) {
   }
 }
 
-bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
-  const std::size_t origin = origin_[index];
+namespace {
+/// The rail coordinate of waypoint k of a job's path.
+double rail_at(const DispatchJob& d, char axis, bool last) {
+  const auto& c = last ? d.chunks.back() : d.chunks.front();
+  const int k = last ? c.n - 1 : 0;
+  return axis == 'y' ? c.y_m[k] : c.x_m[k];
+}
+/// "gantry-3" -> 3 (0 for another name).
+int gantry_number(const std::string& machine_id) {
+  return machine_id.rfind("gantry-", 0) == 0 ? std::atoi(machine_id.c_str() + 7) : 0;
+}
+}  // namespace
+
+bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob job,
+                              bool after_layer) {
   // Recovery jobs take the ids after their origin's (ids go in tens).
   std::int64_t id = jobs_[origin].job.job_id;
   for (const auto& [other, k] : index_of_)
     if (origin_[k] == origin) id = std::max(id, other);
-  std::vector<DispatchJob> made;
-  const DispatchJob& ended = jobs_[index];
+  if (++id >= jobs_[origin].job.job_id + 10) return false;
+  job.job.job_id = id;
+  for (auto& c : job.chunks) c.job_id = id;
+  Queue& q = queues_[job.job.machine_id];
+  const auto at = std::find(q.jobs.begin(), q.jobs.end(), after);
+  // After `after` and after what was inserted after it already.
+  auto to = at + 1;
+  while (to != q.jobs.end() && origin_[*to] == origin && *to != origin) ++to;
+  const std::size_t offset = static_cast<std::size_t>(to - q.jobs.begin());
+  jobs_.push_back(std::move(job));
+  origin_.push_back(origin);
+  ended_.push_back(false);
+  after_layer_.push_back(after_layer);
+  index_of_[id] = jobs_.size() - 1;
+  q.jobs.insert(q.jobs.begin() + static_cast<std::ptrdiff_t>(offset), jobs_.size() - 1);
+  return true;
+}
+
+bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
+                                std::vector<std::pair<std::size_t, DispatchJob>>& moves) const {
+  if (options_.gantry_width_m <= 0.0 || rest.chunks.empty()) return true;
+  const char axis = options_.rail_axis;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& c : rest.chunks)
+    for (int k = 0; k < c.n; ++k) {
+      const double r = axis == 'y' ? c.y_m[k] : c.x_m[k];
+      lo = std::min(lo, r);
+      hi = std::max(hi, r);
+    }
+  // Where the layer's other gantries stand once their jobs of this layer are done.
+  const double layer_start_s = jobs_[origin_[index]].job.start_s;
+  const int mine = gantry_number(jobs_[index].job.machine_id);
+  std::map<int, std::size_t> others;  // gantry number -> its job of this layer
+  for (std::size_t k = 0; k < jobs_.size(); ++k)
+    if (origin_[k] == k && k != origin_[index] && jobs_[k].job.start_s == layer_start_s &&
+        !jobs_[k].chunks.empty())
+      others[gantry_number(jobs_[k].job.machine_id)] = k;
+  auto move = [&](std::size_t k, double to_rail_m) {
+    const DispatchJob& d = jobs_[k];
+    const auto& c = d.chunks.back();
+    const int last = c.n - 1;
+    DispatchJob m;
+    m.job = d.job;
+    m.job.kind = ccbuild_job_t::TRAVEL;
+    m.job.plan = "";
+    m.job.start_s = start_s;
+    const double from_m = axis == 'y' ? c.y_m[last] : c.x_m[last];
+    m.job.duration_s = std::abs(to_rail_m - from_m) / options_.travel_speed_m_s;
+    m.job.detail = printf_string("%s moves clear along the rails to %.3f m (the rest of job %lld)",
+                                 d.job.machine_id.c_str(), to_rail_m,
+                                 static_cast<long long>(jobs_[index].job.job_id));
+    ccbuild_path_chunk_t p;
+    p.utime = 0;
+    p.machine_id = d.job.machine_id;
+    p.job_id = 0;
+    p.seq = 0;
+    p.chunk_index = 0;
+    p.chunk_count = 1;
+    p.n = 2;
+    p.t_s = {0.0, m.job.duration_s};
+    p.x_m = {c.x_m[last], axis == 'y' ? c.x_m[last] : to_rail_m};
+    p.y_m = {c.y_m[last], axis == 'y' ? to_rail_m : c.y_m[last]};
+    p.z_m = {c.z_m[last], c.z_m[last]};
+    p.heading_rad = {c.heading_rad[last], c.heading_rad[last]};
+    p.extruding = {false, false};
+    p.wall = {0, 0};
+    p.piece = {0, 0};
+    m.chunks = {p};
+    m.job.chunk_count = 1;
+    m.job.point_count = 2;
+    moves.emplace_back(k, std::move(m));
+  };
+  // Up the rails from this gantry: each at least a gantry width past the one before.
+  double need_m = hi + options_.gantry_width_m;
+  for (auto it = others.upper_bound(mine); it != others.end(); ++it) {
+    const double at_m = rail_at(jobs_[it->second], axis, true);
+    if (at_m >= need_m) break;
+    if (need_m > options_.rail_max_m) return false;
+    move(it->second, need_m);
+    need_m += options_.gantry_width_m;
+  }
+  need_m = lo - options_.gantry_width_m;
+  for (auto it = std::make_reverse_iterator(others.lower_bound(mine)); it != others.rend(); ++it) {
+    const double at_m = rail_at(jobs_[it->second], axis, true);
+    if (at_m <= need_m) break;
+    if (need_m < options_.rail_min_m) return false;
+    move(it->second, need_m);
+    need_m -= options_.gantry_width_m;
+  }
+  return true;
+}
+
+bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
+  const std::size_t origin = origin_[index];
+  const DispatchJob ended = jobs_[index];
   if (row.state == "clogged") {
     DispatchJob purge;
     purge.job = ended.job;
@@ -308,7 +415,6 @@ bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
     purge.job.plan = "";
     purge.job.detail = "purge after the clog in job " + std::to_string(ended.job.job_id);
     purge.job.chunk_count = purge.job.point_count = 0;
-    made.push_back(purge);
     DispatchJob rest;
     rest.job = ended.job;
     double t0_s = 0.0;
@@ -320,38 +426,36 @@ bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
     rest.job.chunk_count = static_cast<std::int32_t>(rest.chunks.size());
     rest.job.point_count = 0;
     for (const auto& c : rest.chunks) rest.job.point_count += c.n;
-    made.push_back(rest);
-  } else if (row.state == "pin-missed") {
+    std::vector<std::pair<std::size_t, DispatchJob>> moves;
+    if (!clearing_moves(index, rest, row.finished_s, moves)) return false;
+    // The rest waits for the layer's other jobs and the moves: it runs alone.
+    if (!insert_after(index, origin, purge, false) || !insert_after(index, origin, rest, true))
+      return false;
+    for (auto& [k, m] : moves)
+      if (!insert_after(k, k, std::move(m), false)) return false;
+    return true;
+  }
+  if (row.state == "pin-missed") {
     int attempts = 1;
     for (std::size_t k = 0; k < jobs_.size(); ++k) attempts += k != origin && origin_[k] == origin;
     if (attempts >= options_.pin_attempts) return false;
     DispatchJob again = ended;
     again.job.detail = jobs_[origin].job.detail + ", attempt " + std::to_string(attempts + 1);
-    made.push_back(again);
-  } else {
-    return false;
+    return insert_after(index, origin, std::move(again), false);
   }
-  if (id + static_cast<std::int64_t>(made.size()) >= jobs_[origin].job.job_id + 10) return false;
-  Queue& q = queues_[ended.job.machine_id];
-  auto at = std::find(q.jobs.begin(), q.jobs.end(), index);
-  for (auto& m : made) {
-    m.job.job_id = ++id;
-    for (auto& c : m.chunks) c.job_id = m.job.job_id;
-    jobs_.push_back(std::move(m));
-    origin_.push_back(origin);
-    ended_.push_back(false);
-    index_of_[id] = jobs_.size() - 1;
-    at = q.jobs.insert(at + 1, jobs_.size() - 1);
-  }
-  return true;
+  return false;
 }
 
 bool Dispatcher::released(std::size_t index) const {
   // Every job planned to start before this one's (its origin's) has ended, and so have
-  // the jobs recovering from them: a layer's jobs go out together.
+  // the jobs recovering from them: a layer's jobs go out together. A job that runs alone
+  // also waits for every other job of its layer.
   const double start_s = jobs_[origin_[index]].job.start_s;
-  for (std::size_t k = 0; k < jobs_.size(); ++k)
-    if (!ended_[k] && jobs_[origin_[k]].job.start_s < start_s) return false;
+  for (std::size_t k = 0; k < jobs_.size(); ++k) {
+    if (ended_[k] || k == index) continue;
+    const double other_s = jobs_[origin_[k]].job.start_s;
+    if (other_s < start_s || (after_layer_[index] && other_s == start_s)) return false;
+  }
   return true;
 }
 
@@ -360,6 +464,16 @@ void Dispatcher::send(std::size_t index) {
   // A common start for the jobs released together: planned, plus the delay so far
   // (recovery jobs carry their own starts).
   if (origin_[index] == index) d.job.start_s += delay_s_;
+  // A job that runs alone starts when the last of its layer's other jobs ended (each
+  // machine keeps its own clock).
+  if (after_layer_[index]) {
+    const double layer_s = jobs_[origin_[index]].job.start_s;
+    for (std::size_t k = 0; k < jobs_.size(); ++k) {
+      const auto it = executed_.find(jobs_[k].job.job_id);
+      if (k != index && jobs_[origin_[k]].job.start_s == layer_s && it != executed_.end())
+        d.job.start_s = std::max(d.job.start_s, it->second.second);
+    }
+  }
   d.job.utime = machine::utime_now();
   d.job.seq = ++seq_;
   bus_.publish(machine::channel("JOB", d.job.machine_id), d.job);

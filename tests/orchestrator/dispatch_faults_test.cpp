@@ -348,6 +348,73 @@ TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
   std::filesystem::remove_all(dir);
 }
 
+/// A deposit job of one straight wall piece along x, from `x0` to `x1` at 0.2 m/s.
+DispatchJob along_x(const std::string& machine, std::int64_t id, double x0, double x1) {
+  DispatchJob d = piece_job(id, 0, 0.0);
+  d.job.machine_id = machine;
+  auto& c = d.chunks[0];
+  c.machine_id = machine;
+  c.n = 11;
+  c.t_s.clear();
+  c.x_m.clear();
+  for (int k = 0; k <= 10; ++k) {
+    c.t_s.push_back(k * std::abs(x1 - x0) / 10.0 / 0.2);
+    c.x_m.push_back(x0 + (x1 - x0) * k / 10.0);
+  }
+  c.y_m.assign(11, 1.0);
+  c.z_m.assign(11, 0.1);
+  c.heading_rad.assign(11, 0.0);
+  c.extruding.assign(11, true);
+  c.extruding.back() = false;
+  c.wall.assign(11, 1);
+  c.wall.back() = 0;
+  c.piece.assign(11, 1);
+  c.piece.back() = 0;
+  d.job.duration_s = c.t_s.back();
+  d.job.point_count = 11;
+  return d;
+}
+
+TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
+  // gantry-1 lays x 0 -> 6 while gantry-2 lays x 13 -> 7.6; gantry-1 clogs at 40% and
+  // gantry-2 parks at 7.6, too close (2 m apart) for the rest of gantry-1's wall up to 6.
+  const std::vector<DispatchJob> layer = {along_x("gantry-1", 10, 0.0, 6.0),
+                                          along_x("gantry-2", 20, 13.0, 7.6)};
+  machine::Bus bus("memq://");
+  Journal journal(":memory:");
+  machine::SimOptions one = window(0.0, 1e9);
+  one.clog_floor = 0;
+  one.clog_layer = 0;
+  machine::SimOptions two = window(0.0, 1e9);
+  two.machine_id = "gantry-2";
+  machine::SimMachine sim1(bus, one), sim2(bus, two);
+  DispatchOptions o;
+  o.speed = one.speed;
+  o.gantry_width_m = 2.0;
+  o.purge_s = 1.0;  // over before gantry-2's wall is: the rest must still wait for it
+  o.rail_axis = 'x';
+  o.rail_min_m = -2.0;
+  o.rail_max_m = 20.0;
+  Dispatcher d(bus, layer, journal, o);
+  for (int k = 0; k < 100'000 && !d.finished(); ++k) {
+    d.step(1e-3);
+    bus.handle(0);
+    sim1.step(1e-3);
+    sim2.step(1e-3);
+    bus.handle(0);
+  }
+  ASSERT_TRUE(d.finished());
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  EXPECT_EQ(sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(sim2.executed(), (std::vector<std::int64_t>{20, 21}));      // its wall, the move
+  const auto& move = d.jobs().at(4);
+  EXPECT_EQ(move.job.kind, +ccbuild_job_t::TRAVEL);
+  EXPECT_DOUBLE_EQ(move.chunks[0].x_m.back(), 8.0);  // the rest reaches 6: 6 + 2
+  EXPECT_DOUBLE_EQ(sim2.position()[0], 8.0);
+  // The rest started only once gantry-2 had moved clear.
+  EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);
+}
+
 void status(machine::Bus& bus, const std::string& id, double t_s, double x_m) {
   static std::int64_t seq = 0;
   ccbuild_lcm::ccbuild_status_t s{};

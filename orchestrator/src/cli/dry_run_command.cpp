@@ -325,6 +325,17 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   d.ack_timeout_s = o.retry_after_s;
   d.done_slack_s = 2.0 * o.retry_after_s;
   d.purge_s = machine_json.value("purge_s", 120.0);
+  if (several) {  // the rest of a clogged layer may need its neighbours out of the way
+    d.gantry_width_m = gantry_width_m;
+    d.rail_axis = rail_axis;
+    d.travel_speed_m_s = machine_json.value("travel_speed_m_s", 0.5);
+    const auto range = machine_json.value(rail_axis == 'y' ? "y_range_m" : "x_range_m",
+                                          std::vector<double>{-1e9, 1e9});
+    if (range.size() == 2) {
+      d.rail_min_m = range[0];
+      d.rail_max_m = range[1];
+    }
+  }
   orchestrator::Dispatcher dispatcher(bus, jobs, journal, d);
   std::optional<orchestrator::SiteWatchdog> watchdog;
   if (several) {

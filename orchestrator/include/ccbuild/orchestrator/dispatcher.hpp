@@ -97,6 +97,12 @@ struct DispatchOptions {
   double speed = 10'000.0;     ///< the machines' speed factor (for the expected duration)
   double purge_s = 120.0;      ///< clearing a clogged nozzle, before the rest of its layer
   int pin_attempts = 3;        ///< a pin insertion tried at most this often
+  /// For the rest of a clogged layer on shared rails: gantries in the way are moved clear
+  /// first (0: not checked).
+  double gantry_width_m = 0.0;
+  char rail_axis = 'x';
+  double rail_min_m = -1e9, rail_max_m = 1e9;  ///< the rail axis's range
+  double travel_speed_m_s = 0.5;
 };
 
 class Dispatcher {
@@ -143,9 +149,18 @@ class Dispatcher {
   void on_fault(const ccbuild_lcm::ccbuild_fault_t& fault);
   Queue* queue_of(const std::string& machine_id, std::int64_t job_id);
   /// After the job at `index` ended as `row`: the jobs that recover from it, inserted
-  /// after it in its machine's queue (a purge and the rest of a clogged path; a pin
-  /// again). Returns false when there is no recovery (then the run stops).
+  /// after it in its machine's queue (a purge and the rest of a clogged path, run once
+  /// the layer's other jobs are done, with the gantries in its way moved clear first; a
+  /// pin again). Returns false when there is no recovery (then the run stops).
   bool recover(std::size_t index, const JournalRow& row);
+  /// Puts `job` after the job at `after` in its machine's queue, with the next id of
+  /// `origin`'s range. Returns false when the range is full.
+  bool insert_after(std::size_t after, std::size_t origin, DispatchJob job, bool after_layer);
+  /// Moves that clear the rails for `rest` (the rest of a clogged path of the job at
+  /// `index`): (job index whose machine moves, the move). Nothing when none is needed;
+  /// false when a gantry cannot get out of the way.
+  bool clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
+                      std::vector<std::pair<std::size_t, DispatchJob>>& moves) const;
   /// The job ended (done, or recovered from): its machine moves on.
   void advance(Queue& q, std::size_t index, const JournalRow& row);
   bool released(std::size_t index) const;
@@ -155,6 +170,8 @@ class Dispatcher {
   /// Per job: the schedule job it stands for (itself, or the one a recovery job recovers).
   std::vector<std::size_t> origin_;
   std::vector<bool> ended_;  ///< per job: done, or ended and recovered from
+  /// Per job: released only once every other job of its layer has ended.
+  std::vector<bool> after_layer_;
   std::map<std::int64_t, std::size_t> index_of_;
   Journal& journal_;
   DispatchOptions options_;
