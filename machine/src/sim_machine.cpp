@@ -362,6 +362,8 @@ void SimMachine::try_start() {
     }
     acknowledge(job.job_id, true, false, "");
     clock_s_ = start_s;
+    // A wait or a slab stage is the machine idle: its time passes at once.
+    const bool idle = job.kind == ccbuild_job_t::WAIT || job.kind == ccbuild_job_t::SLAB;
     Running run;
     run.job = job;
     run.path = std::move(path);
@@ -389,6 +391,7 @@ void SimMachine::try_start() {
       run.stop_point = 0;
       run.stop_message = "the pin did not find its pipe (" + job.detail + ")";
     }
+    if (idle) run.elapsed_s = job.duration_s;
     current_ = std::move(run);
     return;
   }
@@ -475,8 +478,9 @@ void SimMachine::finish(bool completed) {
   if (!options_.state_file.empty()) {
     FILE* f = std::fopen(options_.state_file.c_str(), "a");
     CCBUILD_CHECK(f != nullptr, "cannot append to " + options_.state_file.string());
-    std::fprintf(f, "%lld %.6f %.6f %.6f %.6f %.6f %.6f", static_cast<long long>(run.job.job_id),
-                 run.started_s, end_s, position_[0], position_[1], position_[2], position_[3]);
+    std::fprintf(f, "%lld %.17g %.17g %.17g %.17g %.17g %.17g",
+                 static_cast<long long>(run.job.job_id), run.started_s, end_s, position_[0],
+                 position_[1], position_[2], position_[3]);
     if (!completed) std::fprintf(f, " %s %d", fault_word.c_str(), stopped_at);
     std::fprintf(f, "\n");
     std::fflush(f);

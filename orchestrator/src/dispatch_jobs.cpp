@@ -1,6 +1,7 @@
 #include "ccbuild/orchestrator/dispatch_jobs.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -75,17 +76,58 @@ std::vector<DispatchJob> jobs_of_schedule(const json& schedule) {
   std::vector<DispatchJob> jobs;
   try {
     const json& plans = schedule.at("plans");
+    const json machine = schedule.value("inputs", json::object()).value("machine", json::object());
+    const double purge_s = machine.value("purge_s", 0.0);
+    // Nozzle -> its last waypoint, if it deposited the layer before this one.
+    std::map<int, json> last, ending;
     for (const json& l : schedule.at("layers")) {
       const std::string key = l.at("plan").get<std::string>();
       const json& plan = plans.at(key);
       const int floor = l.at("floor").get<int>(), layer = l.at("layer").get<int>();
       const double start_s = l.at("start_s").get<double>();
       const double dz_m = l.at("z_m").get<double>() - plan.at("z_top_m").get<double>();
+      // Before the layer: the move to it, the wait (the machine idle, with its reasons),
+      // then the purge (an event of its own).
+      const double wait_s = l.value("wait_before_s", 0.0);
+      const double move_s = l.value("move_before_s", 0.0);
+      const double waited_from_s =
+          start_s - (l.value("purge_before", false) ? purge_s : 0.0) - wait_s;
+      if (wait_s > 0.0) {
+        std::string why;
+        for (const json& r : l.value("wait_reasons", json::array()))
+          why += (why.empty() ? "" : "; ") + r.value("detail", std::string());
+        jobs.push_back(
+            {job_of(ccbuild_job_t::WAIT, gantry_id(0), waited_from_s, wait_s, floor, layer, -1, "",
+                    printf_string("wait before floor %d layer %d: %s", floor, layer, why.c_str())),
+             {}});
+      }
       for (const json& n : plan.at("nozzles")) {
         const int nozzle = n.at("nozzle").get<int>();
         json path = n.at("waypoints");
         if (path.empty()) continue;
         for (json& w : path) w["z_m"] = w.at("z_m").get<double>() + dz_m;  // this layer's height
+        // The move from where this nozzle ended to where it starts, in a straight line.
+        const auto from = last.find(nozzle);
+        if (from != last.end() && move_s > 0.0) {
+          json a = from->second, b = path.front();
+          for (json* w : {&a, &b}) {
+            (*w)["extruding"] = false;
+            (*w)["wall"] = 0;
+            (*w)["piece"] = 0;
+          }
+          a["t_s"] = 0.0;
+          b["t_s"] = move_s;
+          DispatchJob t;
+          t.job = job_of(
+              ccbuild_job_t::TRAVEL, gantry_id(nozzle), waited_from_s - move_s, move_s, floor,
+              layer, nozzle, "",
+              printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1));
+          t.chunks = chunks_of(json::array({a, b}), t.job.machine_id);
+          t.job.chunk_count = 1;
+          t.job.point_count = 2;
+          jobs.push_back(std::move(t));
+        }
+        ending[nozzle] = path.back();
         const double duration_s = path.back().at("t_s").get<double>();
         DispatchJob d;
         d.job = job_of(ccbuild_job_t::DEPOSIT, gantry_id(nozzle), start_s, duration_s, floor, layer,
@@ -96,6 +138,8 @@ std::vector<DispatchJob> jobs_of_schedule(const json& schedule) {
         d.job.point_count = static_cast<std::int32_t>(path.size());
         jobs.push_back(std::move(d));
       }
+      last.swap(ending);  // a nozzle idle for a layer moves without a job (as planned)
+      ending.clear();
     }
     for (const json& e : schedule.at("events")) {
       const std::string kind = e.at("kind").get<std::string>();

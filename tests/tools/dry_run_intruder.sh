@@ -15,7 +15,7 @@ url='udpm://239.255.76.67:7667?ttl=0'
 "$ccbuild" schedule tests/data/buildings/twin-cottages.yaml -o "$out/twin.json" --quiet > /dev/null
 $netns sh -c 'ip link set lo up && ip link set lo multicast on &&
   ip route add 224.0.0.0/4 dev lo || exit 1
-  "$1" dry-run "$2/twin.json" --speed 5000 --timeout 60 --state-dir "$2/state" \
+  "$1" dry-run "$2/twin.json" --speed 200 --timeout 60 --state-dir "$2/state" \
     > "$2/summary.txt" 2> "$2/progress.txt" &
   run=$!
   "$3" "$4" gantry-1 > "$2/intruder.txt" || { kill $run; exit 1; }
