@@ -374,12 +374,23 @@ bool Scheduler::schedule_layer(int i) {
     if (!p.usable)
       refusals.push_back(printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
     if (below && n == below->nozzles) {
-      const Planned& f = follow_plan(slice, below->plan);
-      if (f.usable && consider(n, register_plan(follow_key(slice, below->plan), slice, n, f), f))
+      const Planned& f = follow_plan(slice, below->plan, false);
+      if (f.usable &&
+          consider(n, register_plan(follow_key(slice, below->plan, false), slice, n, f), f))
         break;
       if (!f.usable)
         refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
                                          n == 1 ? "" : "s", f.why_not.c_str()));
+      // At the machine's last count, the gantries in each other's way held back.
+      if (!f.usable && n > 1 && n == machine_.nozzles) {
+        const Planned& h = follow_plan(slice, below->plan, true);
+        if (h.usable &&
+            consider(n, register_plan(follow_key(slice, below->plan, true), slice, n, h), h))
+          break;
+        if (!h.usable)
+          refusals.push_back(printf_string("%d nozzles following the layer below, held back: %s", n,
+                                           h.why_not.c_str()));
+      }
     }
   }
   if (!best) {

@@ -198,8 +198,9 @@ std::string Scheduler::plan_key(const Slice& slice, int nozzles) {
                        planned(slice.geometry, nozzles));
 }
 
-const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& below_key) {
-  const std::string base = follow_key(slice, below_key);
+const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& below_key,
+                                      bool hold_back) {
+  const std::string base = follow_key(slice, below_key, hold_back);
   auto it = follow_.find(base);
   if (it != follow_.end()) return it->second;
   const auto started = Clock::now();
@@ -273,6 +274,31 @@ const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& bel
     rails.push_back(rail);
     out.waypoints.push_back(plan.waypoints);
   }
+  // Held back: a nozzle that would come too close to the one before it starts later (by
+  // the first of 5 s steps that clears it), waiting parked where it starts.
+  if (hold_back && out.why_not.empty())
+    for (int n = 1; n < nozzles; ++n) {
+      if (out.waypoints[n].empty() || out.waypoints[n - 1].empty() ||
+          !planner::first_conflict(rails[n - 1], rails[n], axis, machine_.gantry_width_m))
+        continue;
+      for (double delay_s = 5.0; delay_s <= machine_.nozzle_idle_limit_s; delay_s += 5.0) {
+        planner::Timeline later;
+        later.append(0.0, out.waypoints[n].front().position_m);
+        for (const auto& w : out.waypoints[n]) later.append(w.t_s + delay_s, w.position_m);
+        if (planner::first_conflict(rails[n - 1], later, axis, machine_.gantry_width_m)) continue;
+        rails[n] = later;
+        planner::Waypoint parked = out.waypoints[n].front();
+        parked.extruding = false;
+        parked.wall = 0;
+        parked.piece = 0;
+        for (auto& w : out.waypoints[n]) w.t_s += delay_s;
+        out.waypoints[n].insert(out.waypoints[n].begin(), parked);
+        out.layer_time_s = std::max(out.layer_time_s, out.waypoints[n].back().t_s);
+        out.airtime_s += delay_s;
+        out.max_idle_s = std::max(out.max_idle_s, delay_s);
+        break;
+      }
+    }
   // The gantries must keep their gap: checked exactly at every breakpoint of either.
   out.min_gap_m = kInf;
   for (int n = 0; n + 1 < nozzles && out.why_not.empty(); ++n) {

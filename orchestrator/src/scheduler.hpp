@@ -93,12 +93,13 @@ class Scheduler {
                             const Planned& p);
   /// The key of `slice`'s optimised plan at `nozzles`.
   std::string plan_key(const Slice& slice, int nozzles);
-  /// One nozzle depositing `slice` in the order the plan `below_key` deposited the layer
+  /// The nozzles depositing `slice` in the order the plan `below_key` deposited the layer
   /// below: where the geometry changes (openings begin or end), an optimised plan may
   /// cover first what the layer below did last, and break the maximum interval there.
-  const Planned& follow_plan(const Slice& slice, const std::string& below_key);
-  static std::string follow_key(const Slice& slice, const std::string& below_key) {
-    return printf_string("g%d~%s", slice.geometry + 1, below_key.c_str());
+  /// With `hold_back`, a gantry that would come too close to its neighbour starts later.
+  const Planned& follow_plan(const Slice& slice, const std::string& below_key, bool hold_back);
+  static std::string follow_key(const Slice& slice, const std::string& below_key, bool hold_back) {
+    return printf_string("g%d~%s%s", slice.geometry + 1, below_key.c_str(), hold_back ? "h" : "");
   }
   double move_between(const std::string& from_key, const std::string& to_key) const;
   const IntervalOffsets& offsets(const Slice& upper, const std::string& upper_key,

@@ -1030,8 +1030,15 @@ def corruptions(doc):
         def close(d):
             p = d["plans"][multi[0]]
             axis = d["inputs"]["machine"]["rail_axis"] + "_m"
-            right = p["nozzles"][1]["waypoints"]
-            right[len(right) // 2][axis] = p["nozzles"][0]["waypoints"][0][axis]
+            left, right = p["nozzles"][0]["waypoints"], p["nozzles"][1]["waypoints"]
+            w = right[len(right) // 2]
+            # Onto the left gantry's rail position at that moment.
+            t = min(max(w["t_s"], left[0]["t_s"]), left[-1]["t_s"])
+            for a, b in zip(left, left[1:]):
+                if a["t_s"] <= t <= b["t_s"]:
+                    f = (t - a["t_s"]) / (b["t_s"] - a["t_s"]) if b["t_s"] > a["t_s"] else 1.0
+                    w[axis] = a[axis] + f * (b[axis] - a[axis])
+                    break
     with_below = [i for i, l in enumerate(layers) if l["local_interval_min_s"] is not None]
     i = with_below[len(with_below) // 2]
     add("a layer ends late", "lasts")(lambda d: d["layers"][i].update(end_s=d["layers"][i]["end_s"] + 5.0))

@@ -33,7 +33,8 @@ machines=$(echo "$line" | sed -E 's/.*executed on ([0-9]+) machine.*/\1/')
 [ "$complete" = no ] || [ "$done_jobs" = "$all_jobs" ] ||
   { echo "only $done_jobs of $all_jobs jobs executed"; exit 1; }
 records=$(ls "$out"/state/*.state | wc -l)
-[ "$records" = "$machines" ] || { echo "$records machine records for $machines machines"; exit 1; }
+[ "$records" = "$machines" ] || { [ "$complete" = no ] && [ "$records" -le "$machines" ]; } ||
+  { echo "$records machine records for $machines machines"; exit 1; }
 ran=$(cat "$out"/state/*.state | awk '{print $1}' | sort | wc -l)
 unique=$(cat "$out"/state/*.state | awk '{print $1}' | sort -u | wc -l)
 [ "$ran" = "$unique" ] || { echo "a job ran twice: $ran runs of $unique jobs"; exit 1; }

@@ -127,7 +127,9 @@ Injected injected(const std::string& text) {
 /// ends by itself (a crash) is started again on its own record, without the crash.
 class Machines {
  public:
-  Machines(const std::vector<std::string>& ids, const std::vector<orchestrator::DispatchJob>& jobs,
+  /// `homes`: where each machine is parked before its first job (x, y, z, heading).
+  Machines(const std::vector<std::string>& ids,
+           const std::map<std::string, std::array<double, 4>>& homes,
            std::vector<std::string> common, const Injected& inject, const fs::path& state_dir)
       : sim_(fs::read_symlink("/proc/self/exe").parent_path() / "ccbuild-sim") {
     if (!fs::exists(sim_))
@@ -136,15 +138,10 @@ class Machines {
       std::vector<std::string> args = {"ccbuild-sim", "--machine-id", id, "--state",
                                        (state_dir / (id + ".state")).string()};
       args.insert(args.end(), common.begin(), common.end());
-      // Parked where its first path starts.
-      for (const auto& j : jobs)
-        if (j.job.machine_id == id && !j.chunks.empty()) {
-          const auto& c = j.chunks.front();
-          args.insert(args.end(),
-                      {"--home", printf_string("%.17g", c.x_m[0]), printf_string("%.17g", c.y_m[0]),
-                       printf_string("%.17g", c.z_m[0]), printf_string("%.17g", c.heading_rad[0])});
-          break;
-        }
+      if (const auto home = homes.find(id); home != homes.end()) {
+        args.push_back("--home");
+        for (const double v : home->second) args.push_back(printf_string("%.17g", v));
+      }
       const auto it = inject.machine.find(id);
       if (it != inject.machine.end()) args.insert(args.end(), it->second.begin(), it->second.end());
       running_.push_back({id, args, start(args)});
@@ -212,6 +209,41 @@ std::string machine_profile(const nlohmann::json& schedule, const DryRunOptions&
   throw InputError(o.file, 0, "inputs.machine",
                    "the machine profile '" + name +
                        "' is not among the schedule's files here; name it with --machine");
+}
+
+/// Where each gantry is parked before its first job: where its first path starts when it
+/// works from the first layer on; else (it joins later, and no plan says where it waits)
+/// at the far end of the rails, a gantry width from the next. Neighbours' homes are kept
+/// a gantry width apart.
+std::map<std::string, std::array<double, 4>> homes_of(
+    const std::vector<orchestrator::DispatchJob>& jobs, const std::vector<std::string>& ids,
+    char rail_axis, double gantry_width_m, const nlohmann::json& machine_json) {
+  const int rail = rail_axis == 'y' ? 1 : 0;
+  const auto range = machine_json.value(rail_axis == 'y' ? "y_range_m" : "x_range_m",
+                                        std::vector<double>{0.0, 1e9});
+  const double rail_max_m = range.size() == 2 ? range[1] : 1e9;
+  double first_s = std::numeric_limits<double>::infinity();
+  for (const auto& j : jobs)
+    if (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT)
+      first_s = std::min(first_s, j.job.start_s);
+  std::map<std::string, std::array<double, 4>> homes;
+  std::map<std::string, bool> from_first;
+  for (const auto& id : ids)
+    for (const auto& j : jobs)
+      if (j.job.machine_id == id && !j.chunks.empty()) {
+        const auto& c = j.chunks.front();
+        homes[id] = {c.x_m[0], c.y_m[0], c.z_m[0], c.heading_rad[0]};
+        from_first[id] = j.job.start_s == first_s;
+        break;
+      }
+  const int count = static_cast<int>(ids.size());
+  for (int k = 0; k < count; ++k)
+    if (homes.count(ids[k]) && !from_first[ids[k]])
+      homes[ids[k]][rail] = rail_max_m - (count - 1 - k) * gantry_width_m;
+  for (int k = 1; k < count; ++k)
+    if (homes.count(ids[k]) && homes.count(ids[k - 1]))
+      homes[ids[k]][rail] = std::max(homes[ids[k]][rail], homes[ids[k - 1]][rail] + gantry_width_m);
+  return homes;
 }
 
 std::string duration(double s) {
@@ -318,7 +350,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       common.push_back("--" + name);
       common.push_back(printf_string("%.17g", p));
     }
-    machines = std::make_unique<Machines>(ids, jobs, common, inject, state_dir);
+    machines = std::make_unique<Machines>(
+        ids, homes_of(jobs, ids, rail_axis, gantry_width_m, machine_json), common, inject,
+        state_dir);
   }
   orchestrator::DispatchOptions d;
   d.speed = o.speed;
