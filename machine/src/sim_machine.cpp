@@ -328,20 +328,11 @@ void SimMachine::try_start() {
     Received& r = it->second;
     if (r.job.job_id == 0 || !r.complete()) continue;
     TimedPath path;
+    for (const auto& [index, c] : r.chunks)
+      for (int k = 0; k < c.n; ++k) path.push_back(c, k);
     bool ordered = true;
-    for (const auto& [index, c] : r.chunks) {
-      for (int k = 0; k < c.n; ++k) {
-        ordered = ordered && (path.t_s.empty() || c.t_s[k] >= path.t_s.back() - 1e-9);
-        path.t_s.push_back(c.t_s[k]);
-        path.x_m.push_back(c.x_m[k]);
-        path.y_m.push_back(c.y_m[k]);
-        path.z_m.push_back(c.z_m[k]);
-        path.heading_rad.push_back(c.heading_rad[k]);
-        path.extruding.push_back(c.extruding[k]);
-        path.wall.push_back(c.wall[k]);
-        path.piece.push_back(c.piece[k]);
-      }
-    }
+    for (std::size_t k = 1; k < path.size(); ++k)
+      ordered = ordered && path.t_s[k] >= path.t_s[k - 1] - 1e-9;
     const auto job = r.job;
     received_.erase(it);
     const double last_t = path.t_s.empty() ? 0.0 : path.t_s.back();

@@ -1,10 +1,12 @@
 #include "ccbuild/orchestrator/dispatch_jobs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/timed_path.hpp"
 
 namespace ccbuild::orchestrator {
 namespace {
@@ -34,36 +36,15 @@ ccbuild_job_t job_of(std::int8_t kind, const std::string& machine, double start_
   return j;
 }
 
-/// A timed path in chunks of at most MAX_POINTS waypoints (times from the job's start).
-std::vector<ccbuild_path_chunk_t> chunks_of(const json& waypoints, const std::string& machine) {
-  const int total = static_cast<int>(waypoints.size());
-  const int per = ccbuild_path_chunk_t::MAX_POINTS;
-  const int count = (total + per - 1) / per;
-  std::vector<ccbuild_path_chunk_t> out;
-  for (int c = 0; c < count; ++c) {
-    ccbuild_path_chunk_t chunk;
-    chunk.utime = 0;
-    chunk.machine_id = machine;
-    chunk.job_id = 0;
-    chunk.seq = 0;
-    chunk.chunk_index = c;
-    chunk.chunk_count = count;
-    const int from = c * per, to = std::min(total, from + per);
-    chunk.n = to - from;
-    for (int k = from; k < to; ++k) {
-      const json& w = waypoints[k];
-      chunk.t_s.push_back(w.at("t_s").get<double>());
-      chunk.x_m.push_back(w.at("x_m").get<double>());
-      chunk.y_m.push_back(w.at("y_m").get<double>());
-      chunk.z_m.push_back(w.at("z_m").get<double>());
-      chunk.heading_rad.push_back(w.at("heading_rad").get<double>());
-      chunk.extruding.push_back(w.at("extruding").get<bool>());
-      chunk.wall.push_back(w.at("wall").get<std::int64_t>());
-      chunk.piece.push_back(w.at("piece").get<std::int32_t>());
-    }
-    out.push_back(std::move(chunk));
-  }
-  return out;
+/// Schedule waypoints (JSON) as a timed path.
+machine::TimedPath timed_path(const json& waypoints) {
+  machine::TimedPath path;
+  for (const json& w : waypoints)
+    path.push_back(w.at("t_s").get<double>(), w.at("x_m").get<double>(), w.at("y_m").get<double>(),
+                   w.at("z_m").get<double>(), w.at("heading_rad").get<double>(),
+                   w.at("extruding").get<bool>(), w.at("wall").get<std::int64_t>(),
+                   w.at("piece").get<std::int32_t>());
+  return path;
 }
 
 }  // namespace
@@ -78,8 +59,8 @@ std::vector<DispatchJob> jobs_of_schedule(const json& schedule) {
     const json& plans = schedule.at("plans");
     const json machine = schedule.value("inputs", json::object()).value("machine", json::object());
     const double purge_s = machine.value("purge_s", 0.0);
-    // Nozzle -> its last waypoint, if it deposited the layer before this one.
-    std::map<int, json> last, ending;
+    // Nozzle -> its last position (x, y, z, heading), if it deposited the layer before.
+    std::map<int, std::array<double, 4>> last, ending;
     for (const json& l : schedule.at("layers")) {
       const std::string key = l.at("plan").get<std::string>();
       const json& plan = plans.at(key);
@@ -103,37 +84,35 @@ std::vector<DispatchJob> jobs_of_schedule(const json& schedule) {
       }
       for (const json& n : plan.at("nozzles")) {
         const int nozzle = n.at("nozzle").get<int>();
-        json path = n.at("waypoints");
-        if (path.empty()) continue;
-        for (json& w : path) w["z_m"] = w.at("z_m").get<double>() + dz_m;  // this layer's height
+        machine::TimedPath path = timed_path(n.at("waypoints"));
+        if (path.size() == 0) continue;
+        for (double& z_m : path.z_m) z_m += dz_m;  // this layer's height
         // The move from where this nozzle ended to where it starts, in a straight line.
         const auto from = last.find(nozzle);
         if (from != last.end() && move_s > 0.0) {
-          json a = from->second, b = path.front();
-          for (json* w : {&a, &b}) {
-            (*w)["extruding"] = false;
-            (*w)["wall"] = 0;
-            (*w)["piece"] = 0;
-          }
-          a["t_s"] = 0.0;
-          b["t_s"] = move_s;
+          const auto& [x0, y0, z0, h0] = from->second;
+          machine::TimedPath move;
+          move.push_back(0.0, x0, y0, z0, h0, false, 0, 0);
+          move.push_back(move_s, path.x_m[0], path.y_m[0], path.z_m[0], path.heading_rad[0], false,
+                         0, 0);
           DispatchJob t;
           t.job = job_of(
               ccbuild_job_t::TRAVEL, gantry_id(nozzle), waited_from_s - move_s, move_s, floor,
               layer, nozzle, "",
               printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1));
-          t.chunks = chunks_of(json::array({a, b}), t.job.machine_id);
+          t.chunks = machine::chunks_of(move, t.job.machine_id);
           t.job.chunk_count = 1;
           t.job.point_count = 2;
           jobs.push_back(std::move(t));
         }
-        ending[nozzle] = path.back();
-        const double duration_s = path.back().at("t_s").get<double>();
+        const std::size_t end = path.size() - 1;
+        ending[nozzle] = {path.x_m[end], path.y_m[end], path.z_m[end], path.heading_rad[end]};
+        const double duration_s = path.t_s.back();
         DispatchJob d;
         d.job = job_of(ccbuild_job_t::DEPOSIT, gantry_id(nozzle), start_s, duration_s, floor, layer,
                        nozzle, key,
                        printf_string("floor %d layer %d, nozzle %d", floor, layer, nozzle + 1));
-        d.chunks = chunks_of(path, d.job.machine_id);
+        d.chunks = machine::chunks_of(path, d.job.machine_id);
         d.job.chunk_count = static_cast<std::int32_t>(d.chunks.size());
         d.job.point_count = static_cast<std::int32_t>(path.size());
         jobs.push_back(std::move(d));

@@ -7,6 +7,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/timed_path.hpp"
 #include "ccbuild_lcm/ccbuild_command_t.hpp"
 
 namespace ccbuild::orchestrator {
@@ -36,46 +37,15 @@ std::string text(sqlite3_stmt* s, int column) {
 
 /// The path of `job` from waypoint `from` on, its times from there, in fresh chunks.
 std::vector<ccbuild_path_chunk_t> rest_of_path(const DispatchJob& job, int from, double& t0_s) {
-  ccbuild_path_chunk_t all;
-  for (const auto& c : job.chunks) {
-    all.t_s.insert(all.t_s.end(), c.t_s.begin(), c.t_s.end());
-    all.x_m.insert(all.x_m.end(), c.x_m.begin(), c.x_m.end());
-    all.y_m.insert(all.y_m.end(), c.y_m.begin(), c.y_m.end());
-    all.z_m.insert(all.z_m.end(), c.z_m.begin(), c.z_m.end());
-    all.heading_rad.insert(all.heading_rad.end(), c.heading_rad.begin(), c.heading_rad.end());
-    all.extruding.insert(all.extruding.end(), c.extruding.begin(), c.extruding.end());
-    all.wall.insert(all.wall.end(), c.wall.begin(), c.wall.end());
-    all.piece.insert(all.piece.end(), c.piece.begin(), c.piece.end());
-  }
-  const int total = static_cast<int>(all.t_s.size());
+  const machine::TimedPath all = machine::path_of(job.chunks);
+  const int total = static_cast<int>(all.size());
   from = std::clamp(from, 0, std::max(0, total - 1));
   t0_s = total > 0 ? all.t_s[from] : 0.0;
-  const int per = ccbuild_path_chunk_t::MAX_POINTS;
-  const int count = (total - from + per - 1) / per;
-  std::vector<ccbuild_path_chunk_t> out;
-  for (int c = 0; c < count; ++c) {
-    ccbuild_path_chunk_t chunk;
-    chunk.utime = 0;
-    chunk.machine_id = job.job.machine_id;
-    chunk.job_id = 0;
-    chunk.seq = 0;
-    chunk.chunk_index = c;
-    chunk.chunk_count = count;
-    const int a = from + c * per, b = std::min(total, a + per);
-    chunk.n = b - a;
-    for (int k = a; k < b; ++k) {
-      chunk.t_s.push_back(all.t_s[k] - t0_s);
-      chunk.x_m.push_back(all.x_m[k]);
-      chunk.y_m.push_back(all.y_m[k]);
-      chunk.z_m.push_back(all.z_m[k]);
-      chunk.heading_rad.push_back(all.heading_rad[k]);
-      chunk.extruding.push_back(all.extruding[k]);
-      chunk.wall.push_back(all.wall[k]);
-      chunk.piece.push_back(all.piece[k]);
-    }
-    out.push_back(std::move(chunk));
-  }
-  return out;
+  machine::TimedPath rest;
+  for (int k = from; k < total; ++k)
+    rest.push_back(all.t_s[k] - t0_s, all.x_m[k], all.y_m[k], all.z_m[k], all.heading_rad[k],
+                   all.extruding[k], all.wall[k], all.piece[k]);
+  return machine::chunks_of(rest, job.job.machine_id);
 }
 }  // namespace
 
@@ -215,7 +185,10 @@ std::vector<FaultRecord> Journal::faults() const {
 Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal& journal,
                        DispatchOptions options)
     : bus_(bus), jobs_(std::move(jobs)), journal_(journal), options_(options) {
+  schedule_jobs_ = jobs_.size();
   for (std::size_t k = 0; k < jobs_.size(); ++k) {
+    CCBUILD_CHECK(k == 0 || jobs_[k - 1].job.start_s <= jobs_[k].job.start_s,
+                  "dispatcher: jobs out of schedule order");
     origin_.push_back(k);
     index_of_[jobs_[k].job.job_id] = k;
     queues_[jobs_[k].job.machine_id].jobs.push_back(k);
@@ -362,23 +335,12 @@ bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, doub
     m.job.detail = printf_string("%s moves clear along the rails to %.3f m (the rest of job %lld)",
                                  d.job.machine_id.c_str(), to_rail_m,
                                  static_cast<long long>(jobs_[index].job.job_id));
-    ccbuild_path_chunk_t p;
-    p.utime = 0;
-    p.machine_id = d.job.machine_id;
-    p.job_id = 0;
-    p.seq = 0;
-    p.chunk_index = 0;
-    p.chunk_count = 1;
-    p.n = 2;
-    p.t_s = {0.0, m.job.duration_s};
-    p.x_m = {c.x_m[last], axis == 'y' ? c.x_m[last] : to_rail_m};
-    p.y_m = {c.y_m[last], axis == 'y' ? to_rail_m : c.y_m[last]};
-    p.z_m = {c.z_m[last], c.z_m[last]};
-    p.heading_rad = {c.heading_rad[last], c.heading_rad[last]};
-    p.extruding = {false, false};
-    p.wall = {0, 0};
-    p.piece = {0, 0};
-    m.chunks = {p};
+    const double to_x_m = axis == 'y' ? c.x_m[last] : to_rail_m;
+    const double to_y_m = axis == 'y' ? to_rail_m : c.y_m[last];
+    machine::TimedPath p;
+    p.push_back(0.0, c.x_m[last], c.y_m[last], c.z_m[last], c.heading_rad[last], false, 0, 0);
+    p.push_back(m.job.duration_s, to_x_m, to_y_m, c.z_m[last], c.heading_rad[last], false, 0, 0);
+    m.chunks = machine::chunks_of(p, d.job.machine_id);
     m.job.chunk_count = 1;
     m.job.point_count = 2;
     moves.emplace_back(k, std::move(m));
@@ -451,11 +413,18 @@ bool Dispatcher::released(std::size_t index) const {
   // the jobs recovering from them: a layer's jobs go out together. A job that runs alone
   // also waits for every other job of its layer.
   const double start_s = jobs_[origin_[index]].job.start_s;
-  for (std::size_t k = 0; k < jobs_.size(); ++k) {
-    if (ended_[k] || k == index) continue;
+  const auto blocks = [&](std::size_t k) {
+    if (ended_[k] || k == index) return false;
     const double other_s = jobs_[origin_[k]].job.start_s;
-    if (other_s < start_s || (after_layer_[index] && other_s == start_s)) return false;
-  }
+    return other_s < start_s || (after_layer_[index] && other_s == start_s);
+  };
+  // The schedule's jobs are in order of planned start: only those from the first one
+  // still open up to this start can hold it; then the few recovery jobs.
+  while (first_open_ < schedule_jobs_ && ended_[first_open_]) ++first_open_;
+  for (std::size_t k = first_open_; k < schedule_jobs_ && jobs_[k].job.start_s <= start_s; ++k)
+    if (blocks(k)) return false;
+  for (std::size_t k = schedule_jobs_; k < jobs_.size(); ++k)
+    if (blocks(k)) return false;
   return true;
 }
 

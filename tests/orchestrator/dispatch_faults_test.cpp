@@ -33,19 +33,7 @@ using ccbuild_lcm::ccbuild_job_t;
 using ccbuild_lcm::ccbuild_path_chunk_t;
 
 machine::TimedPath path_of(const DispatchJob& d) {
-  machine::TimedPath p;
-  for (const auto& c : d.chunks)
-    for (int k = 0; k < c.n; ++k) {
-      p.t_s.push_back(c.t_s[k]);
-      p.x_m.push_back(c.x_m[k]);
-      p.y_m.push_back(c.y_m[k]);
-      p.z_m.push_back(c.z_m[k]);
-      p.heading_rad.push_back(c.heading_rad[k]);
-      p.extruding.push_back(c.extruding[k]);
-      p.wall.push_back(c.wall[k]);
-      p.piece.push_back(c.piece[k]);
-    }
-  return p;
+  return machine::path_of(d.chunks);
 }
 
 nlohmann::json golden(const std::string& name) {
@@ -77,16 +65,8 @@ TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {
 
 machine::TimedPath two_points(double t_s, double x0, double x1) {
   machine::TimedPath p;
-  for (int k = 0; k < 2; ++k) {
-    p.t_s.push_back(k * t_s);
-    p.x_m.push_back(k ? x1 : x0);
-    p.y_m.push_back(1.0);
-    p.z_m.push_back(1.0);
-    p.heading_rad.push_back(0.0);
-    p.extruding.push_back(k == 0);
-    p.wall.push_back(k == 0 ? 1 : 0);
-    p.piece.push_back(k == 0 ? 1 : 0);
-  }
+  p.push_back(0.0, x0, 1.0, 1.0, 0.0, true, 1, 1);
+  p.push_back(t_s, x1, 1.0, 1.0, 0.0, false, 0, 0);
   return p;
 }
 

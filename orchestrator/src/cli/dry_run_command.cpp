@@ -443,12 +443,13 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   // Planned against executed, layer by layer.
   std::map<std::pair<int, int>, std::array<double, 4>> layers;  // planned start/end, started/ended
   const double inf = std::numeric_limits<double>::infinity();
-  for (const auto& j : dispatcher.jobs()) {
+  for (std::size_t k = 0; k < dispatcher.jobs().size(); ++k) {
+    const auto& j = dispatcher.jobs()[k];
     if (j.job.kind != ccbuild_lcm::ccbuild_job_t::DEPOSIT) continue;
     auto& l =
         layers.try_emplace({j.job.floor, j.job.layer}, std::array<double, 4>{inf, -inf, inf, -inf})
             .first->second;
-    if (j.job.job_id % 10 == 0) {
+    if (dispatcher.origin_of(k) == k) {  // the schedule's, not a recovery job
       l[0] = std::min(l[0], j.job.start_s);
       l[1] = std::max(l[1], j.job.start_s + j.job.duration_s);
     }

@@ -33,6 +33,7 @@
 
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/machine/timed_path.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
 
@@ -86,15 +87,6 @@ struct SimOptions {
   /// From this schedule time on, the rail axis stays where it is while the job goes on
   /// (the drive does not notice); negative: never.
   double stall_at_s = -1.0;
-};
-
-/// A timed path as the machine follows it (the waypoints of a job's chunks, in order).
-struct TimedPath {
-  std::vector<double> t_s, x_m, y_m, z_m, heading_rad;
-  std::vector<bool> extruding;
-  std::vector<std::int64_t> wall;
-  std::vector<std::int32_t> piece;
-  std::size_t size() const { return t_s.size(); }
 };
 
 /// Why `path` breaks `model`'s limits (a fault kind and the words), or nothing: a

@@ -3,9 +3,9 @@
 // machine (docs/dispatch.md): each layer a deposit job per nozzle with its timed path in
 // chunks of at most ccbuild_path_chunk_t::MAX_POINTS waypoints, after a travel job per
 // nozzle from where it ended (a straight line over the layer's move time); waits, pipes,
-// purges, slabs and each climb's phases as jobs of the first gantry. Job ids increase in schedule order
-// (by planned start) in tens, from 10 (the nine after each are for the jobs that recover
-// from its faults); the same schedule gives the same jobs.
+// purges, slabs and each climb's phases as jobs of the first gantry. Job ids increase in schedule
+// order (by planned start) in tens, from 10 (the nine after each are for the jobs that recover from
+// its faults); the same schedule gives the same jobs.
 
 #include <nlohmann/json.hpp>
 #include <string>

@@ -107,8 +107,10 @@ struct DispatchOptions {
 
 class Dispatcher {
  public:
-  /// Jobs already "done" in `journal` are not sent again; the recovery jobs its faults
-  /// made are made again. `bus` and `journal` must outlive the dispatcher.
+  /// `jobs` in schedule order (by planned start, as jobs_of_schedule gives them). Jobs
+  /// already "done" in `journal` are not sent again; the recovery jobs its faults made
+  /// are made again. `bus` and `journal` must outlive the dispatcher. Throws
+  /// InternalError when `jobs` are out of order.
   Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal& journal,
              DispatchOptions options = {});
 
@@ -128,6 +130,8 @@ class Dispatcher {
   const std::map<std::int64_t, std::pair<double, double>>& executed() const { return executed_; }
   /// The jobs, the schedule's and the recovery jobs made so far.
   const std::vector<DispatchJob>& jobs() const { return jobs_; }
+  /// The schedule job that jobs()[index] is or recovers from.
+  std::size_t origin_of(std::size_t index) const { return origin_[index]; }
   /// The delay the run has built up against the schedule, s.
   double delay_s() const { return delay_s_; }
   /// Machines not heard from (no status) for longer than `silence_s` real seconds, or
@@ -169,7 +173,9 @@ class Dispatcher {
   std::vector<DispatchJob> jobs_;
   /// Per job: the schedule job it stands for (itself, or the one a recovery job recovers).
   std::vector<std::size_t> origin_;
-  std::vector<bool> ended_;  ///< per job: done, or ended and recovered from
+  std::vector<bool> ended_;             ///< per job: done, or ended and recovered from
+  std::size_t schedule_jobs_ = 0;       ///< the schedule's jobs come first in jobs_
+  mutable std::size_t first_open_ = 0;  ///< every schedule job before it has ended
   /// Per job: released only once every other job of its layer has ended.
   std::vector<bool> after_layer_;
   std::map<std::int64_t, std::size_t> index_of_;

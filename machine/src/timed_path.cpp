@@ -1,0 +1,65 @@
+#include "ccbuild/machine/timed_path.hpp"
+
+#include <algorithm>
+
+namespace ccbuild::machine {
+
+void TimedPath::push_back(double t, double x, double y, double z, double heading, bool deposits,
+                          std::int64_t wall_id, std::int32_t piece_number) {
+  t_s.push_back(t);
+  x_m.push_back(x);
+  y_m.push_back(y);
+  z_m.push_back(z);
+  heading_rad.push_back(heading);
+  extruding.push_back(deposits);
+  wall.push_back(wall_id);
+  piece.push_back(piece_number);
+}
+
+void TimedPath::push_back(const ccbuild_lcm::ccbuild_path_chunk_t& c, int k) {
+  push_back(c.t_s[k], c.x_m[k], c.y_m[k], c.z_m[k], c.heading_rad[k], c.extruding[k], c.wall[k],
+            c.piece[k]);
+}
+
+std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks_of(const TimedPath& path,
+                                                         const std::string& machine_id) {
+  using ccbuild_lcm::ccbuild_path_chunk_t;
+  const int total = static_cast<int>(path.size());
+  const int per = ccbuild_path_chunk_t::MAX_POINTS;
+  const int count = (total + per - 1) / per;
+  std::vector<ccbuild_path_chunk_t> out;
+  for (int c = 0; c < count; ++c) {
+    ccbuild_path_chunk_t chunk;
+    chunk.utime = 0;
+    chunk.machine_id = machine_id;
+    chunk.job_id = 0;
+    chunk.seq = 0;
+    chunk.chunk_index = c;
+    chunk.chunk_count = count;
+    const auto from = static_cast<std::ptrdiff_t>(c) * per;
+    const auto to = std::min<std::ptrdiff_t>(total, from + per);
+    chunk.n = static_cast<std::int32_t>(to - from);
+    auto slice = [&](const auto& column, auto& into) {
+      into.assign(column.begin() + from, column.begin() + to);
+    };
+    slice(path.t_s, chunk.t_s);
+    slice(path.x_m, chunk.x_m);
+    slice(path.y_m, chunk.y_m);
+    slice(path.z_m, chunk.z_m);
+    slice(path.heading_rad, chunk.heading_rad);
+    slice(path.extruding, chunk.extruding);
+    slice(path.wall, chunk.wall);
+    slice(path.piece, chunk.piece);
+    out.push_back(std::move(chunk));
+  }
+  return out;
+}
+
+TimedPath path_of(const std::vector<ccbuild_lcm::ccbuild_path_chunk_t>& chunks) {
+  TimedPath path;
+  for (const auto& c : chunks)
+    for (int k = 0; k < c.n; ++k) path.push_back(c, k);
+  return path;
+}
+
+}  // namespace ccbuild::machine
