@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "ccbuild/common/input_error.hpp"
+#include "lin_kernighan.hpp"
 
 namespace ccbuild::planner::detail {
 
@@ -350,20 +351,37 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
   SearchOutcome out;
   const int n = tour.size();
   std::mt19937_64 rng(settings.seed);
+  const bool lk = settings.neighbourhood == Neighbourhood::kLinKernighan;
+  // Local search from the given items; returns the gain. A kick's repair is short and
+  // never cut off by the clock (the clock is read between kicks), so a run stopped by
+  // its time limit after K kicks is the run of max_kicks = K.
+  const StopCondition never;
+  auto descend = [&](const std::vector<int>& items, const StopCondition& until) {
+    // 2-opt and Or-opt first: cheaper, and they leave LK less to do.
+    LocalSearch cheap(costs, tour);
+    for (int item : items) cheap.push(item);
+    double gain = cheap.run(until);
+    if (lk) {
+      LinKernighan deep(costs, tour, settings.lk_depth);
+      for (int item : items) deep.push(item);
+      gain += deep.run(until);
+    }
+    return gain;
+  };
   double current = tour.cost(costs);
   {
-    LocalSearch search(costs, tour);
     std::vector<int> items(n);
     std::iota(items.begin(), items.end(), 0);
     std::shuffle(items.begin(), items.end(), rng);
-    for (int item : items) search.push(item);
-    current -= search.run(stop);
+    current -= descend(items, stop);
   }
   out.reason = StopReason::kConverged;
   double best = current;
+  if (settings.on_better) settings.on_better(0, best);
   WallTour saved = tour;
   long since_improvement = 0;
   const int max_block = std::max(1, std::min(50, n / 4));
+  std::vector<int> kicked;
   for (out.kicks = 0; n >= 5 && out.kicks < settings.max_kicks; ++out.kicks) {
     if (settings.target_cost && best <= *settings.target_cost + 1e-9) {
       out.reason = StopReason::kProvenOptimal;
@@ -374,33 +392,57 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       break;
     }
     if (since_improvement >= settings.stall_kicks) break;
-    // A local double bridge: swap two adjacent short blocks B and C, reversing either at
-    // random, then repair locally.
-    const int l1 = 1 + static_cast<int>(rng() % max_block);
-    const int l2 = 1 + static_cast<int>(rng() % max_block);
-    const int s = static_cast<int>(rng() % n);
-    const unsigned flips = static_cast<unsigned>(rng() % 4);
-    if (l1 + l2 + 2 >= n) continue;
-    const int b_first = (s + 1) % n, c_last = (s + l1 + l2) % n;
-    LocalSearch search(costs, tour);
-    current += block_move_delta(costs, tour, b_first, l1, c_last, (flips & 1) != 0);
-    tour.move_block(b_first, l1, c_last, (flips & 1) != 0);
-    const int s_item = tour.item_at(s);
-    if (flips & 2) {
-      const int cf = tour.next(tour.position_of(s_item));
-      const int cl = (tour.position_of(s_item) + l2) % n;
-      current += reversal_delta(costs, tour, cf, cl);
-      tour.reverse(cf, cl);
+    kicked.clear();
+    if (lk && (rng() & 1)) {
+      // A double bridge between parts of the tour that lie close together in the plan
+      // (a room visited twice, say), however far apart in the tour: three cuts after
+      // items reached by short walks over the candidate lists.
+      int cut[3];
+      cut[0] = static_cast<int>(rng() % n);
+      for (int k = 1; k < 3; ++k) {
+        int node = 2 * tour.item_at(cut[k - 1]) + static_cast<int>(rng() % 2);
+        const auto& near = costs.neighbours(node);
+        if (near.empty()) break;
+        node = near[rng() % near.size()];
+        cut[k] = tour.position_of(node / 2);
+      }
+      std::sort(cut, cut + 3);
+      if (cut[0] == cut[1] || cut[1] == cut[2] || costs.neighbours(0).empty()) continue;
+      const bool reversed = (rng() & 1) != 0;
+      for (int c : cut)
+        for (int k = 0; k < 2; ++k) kicked.push_back(tour.item_at((c + k) % n));
+      current += block_move_delta(costs, tour, cut[0] + 1, cut[1] - cut[0], cut[2], reversed);
+      tour.move_block(cut[0] + 1, cut[1] - cut[0], cut[2], reversed);
+    } else {
+      // A local double bridge: swap two adjacent short blocks B and C, reversing either at
+      // random, then repair locally.
+      const int l1 = 1 + static_cast<int>(rng() % max_block);
+      const int l2 = 1 + static_cast<int>(rng() % max_block);
+      const int s = static_cast<int>(rng() % n);
+      const unsigned flips = static_cast<unsigned>(rng() % 4);
+      if (l1 + l2 + 2 >= n) continue;
+      const int b_first = (s + 1) % n, c_last = (s + l1 + l2) % n;
+      current += block_move_delta(costs, tour, b_first, l1, c_last, (flips & 1) != 0);
+      tour.move_block(b_first, l1, c_last, (flips & 1) != 0);
+      const int s_item = tour.item_at(s);
+      if (flips & 2) {
+        const int cf = tour.next(tour.position_of(s_item));
+        const int cl = (tour.position_of(s_item) + l2) % n;
+        current += reversal_delta(costs, tour, cf, cl);
+        tour.reverse(cf, cl);
+      }
+      const int ps = tour.position_of(s_item);
+      for (int k = 0; k <= l1 + l2 + 1; ++k) {
+        if (k <= 1 || k >= l1 + l2 || k == l2 || k == l2 + 1)
+          kicked.push_back(tour.item_at((ps + k) % n));
+      }
     }
-    const int ps = tour.position_of(s_item);
-    for (int k = 0; k <= l1 + l2 + 1; ++k) {
-      if (k <= 1 || k >= l1 + l2 || k == l2 || k == l2 + 1) search.push_position((ps + k) % n);
-    }
-    current -= search.run(stop);
+    current -= descend(kicked, never);
     if (current < best - 1e-9) {
       best = current;
       saved = tour;
       since_improvement = 0;
+      if (settings.on_better) settings.on_better(out.kicks + 1, best);
     } else if (current <= best + 1e-12) {
       best = std::min(best, current);
       saved = tour;  // sideways: keep wandering along plateaus of equal cost

@@ -10,11 +10,13 @@
 // depot is the path, and its return is free.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <random>
 #include <vector>
 
 #include "ccbuild/planner/cost_model.hpp"
+#include "ccbuild/planner/plan_layer.hpp"
 #include "ccbuild/planner/termination.hpp"
 #include "ccbuild/planner/tool_path.hpp"
 #include "geometry.hpp"
@@ -102,11 +104,15 @@ class WallTour {
 };
 
 struct SearchSettings {
+  Neighbourhood neighbourhood = Neighbourhood::kLinKernighan;
+  int lk_depth = 10;  ///< steps of one Lin–Kernighan chain (3-opt moves each)
   long max_kicks = 0;
   long stall_kicks = 0;  ///< stop after this many kicks without improvement
   std::uint64_t seed = 1;
   /// Stop as soon as the cost reaches this (a lower bound), when set.
   std::optional<double> target_cost;
+  /// Called with (kicks, cost) when the best tour improves.
+  std::function<void(long, double)> on_better;
 };
 
 struct SearchOutcome {
@@ -117,8 +123,9 @@ struct SearchOutcome {
 };
 
 /// Chained local search: 2-opt and Or-opt (blocks of 1-3 items) driven by neighbour
-/// lists and don't-look bits, then kicks (a local double bridge with random reversals)
-/// each followed by local search, keeping the best tour.
+/// lists and don't-look bits, then, with Neighbourhood::kLinKernighan, Lin–Kernighan
+/// chains (lin_kernighan.hpp); then kicks (a local double bridge with random reversals)
+/// each followed by the same local search, keeping the best tour.
 SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
                                    const SearchSettings& settings, const StopCondition& stop);
 

@@ -139,5 +139,59 @@ TEST(PlanLayer, TimeLimitBoundsTheRun) {
   EXPECT_LT(plan.solve_s, 1.0);  // generous: only catches a limit that is ignored
 }
 
+// The stopping rule (docs/planning.md): an anytime run stopped by its time limit after K
+// kicks is the run of max_kicks = K, so any answer can be reproduced exactly.
+TEST(PlanLayer, AnAnytimeRunIsReproducedByItsKicks) {
+  const floors::Layer layer = testing::floor_plan_layer(300, 5);
+  PlanOptions o;
+  o.time_limit_s = 0.5;
+  o.anytime = true;
+  o.waypoints = false;
+  const LayerPlan anytime = plan_layer(layer, testing::simple_machine(), o);
+  ASSERT_EQ(anytime.stop, StopReason::kTimeLimit);  // it used the whole time
+  ASSERT_GT(anytime.kicks, 0);
+  PlanOptions replay = o;
+  replay.anytime = false;
+  replay.time_limit_s = 60.0;
+  replay.max_kicks = anytime.kicks;
+  const LayerPlan again = plan_layer(layer, testing::simple_machine(), replay);
+  EXPECT_EQ(again.kicks, anytime.kicks);
+  EXPECT_EQ(again.stop, StopReason::kConverged);
+  EXPECT_EQ(again.sequence, anytime.sequence);
+  // One kick fewer is another run: its kicks are its own.
+  replay.max_kicks = anytime.kicks - 1;
+  EXPECT_EQ(plan_layer(layer, testing::simple_machine(), replay).kicks, anytime.kicks - 1);
+}
+
+TEST(PlanLayer, TheDefaultBudgetEndsOnItsOwn) {
+  const floors::Layer layer = testing::floor_plan_layer(60, 2);
+  PlanOptions o;
+  o.waypoints = false;
+  std::vector<SearchProgress> progress;
+  o.on_progress = [&](const SearchProgress& p) { progress.push_back(p); };
+  const LayerPlan plan = plan_layer(layer, testing::simple_machine(), o);
+  ASSERT_EQ(plan.stop, StopReason::kConverged) << "the bound proved it; pick another layout";
+  ASSERT_FALSE(progress.empty());
+  // It ended at least 1,000 + 20 per wall kicks after its last better tour (fewer than
+  // 10,000; kicks that find no valid cut do not count as failures), and within its
+  // budget; the last progress reported is the tour's cost.
+  const long items = static_cast<long>(layer.segments.size());
+  EXPECT_GE(plan.kicks, progress.back().kicks + 1000 + 20 * items);
+  EXPECT_LT(plan.kicks, 2000 + 60 * items);
+  EXPECT_NEAR(progress.back().cost, plan.evaluation.airtime_distance_m, 1e-6);
+  for (std::size_t k = 1; k < progress.size(); ++k) {
+    EXPECT_LT(progress[k].cost, progress[k - 1].cost);
+    EXPECT_GT(progress[k].kicks, progress[k - 1].kicks);
+  }
+}
+
+TEST(PlanLayer, NeighbourhoodNames) {
+  EXPECT_EQ(parse_neighbourhood("lk"), Neighbourhood::kLinKernighan);
+  EXPECT_EQ(parse_neighbourhood("2opt-oropt"), Neighbourhood::kTwoOptOrOpt);
+  EXPECT_EQ(parse_neighbourhood("3opt"), std::nullopt);
+  for (Neighbourhood n : {Neighbourhood::kLinKernighan, Neighbourhood::kTwoOptOrOpt})
+    EXPECT_EQ(parse_neighbourhood(to_string(n)), n);
+}
+
 }  // namespace
 }  // namespace ccbuild::planner

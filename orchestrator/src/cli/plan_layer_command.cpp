@@ -35,6 +35,8 @@ struct PlanLayerOptions {
   double time_limit_s = 30.0;
   std::uint64_t seed = 1;
   std::optional<long> max_kicks;
+  bool anytime = false;  ///< --time-limit was given: search until it
+  std::string neighbourhood = "lk";
   bool json = false;
   std::string svg;
   bool force = false;
@@ -185,6 +187,8 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   options.time_limit_s = o.time_limit_s;
   options.seed = o.seed;
   options.max_kicks = o.max_kicks;
+  options.anytime = o.anytime;
+  options.neighbourhood = *planner::parse_neighbourhood(o.neighbourhood);
   options.bound = *planner::parse_bound(o.bound);
   if (o.first_wall && !o.start_vertex)
     throw InputError("", 0, "--first-wall", "needs --start-vertex");
@@ -318,18 +322,29 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       ->add_option("--first-wall", o->first_wall,
                    "With --start-vertex: deposit this wall first (negative: from its end vertex)")
       ->check(integer_in(-999999999, 999999999));
-  command
-      ->add_option("--time-limit", o->time_limit_s,
-                   "Bound on the whole run, set-up included, s (the answer is the best found)")
-      ->check(number_in(Range::above(0.0, 86400.0), "s"))
-      ->capture_default_str();
+  CLI::Option* time_limit =
+      command
+          ->add_option("--time-limit", o->time_limit_s,
+                       "Search until this many seconds have passed, set-up included (anytime: "
+                       "the answer is the best found, and depends on the machine's speed; "
+                       "--max-kicks with the kicks printed reproduces it). Not given: the "
+                       "search stops on its own budget (deterministic), within 30 s at most")
+          ->check(number_in(Range::above(0.0, 86400.0), "s"));
   command->add_option("--seed", o->seed, "Random seed: the same seed and inputs give the same plan")
       ->check(unsigned_integer())
       ->capture_default_str();
   command
       ->add_option("--max-kicks", o->max_kicks,
-                   "Kicks of the chained search (default: from the layer size)")
+                   "Kicks of the chained search, exactly, unless the time limit or a proof of "
+                   "optimality comes first (default: up to 60,000, ending after 10,000 "
+                   "without a better tour; see docs/planning.md)")
       ->check(integer_in(0, 1000000000));
+  command
+      ->add_option("--neighbourhood", o->neighbourhood,
+                   "Local search of cc-tsp: lk (2-opt, Or-opt, then Lin-Kernighan chains of "
+                   "3-opt moves) or 2opt-oropt (the earlier search, for comparison)")
+      ->check(CLI::IsMember({"lk", "2opt-oropt"}))
+      ->capture_default_str();
   command->add_flag("--json", o->json, "Print one JSON object instead of text (errors too)");
   command->add_option("--svg", o->svg, "Also draw the plan into this SVG file");
   command->add_flag("--force", o->force,
@@ -361,7 +376,10 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       "With --nozzles: an overhead platform this long along the rails; longer layouts are built in "
       "platform-wide stages");
   add_input_options(*command, o->input);
-  command->callback([o, &exit_code] { run_plan_layer(*o, exit_code); });
+  command->callback([o, time_limit, &exit_code] {
+    o->anytime = time_limit->count() > 0;
+    run_plan_layer(*o, exit_code);
+  });
 }
 
 }  // namespace ccbuild::cli

@@ -140,6 +140,10 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   // No single-nozzle bound is reported here, and the sections' tours, the delay method's
   // lone tour and the single-nozzle reference are many: the cheap bound serves them all.
   MultiNozzleOptions options = requested;
+  // Sections and the one-nozzle reference keep the 2-opt/Or-opt search: the methods'
+  // splits and checks were tuned on its tours, and the Lin–Kernighan search has not been
+  // measured on them (issue 14 left them).
+  options.planning.neighbourhood = Neighbourhood::kTwoOptOrOpt;
   options.planning.bound = BoundKind::kMatching;
   const int n = options.nozzles;
   const double w = options.gantry_width_m;

@@ -61,7 +61,8 @@ struct MultiNozzleOptions {
   std::optional<double> platform_width_m;
   /// Metric, objective, seed, time limit (for the whole run) and kick budget of the
   /// single-nozzle planning of each section. Paths are closed tours; `bound` is ignored
-  /// (the matching bound is used, as no single-nozzle bound is reported).
+  /// (the matching bound is used, as no single-nozzle bound is reported), and so is
+  /// `neighbourhood` (2-opt/Or-opt is used).
   PlanOptions planning;
   /// Iterative dividing stops when (slowest - fastest) / mean section time is below this.
   double balance_tolerance = 0.05;

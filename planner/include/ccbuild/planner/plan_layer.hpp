@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -26,22 +27,48 @@ enum class Algorithm {
 std::string to_string(Algorithm algorithm);
 std::optional<Algorithm> parse_algorithm(const std::string& text);
 
+/// The local search of cc-tsp.
+enum class Neighbourhood {
+  kLinKernighan,  ///< 2-opt and Or-opt, then Lin–Kernighan chains of 3-opt moves
+  kTwoOptOrOpt,   ///< 2-opt and Or-opt alone (the search before issue 14; a baseline)
+};
+std::string to_string(Neighbourhood neighbourhood);
+std::optional<Neighbourhood> parse_neighbourhood(const std::string& text);
+
 /// Largest layer the exact solver accepts (walls, i.e. segments): its tables grow as
 /// 2^walls (16 walls: 75 MB for the time objective).
 inline constexpr int kExactMaxSegments = 16;
+
+/// How far cc-tsp's search has come: reported each time its best tour improves.
+struct SearchProgress {
+  double elapsed_s = 0.0;  ///< since plan_layer was called (the bound included)
+  long kicks = 0;          ///< kicks done so far (0: the first local search)
+  /// The search's cost of its best tour: airtime distance, m (or the time objective's
+  /// approximation, s), without a fixed first wall's approach.
+  double cost = 0.0;
+};
 
 struct PlanOptions {
   Algorithm algorithm = Algorithm::kCcTsp;
   Metric metric = Metric::kEuclidean;
   Objective objective = Objective::kDistance;
   PathSpec path;
+  Neighbourhood neighbourhood = Neighbourhood::kLinKernighan;
   /// Bounds the whole run, set-up included, s. The search also ends on its own when it
   /// proves optimality or spends its kick budget; only then is the answer independent of
   /// machine speed.
   double time_limit_s = 30.0;
   std::uint64_t seed = 1;
-  /// Kicks of the chained local search; unset: chosen from the layer's size.
+  /// Kicks of the chained local search; unset: the default budget, chosen from the
+  /// layer's size (see `anytime`). When set, the search also never stops for lack of
+  /// progress: it makes exactly this many kicks unless the time limit or a proof of
+  /// optimality comes first.
   std::optional<long> max_kicks;
+  /// True: no default budget. The search keeps improving until the time limit, a proof
+  /// of optimality, or `max_kicks` when set. Its answer then depends on the machine's
+  /// speed; the plan's `kicks`, given back as `max_kicks`, reproduces it exactly (unless
+  /// the limit came during the first descent, before any kick).
+  bool anytime = false;
   /// Kicks of the exact-time polish (time objective only); unset: 500 on layers of up to
   /// 16 walls (enough to reach the optimum the exact solver finds), 20 above; 0 skips
   /// the polish.
@@ -50,6 +77,9 @@ struct PlanOptions {
   /// by default; the matching bound alone is faster on very large layers.
   BoundKind bound = BoundKind::kConnected;
   const std::atomic<bool>* cancel = nullptr;
+  /// Called on the planning thread each time cc-tsp's best tour improves (unset: not
+  /// called). For progress displays and benchmarks; it must not throw.
+  std::function<void(const SearchProgress&)> on_progress;
   /// False: no waypoints in the plan (a caller that keeps only the sequence, e.g. a
   /// section's tour inside the multi-nozzle planner).
   bool waypoints = true;
@@ -68,6 +98,7 @@ struct LayerPlan {
   BoundSource lower_bound_source = BoundSource::kMatching;  ///< which bound it is
   int odd_points = 0;
   double solve_s = 0.0;  ///< wall-clock time of the whole run
+  double bound_s = 0.0;  ///< of which the lower bound, s
   StopReason stop = StopReason::kFinished;
   long kicks = 0;  ///< kicks tried by cc-tsp
 

@@ -1,0 +1,214 @@
+#include "lin_kernighan.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace ccbuild::planner::detail {
+
+namespace {
+constexpr double kEps = 1e-9;
+std::pair<int, int> edge(int u, int v) {
+  return u < v ? std::pair{u, v} : std::pair{v, u};
+}
+}  // namespace
+
+LinKernighan::LinKernighan(const TourCosts& costs, WallTour& tour, int max_depth)
+    : costs_(costs), tour_(tour), max_depth_(max_depth) {
+  queued_.assign(tour.size(), 0);
+}
+
+void LinKernighan::push(int item) {
+  if (!queued_[item]) {
+    queued_[item] = 1;
+    queue_.push_back(item);
+  }
+}
+
+double LinKernighan::run(const StopCondition& stop) {
+  double total = 0.0;
+  long steps = 0;
+  while (!queue_.empty()) {
+    if ((++steps & 63) == 0 && stop.should_stop()) break;
+    const int item = queue_.front();
+    queue_.pop_front();
+    queued_[item] = 0;
+    for (int side = 0; side < 2; ++side) {
+      double gain = 0.0;
+      if (improve_from(2 * item + side, gain)) {
+        total += gain;
+        for (int node : touched_) push(node / 2);
+        break;  // the item itself is queued again among the touched
+      }
+    }
+  }
+  return total;
+}
+
+bool LinKernighan::is_entry(int node) const {
+  return node == tour_.entry(tour_.position_of(node / 2));
+}
+
+int LinKernighan::suc(int node) const {
+  const int p = tour_.position_of(node / 2);
+  return is_entry(node) ? tour_.exit(p) : tour_.entry(tour_.next(p));
+}
+
+int LinKernighan::pred(int node) const {
+  const int p = tour_.position_of(node / 2);
+  return is_entry(node) ? tour_.exit(tour_.prev(p)) : tour_.entry(p);
+}
+
+int LinKernighan::free_neighbour(int node) const {
+  return is_entry(node) ? pred(node) : suc(node);
+}
+
+int LinKernighan::index(int node) const {
+  return 2 * tour_.position_of(node / 2) + (is_entry(node) ? 0 : 1);
+}
+
+bool LinKernighan::between(bool forwards, int a, int b, int c) const {
+  const int n = 2 * tour_.size();
+  const int ia = index(a), ib = index(b), ic = index(c);
+  if (forwards) return (ib - ia + n) % n <= (ic - ia + n) % n;
+  return (ia - ib + n) % n <= (ia - ic + n) % n;
+}
+
+void LinKernighan::make_2opt(int a, int b, int c, int d) {
+  // Walking a, b, ..., d, c one way round; b .. d are whole items (b enters its item, d
+  // leaves its own), so reversing their positions keeps every fixed edge.
+  if (suc(a) == b)
+    tour_.reverse(tour_.position_of(b / 2), tour_.position_of(d / 2));
+  else
+    tour_.reverse(tour_.position_of(d / 2), tour_.position_of(b / 2));
+  flips_.push_back({a, b, c, d});
+}
+
+void LinKernighan::undo_chain() {
+  // The inverse of make_2opt(a, b, c, d) is make_2opt(c, b, a, d).
+  while (!flips_.empty()) {
+    const Flip f = flips_.back();
+    flips_.pop_back();
+    make_2opt(f.c, f.b, f.a, f.d);
+    flips_.pop_back();
+  }
+}
+
+bool LinKernighan::was_added(int u, int v) const {
+  return std::find(added_.begin(), added_.end(), edge(u, v)) != added_.end();
+}
+
+bool LinKernighan::was_removed(int u, int v) const {
+  return std::find(removed_.begin(), removed_.end(), edge(u, v)) != removed_.end();
+}
+
+bool LinKernighan::improve_from(int t1, double& gain) {
+  if (tour_.size() < 3) return false;
+  int t2 = free_neighbour(t1);
+  flips_.clear();
+  added_.clear();
+  removed_.assign(1, edge(t1, t2));
+  touched_.assign({t1, t2});
+  double open_gain = c(t1, t2);
+  for (int depth = 0; depth < max_depth_; ++depth) {
+    const Step step = best_step(t1, t2, open_gain);
+    if (step.improved) {
+      gain = step.gain;
+      return true;
+    }
+    if (!step.found) break;
+    t2 = step.next_t2;
+    open_gain = step.gain;
+  }
+  undo_chain();
+  return false;
+}
+
+LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain) {
+  // Orientation: walking "forwards" means from t1 to t2. S and P follow it.
+  const bool forwards = suc(t1) == t2;
+  auto S = [&](int x) { return forwards ? suc(x) : pred(x); };
+  auto P = [&](int x) { return forwards ? pred(x) : suc(x); };
+  Step out;
+  double best_open = kEps;
+  int best[4] = {-1, -1, -1, -1};  // t3, t4, t5, t6 of the best open step (t5 < 0: 2-opt)
+
+  auto finish = [&](int t3, int t4, int t5, int t6) {
+    if (t5 < 0) {
+      make_2opt(t1, t2, t3, t4);
+    } else if (S(t5) == t6) {
+      // t1 t2 A t5 t6 B t3 t4 C  ->  t1 t6 B t3 t2 A t5 t4 C
+      make_2opt(t1, t2, t6, t5);
+      make_2opt(t1, t5, t4, t3);
+      make_2opt(t1, t3, t2, t6);
+    } else {
+      // t1 t2 A t6 t5 B t3 t4 C  ->  t1 t6 A' t2 t3 B' t5 t4 C
+      make_2opt(t1, t2, t5, t6);
+      make_2opt(t2, t5, t4, t3);
+    }
+    added_.push_back(edge(t2, t3));
+    removed_.push_back(edge(t3, t4));
+    touched_.insert(touched_.end(), {t3, t4});
+    if (t5 >= 0) {
+      added_.push_back(edge(t4, t5));
+      removed_.push_back(edge(t5, t6));
+      touched_.insert(touched_.end(), {t5, t6});
+    }
+  };
+
+  for (int t3 : costs_.neighbours(t2)) {
+    const double g1 = open_gain - c(t2, t3);
+    if (g1 <= kEps) break;  // candidates come cheapest first
+    if (t3 / 2 == t2 / 2 || t3 == t1 || was_removed(t2, t3)) continue;
+    for (int kind = 0; kind < 2; ++kind) {
+      const int t4 = kind == 0 ? P(t3) : S(t3);
+      if (t4 / 2 == t3 / 2 || was_added(t3, t4)) continue;  // fixed or new edge
+      const double g2 = g1 + c(t3, t4);
+      if (kind == 0) {
+        // t1 t2 .. t4 t3: closing with (t4, t1) is a 2-opt move.
+        const double closed = g2 - c(t4, t1);
+        if (closed > kEps) {
+          finish(t3, t4, -1, -1);
+          out.improved = true;
+          out.gain = closed;
+          return out;
+        }
+        if (g2 > best_open && !was_removed(t4, t1)) {
+          best_open = g2;
+          best[0] = t3, best[1] = t4, best[2] = -1, best[3] = -1;
+        }
+        continue;
+      }
+      // t1 t2 .. t3 t4: (t2, t3) closes t2 .. t3 into a loop; break it at (t5, t6) and
+      // join it in between t4 and t1.
+      for (int t5 : costs_.neighbours(t4)) {
+        const double g3 = g2 - c(t4, t5);
+        if (g3 <= kEps) break;
+        if (t5 == t2 || t5 == t3 || t5 / 2 == t4 / 2 || !between(forwards, t2, t5, t3) ||
+            was_removed(t4, t5))
+          continue;
+        const int t6 = free_neighbour(t5);
+        if (was_added(t5, t6)) continue;
+        const double g4 = g3 + c(t5, t6);
+        const double closed = g4 - c(t6, t1);
+        if (closed > kEps) {
+          finish(t3, t4, t5, t6);
+          out.improved = true;
+          out.gain = closed;
+          return out;
+        }
+        if (g4 > best_open && !was_removed(t6, t1)) {
+          best_open = g4;
+          best[0] = t3, best[1] = t4, best[2] = t5, best[3] = t6;
+        }
+      }
+    }
+  }
+  if (best[0] < 0) return out;
+  finish(best[0], best[1], best[2], best[3]);
+  out.found = true;
+  out.next_t2 = best[2] < 0 ? best[1] : best[3];
+  out.gain = best_open;
+  return out;
+}
+
+}  // namespace ccbuild::planner::detail

@@ -1,0 +1,110 @@
+// The Lin–Kernighan search itself (planner/src/lin_kernighan.hpp): exact gains, fixed
+// edges kept, and no improving candidate move left behind.
+
+#include "lin_kernighan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+#include <random>
+
+#include "layouts.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::planner::detail {
+namespace {
+
+WallTour random_tour(int items, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<int> order(items);
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<char> reversed(items);
+  for (char& r : reversed) r = static_cast<char>(rng() % 2);
+  return WallTour(order, reversed);
+}
+
+bool visits_every_item_once(const WallTour& tour) {
+  std::vector<int> seen(tour.size(), 0);
+  for (int p = 0; p < tour.size(); ++p) ++seen[tour.item_at(p)];
+  for (int p = 0; p < tour.size(); ++p)
+    if (tour.position_of(tour.item_at(p)) != p) return false;
+  return std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; });
+}
+
+/// The best gain of any 2-opt move between two free edges whose new edge (t2, t3) has t3
+/// among t2's candidates: LK's first level must have found every one of them.
+double best_candidate_two_opt(const TourCosts& costs, const WallTour& tour) {
+  double best = 0.0;
+  const int n = tour.size();
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      if (i == j) continue;
+      // Free edges (a, b) after position i and (c, d) after j; reversing i+1 .. j joins
+      // (a, c) and (b, d).
+      const int a = tour.exit(i), b = tour.entry(tour.next(i));
+      const int c = tour.exit(j), d = tour.entry(tour.next(j));
+      const auto& nb = costs.neighbours(b);
+      const auto& na = costs.neighbours(a);
+      const bool candidate = std::find(nb.begin(), nb.end(), d) != nb.end() ||
+                             std::find(na.begin(), na.end(), c) != na.end();
+      if (!candidate) continue;
+      best =
+          std::max(best, costs.cost(a, b) + costs.cost(c, d) - costs.cost(a, c) - costs.cost(b, d));
+    }
+  }
+  return best;
+}
+
+TEST(LinKernighan, GainsAreExactAndNoCandidateTwoOptIsLeft) {
+  const machine::MachineModel machine = testing::simple_machine();
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const floors::Layer layer =
+        seed % 2 ? testing::random_layer(30, seed) : testing::floor_plan_layer(8 + int(seed), seed);
+    const CostModel model(layer, machine, Metric::kEuclidean);
+    std::vector<int> segments(layer.segments.size());
+    std::iota(segments.begin(), segments.end(), 0);
+    TourCosts costs(model, segments, Objective::kDistance, false, Vec2::Zero(), std::nullopt);
+    costs.build_neighbours(8);
+    WallTour tour = random_tour(costs.item_count(), seed);
+    const double before = tour.cost(costs);
+    LinKernighan search(costs, tour, 10);
+    for (int item = 0; item < tour.size(); ++item) search.push(item);
+    const double gain = search.run(StopCondition());
+    EXPECT_TRUE(visits_every_item_once(tour)) << seed;
+    EXPECT_NEAR(before - gain, tour.cost(costs), 1e-6) << seed;
+    EXPECT_GT(gain, 0.0) << seed;
+    EXPECT_LE(best_candidate_two_opt(costs, tour), 1e-9) << seed;
+  }
+}
+
+// LK reaches what 2-opt and Or-opt cannot: from their local optimum (the 2-opt/Or-opt
+// search without kicks) it still finds gains, exactly accounted for.
+TEST(LinKernighan, ImprovesOnTwoOptAndOrOptLocalOptima) {
+  const machine::MachineModel machine = testing::simple_machine();
+  double total_gain = 0.0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const floors::Layer layer = testing::random_layer(40, seed);
+    const CostModel model(layer, machine, Metric::kEuclidean);
+    std::vector<int> segments(layer.segments.size());
+    std::iota(segments.begin(), segments.end(), 0);
+    TourCosts costs(model, segments, Objective::kDistance, false, Vec2::Zero(), std::nullopt);
+    costs.build_neighbours(8);
+    SearchSettings settings;
+    settings.neighbourhood = Neighbourhood::kTwoOptOrOpt;
+    settings.max_kicks = 0;
+    settings.seed = seed;
+    SearchOutcome local = chained_local_search(costs, random_tour(costs.item_count(), seed),
+                                               settings, StopCondition());
+    LinKernighan search(costs, local.tour, 10);
+    for (int item = 0; item < local.tour.size(); ++item) search.push(item);
+    const double gain = search.run(StopCondition());
+    EXPECT_TRUE(visits_every_item_once(local.tour)) << seed;
+    EXPECT_NEAR(local.cost - gain, local.tour.cost(costs), 1e-6) << seed;
+    total_gain += gain;
+  }
+  EXPECT_GT(total_gain, 1e-3);
+}
+
+}  // namespace
+}  // namespace ccbuild::planner::detail
