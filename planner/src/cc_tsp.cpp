@@ -397,17 +397,17 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       // A double bridge between parts of the tour that lie close together in the plan
       // (a room visited twice, say), however far apart in the tour: three cuts after
       // items reached by short walks over the candidate lists.
-      int cut[3];
-      cut[0] = static_cast<int>(rng() % n);
-      for (int k = 1; k < 3; ++k) {
-        int node = 2 * tour.item_at(cut[k - 1]) + static_cast<int>(rng() % 2);
-        const auto& near = costs.neighbours(node);
-        if (near.empty()) break;
-        node = near[rng() % near.size()];
-        cut[k] = tour.position_of(node / 2);
+      int cut[3] = {static_cast<int>(rng() % n), -1, -1};
+      bool walked = true;
+      for (int k = 1; k < 3 && walked; ++k) {
+        const int node = 2 * tour.item_at(cut[k - 1]) + static_cast<int>(rng() % 2);
+        const auto& near = costs.neighbours(node);  // empty at an open path's free end
+        walked = !near.empty();
+        if (walked) cut[k] = tour.position_of(near[rng() % near.size()] / 2);
       }
+      if (!walked) continue;
       std::sort(cut, cut + 3);
-      if (cut[0] == cut[1] || cut[1] == cut[2] || costs.neighbours(0).empty()) continue;
+      if (cut[0] == cut[1] || cut[1] == cut[2]) continue;
       const bool reversed = (rng() & 1) != 0;
       for (int c : cut)
         for (int k = 0; k < 2; ++k) kicked.push_back(tour.item_at((c + k) % n));
