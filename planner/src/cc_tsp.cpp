@@ -93,6 +93,36 @@ WallTour::WallTour(std::vector<int> order, std::vector<char> reversed)
   for (int p = 0; p < size(); ++p) where_[order_[p]] = p;
 }
 
+void WallTour::write(int position, int item) {
+  if (journaling_) order_log_.emplace_back(position, order_[position]);
+  order_[position] = item;
+  where_[item] = position;
+}
+
+void WallTour::toggle(int item) {
+  if (journaling_) toggle_log_.push_back(item);
+  reversed_[item] ^= 1;
+}
+
+void WallTour::begin_journal() {
+  journaling_ = true;
+  order_log_.clear();
+  toggle_log_.clear();
+}
+
+void WallTour::commit_journal() {
+  journaling_ = false;
+  order_log_.clear();
+  toggle_log_.clear();
+}
+
+void WallTour::undo_journal() {
+  for (auto it = order_log_.rbegin(); it != order_log_.rend(); ++it) order_[it->first] = it->second;
+  for (const auto& [position, item] : order_log_) where_[order_[position]] = position;
+  for (int item : toggle_log_) reversed_[item] ^= 1;
+  commit_journal();
+}
+
 void WallTour::reverse(int first, int last) {
   const int n = size();
   int length = (last - first + n) % n + 1;
@@ -102,12 +132,12 @@ void WallTour::reverse(int first, int last) {
     first = new_first;
     last = new_last;
   }
-  for (int k = 0; k < length; ++k) reversed_[order_[(first + k) % n]] ^= 1;
+  for (int k = 0; k < length; ++k) toggle(order_[(first + k) % n]);
   int i = first, j = last;
   for (int k = 0; k < length / 2; ++k) {
-    std::swap(order_[i], order_[j]);
-    where_[order_[i]] = i;
-    where_[order_[j]] = j;
+    const int a = order_[i], b = order_[j];
+    write(i, b);
+    write(j, a);
     i = next(i);
     j = prev(j);
   }
@@ -122,7 +152,7 @@ void WallTour::move_block(int first, int length, int after, bool reversed) {
   auto block = [&] {
     for (int k = 0; k < length; ++k) {
       const int item = order_[(first + (reversed ? length - 1 - k : k)) % n];
-      if (reversed) reversed_[item] ^= 1;
+      if (reversed) toggle(item);
       scratch_.push_back(item);
     }
   };
@@ -138,11 +168,8 @@ void WallTour::move_block(int first, int length, int after, bool reversed) {
     for (int k = 1; k <= backward; ++k) scratch_.push_back(order_[(after + k) % n]);
     write_from = (after + 1) % n;
   }
-  for (std::size_t k = 0; k < scratch_.size(); ++k) {
-    const int p = (write_from + static_cast<int>(k)) % n;
-    order_[p] = scratch_[k];
-    where_[order_[p]] = p;
-  }
+  for (std::size_t k = 0; k < scratch_.size(); ++k)
+    write((write_from + static_cast<int>(k)) % n, scratch_[k]);
 }
 
 double WallTour::cost(const TourCosts& costs) const {
@@ -378,7 +405,6 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
   out.reason = StopReason::kConverged;
   double best = current;
   if (settings.on_better) settings.on_better(0, best);
-  WallTour saved = tour;
   long since_improvement = 0;
   const int max_block = std::max(1, std::min(50, n / 4));
   std::vector<int> kicked;
@@ -392,6 +418,9 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       break;
     }
     if (since_improvement >= settings.stall_kicks) break;
+    // The tour is the best so far; a kick that makes it longer is undone from the
+    // journal of what it changed (not by copying the whole tour back).
+    tour.begin_journal();
     kicked.clear();
     if (lk && (rng() & 1)) {
       // A double bridge between parts of the tour that lie close together in the plan
@@ -440,21 +469,22 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
     current -= descend(kicked, never);
     if (current < best - 1e-9) {
       best = current;
-      saved = tour;
+      tour.commit_journal();
       since_improvement = 0;
       if (settings.on_better) settings.on_better(out.kicks + 1, best);
     } else if (current <= best + 1e-12) {
       best = std::min(best, current);
-      saved = tour;  // sideways: keep wandering along plateaus of equal cost
+      tour.commit_journal();  // sideways: keep wandering along plateaus of equal cost
       ++since_improvement;
     } else {
-      tour = saved;
+      tour.undo_journal();
       current = best;
       ++since_improvement;
     }
   }
-  out.tour = saved;
-  out.cost = saved.cost(costs);  // fresh sum: no drift from the running total
+  tour.commit_journal();
+  out.tour = tour;
+  out.cost = tour.cost(costs);  // fresh sum: no drift from the running total
   if (settings.target_cost && out.cost <= *settings.target_cost + 1e-9)
     out.reason = StopReason::kProvenOptimal;
   return out;

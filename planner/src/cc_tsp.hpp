@@ -13,6 +13,7 @@
 #include <functional>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "ccbuild/planner/cost_model.hpp"
@@ -96,11 +97,24 @@ class WallTour {
 
   double cost(const TourCosts& costs) const;
 
+  /// From now on, remembers what changes, so that undo_journal() can return to now.
+  void begin_journal();
+  /// Keeps the changes and stops remembering.
+  void commit_journal();
+  /// Returns to the tour at begin_journal() and stops remembering.
+  void undo_journal();
+
  private:
+  void write(int position, int item);
+  void toggle(int item);
+
   std::vector<int> order_;
   std::vector<int> where_;
   std::vector<char> reversed_;
   std::vector<int> scratch_;
+  bool journaling_ = false;
+  std::vector<std::pair<int, int>> order_log_;  ///< (position, item it held), oldest first
+  std::vector<int> toggle_log_;                 ///< items whose direction flipped
 };
 
 struct SearchSettings {

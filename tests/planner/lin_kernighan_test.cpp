@@ -78,6 +78,40 @@ TEST(LinKernighan, GainsAreExactAndNoCandidateTwoOptIsLeft) {
   }
 }
 
+// The journal that undoes a rejected kick returns exactly to the tour before it, after
+// any mix of reversals and block moves (both directions, reversed or not).
+TEST(WallTourJournal, UndoReturnsToTheTourBefore) {
+  std::mt19937_64 rng(5);
+  WallTour tour = random_tour(37, 9);
+  for (int round = 0; round < 200; ++round) {
+    const WallTour before = tour;
+    tour.begin_journal();
+    const int changes = 1 + static_cast<int>(rng() % 6);
+    for (int k = 0; k < changes; ++k) {
+      const int n = tour.size();
+      if (rng() % 2) {
+        tour.reverse(static_cast<int>(rng() % n), static_cast<int>(rng() % n));
+      } else {
+        const int length = 1 + static_cast<int>(rng() % 10);
+        const int first = static_cast<int>(rng() % n);
+        const int after = (first + length + static_cast<int>(rng() % (n - length - 1))) % n;
+        tour.move_block(first, length, after, rng() % 2 != 0);
+      }
+    }
+    const bool keep = rng() % 3 == 0;
+    if (keep) {
+      tour.commit_journal();
+      continue;
+    }
+    tour.undo_journal();
+    for (int p = 0; p < tour.size(); ++p) {
+      ASSERT_EQ(tour.item_at(p), before.item_at(p)) << round;
+      ASSERT_EQ(tour.position_of(tour.item_at(p)), p) << round;
+      ASSERT_EQ(tour.reversed(tour.item_at(p)), before.reversed(before.item_at(p))) << round;
+    }
+  }
+}
+
 // LK reaches what 2-opt and Or-opt cannot: from their local optimum (the 2-opt/Or-opt
 // search without kicks) it still finds gains, exactly accounted for.
 TEST(LinKernighan, ImprovesOnTwoOptAndOrOptLocalOptima) {
