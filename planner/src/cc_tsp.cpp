@@ -197,6 +197,11 @@ class LocalSearch {
     }
   }
   void push_position(int p) { push(tour_.item_at(p)); }
+  /// Forgets what a run cut short left queued.
+  void drop_queue() {
+    for (int item : queue_) queued_[item] = 0;
+    queue_.clear();
+  }
 
   /// Runs until no queued item improves; returns the total gain.
   double run(const StopCondition& stop) {
@@ -383,13 +388,16 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
   // never cut off by the clock (the clock is read between kicks), so a run stopped by
   // its time limit after K kicks is the run of max_kicks = K.
   const StopCondition never;
+  // Both searches work on `tour` throughout (a rejected kick is undone in place).
+  LocalSearch cheap(costs, tour);
+  LinKernighan deep(costs, tour, settings.lk_depth);
   auto descend = [&](const std::vector<int>& items, const StopCondition& until) {
     // 2-opt and Or-opt first: cheaper, and they leave LK less to do.
-    LocalSearch cheap(costs, tour);
+    cheap.drop_queue();
     for (int item : items) cheap.push(item);
     double gain = cheap.run(until);
     if (lk) {
-      LinKernighan deep(costs, tour, settings.lk_depth);
+      deep.drop_queue();
       for (int item : items) deep.push(item);
       gain += deep.run(until);
     }

@@ -24,6 +24,11 @@ void LinKernighan::push(int item) {
   }
 }
 
+void LinKernighan::drop_queue() {
+  for (int item : queue_) queued_[item] = 0;
+  queue_.clear();
+}
+
 double LinKernighan::run(const StopCondition& stop) {
   double total = 0.0;
   long steps = 0;

@@ -31,6 +31,8 @@ class LinKernighan {
 
   /// Queues an item whose ends are tried as t1 (a don't-look bit cleared).
   void push(int item);
+  /// Forgets what a run cut short left queued.
+  void drop_queue();
   /// Improves from queued items until none improves; returns the total gain.
   double run(const StopCondition& stop);
 
