@@ -336,8 +336,8 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
   command
       ->add_option("--max-kicks", o->max_kicks,
                    "Kicks of the chained search, exactly, unless the time limit or a proof of "
-                   "optimality comes first (default: up to 60,000, ending after 10,000 "
-                   "without a better tour; see docs/planning.md)")
+                   "optimality comes first (default: a budget from the layer's size that "
+                   "ends early when kicks stop finding better tours; docs/planning.md)")
       ->check(integer_in(0, 1000000000));
   command
       ->add_option("--neighbourhood", o->neighbourhood,
