@@ -16,23 +16,16 @@
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/planner/lower_bound.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
+#include "stats.hpp"
 
 using namespace ccbuild;
 using planner::Algorithm;
 
 namespace {
 
-double mean(const std::vector<double>& v) {
-  return v.empty() ? NAN : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
-}
-double max_of(const std::vector<double>& v) {
-  return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
-}
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::max_of;
+using bench::mean;
+using bench::median;
 
 }  // namespace
 

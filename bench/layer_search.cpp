@@ -21,25 +21,15 @@
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/planner/lower_bound.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
+#include "stats.hpp"
 
 using namespace ccbuild;
 
 namespace {
 
-double mean(const std::vector<double>& v) {
-  return v.empty() ? NAN : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
-}
-double max_of(const std::vector<double>& v) {
-  return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
-}
-double min_of(const std::vector<double>& v) {
-  return v.empty() ? NAN : *std::min_element(v.begin(), v.end());
-}
-double median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
+using bench::mean;
+using bench::median;
+using bench::min_of;
 
 /// `count` straight segments 0.5 to 3 m long, scattered at random over a square with
 /// about 4 m² per segment: no junctions, unlike a floor plan.
@@ -97,7 +87,6 @@ int main(int argc, char** argv) {
   double reference_s = 0.0;
   double time_limit_s = 60.0;
   long max_kicks = -1;
-  int depth = -1;
   bool per_layout = false;
   int bound_rounds = 0;
   std::string layout = "floor-plan";
@@ -118,7 +107,6 @@ int main(int argc, char** argv) {
                  "stall rule) and report the gaps against it; 0: the planner's bound only");
   app.add_flag("--per-layout", per_layout, "One line per layout on stderr");
   CLI11_PARSE(app, argc, argv);
-  (void)depth;
 
   const machine::MachineModel machine = machine::MachineModel::defaults();
   const bool distance = objective == "distance";
@@ -229,7 +217,6 @@ int main(int argc, char** argv) {
         walls / seeds, seeds, mean(gap_base), median(s_base), median(search_base), mean(gap_lk),
         median(s_lk), median(search_lk), mean(shorter), min_of(shorter), room_text, mean(gap_best),
         reach(reach_base).c_str(), reach(reach_lk).c_str(), reach(reach_today).c_str());
-    (void)max_of;
     std::fflush(stdout);
   }
   return 0;

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <numeric>
 
 #include "ccbuild/common/input_error.hpp"
+#include "item_queue.hpp"
 #include "lin_kernighan.hpp"
 
 namespace ccbuild::planner::detail {
@@ -186,22 +186,13 @@ constexpr double kEps = 1e-9;
 
 class LocalSearch {
  public:
-  LocalSearch(const TourCosts& costs, WallTour& tour) : costs_(costs), tour_(tour) {
-    queued_.assign(tour.size(), 0);
-  }
+  LocalSearch(const TourCosts& costs, WallTour& tour)
+      : costs_(costs), tour_(tour), queue_(tour.size()) {}
 
-  void push(int item) {
-    if (!queued_[item]) {
-      queued_[item] = 1;
-      queue_.push_back(item);
-    }
-  }
+  void push(int item) { queue_.push(item); }
   void push_position(int p) { push(tour_.item_at(p)); }
   /// Forgets what a run cut short left queued.
-  void drop_queue() {
-    for (int item : queue_) queued_[item] = 0;
-    queue_.clear();
-  }
+  void drop_queue() { queue_.clear(); }
 
   /// Runs until no queued item improves; returns the total gain.
   double run(const StopCondition& stop) {
@@ -209,9 +200,7 @@ class LocalSearch {
     long steps = 0;
     while (!queue_.empty()) {
       if ((++steps & 255) == 0 && stop.should_stop()) break;
-      const int item = queue_.front();
-      queue_.pop_front();
-      queued_[item] = 0;
+      const int item = queue_.pop();
       double g = 0.0;
       if (improve(item, g)) {
         gain += g;
@@ -347,8 +336,7 @@ class LocalSearch {
 
   const TourCosts& costs_;
   WallTour& tour_;
-  std::deque<int> queue_;
-  std::vector<char> queued_;
+  ItemQueue queue_;
 };
 
 }  // namespace

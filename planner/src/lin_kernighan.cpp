@@ -13,35 +13,19 @@ std::pair<int, int> edge(int u, int v) {
 }  // namespace
 
 LinKernighan::LinKernighan(const TourCosts& costs, WallTour& tour, int max_depth)
-    : costs_(costs), tour_(tour), max_depth_(max_depth) {
-  queued_.assign(tour.size(), 0);
-}
-
-void LinKernighan::push(int item) {
-  if (!queued_[item]) {
-    queued_[item] = 1;
-    queue_.push_back(item);
-  }
-}
-
-void LinKernighan::drop_queue() {
-  for (int item : queue_) queued_[item] = 0;
-  queue_.clear();
-}
+    : costs_(costs), tour_(tour), max_depth_(max_depth), queue_(tour.size()) {}
 
 double LinKernighan::run(const StopCondition& stop) {
   double total = 0.0;
   long steps = 0;
   while (!queue_.empty()) {
     if ((++steps & 63) == 0 && stop.should_stop()) break;
-    const int item = queue_.front();
-    queue_.pop_front();
-    queued_[item] = 0;
+    const int item = queue_.pop();
     for (int side = 0; side < 2; ++side) {
       double gain = 0.0;
       if (improve_from(2 * item + side, gain)) {
         total += gain;
-        for (int node : touched_) push(node / 2);
+        for (int node : touched_) queue_.push(node / 2);
         break;  // the item itself is queued again among the touched
       }
     }
@@ -50,7 +34,9 @@ double LinKernighan::run(const StopCondition& stop) {
 }
 
 bool LinKernighan::is_entry(int node) const {
-  return node == tour_.entry(tour_.position_of(node / 2));
+  // A wall is entered at its start node (even) unless it is reversed (WallTour::entry);
+  // no position lookup needed.
+  return (node & 1) == (tour_.reversed(node / 2) ? 1 : 0);
 }
 
 int LinKernighan::suc(int node) const {

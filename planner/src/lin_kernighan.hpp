@@ -17,11 +17,11 @@
 // criterion throughout; an edge added in a chain is never removed in it, and a removed
 // one never added back.
 
-#include <deque>
 #include <utility>
 #include <vector>
 
 #include "cc_tsp.hpp"
+#include "item_queue.hpp"
 
 namespace ccbuild::planner::detail {
 
@@ -30,9 +30,9 @@ class LinKernighan {
   LinKernighan(const TourCosts& costs, WallTour& tour, int max_depth);
 
   /// Queues an item whose ends are tried as t1 (a don't-look bit cleared).
-  void push(int item);
+  void push(int item) { queue_.push(item); }
   /// Forgets what a run cut short left queued.
-  void drop_queue();
+  void drop_queue() { queue_.clear(); }
   /// Improves from queued items until none improves; returns the total gain.
   double run(const StopCondition& stop);
 
@@ -69,8 +69,7 @@ class LinKernighan {
   const TourCosts& costs_;
   WallTour& tour_;
   int max_depth_;
-  std::deque<int> queue_;  ///< items whose ends are still to be tried
-  std::vector<char> queued_;
+  ItemQueue queue_;  ///< items whose ends are still to be tried
   // The chain being built from one t1.
   struct Flip {
     int a, b, c, d;

@@ -122,24 +122,6 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   costs.build_neighbours(options.objective == Objective::kTime ? 10 : 8);
   detail::SearchSettings settings;
   const long items = costs.item_count();
-  if (options.max_kicks) {
-    settings.max_kicks = settings.stall_kicks = *options.max_kicks;
-  } else if (options.anytime) {
-    settings.max_kicks = settings.stall_kicks = std::numeric_limits<long>::max();
-  } else if (options.neighbourhood == Neighbourhood::kTwoOptOrOpt ||
-             options.objective == Objective::kTime) {
-    // The time objective's landscape (lifts, turns) keeps rewarding kicks: with the caps
-    // below it ended 0.7% behind on 1,000-wall plans (bench/README.md).
-    settings.max_kicks = 2000 + 60 * items;
-    settings.stall_kicks = 1000 + 20 * items;
-  } else {
-    // Kicks are local, so the work grows with the layer up to ~1,000 walls. Past that
-    // the budget stops growing: on generated 5,000-wall plans the search then ends as
-    // good as the 2-opt/Or-opt search with its budget of 300,000 kicks, in 60% of its
-    // time (bench/README.md); --time-limit alone (anytime) goes further.
-    settings.max_kicks = std::min<long>(2000 + 60 * items, kLinKernighanMaxKicks);
-    settings.stall_kicks = std::min<long>(1000 + 20 * items, kLinKernighanStallKicks);
-  }
   settings.seed = options.seed;
   settings.neighbourhood = options.neighbourhood;
   // The time objective on layers too large for the exact-time polish: LK optimises the
@@ -148,6 +130,24 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   if (options.objective == Objective::kTime &&
       static_cast<std::size_t>(n) > kExactPolishMaxSegments)
     settings.neighbourhood = Neighbourhood::kTwoOptOrOpt;
+  if (options.max_kicks) {
+    settings.max_kicks = settings.stall_kicks = *options.max_kicks;
+  } else if (options.anytime) {
+    settings.max_kicks = settings.stall_kicks = std::numeric_limits<long>::max();
+  } else {
+    settings.max_kicks = 2000 + 60 * items;
+    settings.stall_kicks = 1000 + 20 * items;
+    // LK on distance: kicks are local, so the work grows with the layer, but past ~1,000
+    // walls LK finds with fewer kicks what more would (on 5,000-wall plans as good as the
+    // 2-opt/Or-opt search with its ~300,000, in about its time; bench/README.md). The
+    // time objective's landscape (lifts, turns) keeps rewarding kicks: capped, it ended
+    // 0.7% behind on 1,000-wall plans.
+    if (settings.neighbourhood == Neighbourhood::kLinKernighan &&
+        options.objective == Objective::kDistance) {
+      settings.max_kicks = std::min(settings.max_kicks, kLinKernighanMaxKicks);
+      settings.stall_kicks = std::min(settings.stall_kicks, kLinKernighanStallKicks);
+    }
+  }
   if (options.on_progress)
     settings.on_better = [&](long kicks, double cost) {
       options.on_progress(SearchProgress{stop.elapsed_s(), kicks, cost});
