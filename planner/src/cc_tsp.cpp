@@ -14,7 +14,11 @@ namespace ccbuild::planner::detail {
 
 TourCosts::TourCosts(const CostModel& model, std::vector<int> segments, Objective objective,
                      bool open, const Vec2& start, std::optional<Vec2> start_heading)
-    : model_(model), segments_(std::move(segments)), objective_(objective), has_depot_(open) {
+    : model_(model),
+      segments_(std::move(segments)),
+      objective_(objective),
+      metric_(model.metric()),
+      has_depot_(open) {
   item_count_ = static_cast<int>(segments_.size()) + (has_depot_ ? 1 : 0);
   position_.resize(2 * item_count_);
   arrive_.assign(2 * item_count_, Vec2::Zero());
@@ -42,11 +46,7 @@ bool TourCosts::crosses_any(int u, int v) const {
   return !model_.crossed_segments(position_[u], position_[v]).empty();
 }
 
-double TourCosts::cost(int u, int v) const {
-  if (is_free(u) || is_free(v)) return 0.0;
-  const Vec2& a = position_[u];
-  const Vec2& b = position_[v];
-  if (objective_ == Objective::kDistance) return model_.distance_m(a, b);
+double TourCosts::cached_time_cost(int u, int v) const {
   const int nodes = 2 * item_count_;
   if (nodes > kCostCacheNodes) return time_cost(u, v);
   if (time_costs_.empty())
@@ -88,59 +88,69 @@ void TourCosts::build_neighbours(int k) {
 // ------------------------------------------------------------------- WallTour ------
 
 WallTour::WallTour(std::vector<int> order, std::vector<char> reversed)
-    : order_(std::move(order)), reversed_(std::move(reversed)) {
-  where_.assign(order_.size(), -1);
-  for (int p = 0; p < size(); ++p) where_[order_[p]] = p;
+    : node_at_(std::move(order)) {
+  where_.assign(node_at_.size(), -1);
+  for (int p = 0; p < size(); ++p) {
+    const int item = node_at_[p];
+    where_[item] = p;
+    node_at_[p] = 2 * item + (reversed[item] ? 1 : 0);
+  }
 }
 
-void WallTour::write(int position, int item) {
-  if (journaling_) order_log_.emplace_back(position, order_[position]);
-  order_[position] = item;
-  where_[item] = position;
-}
-
-void WallTour::toggle(int item) {
-  if (journaling_) toggle_log_.push_back(item);
-  reversed_[item] ^= 1;
+void WallTour::write(int position, int node) {
+  if (journaling_) log_.emplace_back(position, node_at_[position]);
+  node_at_[position] = node;
+  where_[node >> 1] = position;
 }
 
 void WallTour::begin_journal() {
   journaling_ = true;
-  order_log_.clear();
-  toggle_log_.clear();
+  log_.clear();
 }
 
 void WallTour::commit_journal() {
   journaling_ = false;
-  order_log_.clear();
-  toggle_log_.clear();
+  log_.clear();
 }
 
 void WallTour::undo_journal() {
-  for (auto it = order_log_.rbegin(); it != order_log_.rend(); ++it) order_[it->first] = it->second;
-  for (const auto& [position, item] : order_log_) where_[order_[position]] = position;
-  for (int item : toggle_log_) reversed_[item] ^= 1;
+  for (auto it = log_.rbegin(); it != log_.rend(); ++it) {
+    if (it->first < 0) {
+      flip(-1 - it->first, it->second);  // a flip is its own inverse
+    } else {
+      node_at_[it->first] = it->second;
+      where_[it->second >> 1] = it->first;
+    }
+  }
   commit_journal();
 }
 
 void WallTour::reverse(int first, int last) {
   const int n = size();
   int length = (last - first + n) % n + 1;
-  if (2 * length > n) {  // the complement is shorter
-    const int new_first = next(last), new_last = prev(first);
+  if (2 * length > n) {  // the complement is shorter (and empty for the whole tour)
+    first = next(last);
     length = n - length;
-    first = new_first;
-    last = new_last;
   }
-  for (int k = 0; k < length; ++k) toggle(order_[(first + k) % n]);
-  int i = first, j = last;
+  if (length == 0) return;
+  if (journaling_) log_.emplace_back(-1 - first, length);
+  flip(first, length);
+}
+
+void WallTour::flip(int first, int length) {
+  const int n = size();
+  // Swap from both ends, each node turned round (x ^ 1: the item's other end first).
+  int i = first, j = (first + length - 1) % n;
   for (int k = 0; k < length / 2; ++k) {
-    const int a = order_[i], b = order_[j];
-    write(i, b);
-    write(j, a);
-    i = next(i);
-    j = prev(j);
+    const int a = node_at_[i], b = node_at_[j];
+    node_at_[i] = b ^ 1;
+    where_[b >> 1] = i;
+    node_at_[j] = a ^ 1;
+    where_[a >> 1] = j;
+    i = i + 1 == n ? 0 : i + 1;
+    j = j == 0 ? n - 1 : j - 1;
   }
+  if (length % 2 == 1) node_at_[i] ^= 1;
 }
 
 void WallTour::move_block(int first, int length, int after, bool reversed) {
@@ -151,21 +161,20 @@ void WallTour::move_block(int first, int length, int after, bool reversed) {
   scratch_.clear();
   auto block = [&] {
     for (int k = 0; k < length; ++k) {
-      const int item = order_[(first + (reversed ? length - 1 - k : k)) % n];
-      if (reversed) toggle(item);
-      scratch_.push_back(item);
+      const int node = node_at_[(first + (reversed ? length - 1 - k : k)) % n];
+      scratch_.push_back(reversed ? node ^ 1 : node);
     }
   };
   int write_from;
   if (forward <= backward) {
     // [first .. after] becomes (last+1 .. after) + block
-    for (int k = 1; k <= forward; ++k) scratch_.push_back(order_[(last + k) % n]);
+    for (int k = 1; k <= forward; ++k) scratch_.push_back(node_at_[(last + k) % n]);
     block();
     write_from = first;
   } else {
     // [after+1 .. last] becomes block + (after+1 .. first-1)
     block();
-    for (int k = 1; k <= backward; ++k) scratch_.push_back(order_[(after + k) % n]);
+    for (int k = 1; k <= backward; ++k) scratch_.push_back(node_at_[(after + k) % n]);
     write_from = (after + 1) % n;
   }
   for (std::size_t k = 0; k < scratch_.size(); ++k)

@@ -43,7 +43,13 @@ class TourCosts {
   const Vec2& position(int node) const { return position_[node]; }
   bool is_free(int node) const { return has_depot_ && node == 2 * depot(); }
 
-  double cost(int u, int v) const;
+  /// Inline: the searches ask for millions of costs, most of them distances.
+  double cost(int u, int v) const {
+    if (is_free(u) || is_free(v)) return 0.0;
+    if (objective_ == Objective::kDistance)
+      return metric_distance_m(metric_, position_[u], position_[v]);
+    return cached_time_cost(u, v);
+  }
   /// Neighbour candidates of a node, cheapest first (the free end, if any, first of all).
   const std::vector<int>& neighbours(int node) const { return neighbours_[node]; }
   void build_neighbours(int k);
@@ -55,12 +61,14 @@ class TourCosts {
   std::vector<int> segments_;
   std::vector<int> item_of_segment_;
   Objective objective_;
+  Metric metric_;
   bool has_depot_;
   int item_count_;
   std::vector<Vec2> position_;
   std::vector<Vec2> arrive_;  ///< unit heading arriving at a node along its wall (0: free to turn)
   std::vector<std::vector<int>> neighbours_;
   double time_cost(int u, int v) const;
+  double cached_time_cost(int u, int v) const;
   /// Time costs already computed (NaN: not yet), node by node: the search asks for the
   /// same pairs again and again, and a time cost needs a crossing test against the walls.
   /// Kept for tours of up to kCostCacheNodes nodes (18 MB).
@@ -75,16 +83,12 @@ class WallTour {
   /// Items in `order`, `reversed[item]` for each item.
   WallTour(std::vector<int> order, std::vector<char> reversed);
 
-  int size() const { return static_cast<int>(order_.size()); }
-  int item_at(int position) const { return order_[position]; }
+  int size() const { return static_cast<int>(node_at_.size()); }
+  int item_at(int position) const { return node_at_[position] >> 1; }
   int position_of(int item) const { return where_[item]; }
-  bool reversed(int item) const { return reversed_[item] != 0; }
-  int entry(int position) const {
-    return 2 * order_[position] + (reversed_[order_[position]] ? 1 : 0);
-  }
-  int exit(int position) const {
-    return 2 * order_[position] + (reversed_[order_[position]] ? 0 : 1);
-  }
+  bool reversed(int item) const { return (node_at_[where_[item]] & 1) != 0; }
+  int entry(int position) const { return node_at_[position]; }
+  int exit(int position) const { return node_at_[position] ^ 1; }
   int next(int position) const { return position + 1 == size() ? 0 : position + 1; }
   int prev(int position) const { return position == 0 ? size() - 1 : position - 1; }
 
@@ -105,16 +109,22 @@ class WallTour {
   void undo_journal();
 
  private:
-  void write(int position, int item);
-  void toggle(int item);
+  /// Puts `node` (an item's entry node) at `position`.
+  void write(int position, int node);
+  /// Reverses `length` positions from `first` (cyclic) and turns each item round; not
+  /// journaled (reverse() is).
+  void flip(int first, int length);
 
-  std::vector<int> order_;
-  std::vector<int> where_;
-  std::vector<char> reversed_;
+  /// The entry node at each position: 2 * item, +1 when the item runs reversed. One
+  /// array for order and direction keeps a flip to one pass of swaps (flips are most of
+  /// the search's time on large layers).
+  std::vector<int> node_at_;
+  std::vector<int> where_;  ///< position of each item
   std::vector<int> scratch_;
   bool journaling_ = false;
-  std::vector<std::pair<int, int>> order_log_;  ///< (position, item it held), oldest first
-  std::vector<int> toggle_log_;                 ///< items whose direction flipped
+  /// Oldest first: (position, node it held) for a write, (-1 - first, length) for a
+  /// flip, which undoes itself.
+  std::vector<std::pair<int, int>> log_;
 };
 
 struct SearchSettings {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numeric>
 #include <random>
 
@@ -75,6 +76,50 @@ TEST(LinKernighan, GainsAreExactAndNoCandidateTwoOptIsLeft) {
     EXPECT_NEAR(before - gain, tour.cost(costs), 1e-6) << seed;
     EXPECT_GT(gain, 0.0) << seed;
     EXPECT_LE(best_candidate_two_opt(costs, tour), 1e-9) << seed;
+  }
+}
+
+/// The tour's air moves as unordered node pairs: the same for a tour walked either way.
+std::vector<std::pair<int, int>> air_moves(const WallTour& tour) {
+  std::vector<std::pair<int, int>> out;
+  for (int p = 0; p < tour.size(); ++p) {
+    const int a = tour.exit(p), b = tour.entry(tour.next(p));
+    out.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A reversal, whichever side it flips (the range or its shorter complement, the whole tour
+// included), gives the tour a plain list model gives: the range's items in the other
+// order, each turned round.
+TEST(WallTour, ReversalMatchesAListModel) {
+  std::mt19937_64 rng(3);
+  for (int items : {2, 3, 4, 5, 8, 13}) {
+    WallTour tour = random_tour(items, static_cast<std::uint64_t>(items));
+    for (int round = 0; round < 300; ++round) {
+      std::vector<int> model(items);  // entry nodes by position
+      for (int p = 0; p < items; ++p) model[p] = tour.entry(p);
+      const int first = static_cast<int>(rng() % items);
+      const int length = 1 + static_cast<int>(rng() % items);  // the whole tour too
+      std::vector<int> flipped = model;
+      for (int k = 0; k < length; ++k)
+        flipped[(first + k) % items] = model[(first + length - 1 - k) % items] ^ 1;
+      const WallTour list(
+          [&] {
+            std::vector<int> order;
+            for (int node : flipped) order.push_back(node / 2);
+            return order;
+          }(),
+          [&] {
+            std::vector<char> reversed(items);
+            for (int node : flipped) reversed[node / 2] = static_cast<char>(node % 2);
+            return reversed;
+          }());
+      tour.reverse(first, (first + length - 1) % items);
+      ASSERT_TRUE(visits_every_item_once(tour)) << items << " " << round;
+      ASSERT_EQ(air_moves(tour), air_moves(list)) << items << " " << round;
+    }
   }
 }
 
