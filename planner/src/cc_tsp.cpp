@@ -389,10 +389,12 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
   LocalSearch cheap(costs, tour);
   LinKernighan deep(costs, tour, settings.lk_depth);
   auto descend = [&](const std::vector<int>& items, const StopCondition& until) {
-    // 2-opt and Or-opt first: cheaper, and they leave LK less to do.
-    cheap.drop_queue();
-    for (int item : items) cheap.push(item);
-    double gain = cheap.run(until);
+    double gain = 0.0;
+    if (!lk || settings.two_opt_before_lk) {
+      cheap.drop_queue();
+      for (int item : items) cheap.push(item);
+      gain += cheap.run(until);
+    }
     if (lk) {
       deep.drop_queue();
       for (int item : items) deep.push(item);

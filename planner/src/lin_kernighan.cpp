@@ -101,7 +101,7 @@ bool LinKernighan::improve_from(int t1, double& gain) {
   touched_.assign({t1, t2});
   double open_gain = c(t1, t2);
   for (int depth = 0; depth < max_depth_; ++depth) {
-    const Step step = best_step(t1, t2, open_gain);
+    const Step step = best_step(t1, t2, open_gain, depth + 1 == max_depth_);
     if (step.improved) {
       gain = step.gain;
       return true;
@@ -114,7 +114,7 @@ bool LinKernighan::improve_from(int t1, double& gain) {
   return false;
 }
 
-LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain) {
+LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain, bool last) {
   // Orientation: walking "forwards" means from t1 to t2. S and P follow it.
   const bool forwards = suc(t1) == t2;
   auto S = [&](int x) { return forwards ? suc(x) : pred(x); };
@@ -194,7 +194,8 @@ LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain) {
       }
     }
   }
-  if (best[0] < 0) return out;
+  // The last step only closes: an open one would only be undone.
+  if (last || best[0] < 0) return out;
   finish(best[0], best[1], best[2], best[3]);
   out.found = true;
   out.next_t2 = best[2] < 0 ? best[1] : best[3];

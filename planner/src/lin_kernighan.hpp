@@ -61,7 +61,7 @@ class LinKernighan {
   void undo_chain();
 
   bool improve_from(int t1, double& gain);
-  Step best_step(int t1, int t2, double open_gain);
+  Step best_step(int t1, int t2, double open_gain, bool last);
 
   bool was_added(int u, int v) const;
   bool was_removed(int u, int v) const;

@@ -124,6 +124,7 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   const long items = costs.item_count();
   settings.seed = options.seed;
   settings.neighbourhood = options.neighbourhood;
+  settings.two_opt_before_lk = options.objective == Objective::kTime;
   // The time objective on layers too large for the exact-time polish: LK optimises the
   // symmetric approximation better but came out 0.72% slower in exact airtime on
   // 1,000-wall plans (bench/README.md), so these keep the 2-opt/Or-opt search.

@@ -341,8 +341,9 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       ->check(integer_in(0, 1000000000));
   command
       ->add_option("--neighbourhood", o->neighbourhood,
-                   "Local search of cc-tsp: lk (2-opt, Or-opt, then Lin-Kernighan chains of "
-                   "3-opt moves) or 2opt-oropt (the earlier search, for comparison)")
+                   "Local search of cc-tsp: lk (Lin-Kernighan chains of 3-opt moves; with "
+                   "--objective time after 2-opt and Or-opt) or 2opt-oropt (the earlier "
+                   "search, for comparison)")
       ->check(CLI::IsMember({"lk", "2opt-oropt"}))
       ->capture_default_str();
   command->add_flag("--json", o->json, "Print one JSON object instead of text (errors too)");

@@ -29,8 +29,9 @@ std::optional<Algorithm> parse_algorithm(const std::string& text);
 
 /// The local search of cc-tsp.
 enum class Neighbourhood {
-  kLinKernighan,  ///< 2-opt and Or-opt, then Lin–Kernighan chains of 3-opt moves
-  kTwoOptOrOpt,   ///< 2-opt and Or-opt alone (the search before issue 14; a baseline)
+  /// Lin–Kernighan chains of 3-opt moves (for the time objective after 2-opt and Or-opt)
+  kLinKernighan,
+  kTwoOptOrOpt,  ///< 2-opt and Or-opt alone (the search before issue 14; a baseline)
 };
 std::string to_string(Neighbourhood neighbourhood);
 std::optional<Neighbourhood> parse_neighbourhood(const std::string& text);
