@@ -6,11 +6,15 @@
 //
 // The best tour known is the best of every run made here, the long reference runs
 // included (the Lin–Kernighan search given --reference-s seconds per layout).
+// With --write-plans it only writes the layouts as plan files, for compare_builds.py to
+// time another build (the planner before this issue, say) on the same layers.
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -54,6 +58,31 @@ floors::Layer scattered_segments(int count, std::uint64_t seed) {
     layer.segments.push_back(s);
   }
   return layer;
+}
+
+/// The layer as a plan table (docs/formats.md): its points as vertices, its wall pieces
+/// as walls, in their order, so `ccbuild plan-layer` plans the same items. Never
+/// overwrites: the file must not exist.
+void write_plan_table(const floors::Layer& layer, const std::string& path,
+                      const std::string& what) {
+  std::FILE* out = std::fopen(path.c_str(), "wx");
+  if (!out) {
+    std::fprintf(stderr, "bench_layer_search: cannot create %s (it exists, or no directory)\n",
+                 path.c_str());
+    std::exit(2);
+  }
+  std::fprintf(out, "# bench_layer_search: %s; %zu walls, metres\nvertices\n", what.c_str(),
+               layer.segments.size());
+  for (std::size_t p = 0; p < layer.points.size(); ++p)
+    std::fprintf(out, "%zu %.17g %.17g\n", p + 1, layer.points[p].x(), layer.points[p].y());
+  std::fprintf(out, "walls\n");
+  for (std::size_t w = 0; w < layer.segments.size(); ++w)
+    std::fprintf(out, "%zu %d %d\n", w + 1, layer.segments[w].start_point + 1,
+                 layer.segments[w].end_point + 1);
+  if (std::fclose(out) != 0) {
+    std::fprintf(stderr, "bench_layer_search: cannot write %s\n", path.c_str());
+    std::exit(2);
+  }
 }
 
 struct Run {
@@ -106,7 +135,38 @@ int main(int argc, char** argv) {
                  "Also compute the connected bound with this many cutting-plane rounds (no "
                  "stall rule) and report the gaps against it; 0: the planner's bound only");
   app.add_flag("--per-layout", per_layout, "One line per layout on stderr");
+  std::string write_plans;
+  app.add_option("--write-plans", write_plans,
+                 "Write each layout as a plan table (vertices and walls, metres) into this new "
+                 "directory, plan-WALLS-SEED.txt, and plan nothing: to time `ccbuild "
+                 "plan-layer` of another build on the same layers (bench/README.md)");
   CLI11_PARSE(app, argc, argv);
+
+  auto make_layer = [&](int size, int seed) {
+    const auto layout_seed = static_cast<std::uint64_t>(seed);
+    return layout == "scattered"
+               ? scattered_segments(size, layout_seed)
+               : floors::slice_plan_at(floors::generate_plan_with_segments(size, layout_seed), 1.0,
+                                       2.0);
+  };
+  if (!write_plans.empty()) {
+    std::error_code error;
+    if (!std::filesystem::create_directory(write_plans, error)) {
+      std::fprintf(stderr, "bench_layer_search: --write-plans %s: %s\n", write_plans.c_str(),
+                   error ? error.message().c_str() : "exists already (choose a new directory)");
+      return 2;
+    }
+    for (int size : sizes)
+      for (int seed = 1; seed <= seeds; ++seed) {
+        const std::string path =
+            write_plans + "/plan-" + std::to_string(size) + "-" + std::to_string(seed) + ".txt";
+        write_plan_table(make_layer(size, seed), path,
+                         layout + " layout, " + std::to_string(size) + " walls asked, seed " +
+                             std::to_string(seed));
+        std::printf("%s\n", path.c_str());
+      }
+    return 0;
+  }
 
   const machine::MachineModel machine = machine::MachineModel::defaults();
   const bool distance = objective == "distance";
@@ -120,11 +180,7 @@ int main(int argc, char** argv) {
         room, reach_base, reach_lk, reach_today;
     int walls = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
-      const floors::Layer layer =
-          layout == "scattered" ? scattered_segments(size, static_cast<std::uint64_t>(seed))
-                                : floors::slice_plan_at(floors::generate_plan_with_segments(
-                                                            size, static_cast<std::uint64_t>(seed)),
-                                                        1.0, 2.0);
+      const floors::Layer layer = make_layer(size, seed);
       walls += static_cast<int>(layer.segments.size());
       auto run = [&](planner::Neighbourhood neighbourhood, double limit_s,
                      std::optional<long> kicks) {
