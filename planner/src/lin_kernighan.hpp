@@ -61,6 +61,8 @@ class LinKernighan {
   void undo_chain();
 
   bool improve_from(int t1, double& gain);
+  /// The chain's next step from (t1, t2): a closing move with a gain is made at once;
+  /// otherwise, unless `last`, the best open step is made.
   Step best_step(int t1, int t2, double open_gain, bool last);
 
   bool was_added(int u, int v) const;
