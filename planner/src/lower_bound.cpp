@@ -85,8 +85,9 @@ MatchingBound min_weight_matching(const std::vector<Vec2>& terminals, Metric met
   auto slack = [&](int u, int v) -> std::int64_t {
     const std::int64_t base = y[u] + y[v] + kScale * cost_units(terminals[u], terminals[v], metric);
     if (base >= 0) return base;  // blossom variables are >= 0 and can only help
-    // The blossoms holding both: a merge of the two ascending lists (nested blossoms
-    // make them long, and this runs for many pairs).
+    // The blossoms holding both: a merge of the two ascending lists. Nested blossoms
+    // make them long and many pairs get here; searching one list in the other was a
+    // third of a 5,000-wall plan's time.
     std::int64_t z = 0;
     const auto& a = node_blossoms[u];
     const auto& b = node_blossoms[v];
@@ -136,8 +137,7 @@ MatchingBound min_weight_matching(const std::vector<Vec2>& terminals, Metric met
     }
 
     // Check every pair of terminals. A pair can only be violated when its cost is below
-    // (-y_u - y_v) / scale, so scan pairs in x order and stop once dx alone is too far
-    // (the scan was a third of a 5,000-wall plan's time before |dy| was checked too).
+    // (-y_u - y_v) / scale, so scan pairs in x order and stop once dx alone is too far.
     violations.clear();
     std::int64_t max_neg_y = std::numeric_limits<std::int64_t>::min();
     for (int v = 0; v < n; ++v) max_neg_y = std::max(max_neg_y, -y[v]);

@@ -141,9 +141,9 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     // LK on distance: kicks are local, so the work grows with the layer, but past ~1,000
     // walls LK finds with fewer kicks what more would (on 5,000-wall plans 0.03% shorter
     // than the 2-opt/Or-opt search with its ~300,000, in about half its time; the cap
-    // trades time for length smoothly, bench/README.md). The
-    // time objective's landscape (lifts, turns) keeps rewarding kicks: capped, it ended
-    // 0.7% behind on 1,000-wall plans.
+    // trades time for length smoothly, bench/README.md). The time objective's landscape
+    // (lifts, turns) keeps rewarding kicks: capped, it ended 0.7% behind on 1,000-wall
+    // plans.
     if (settings.neighbourhood == Neighbourhood::kLinKernighan &&
         options.objective == Objective::kDistance) {
       settings.max_kicks = std::min(settings.max_kicks, kLinKernighanMaxKicks);
