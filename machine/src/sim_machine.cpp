@@ -33,9 +33,15 @@ void say(const std::string& line) {
   std::fwrite(line.data(), 1, line.size(), stderr);
 }
 
-/// Whether `value` exceeds `limit` beyond rounding.
-bool over(double value, double limit) {
-  return value > limit * (1.0 + 1e-6) + 1e-9;
+/// Schedules state times, positions and headings rounded to micro-units (µs, µm, µrad;
+/// docs/schedule.md), so each end of a move may be off by half of one.
+constexpr double kRounding = 1e-6;
+
+/// Whether moving `delta` (m or rad) in `dt_s` is faster than `limit` (per s) by more than
+/// the rounding of the move's two ends explains: a move planned at exactly the limit, as
+/// a turn that takes longer than its travel is, stays within it once rounded.
+bool over_limit(double delta, double dt_s, double limit) {
+  return std::abs(delta) - kRounding > limit * (dt_s + kRounding) * (1.0 + 1e-9);
 }
 
 /// The ends of each extruding run of one wall piece: (waypoint, wall) pairs.
@@ -87,8 +93,8 @@ std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineMod
                  {"z", p.z_m[k] - p.z_m[k - 1], m.z.speed_m_s},
                  {"heading", p.heading_rad[k] - p.heading_rad[k - 1], m.rotation_speed_rad_s}};
     for (const auto& move : moves) {
-      if (std::abs(move.delta) <= 1e-9) continue;
-      if (dt <= 0.0 || over(std::abs(move.delta) / dt, move.limit))
+      if (std::abs(move.delta) <= kRounding) continue;  // no move, once rounded
+      if (dt <= 0.0 || over_limit(move.delta, dt, move.limit))
         return std::pair<std::int8_t, std::string>(
             ccbuild_fault_t::VELOCITY_LIMIT,
             printf_string("waypoints %zu-%zu: %s moves %.4f in %.4f s, over its limit of %.4f/s",

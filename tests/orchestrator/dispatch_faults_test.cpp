@@ -95,6 +95,15 @@ TEST(SimMachine, LimitsHoldAtTheirBoundary) {
   turn.t_s = {0.0, 3.9};
   turn.heading_rad = {0.0, m.stopper_max_rad};
   EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  // A turn planned at exactly the rotation limit reaches the machine rounded to µs and
+  // µrad: within that rounding it holds, 3 µrad past the limit's reach it does not.
+  const double at_limit_rad = m.rotation_speed_rad_s * 0.3338;
+  turn.t_s = {0.0, 0.3338};
+  turn.heading_rad = {0.0, at_limit_rad + 0.9e-6};
+  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  turn.heading_rad = {0.0, at_limit_rad + 3e-6};
+  ASSERT_TRUE(machine::limit_breach(m, turn, true));
+  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
   // Heights: outside z range is refused, unless the machine climbs.
   auto high = two_points(10.0, 1.0, 1.0);
   high.z_m = {m.z.max_m + 0.5, m.z.max_m + 0.5};
