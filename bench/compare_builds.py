@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Times `ccbuild plan-layer` of two builds on the same plan files, in turn (A B A B ...),
 so a drift of the shared machine's speed hits both alike. For each plan: both airtimes
-(distance objective), how much shorter B's is, and the median of each build's own
-"solve" time (the call's time, file reading left out) with B/A of the pairs.
+(metres with the distance objective, seconds with `--objective time`), how much less B's
+is, and the median of each build's own "solve" time (the call's time, file reading left
+out) with B/A of the pairs.
 
   bench/compare_builds.py --a OLD/ccbuild --b build/ccbuild --machine M.yaml PLAN ...
+  bench/compare_builds.py --objective time --runs 1 --a ... --b ... PLAN ...
 
 Plans: `bench_layer_search --write-plans DIR`; plans larger than the bundled machine's
 reach need a machine with longer axes (bench/README.md)."""
@@ -16,15 +18,18 @@ import subprocess
 import sys
 
 
-def plan_once(ccbuild, plan, machine, extra):
-    command = [ccbuild, "plan-layer", plan, "--objective", "distance"] + extra
+def plan_once(ccbuild, plan, machine, objective, extra):
+    command = [ccbuild, "plan-layer", plan, "--objective", objective] + extra
     if machine:
         command += ["--machine", machine]
     done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit(f"compare_builds: {' '.join(command)} failed ({done.returncode}):\n"
                  f"{done.stderr.strip()}")
-    airtime = re.search(r"^\s*airtime\s+([0-9.]+) m", done.stdout, re.M)
+    # "airtime  919.848 m, 2244.20 s (...)": metres, or with the time objective seconds.
+    pattern = r"^\s*airtime\s+([0-9.]+) m" if objective == "distance" else \
+        r"^\s*airtime\s+[0-9.]+ m, ([0-9.]+) s"
+    airtime = re.search(pattern, done.stdout, re.M)
     solve = re.search(r"^\s*solve\s+([0-9.]+) s", done.stdout, re.M)
     if not airtime or not solve:
         sys.exit(f"compare_builds: no airtime or solve line in the output of {ccbuild}")
@@ -38,6 +43,9 @@ def main():
     parser.add_argument("--b", required=True, help="the build compared with it")
     parser.add_argument("--machine", help="machine profile for both (--machine)")
     parser.add_argument("--runs", type=int, default=3, help="pairs per plan (default 3)")
+    parser.add_argument("--objective", choices=("distance", "time"), default="distance",
+                        help="plan-layer --objective; the airtimes compared are metres or "
+                        "seconds (default distance)")
     parser.add_argument("--extra", default="--bound matching",
                         help="more plan-layer options for both (default: --bound matching, "
                         "so the time is the search's, not the connected bound's)")
@@ -46,15 +54,17 @@ def main():
     if not 1 <= args.runs <= 50:
         sys.exit("compare_builds: --runs must be 1 to 50")
 
-    print("| plan | A airtime m | B airtime m | B shorter | A solve s | B solve s | B/A (min-max) |")
+    unit = "m" if args.objective == "distance" else "s"
+    print(f"| plan | A airtime {unit} | B airtime {unit} | B less | A solve s | B solve s | "
+          "B/A (min-max) |")
     print("|---|---:|---:|---:|---:|---:|---:|")
     shorter_all, ratio_all = [], []
     for plan in args.plans:
         a_s, b_s, ratios = [], [], []
         a_m = b_m = None
         for _ in range(args.runs):
-            a_m, a = plan_once(args.a, plan, args.machine, args.extra.split())
-            b_m, b = plan_once(args.b, plan, args.machine, args.extra.split())
+            a_m, a = plan_once(args.a, plan, args.machine, args.objective, args.extra.split())
+            b_m, b = plan_once(args.b, plan, args.machine, args.objective, args.extra.split())
             a_s.append(a)
             b_s.append(b)
             ratios.append(b / a if a > 0 else float("nan"))
@@ -64,7 +74,7 @@ def main():
         print(f"| {plan.rsplit('/', 1)[-1]} | {a_m:.3f} | {b_m:.3f} | {shorter:+.4f}% | "
               f"{statistics.median(a_s):.3f} | {statistics.median(b_s):.3f} | "
               f"{statistics.median(ratios):.2f} ({min(ratios):.2f}-{max(ratios):.2f}) |")
-    print(f"\nB shorter: mean {statistics.mean(shorter_all):+.4f}%, worst "
+    print(f"\nB less airtime: mean {statistics.mean(shorter_all):+.4f}%, worst "
           f"{min(shorter_all):+.4f}%; B/A time: median {statistics.median(ratio_all):.2f}, "
           f"largest {max(ratio_all):.2f} (per plan, medians of {args.runs} pairs)")
 

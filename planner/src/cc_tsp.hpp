@@ -25,8 +25,8 @@
 namespace ccbuild::planner::detail {
 
 /// Symmetric air-move costs between item ends, approximating the time model where it is
-/// sequence-dependent: rotation ignores the stopper's state, and a move is priced as
-/// lifted when it crosses any wall of the layer.
+/// sequence-dependent: rotation ignores the stopper's state, and no move is priced as
+/// lifted (the exact-time polish deals with lifts).
 class TourCosts {
  public:
   /// `segments` are the layer segments to order. For open paths, the depot sits at
@@ -48,15 +48,13 @@ class TourCosts {
     if (is_free(u) || is_free(v)) return 0.0;
     if (objective_ == Objective::kDistance)
       return metric_distance_m(metric_, position_[u], position_[v]);
-    return cached_time_cost(u, v);
+    return time_cost(u, v);
   }
   /// Neighbour candidates of a node, cheapest first (the free end, if any, first of all).
   const std::vector<int>& neighbours(int node) const { return neighbours_[node]; }
   void build_neighbours(int k);
 
  private:
-  bool crosses_any(int u, int v) const;
-
   const CostModel& model_;
   std::vector<int> segments_;
   std::vector<int> item_of_segment_;
@@ -68,12 +66,6 @@ class TourCosts {
   std::vector<Vec2> arrive_;  ///< unit heading arriving at a node along its wall (0: free to turn)
   std::vector<std::vector<int>> neighbours_;
   double time_cost(int u, int v) const;
-  double cached_time_cost(int u, int v) const;
-  /// Time costs already computed (NaN: not yet), node by node: the search asks for the
-  /// same pairs again and again, and a time cost needs a crossing test against the walls.
-  /// Kept for tours of up to kCostCacheNodes nodes (18 MB).
-  static constexpr int kCostCacheNodes = 1500;
-  mutable std::vector<double> time_costs_;
 };
 
 /// A cyclic order of items, each with a direction.

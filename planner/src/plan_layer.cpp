@@ -81,8 +81,9 @@ double LayerPlan::gap() const {
 
 namespace {
 
-/// Largest layer whose time-objective tours are polished under the exact evaluation.
-constexpr std::size_t kExactPolishMaxSegments = 200;
+/// Largest layer whose time-objective tours get kicks in the exact-time polish (larger
+/// ones get its descent alone) and the Lin–Kernighan search.
+constexpr std::size_t kExactPolishKicksMaxSegments = 200;
 
 /// The default budget of the Lin–Kernighan search: kicks in all, and kicks in a row
 /// without a better tour (see docs/planning.md, "When the search stops").
@@ -125,11 +126,11 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   settings.seed = options.seed;
   settings.neighbourhood = options.neighbourhood;
   settings.two_opt_before_lk = options.objective == Objective::kTime;
-  // The time objective on layers too large for the exact-time polish: LK optimises the
-  // symmetric approximation better but came out 0.72% slower in exact airtime on
-  // 1,000-wall plans (bench/README.md), so these keep the 2-opt/Or-opt search.
+  // The time objective on large layers: LK's tours were no faster in exact airtime on
+  // 1,000-wall plans (after the polish's descent) and took twice as long to find
+  // (bench/README.md), so these keep the 2-opt/Or-opt search.
   if (options.objective == Objective::kTime &&
-      static_cast<std::size_t>(n) > kExactPolishMaxSegments)
+      static_cast<std::size_t>(n) > kExactPolishKicksMaxSegments)
     settings.neighbourhood = Neighbourhood::kTwoOptOrOpt;
   if (options.max_kicks) {
     settings.max_kicks = settings.stall_kicks = *options.max_kicks;
@@ -164,18 +165,26 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     out.sequence.push_back(step);
 
   const bool polish_wanted = !options.polish_kicks || *options.polish_kicks > 0;
-  if (options.objective == Objective::kTime && polish_wanted &&
-      static_cast<std::size_t>(n) <= kExactPolishMaxSegments && !stop.should_stop()) {
+  if (options.objective == Objective::kTime && polish_wanted && !stop.should_stop()) {
     std::mt19937_64 rng(options.seed ^ 0x9E3779B97F4A7C15ULL);
     // Small layers get the whole neighbourhood and many kicks: the time landscape (stopper
     // winding, lifts) is rugged, and on layers the exact solver can check, 500 kicks
     // reached its optimum in 160 of 160 runs (8 layouts, both metrics, closed and open,
-    // 5 seeds). Larger layers get a local window and a fixed budget.
+    // 5 seeds). Larger layers get a local window and a fixed budget; past 200 walls the
+    // descent alone (on a 1,000-wall plan, 200 kicks after it found nothing in 5 s), with
+    // room to finish it (11 and 7 million steps on two 1,000-wall plans, 68 million on a
+    // 5,000-wall one).
     detail::ExactPolishSettings polish;
     const bool small = n <= 16;
+    const bool large = static_cast<std::size_t>(n) > kExactPolishKicksMaxSegments;
     polish.window = small ? static_cast<std::size_t>(n) : 8;
-    polish.max_kicks = options.polish_kicks ? *options.polish_kicks : (small ? 500 : 20);
-    polish.max_step_evaluations = small ? 40'000'000 : std::min<long>(4'000'000, 400L * n * n);
+    polish.max_kicks = options.polish_kicks ? *options.polish_kicks
+                                            : (small   ? 500
+                                               : large ? 0
+                                                       : 20);
+    polish.max_step_evaluations = small   ? 40'000'000
+                                  : large ? 20'000L * n
+                                          : std::min<long>(4'000'000, 400L * n * n);
     out.sequence =
         detail::improve_exact_time(model, out.sequence, path, prefix.size(), polish, rng, stop);
     if (stop.should_stop()) out.reason = stop.reason();

@@ -185,5 +185,30 @@ TEST(LinKernighan, ImprovesOnTwoOptAndOrOptLocalOptima) {
   EXPECT_GT(total_gain, 1e-3);
 }
 
+// The search's time costs never price a move as lifted, even one across a wall: whether
+// it lifts depends on what is built before it (the exact-time polish's business). At
+// most a half turn, so each cost stays under an unlifted move with a half turn, which a
+// lift (5 s on this machine, against a 3.14 s half turn) would exceed.
+TEST(TourCosts, TimeCostsPriceNoLift) {
+  const machine::MachineModel machine = testing::simple_machine();
+  const floors::Layer layer = testing::floor_plan_layer(6, 2);
+  const CostModel model(layer, machine, Metric::kEuclidean);
+  std::vector<int> segments(layer.segments.size());
+  std::iota(segments.begin(), segments.end(), 0);
+  TourCosts costs(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
+  int crossing = 0;
+  for (int u = 0; u < 2 * static_cast<int>(segments.size()); ++u) {
+    for (int v = 0; v < 2 * static_cast<int>(segments.size()); ++v) {
+      const Vec2 &a = costs.position(u), &b = costs.position(v);
+      if (u / 2 == v / 2 || model.distance_m(a, b) < 1e-6 || model.crossed_segments(a, b).empty())
+        continue;
+      ++crossing;
+      EXPECT_LE(costs.cost(u, v), model.move_time_s(a, b, M_PI, false) + 1e-9) << u << " " << v;
+      EXPECT_GE(costs.cost(u, v), model.move_time_s(a, b, 0.0, false) - 1e-9) << u << " " << v;
+    }
+  }
+  EXPECT_GT(crossing, 100);
+}
+
 }  // namespace
 }  // namespace ccbuild::planner::detail

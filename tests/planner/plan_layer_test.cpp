@@ -96,6 +96,21 @@ TEST(PlanLayer, SameSeedSamePlan) {
   EXPECT_EQ(a.evaluation.airtime_s, b.evaluation.airtime_s);
 }
 
+// Past 200 walls the time objective still gets the exact-time polish (its descent): it
+// takes lifts and detours out that the search's symmetric costs cannot see.
+TEST(PlanLayer, LargeLayersGetTheExactTimePolish) {
+  const floors::Layer layer = testing::floor_plan_layer(70, 5);
+  ASSERT_GT(layer.segments.size(), 200u);
+  PlanOptions o;
+  o.objective = Objective::kTime;
+  const LayerPlan polished = plan_layer(layer, testing::simple_machine(), o);
+  o.polish_kicks = 0;  // no polish at all
+  const LayerPlan searched = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_TRUE(covers_every_segment_once(polished.sequence, layer.segments.size()));
+  EXPECT_LT(polished.evaluation.airtime_s, searched.evaluation.airtime_s - 1.0);
+  EXPECT_LE(polished.evaluation.lift_count, searched.evaluation.lift_count);
+}
+
 TEST(PlanLayer, FirstWallFixesTheStartInEitherDirection) {
   const floors::Layer layer = testing::floor_plan_layer(10, 3);
   PlanOptions o;

@@ -71,8 +71,8 @@ struct PlanOptions {
   /// the limit came during the first descent, before any kick).
   bool anytime = false;
   /// Kicks of the exact-time polish (time objective only); unset: 500 on layers of up to
-  /// 16 walls (enough to reach the optimum the exact solver finds), 20 above; 0 skips
-  /// the polish.
+  /// 16 walls (enough to reach the optimum the exact solver finds), 20 up to 200 walls,
+  /// and above that its descent alone, without kicks; 0 skips the polish.
   std::optional<long> polish_kicks;
   /// Lower bound reported (and used to stop the search once met): the connected bound
   /// by default; the matching bound alone is faster on very large layers.
