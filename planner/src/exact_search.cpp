@@ -30,12 +30,11 @@ class IncrementalTime {
     return cost_;
   }
 
-  /// Airtime of `candidate`, equal to the current sequence before `from`.
-  double evaluate(const Sequence& candidate, std::size_t from) {
+  /// Airtime of `candidate`, which equals the current sequence outside [from, last).
+  double evaluate(const Sequence& candidate, std::size_t from, std::size_t last) {
     // Where the candidate last differs: past it, the same segments are built and the
     // same steps follow, so once the nozzle's state matches the current sequence's the
     // rest of the time is the current's (only the winding of the heading can differ).
-    std::size_t last = candidate.size();
     while (last > from && candidate[last - 1].segment == current_[last - 1].segment &&
            candidate[last - 1].reversed == current_[last - 1].reversed)
       --last;
@@ -49,11 +48,13 @@ class IncrementalTime {
     return cost;
   }
 
-  void accept(const Sequence& candidate, std::size_t from) {
-    current_ = candidate;
-    for (std::size_t k = from; k < current_.size(); ++k)
+  /// Makes `candidate` current; it equals the current sequence outside [from, last).
+  void accept(const Sequence& candidate, std::size_t from, std::size_t last) {
+    std::copy(candidate.begin() + from, candidate.begin() + last, current_.begin() + from);
+    for (std::size_t k = from; k < last; ++k) {
       position_[current_[k].segment] = static_cast<int>(k);
-    scratch_ = position_;
+      scratch_[current_[k].segment] = static_cast<int>(k);
+    }
     cost_ = run(current_, from, position_, true);
   }
 
@@ -114,27 +115,30 @@ class IncrementalTime {
   long steps_ = 0;
 };
 
-Sequence reversed_block(const Sequence& s, std::size_t i, std::size_t j) {
-  Sequence out = s;
-  std::reverse(out.begin() + i, out.begin() + j + 1);
-  for (std::size_t k = i; k <= j; ++k) out[k].reversed = !out[k].reversed;
-  return out;
+/// Reverses s[i, j] in place, each step turned round.
+void reverse_block(Sequence& s, std::size_t i, std::size_t j) {
+  std::reverse(s.begin() + i, s.begin() + j + 1);
+  for (std::size_t k = i; k <= j; ++k) s[k].reversed = !s[k].reversed;
 }
 
-// Moves s[i, i+length) so that it starts at `to` in the result, reversed or not.
-Sequence moved_block(const Sequence& s, std::size_t i, std::size_t length, std::size_t to,
-                     bool reversed) {
-  Sequence block(s.begin() + i, s.begin() + i + length);
-  if (reversed) {
-    std::reverse(block.begin(), block.end());
-    for (auto& step : block) step.reversed = !step.reversed;
-  }
-  Sequence rest;
-  rest.reserve(s.size());
-  rest.insert(rest.end(), s.begin(), s.begin() + i);
-  rest.insert(rest.end(), s.begin() + i + length, s.end());
-  rest.insert(rest.begin() + to, block.begin(), block.end());
-  return rest;
+/// Moves s[i, i+length) in place so that it starts at `to`, reversed or not; the steps
+/// between shift over. Changes s[min(i, to), max(i, to) + length) only.
+void move_block(Sequence& s, std::size_t i, std::size_t length, std::size_t to, bool reversed) {
+  if (to < i)
+    std::rotate(s.begin() + to, s.begin() + i, s.begin() + i + length);
+  else if (to > i)
+    std::rotate(s.begin() + i, s.begin() + i + length, s.begin() + to + length);
+  if (reversed) reverse_block(s, to, to + length - 1);
+}
+
+Sequence reversed_block(Sequence s, std::size_t i, std::size_t j) {
+  reverse_block(s, i, j);
+  return s;
+}
+
+Sequence moved_block(Sequence s, std::size_t i, std::size_t length, std::size_t to, bool reversed) {
+  move_block(s, i, length, to, reversed);
+  return s;
 }
 
 }  // namespace
@@ -150,36 +154,43 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
   auto out_of_budget = [&] {
     return eval.steps() >= settings.max_step_evaluations || stop.should_stop();
   };
-  auto try_candidate = [&](const Sequence& candidate, std::size_t from) {
-    if (eval.evaluate(candidate, from) < eval.cost() - 1e-9) {
-      eval.accept(candidate, from);
+  // Candidates are made in `work`, a copy of the current sequence, over the range they
+  // change, and undone there when refused: no copy of the whole sequence per candidate.
+  Sequence work = eval.current();
+  auto try_work = [&](std::size_t from, std::size_t last) {
+    if (eval.evaluate(work, from, last) < eval.cost() - 1e-9) {
+      eval.accept(work, from, last);
       return true;
     }
+    std::copy(eval.current().begin() + from, eval.current().begin() + last, work.begin() + from);
     return false;
   };
   // Where a closed tour starts, and its direction, change its lifts and its unwinding.
   auto try_rotations = [&] {
     if (!path.closed) return false;
-    const Sequence cur = eval.current();
     for (std::size_t r = 1; r < n; ++r) {
-      Sequence rotated(cur.begin() + r, cur.end());
-      rotated.insert(rotated.end(), cur.begin(), cur.begin() + r);
-      if (try_candidate(rotated, 0)) return true;
+      const Sequence& cur = eval.current();
+      std::rotate_copy(cur.begin(), cur.begin() + r, cur.end(), work.begin());
+      if (try_work(0, n)) return true;
     }
-    return try_candidate(reversed_block(cur, 0, n - 1), 0);
+    reverse_block(work, 0, n - 1);
+    return try_work(0, n);
   };
   // 2-opt and Or-opt moves that change the sequence from position i on.
   auto try_at = [&](std::size_t i) {
-    for (std::size_t j = i; j < std::min(n, i + window); ++j)
-      if (try_candidate(reversed_block(eval.current(), i, j), i)) return true;
+    for (std::size_t j = i; j < std::min(n, i + window); ++j) {
+      reverse_block(work, i, j);
+      if (try_work(i, j + 1)) return true;
+    }
     for (std::size_t length = 1; length <= 3 && i + length <= n; ++length) {
       const std::size_t lo = std::max(fixed_prefix, i > window ? i - window : 0);
       const std::size_t hi = std::min(n - length, i + window);
       for (std::size_t to = lo; to <= hi; ++to) {
         if (to == i) continue;
-        for (bool reversed : {false, true})
-          if (try_candidate(moved_block(eval.current(), i, length, to, reversed), std::min(i, to)))
-            return true;
+        for (bool reversed : {false, true}) {
+          move_block(work, i, length, to, reversed);
+          if (try_work(std::min(i, to), std::max(i, to) + length)) return true;
+        }
       }
     }
     return false;
@@ -216,11 +227,13 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
       if (l1 + l2 > movable) continue;
       const std::size_t start = fixed_prefix + rng() % (movable - l1 - l2 + 1);
       eval.reset(moved_block(best, start, l1, start + l2, rng() % 2 == 0));
+      work = eval.current();
     } else {
       // Reverse a block of any length: reaches orders that small swaps cannot.
       const std::size_t i = fixed_prefix + rng() % movable;
       const std::size_t j = fixed_prefix + rng() % movable;
       eval.reset(reversed_block(best, std::min(i, j), std::max(i, j)));
+      work = eval.current();
     }
     descend();
     if (eval.cost() <= best_cost + 1e-9) {  // equal too: walk along plateaus
