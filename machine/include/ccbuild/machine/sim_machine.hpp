@@ -92,7 +92,8 @@ struct SimOptions {
 /// Why `path` breaks `model`'s limits (a fault kind and the words), or nothing: a
 /// waypoint outside an axis range (z only when `check_z_range`) or the stopper is a
 /// JOINT_LIMIT; a segment faster along an axis, or in heading, than its velocity limit
-/// is a VELOCITY_LIMIT.
+/// (beyond what rounding its ends to micro-units, as schedules do, explains) is a
+/// VELOCITY_LIMIT.
 std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineModel& model,
                                                                 const TimedPath& path,
                                                                 bool check_z_range);
