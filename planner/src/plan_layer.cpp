@@ -126,11 +126,11 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   settings.seed = options.seed;
   settings.neighbourhood = options.neighbourhood;
   settings.two_opt_before_lk = options.objective == Objective::kTime;
+  const bool large = static_cast<std::size_t>(n) > kExactPolishKicksMaxSegments;
   // The time objective on large layers: LK's tours were no faster in exact airtime on
   // 1,000-wall plans (after the polish's descent) and took twice as long to find
   // (bench/README.md), so these keep the 2-opt/Or-opt search.
-  if (options.objective == Objective::kTime &&
-      static_cast<std::size_t>(n) > kExactPolishKicksMaxSegments)
+  if (options.objective == Objective::kTime && large)
     settings.neighbourhood = Neighbourhood::kTwoOptOrOpt;
   if (options.max_kicks) {
     settings.max_kicks = settings.stall_kicks = *options.max_kicks;
@@ -139,14 +139,12 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   } else {
     settings.max_kicks = 2000 + 60 * items;
     settings.stall_kicks = 1000 + 20 * items;
-    // LK on distance: kicks are local, so the work grows with the layer, but past ~1,000
+    // LK: kicks are local, so the work grows with the layer, but past ~1,000
     // walls LK finds with fewer kicks what more would (on 5,000-wall plans 0.03% shorter
     // than the 2-opt/Or-opt search with its ~300,000, in about half its time; the cap
-    // trades time for length smoothly, bench/README.md). The time objective's landscape
-    // (lifts, turns) keeps rewarding kicks: capped, it ended 0.7% behind on 1,000-wall
-    // plans.
-    if (settings.neighbourhood == Neighbourhood::kLinKernighan &&
-        options.objective == Objective::kDistance) {
+    // trades time for length smoothly, bench/README.md). The time objective uses LK on
+    // layers of at most 200 walls only, whose budget is under the caps.
+    if (settings.neighbourhood == Neighbourhood::kLinKernighan) {
       settings.max_kicks = std::min(settings.max_kicks, kLinKernighanMaxKicks);
       settings.stall_kicks = std::min(settings.stall_kicks, kLinKernighanStallKicks);
     }
@@ -176,7 +174,6 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     // 5,000-wall one).
     detail::ExactPolishSettings polish;
     const bool small = n <= 16;
-    const bool large = static_cast<std::size_t>(n) > kExactPolishKicksMaxSegments;
     polish.window = small ? static_cast<std::size_t>(n) : 8;
     polish.max_kicks = options.polish_kicks ? *options.polish_kicks
                                             : (small   ? 500
