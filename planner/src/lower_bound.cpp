@@ -270,14 +270,19 @@ LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const 
   bound.matching = min_weight_matching(terminals, metric, !path.closed);
   bound.matching_m = bound.matching.lower_bound_m;
   bound.distance_m = bound.matching_m;
+  for (const auto& [u, v] : bound.matching.pairs)
+    if (u >= 0 && v >= 0) bound.rounding_m += 1.0 / kUnitsPerMetre;  // the free end's pairs cost 0
   // The connected bound's first LP solve cannot be interrupted; on a time budget it
   // surely cannot keep (a generous 1e-7 s per wall squared: 2.5 s at 5,000 walls, where
   // it takes about 1.3 s), the matching bound stands alone rather than overrun it.
   const double walls = static_cast<double>(layer.segments.size());
   if (kind == BoundKind::kConnected && stop.remaining_s() >= 1e-7 * walls * walls) {
     bound.connected = connected_airtime_bound(layer, metric, path, {}, stop);
-    if (bound.connected->certified)
-      bound.distance_m = std::max(bound.distance_m, bound.connected->lower_bound_m);
+    if (bound.connected->certified && bound.connected->lower_bound_m > bound.distance_m) {
+      bound.distance_m = bound.connected->lower_bound_m;
+      // certified_dual_value's margin, and as much again for the tour's own sum.
+      bound.rounding_m = 2e-9 * (1.0 + bound.distance_m);
+    }
   }
   return bound;
 }

@@ -96,8 +96,10 @@ struct Solved {
   StopReason reason = StopReason::kFinished;
 };
 
+// `proof_m`: an airtime distance no longer than this is optimal (the lower bound plus
+// its rounding, LayerBound::rounding_m); the distance objective stops there.
 Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOptions& options,
-                    double lower_bound, const StopCondition& stop) {
+                    double proof_m, const StopCondition& stop) {
   const auto& layer = model.layer();
   const int n = static_cast<int>(layer.segments.size());
   std::vector<int> rest;
@@ -153,8 +155,7 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     settings.on_better = [&](long kicks, double cost) {
       options.on_progress(SearchProgress{stop.elapsed_s(), kicks, cost});
     };
-  if (options.objective == Objective::kDistance)
-    settings.target_cost = lower_bound - fixed_distance;
+  if (options.objective == Objective::kDistance) settings.target_cost = proof_m - fixed_distance;
   const detail::SearchOutcome outcome = detail::chained_local_search(
       costs, detail::tour_from_sequence(costs, initial), settings, stop);
   out.kicks = outcome.kicks;
@@ -262,14 +263,14 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
       break;
     }
     case Algorithm::kCcTsp: {
-      Solved solved = solve_cc_tsp(model, path, options, bound.distance_m, stop);
+      Solved solved = solve_cc_tsp(model, path, options, bound.distance_m + bound.rounding_m, stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
       plan.stop = solved.reason;
       break;
     }
     case Algorithm::kExact: {
-      Solved solved = solve_cc_tsp(model, path, options, bound.distance_m, stop);
+      Solved solved = solve_cc_tsp(model, path, options, bound.distance_m + bound.rounding_m, stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
       const double upper = detail::exact_objective(model, plan.sequence, path, options.objective);
@@ -286,7 +287,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   if (options.waypoints)
     plan.waypoints = waypoints_of(model, plan.sequence, path, plan.evaluation, layer.z_top_m);
   if (options.objective == Objective::kDistance &&
-      plan.evaluation.airtime_distance_m <= plan.lower_bound_m + 1e-9)
+      plan.evaluation.airtime_distance_m <= bound.distance_m + bound.rounding_m + 1e-9)
     plan.stop = StopReason::kProvenOptimal;
   plan.solve_s = stop.elapsed_s();
   return plan;

@@ -398,7 +398,7 @@ TEST(MultiNozzle, DelayIsNeverSlowerThanOneNozzleAlone) {
 TEST(MultiNozzle, AutoSaysWhenDelayWouldHaveBeenFaster) {
   // A generated layout where path cycling succeeds (so auto uses it) and delay would
   // finish sooner: auto keeps the papers' plan and says so.
-  const floors::Layer layer = testing::floor_plan_layer(4, 5);
+  const floors::Layer layer = testing::floor_plan_layer(3, 11);
   const MultiNozzlePlan plan = plan_simple(layer, options(MultiMethod::kAuto, 3.0));
   ASSERT_TRUE(plan.status);
   const Stage& stage = plan.stages[0];

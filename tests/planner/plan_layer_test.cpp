@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "ccbuild/floors/plan.hpp"
+#include "ccbuild/planner/lower_bound.hpp"
 #include "layouts.hpp"
 #include "test_support.hpp"
 
@@ -199,6 +200,50 @@ TEST(PlanLayer, TheDefaultBudgetEndsOnItsOwn) {
     EXPECT_LT(progress[k].cost, progress[k - 1].cost);
     EXPECT_GT(progress[k].kicks, progress[k - 1].kicks);
   }
+}
+
+TEST(PlanLayer, ATourAtTheBoundWithinItsRoundingIsProvenOptimal) {
+  // Each bound sits a little below its exact value by construction (LayerBound::
+  // rounding_m); a tour that reaches the exact value is optimal and the search stops at
+  // once. Before, these searched on to their stall budget, "converged".
+  struct Case {
+    int rooms;
+    std::uint64_t seed;
+    BoundKind kind;
+  };
+  for (const Case& c : {Case{8, 1, BoundKind::kConnected}, Case{4, 2, BoundKind::kMatching}}) {
+    const floors::Layer layer = testing::floor_plan_layer(c.rooms, c.seed);
+    const LayerBound bound = airtime_lower_bound(layer, Metric::kEuclidean, PathSpec{}, c.kind);
+    PlanOptions o;
+    o.waypoints = false;
+    o.bound = c.kind;
+    const LayerPlan plan = plan_layer(layer, testing::simple_machine(), o);
+    const std::string what = to_string(c.kind);
+    EXPECT_EQ(plan.stop, StopReason::kProvenOptimal) << what;
+    EXPECT_EQ(plan.kicks, 0) << what << ": proven by the first descent's tour";
+    // Above the certified number by more than the old 1e-9 m, within the rounding.
+    const double above_m = plan.evaluation.airtime_distance_m - bound.distance_m;
+    EXPECT_GT(above_m, 1e-8) << what;
+    EXPECT_LE(above_m, bound.rounding_m) << what;
+  }
+  // The rounding is what each construction says, and no more.
+  const floors::Layer layer = testing::floor_plan_layer(4, 2);
+  const LayerBound matching =
+      airtime_lower_bound(layer, Metric::kEuclidean, PathSpec{}, BoundKind::kMatching);
+  EXPECT_DOUBLE_EQ(matching.rounding_m, 1e-5 * static_cast<double>(matching.matching.pairs.size()));
+  // An open path's free end matches one terminal at no cost: nothing rounded there.
+  const LayerBound open = airtime_lower_bound(
+      layer, Metric::kEuclidean, PathSpec::open_from({-1.0, -1.0}), BoundKind::kMatching);
+  EXPECT_DOUBLE_EQ(open.rounding_m, 1e-5 * static_cast<double>(open.matching.pairs.size() - 1));
+  const LayerBound connected = airtime_lower_bound(layer, Metric::kEuclidean, PathSpec{});
+  ASSERT_EQ(connected.source(), BoundSource::kConnected);
+  EXPECT_DOUBLE_EQ(connected.rounding_m, 2e-9 * (1.0 + connected.distance_m));
+  // A real gap is no proof: 0.025 m between this tour and the connected bound.
+  PlanOptions o;
+  o.waypoints = false;
+  const LayerPlan gap = plan_layer(testing::floor_plan_layer(12, 12), testing::simple_machine(), o);
+  EXPECT_EQ(gap.stop, StopReason::kConverged);
+  EXPECT_GT(gap.evaluation.airtime_distance_m - gap.lower_bound_m, 0.01);
 }
 
 TEST(PlanLayer, NeighbourhoodNames) {

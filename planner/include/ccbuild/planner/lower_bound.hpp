@@ -122,6 +122,11 @@ struct LayerBound {
   double matching_m = 0.0;  ///< the matching bound
   std::optional<ConnectedBound> connected;  ///< when asked for
   int odd_points = 0;                       ///< points where an odd number of wall ends meet
+  /// How far below its exact value `distance_m` may lie from rounding alone, m: the
+  /// matching bound floors each matched pair's cost to 10 micrometres, the connected
+  /// bound keeps a margin of about 1e-9 of its value for floating-point sums. A tour no
+  /// longer than distance_m + rounding_m is optimal to within rounding_m.
+  double rounding_m = 0.0;
   /// Terminal points used (layer point indices; -2 for an open path's start when it is
   /// not a layer point) and their matching, for constructing a tour from it.
   std::vector<int> terminals;
