@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -99,6 +101,38 @@ TEST(PlanLayerCli, SameSeedSameJson) {
   a.erase("solve_s");
   b.erase("solve_s");
   EXPECT_EQ(a.dump(), b.dump());
+}
+
+TEST(PlanLayerCli, ALongSearchReportsItsBestTourOnStderr) {
+  // Ground-floor layer 12 of the house has a gap to its bound, so an anytime run goes on
+  // to its limit: lines at 1 and 2 s, none after it ends.
+  const std::string args = "plan-layer config/buildings/house.yaml --layer 12 --time-limit 2.5";
+  const auto r = run_ccbuild(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "time-limit after")) << r.out;
+  std::vector<double> reported_m;
+  std::istringstream lines(r.err);
+  for (std::string line; std::getline(lines, line);) {
+    double seconds = 0.0, best_m = 0.0;
+    ASSERT_EQ(
+        std::sscanf(line.c_str(), "plan-layer: %lf s, best tour so far %lf m", &seconds, &best_m),
+        2)
+        << line;
+    reported_m.push_back(best_m);
+  }
+  ASSERT_EQ(reported_m.size(), 2u) << r.err;
+  double airtime_m = 0.0;
+  ASSERT_EQ(std::sscanf(r.out.substr(r.out.find("airtime")).c_str(), "airtime %lf m", &airtime_m),
+            1);
+  // Each line's best is the best so far: never shorter than the answer, never growing.
+  EXPECT_GE(reported_m[1], airtime_m - 0.0005);
+  EXPECT_LE(reported_m[1], reported_m[0]);
+  EXPECT_TRUE(contains(r.err, "plan-layer: 1 s, ")) << r.err;
+  EXPECT_TRUE(contains(r.err, "plan-layer: 2 s, ")) << r.err;
+
+  EXPECT_EQ(run_ccbuild(args + " --quiet").err, "");
+  // A search that ends within its first second says nothing.
+  EXPECT_EQ(run_ccbuild("plan-layer config/buildings/house.yaml --layer 12").err, "");
 }
 
 TEST(PlanLayerCli, BuildingLayerWithCutWalls) {

@@ -1,9 +1,15 @@
 // ccbuild plan-layer PLAN: the tool path of one layer for one nozzle.
 
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
 
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -46,6 +52,61 @@ struct PlanLayerOptions {
   std::string rail_axis = "x";
   std::string method = "auto";
   std::string platform_width;
+  bool quiet = false;
+};
+
+/// Progress of a long single-nozzle search on stderr: a `--time-limit 600` run is
+/// otherwise silent for ten minutes. A line at 1, 2, 4, 8, 16 and 32 s, then every
+/// minute, with the best tour so far; nothing after the reporter is destroyed, so a
+/// call that ends within a second prints nothing.
+class SearchReporter {
+ public:
+  /// `line(best, due_s)` words the line due `due_s` after the start; `best` is null
+  /// before the first tour.
+  using Line = std::function<std::string(const planner::SearchProgress*, double)>;
+
+  explicit SearchReporter(Line line) : line_(std::move(line)) {
+    thread_ = std::thread([this] { run(); });
+  }
+  ~SearchReporter() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();
+  }
+  SearchReporter(const SearchReporter&) = delete;
+  SearchReporter& operator=(const SearchReporter&) = delete;
+
+  /// Called on the planning thread with each better tour.
+  void record(const planner::SearchProgress& progress) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    best_ = progress;
+  }
+
+ private:
+  void run() {
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+    double next_s = 1.0;
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      const auto due = start + std::chrono::duration<double>(next_s);
+      if (wake_.wait_until(lock, due, [this] { return done_; })) return;
+      // The line is stamped with its due time: a late wake-up on a loaded machine still
+      // reads "1 s", "2 s", ...
+      std::cerr << line_(best_ ? &*best_ : nullptr, next_s) << "\n" << std::flush;
+      next_s = next_s < 32.0 ? 2.0 * next_s : next_s < 60.0 ? 60.0 : next_s + 60.0;
+    }
+  }
+
+  Line line_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::optional<planner::SearchProgress> best_;
+  std::thread thread_;
 };
 
 void print_multi(const PlanLayerOptions& o, const orchestrator::Project& project,
@@ -220,7 +281,25 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
                      "applies only with --nozzles 2 or more");
   }
 
+  std::optional<SearchReporter> reporter;
+  if (!o.quiet && o.nozzles == 1 && options.algorithm == planner::Algorithm::kCcTsp) {
+    const bool distance = options.objective == planner::Objective::kDistance;
+    reporter.emplace([&project, distance](const planner::SearchProgress* best, double due_s) {
+      if (best == nullptr)
+        return printf_string("plan-layer: %.0f s, lower bound and first tour under way", due_s);
+      // The time objective's search cost is its estimate; the exact polish follows.
+      const std::string cost = distance
+                                   ? project.length(best->cost)
+                                   : printf_string("%.2f s by the search's estimate", best->cost);
+      return printf_string(
+          "plan-layer: %.0f s, best tour so far %s (found at %.1f s, after %ld "
+          "kicks)",
+          due_s, cost.c_str(), best->elapsed_s, best->kicks);
+    });
+    options.on_progress = [&reporter](const planner::SearchProgress& p) { reporter->record(p); };
+  }
   const orchestrator::LayerPlanResult result = orchestrator::plan_layer(project, layer, request);
+  reporter.reset();
   if (result.multi) {
     const auto& plan = *result.multi;
     if (!o.svg.empty())
@@ -376,6 +455,9 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       "--platform-width", o->platform_width,
       "With --nozzles: an overhead platform this long along the rails; longer layouts are built in "
       "platform-wide stages");
+  command->add_flag("--quiet", o->quiet,
+                    "No progress lines on stderr (one-nozzle searches past 1 s print the "
+                    "best tour so far at 1, 2, 4, 8, 16 and 32 s, then every minute)");
   add_input_options(*command, o->input);
   command->callback([o, time_limit, &exit_code] {
     o->anytime = time_limit->count() > 0;
