@@ -60,6 +60,23 @@ TEST(MultiNozzleCli, TextAndDrawing) {
   fs::remove(svg);
 }
 
+TEST(MultiNozzleCli, ATimeLimitIsACapNotAnAnytimeSearch) {
+  // Before, --time-limit made each section search until the limit, and no method was
+  // left time to find a plan; now the answer is the one without the limit.
+  const std::string args =
+      "plan-layer config/buildings/apartment.yaml --layer 10 --nozzles 2 --gantry-width 5ft";
+  const auto plain = run_ccbuild(args);
+  const auto capped = run_ccbuild(args + " --time-limit 5");
+  ASSERT_EQ(plain.exit_code, 0) << plain.out;
+  ASSERT_EQ(capped.exit_code, 0) << capped.out;
+  EXPECT_TRUE(contains(capped.out, "method        path-cycling")) << capped.out;
+  auto layer_time = [](const std::string& out) {
+    return out.substr(out.find("layer time"),
+                      out.find('\n', out.find("layer time")) - out.find("layer time"));
+  };
+  EXPECT_EQ(layer_time(capped.out), layer_time(plain.out));
+}
+
 TEST(MultiNozzleCli, NoPlanIsAnAnswerWithExitOne) {
   const auto r = run_ccbuild(
       "plan-layer tests/data/plans/narrow_room.txt --nozzles 2 --gantry-width 3.5 "

@@ -544,6 +544,27 @@ TEST(MultiNozzle, GantriesFitOnlyWithRoomToSpare) {
 namespace ccbuild::planner {
 namespace {
 
+TEST(MultiNozzle, AnAnytimeRequestLeavesTimeForTheMethods) {
+  // `plan-layer --nozzles 2 --time-limit T` passes an anytime request on. The limit is
+  // shared by every section's search and every method after them, so a section must
+  // not search until it: before, the first section took it all and no method found a
+  // plan. Anytime or not, the answer is the one of the default budget.
+  const floors::Layer layer = testing::floor_plan_layer(3, 11);
+  MultiNozzleOptions o;
+  o.nozzles = 2;
+  o.gantry_width_m = 3.0;
+  o.planning.time_limit_s = 3.0;
+  const MultiNozzlePlan budget = plan_simple(layer, o);
+  ASSERT_TRUE(budget.status) << budget.status.to_string();
+  o.planning.anytime = true;
+  const MultiNozzlePlan anytime = plan_simple(layer, o);
+  ASSERT_TRUE(anytime.status) << anytime.status.to_string();
+  EXPECT_EQ(anytime.layer_time_s, budget.layer_time_s);
+  ASSERT_EQ(anytime.stages.size(), budget.stages.size());
+  for (std::size_t k = 0; k < budget.stages[0].nozzles.size(); ++k)
+    EXPECT_EQ(anytime.stages[0].nozzles[k].sequence, budget.stages[0].nozzles[k].sequence);
+}
+
 TEST(MultiNozzle, TheTimeLimitHoldsOnLargeLayers) {
   // 7,000 wall pieces with two nozzles once took 8 s under a 2 s limit. The limit bounds
   // the whole call: once it passes, what is left is cut short and the answer says so.

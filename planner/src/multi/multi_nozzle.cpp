@@ -145,6 +145,9 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   // measured on them (issue 14 left them).
   options.planning.neighbourhood = Neighbourhood::kTwoOptOrOpt;
   options.planning.bound = BoundKind::kMatching;
+  // The time limit is shared by every section's search and every method after them: a
+  // section searching until it (anytime) left the methods no time and no plan.
+  options.planning.anytime = false;
   const int n = options.nozzles;
   const double w = options.gantry_width_m;
   if (n < 2 || n > kMaxNozzles)

@@ -68,7 +68,8 @@ struct PlanOptions {
   /// True: no default budget. The search keeps improving until the time limit, a proof
   /// of optimality, or `max_kicks` when set. Its answer then depends on the machine's
   /// speed; the plan's `kicks`, given back as `max_kicks`, reproduces it exactly (unless
-  /// the limit came during the first descent, before any kick).
+  /// the limit came during the first descent, before any kick). plan_layer_multi
+  /// ignores it: there the limit is a cap shared by all the sections and methods.
   bool anytime = false;
   /// Kicks of the exact-time polish (time objective only); unset: 500 on layers of up to
   /// 16 walls (enough to reach the optimum the exact solver finds), 20 up to 200 walls,
