@@ -270,7 +270,13 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
       break;
     }
     case Algorithm::kExact: {
-      Solved solved = solve_cc_tsp(model, path, options, bound.distance_m + bound.rounding_m, stop);
+      // The heuristic only gives the exact search a first upper bound: on its default
+      // budget, even when asked for an anytime run, or it would leave the exact search
+      // no time.
+      PlanOptions warm_start = options;
+      warm_start.anytime = false;
+      Solved solved =
+          solve_cc_tsp(model, path, warm_start, bound.distance_m + bound.rounding_m, stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
       const double upper = detail::exact_objective(model, plan.sequence, path, options.objective);

@@ -246,6 +246,26 @@ TEST(PlanLayer, ATourAtTheBoundWithinItsRoundingIsProvenOptimal) {
   EXPECT_GT(gap.evaluation.airtime_distance_m - gap.lower_bound_m, 0.01);
 }
 
+TEST(PlanLayer, ExactWithATimeLimitStillProvesItsAnswer) {
+  // An anytime request (plan-layer --algorithm exact --time-limit T) once let the
+  // heuristic warm start search for all T seconds, so the exact search never ran and
+  // the answer was "time-limit". The warm start keeps its budget; the exact search
+  // proves the same answer as without the limit.
+  const floors::Layer layer = testing::random_layer(8, 3);
+  PlanOptions o;
+  o.waypoints = false;
+  o.algorithm = Algorithm::kExact;
+  o.objective = Objective::kTime;
+  o.time_limit_s = 3.0;
+  const LayerPlan plain = plan_layer(layer, testing::simple_machine(), o);
+  o.anytime = true;
+  const LayerPlan anytime = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_EQ(plain.stop, StopReason::kProvenOptimal);
+  EXPECT_EQ(anytime.stop, StopReason::kProvenOptimal);
+  EXPECT_EQ(anytime.sequence, plain.sequence);
+  EXPECT_EQ(anytime.kicks, plain.kicks);
+}
+
 TEST(PlanLayer, NeighbourhoodNames) {
   EXPECT_EQ(parse_neighbourhood("lk"), Neighbourhood::kLinKernighan);
   EXPECT_EQ(parse_neighbourhood("2opt-oropt"), Neighbourhood::kTwoOptOrOpt);
