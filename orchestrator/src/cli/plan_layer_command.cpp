@@ -408,8 +408,9 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
                        "the answer is the best found, and depends on the machine's speed; "
                        "--max-kicks with the kicks printed reproduces it). Not given: the "
                        "search stops on its own budget (deterministic), within 30 s at most. "
-                       "With --nozzles or --algorithm exact: a cap on the whole run, the "
-                       "heuristic searches on their own budgets")
+                       "With --objective time the extra time goes to the exact-time "
+                       "polish. With --nozzles or --algorithm exact: a cap on the whole run, "
+                       "the heuristic searches on their own budgets")
           ->check(number_in(Range::above(0.0, 86400.0), "s"));
   command->add_option("--seed", o->seed, "Random seed: the same seed and inputs give the same plan")
       ->check(unsigned_integer())
