@@ -192,6 +192,7 @@ int main(int argc, char** argv) {
         o.max_kicks = kicks;
         o.waypoints = false;
         o.on_progress = [&](const planner::SearchProgress& p) {
+          if (p.polish) return;  // the search's trace; the polish is its own phase
           r.trace.emplace_back(p.elapsed_s, p.cost);
           r.last_improvement_kick = p.kicks;
         };

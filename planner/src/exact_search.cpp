@@ -218,6 +218,7 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
   descend();
   Sequence best = eval.current();
   double best_cost = eval.cost();
+  if (settings.on_better) settings.on_better(0, best_cost);
   const std::size_t movable = n - fixed_prefix;
   for (long kick = 0; kick < settings.max_kicks && movable >= 4 && !out_of_budget(); ++kick) {
     if (kick % 2 == 0) {
@@ -237,8 +238,10 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
     }
     descend();
     if (eval.cost() <= best_cost + 1e-9) {  // equal too: walk along plateaus
+      const bool faster = eval.cost() < best_cost - 1e-9;
       best = eval.current();
       best_cost = std::min(best_cost, eval.cost());
+      if (faster && settings.on_better) settings.on_better(kick + 1, best_cost);
     }
   }
   return best;

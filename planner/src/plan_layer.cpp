@@ -188,6 +188,10 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     polish.max_step_evaluations = small   ? 40'000'000
                                   : large ? 20'000L * n
                                           : std::min<long>(4'000'000, 400L * n * n);
+    if (options.on_progress)
+      polish.on_better = [&](long kicks, double cost_s) {
+        options.on_progress(SearchProgress{stop.elapsed_s(), kicks, cost_s, true});
+      };
     if (anytime_polish) {  // until the time limit, unless polish_kicks bounds it
       if (!options.polish_kicks) polish.max_kicks = std::numeric_limits<long>::max();
       polish.max_step_evaluations = std::numeric_limits<long>::max();

@@ -3,6 +3,7 @@
 // that is closed, or open from `start` (a fixed first wall, when given, is already
 // removed from `segments` by the caller and prepended to the answer).
 
+#include <functional>
 #include <optional>
 #include <random>
 #include <vector>
@@ -36,6 +37,9 @@ struct ExactPolishSettings {
   long max_kicks = 20;
   /// Deterministic work bound: steps evaluated (one step = one move of one candidate).
   long max_step_evaluations = 4'000'000;
+  /// Called after the first descent and each kick that finds a faster sequence, with
+  /// the kicks done and its exact cost (unset: not called).
+  std::function<void(long, double)> on_better;
 };
 
 /// Improves a complete sequence under the exact time evaluation: rotations and reversal

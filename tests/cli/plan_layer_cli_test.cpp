@@ -131,6 +131,23 @@ TEST(PlanLayerCli, ALongSearchReportsItsBestTourOnStderr) {
   EXPECT_TRUE(contains(r.err, "plan-layer: 2 s, ")) << r.err;
 
   EXPECT_EQ(run_ccbuild(args + " --quiet").err, "");
+  // Under the time objective the exact-time polish takes the time and reports the
+  // exact airtime.
+  const auto time = run_ccbuild(args + " --objective time");
+  ASSERT_EQ(time.exit_code, 0) << time.err;
+  const std::string last = time.err.substr(time.err.rfind("plan-layer: "));
+  double due_s = 0.0, best_s = 0.0, airtime_s = 0.0;
+  ASSERT_EQ(std::sscanf(last.c_str(),
+                        "plan-layer: %lf s, best tour so far %lf s of airtime "
+                        "(exact-time polish",
+                        &due_s, &best_s),
+            2)
+      << time.err;
+  EXPECT_EQ(due_s, 2.0);
+  ASSERT_EQ(std::sscanf(time.out.substr(time.out.find("airtime")).c_str(), "airtime %*f m, %lf s",
+                        &airtime_s),
+            1);
+  EXPECT_GE(best_s, airtime_s - 0.005);
   // A search that ends within its first second says nothing.
   EXPECT_EQ(run_ccbuild("plan-layer config/buildings/house.yaml --layer 12").err, "");
 }

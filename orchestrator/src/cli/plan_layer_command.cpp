@@ -287,6 +287,11 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     reporter.emplace([&project, distance](const planner::SearchProgress* best, double due_s) {
       if (best == nullptr)
         return printf_string("plan-layer: %.0f s, lower bound and first tour under way", due_s);
+      if (best->polish)
+        return printf_string(
+            "plan-layer: %.0f s, best tour so far %.2f s of airtime (exact-time polish, found "
+            "at %.1f s, after %ld of its kicks)",
+            due_s, best->cost, best->elapsed_s, best->kicks);
       // The time objective's search cost is its estimate; the exact polish follows.
       const std::string cost = distance
                                    ? project.length(best->cost)

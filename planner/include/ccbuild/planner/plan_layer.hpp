@@ -47,6 +47,9 @@ struct SearchProgress {
   /// The search's cost of its best tour: airtime distance, m (or the time objective's
   /// approximation, s), without a fixed first wall's approach.
   double cost = 0.0;
+  /// True: reported by the exact-time polish that follows the search under the time
+  /// objective; `cost` is then the tour's exact airtime, s, and `kicks` the polish's.
+  bool polish = false;
 };
 
 struct PlanOptions {
@@ -68,8 +71,10 @@ struct PlanOptions {
   /// True: no default budget. The search keeps improving until the time limit, a proof
   /// of optimality, or `max_kicks` when set. Its answer then depends on the machine's
   /// speed; the plan's `kicks`, given back as `max_kicks`, reproduces it exactly (unless
-  /// the limit came during the first descent, before any kick). plan_layer_multi
-  /// ignores it: there the limit is a cap shared by all the sections and methods.
+  /// the limit came during the first descent, before any kick). Under the time
+  /// objective the symmetric search keeps its default budget and the exact-time polish
+  /// kicks until the limit instead (not reproduced by `max_kicks`). The exact
+  /// algorithm's warm start and plan_layer_multi ignore it: there the limit is a cap.
   bool anytime = false;
   /// Kicks of the exact-time polish (time objective only); unset: 500 on layers of up to
   /// 16 walls (enough to reach the optimum the exact solver finds), 20 up to 200 walls,
@@ -79,7 +84,8 @@ struct PlanOptions {
   /// by default; the matching bound alone is faster on very large layers.
   BoundKind bound = BoundKind::kConnected;
   const std::atomic<bool>* cancel = nullptr;
-  /// Called on the planning thread each time cc-tsp's best tour improves (unset: not
+  /// Called on the planning thread each time cc-tsp's best tour improves, in its search
+  /// and then in the exact-time polish (SearchProgress::polish) (unset: not
   /// called). For progress displays and benchmarks; it must not throw.
   std::function<void(const SearchProgress&)> on_progress;
   /// False: no waypoints in the plan (a caller that keeps only the sequence, e.g. a
