@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "ccbuild/floors/plan.hpp"
 #include "ccbuild/planner/lower_bound.hpp"
 #include "layouts.hpp"
@@ -246,20 +248,25 @@ TEST(PlanLayer, ATourAtTheBoundWithinItsRoundingIsProvenOptimal) {
   EXPECT_GT(gap.evaluation.airtime_distance_m - gap.lower_bound_m, 0.01);
 }
 
+// The layer planned under the time objective with `o`, then again as an anytime run.
+std::pair<LayerPlan, LayerPlan> time_plans_without_and_with_anytime(const floors::Layer& layer,
+                                                                    PlanOptions o) {
+  o.waypoints = false;
+  o.objective = Objective::kTime;
+  LayerPlan plain = plan_layer(layer, testing::simple_machine(), o);
+  o.anytime = true;
+  return {std::move(plain), plan_layer(layer, testing::simple_machine(), o)};
+}
+
 TEST(PlanLayer, ExactWithATimeLimitStillProvesItsAnswer) {
   // An anytime request (plan-layer --algorithm exact --time-limit T) once let the
   // heuristic warm start search for all T seconds, so the exact search never ran and
   // the answer was "time-limit". The warm start keeps its budget; the exact search
   // proves the same answer as without the limit.
-  const floors::Layer layer = testing::random_layer(8, 3);
   PlanOptions o;
-  o.waypoints = false;
   o.algorithm = Algorithm::kExact;
-  o.objective = Objective::kTime;
   o.time_limit_s = 3.0;
-  const LayerPlan plain = plan_layer(layer, testing::simple_machine(), o);
-  o.anytime = true;
-  const LayerPlan anytime = plan_layer(layer, testing::simple_machine(), o);
+  const auto [plain, anytime] = time_plans_without_and_with_anytime(testing::random_layer(8, 3), o);
   EXPECT_EQ(plain.stop, StopReason::kProvenOptimal);
   EXPECT_EQ(anytime.stop, StopReason::kProvenOptimal);
   EXPECT_EQ(anytime.sequence, plain.sequence);
@@ -271,14 +278,10 @@ TEST(PlanLayer, AnAnytimeRunUnderTheTimeObjectiveSpendsItsTimeOnThePolish) {
   // airtime); the exact-time polish then kicks until the limit. Before, the symmetric
   // search took all the time and the polish never ran: 221.4 s of airtime here against
   // 171.9 s on the default budget (now 161.6 s after 1.5 s on the 2-core machine).
-  const floors::Layer layer = testing::floor_plan_layer(20, 3);
   PlanOptions o;
-  o.waypoints = false;
-  o.objective = Objective::kTime;
   o.time_limit_s = 1.5;
-  const LayerPlan budget = plan_layer(layer, testing::simple_machine(), o);
-  o.anytime = true;
-  const LayerPlan anytime = plan_layer(layer, testing::simple_machine(), o);
+  const auto [budget, anytime] =
+      time_plans_without_and_with_anytime(testing::floor_plan_layer(20, 3), o);
   EXPECT_EQ(budget.stop, StopReason::kConverged);
   EXPECT_EQ(anytime.stop, StopReason::kTimeLimit);
   EXPECT_EQ(anytime.kicks, budget.kicks);
