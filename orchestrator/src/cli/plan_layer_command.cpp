@@ -265,6 +265,11 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     if (o.first_wall) options.path.first = first_step(layer, *o.first_wall, context.where());
   }
   if (o.nozzles >= 2) {
+    if (options.algorithm != planner::Algorithm::kCcTsp)
+      throw InputError("", 0, "--algorithm",
+                       o.algorithm +
+                           " plans one nozzle; with --nozzles every section is "
+                           "planned by cc-tsp (leave --algorithm out)");
     if (o.gantry_width.empty())
       throw InputError("", 0, "--gantry-width", "is required with --nozzles 2 or more");
     planner::MultiNozzleOptions& multi = request.multi;
@@ -386,9 +391,9 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"distance", "time"}))
       ->capture_default_str();
   command
-      ->add_option(
-          "--algorithm", o->algorithm,
-          "cc-tsp; nearest (greedy nearest wall end); original (file order); exact (small layers)")
+      ->add_option("--algorithm", o->algorithm,
+                   "cc-tsp; nearest (greedy nearest wall end); original (file order); exact (small "
+                   "layers). With --nozzles, cc-tsp only")
       ->check(CLI::IsMember({"cc-tsp", "nearest", "original", "exact"}))
       ->capture_default_str();
   command
