@@ -215,12 +215,48 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
     }
   };
 
+  // The same around [lo, hi) only: its positions are tried until a pass there finds
+  // nothing; an improvement widens the range by the window, as far as its moves reach.
+  auto descend_around = [&](std::size_t lo, std::size_t hi) {
+    for (bool again = true; again && !out_of_budget();) {
+      again = false;
+      for (std::size_t i = lo; i < hi && !out_of_budget(); ++i) {
+        if (!try_at(i)) continue;
+        again = true;
+        lo = std::min(lo, std::max(fixed_prefix, i > window ? i - window : 0));
+        hi = std::max(hi, std::min(n, i + window + 1));
+      }
+    }
+  };
+
   descend();
   Sequence best = eval.current();
   double best_cost = eval.cost();
   if (settings.on_better) settings.on_better(0, best_cost);
   const std::size_t movable = n - fixed_prefix;
   for (long kick = 0; kick < settings.max_kicks && movable >= 4 && !out_of_budget(); ++kick) {
+    if (settings.local_kicks) {
+      // Swap two adjacent short blocks, maybe reversing one, take it whatever it costs,
+      // and descend around it; back to the best sequence when that ends slower.
+      const std::size_t cap = std::max<std::size_t>(1, std::min<std::size_t>(movable / 3, 8));
+      const std::size_t l1 = 1 + rng() % cap, l2 = 1 + rng() % cap;
+      if (l1 + l2 > movable) continue;
+      const std::size_t start = fixed_prefix + rng() % (movable - l1 - l2 + 1);
+      move_block(work, start, l1, start + l2, rng() % 2 == 0);
+      eval.accept(work, start, start + l1 + l2);
+      descend_around(std::max(fixed_prefix, start > window ? start - window : 0),
+                     std::min(n, start + l1 + l2 + window));
+      if (eval.cost() <= best_cost + 1e-9) {
+        const bool faster = eval.cost() < best_cost - 1e-9;
+        best = eval.current();
+        best_cost = std::min(best_cost, eval.cost());
+        if (faster && settings.on_better) settings.on_better(kick + 1, best_cost);
+      } else {
+        eval.reset(best);
+        work = best;
+      }
+      continue;
+    }
     if (kick % 2 == 0) {
       // Double bridge on the movable part: swap two adjacent blocks, maybe reversing one.
       const std::size_t cap = std::max<std::size_t>(1, std::min<std::size_t>(movable / 3, 8));

@@ -195,6 +195,7 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
     if (anytime_polish) {  // until the time limit, unless polish_kicks bounds it
       if (!options.polish_kicks) polish.max_kicks = std::numeric_limits<long>::max();
       polish.max_step_evaluations = std::numeric_limits<long>::max();
+      polish.local_kicks = large;
     }
     out.sequence =
         detail::improve_exact_time(model, out.sequence, path, prefix.size(), polish, rng, stop);

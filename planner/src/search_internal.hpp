@@ -37,6 +37,9 @@ struct ExactPolishSettings {
   long max_kicks = 20;
   /// Deterministic work bound: steps evaluated (one step = one move of one candidate).
   long max_step_evaluations = 4'000'000;
+  /// Kicks followed by a descent around the kick only, not a whole pass (large layers,
+  /// where a pass per kick leaves time for few kicks).
+  bool local_kicks = false;
   /// Called after the first descent and each kick that finds a faster sequence, with
   /// the kicks done and its exact cost (unset: not called).
   std::function<void(long, double)> on_better;
