@@ -161,15 +161,21 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
       options.on_progress(SearchProgress{stop.elapsed_s(), kicks, cost});
     };
   if (options.objective == Objective::kDistance) settings.target_cost = proof_m - fixed_distance;
-  const detail::SearchOutcome outcome = detail::chained_local_search(
-      costs, detail::tour_from_sequence(costs, initial), settings, stop);
+  // Under the time objective the exact-time polish follows, and it is where lifts go:
+  // a time limit that cut the search short used to leave it nothing (a 1,000-wall plan:
+  // 2,348 s of airtime with 0.6 s, against 1,797 s on the default budget). The search
+  // gets at most half of what is left; its default budget ends far sooner.
+  const bool polish_wanted = !options.polish_kicks || *options.polish_kicks > 0;
+  const bool polish_follows = options.objective == Objective::kTime && polish_wanted;
+  const detail::SearchOutcome outcome =
+      detail::chained_local_search(costs, detail::tour_from_sequence(costs, initial), settings,
+                                   polish_follows ? stop.within(stop.remaining_s() / 2.0) : stop);
   out.kicks = outcome.kicks;
   out.reason = outcome.reason;
   for (const Step& step : detail::sequence_from_tour(costs, outcome.tour))
     out.sequence.push_back(step);
 
-  const bool polish_wanted = !options.polish_kicks || *options.polish_kicks > 0;
-  if (options.objective == Objective::kTime && polish_wanted && !stop.should_stop()) {
+  if (polish_follows && !stop.should_stop()) {
     std::mt19937_64 rng(options.seed ^ 0x9E3779B97F4A7C15ULL);
     // Small layers get the whole neighbourhood and many kicks: the time landscape (stopper
     // winding, lifts) is rugged, and on layers the exact solver can check, 500 kicks

@@ -310,6 +310,28 @@ TEST(PlanLayer, AnAnytimeRunOnALargeLayerKicksLocallyInThePolish) {
   EXPECT_EQ(plan_layer(layer, testing::simple_machine(), o).sequence, kicked.sequence);
 }
 
+TEST(PlanLayer, AShortTimeLimitStillLeavesThePolishTime) {
+  // Under the time objective the search gets at most half of the limit, so the polish
+  // that removes lifts always runs; before, a search cut short by the limit skipped it.
+  // Kicks far beyond what the limit allows make the search as long as it may be (103
+  // walls: 0 lifts left against 13 unpolished, 175.3 against 206.1 s of airtime).
+  const floors::Layer layer = testing::floor_plan_layer(20, 3);
+  PlanOptions o;
+  o.waypoints = false;
+  o.objective = Objective::kTime;
+  o.bound = BoundKind::kMatching;
+  o.time_limit_s = 0.6;
+  o.max_kicks = 1'000'000'000;
+  const LayerPlan polished = plan_layer(layer, testing::simple_machine(), o);
+  o.polish_kicks = 0;  // no polish: the search has the whole limit
+  const LayerPlan searched = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_EQ(polished.stop, StopReason::kTimeLimit);
+  EXPECT_EQ(searched.stop, StopReason::kTimeLimit);
+  EXPECT_LT(polished.kicks, searched.kicks);  // about half as many
+  EXPECT_LT(polished.evaluation.lift_count, searched.evaluation.lift_count / 2);
+  EXPECT_LT(polished.evaluation.airtime_s, searched.evaluation.airtime_s);
+}
+
 TEST(PlanLayer, NeighbourhoodNames) {
   EXPECT_EQ(parse_neighbourhood("lk"), Neighbourhood::kLinKernighan);
   EXPECT_EQ(parse_neighbourhood("2opt-oropt"), Neighbourhood::kTwoOptOrOpt);
