@@ -144,6 +144,7 @@ TEST(PlanLayerCli, ALongSearchReportsItsBestTourOnStderr) {
             2)
       << time.err;
   EXPECT_EQ(due_s, 2.0);
+  EXPECT_TRUE(contains(last, " s of airtime (exact-time polish, found at ")) << last;
   ASSERT_EQ(std::sscanf(time.out.substr(time.out.find("airtime")).c_str(), "airtime %*f m, %lf s",
                         &airtime_s),
             1);
