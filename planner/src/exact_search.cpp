@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "ccbuild/common/input_error.hpp"
 #include "search_internal.hpp"
@@ -234,51 +235,58 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
   double best_cost = eval.cost();
   if (settings.on_better) settings.on_better(0, best_cost);
   const std::size_t movable = n - fixed_prefix;
+  // A double bridge on the movable part: two adjacent blocks [start, start + first) and
+  // the `second` steps after it, to be swapped; none when they do not fit.
+  struct Bridge {
+    std::size_t start, first, second;
+  };
+  auto pick_bridge = [&]() -> std::optional<Bridge> {
+    const std::size_t cap = std::max<std::size_t>(1, std::min<std::size_t>(movable / 3, 8));
+    const std::size_t first = 1 + rng() % cap, second = 1 + rng() % cap;
+    if (first + second > movable) return std::nullopt;
+    return Bridge{fixed_prefix + rng() % (movable - first - second + 1), first, second};
+  };
+  // Keeps the current sequence when no slower than the best (equal too: walk along
+  // plateaus); says whether it was kept.
+  auto keep_if_no_slower = [&](long kicks) {
+    if (eval.cost() > best_cost + 1e-9) return false;
+    const bool faster = eval.cost() < best_cost - 1e-9;
+    best = eval.current();
+    best_cost = std::min(best_cost, eval.cost());
+    if (faster && settings.on_better) settings.on_better(kicks, best_cost);
+    return true;
+  };
   for (long kick = 0; kick < settings.max_kicks && movable >= 4 && !out_of_budget(); ++kick) {
     if (settings.local_kicks) {
-      // Swap two adjacent short blocks, maybe reversing one, take it whatever it costs,
-      // and descend around it; back to the best sequence when that ends slower.
-      const std::size_t cap = std::max<std::size_t>(1, std::min<std::size_t>(movable / 3, 8));
-      const std::size_t l1 = 1 + rng() % cap, l2 = 1 + rng() % cap;
-      if (l1 + l2 > movable) continue;
-      const std::size_t start = fixed_prefix + rng() % (movable - l1 - l2 + 1);
-      move_block(work, start, l1, start + l2, rng() % 2 == 0);
-      eval.accept(work, start, start + l1 + l2);
+      // The bridge taken whatever it costs, then a descent around it alone; back to the
+      // best sequence when that ends slower.
+      const auto bridge = pick_bridge();
+      if (!bridge) continue;
+      const auto [start, first, second] = *bridge;
+      move_block(work, start, first, start + second, rng() % 2 == 0);
+      eval.accept(work, start, start + first + second);
       descend_around(std::max(fixed_prefix, start > window ? start - window : 0),
-                     std::min(n, start + l1 + l2 + window));
-      if (eval.cost() <= best_cost + 1e-9) {
-        const bool faster = eval.cost() < best_cost - 1e-9;
-        best = eval.current();
-        best_cost = std::min(best_cost, eval.cost());
-        if (faster && settings.on_better) settings.on_better(kick + 1, best_cost);
-      } else {
+                     std::min(n, start + first + second + window));
+      if (!keep_if_no_slower(kick + 1)) {
         eval.reset(best);
         work = best;
       }
       continue;
     }
     if (kick % 2 == 0) {
-      // Double bridge on the movable part: swap two adjacent blocks, maybe reversing one.
-      const std::size_t cap = std::max<std::size_t>(1, std::min<std::size_t>(movable / 3, 8));
-      const std::size_t l1 = 1 + rng() % cap, l2 = 1 + rng() % cap;
-      if (l1 + l2 > movable) continue;
-      const std::size_t start = fixed_prefix + rng() % (movable - l1 - l2 + 1);
-      eval.reset(moved_block(best, start, l1, start + l2, rng() % 2 == 0));
-      work = eval.current();
+      const auto bridge = pick_bridge();
+      if (!bridge) continue;
+      const auto [start, first, second] = *bridge;
+      eval.reset(moved_block(best, start, first, start + second, rng() % 2 == 0));
     } else {
       // Reverse a block of any length: reaches orders that small swaps cannot.
       const std::size_t i = fixed_prefix + rng() % movable;
       const std::size_t j = fixed_prefix + rng() % movable;
       eval.reset(reversed_block(best, std::min(i, j), std::max(i, j)));
-      work = eval.current();
     }
+    work = eval.current();
     descend();
-    if (eval.cost() <= best_cost + 1e-9) {  // equal too: walk along plateaus
-      const bool faster = eval.cost() < best_cost - 1e-9;
-      best = eval.current();
-      best_cost = std::min(best_cost, eval.cost());
-      if (faster && settings.on_better) settings.on_better(kick + 1, best_cost);
-    }
+    keep_if_no_slower(kick + 1);
   }
   return best;
 }

@@ -96,8 +96,8 @@ struct Solved {
   StopReason reason = StopReason::kFinished;
 };
 
-// `proof_m`: an airtime distance no longer than this is optimal (the lower bound plus
-// its rounding, LayerBound::rounding_m); the distance objective stops there.
+// `proof_m`: an airtime distance no longer than this is optimal (LayerBound::proof_m);
+// the distance objective stops there.
 Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOptions& options,
                     double proof_m, const StopCondition& stop) {
   const auto& layer = model.layer();
@@ -283,7 +283,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
       break;
     }
     case Algorithm::kCcTsp: {
-      Solved solved = solve_cc_tsp(model, path, options, bound.distance_m + bound.rounding_m, stop);
+      Solved solved = solve_cc_tsp(model, path, options, bound.proof_m(), stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
       plan.stop = solved.reason;
@@ -295,8 +295,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
       // no time.
       PlanOptions warm_start = options;
       warm_start.anytime = false;
-      Solved solved =
-          solve_cc_tsp(model, path, warm_start, bound.distance_m + bound.rounding_m, stop);
+      Solved solved = solve_cc_tsp(model, path, warm_start, bound.proof_m(), stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
       const double upper = detail::exact_objective(model, plan.sequence, path, options.objective);
@@ -313,7 +312,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   if (options.waypoints)
     plan.waypoints = waypoints_of(model, plan.sequence, path, plan.evaluation, layer.z_top_m);
   if (options.objective == Objective::kDistance &&
-      plan.evaluation.airtime_distance_m <= bound.distance_m + bound.rounding_m + 1e-9)
+      plan.evaluation.airtime_distance_m <= bound.proof_m() + 1e-9)
     plan.stop = StopReason::kProvenOptimal;
   plan.solve_s = stop.elapsed_s();
   return plan;

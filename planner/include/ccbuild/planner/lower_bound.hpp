@@ -127,6 +127,8 @@ struct LayerBound {
   /// bound keeps a margin of about 1e-9 of its value for floating-point sums. A tour no
   /// longer than distance_m + rounding_m is optimal to within rounding_m.
   double rounding_m = 0.0;
+  /// An airtime distance no longer than this is optimal to within rounding_m, m.
+  double proof_m() const { return distance_m + rounding_m; }
   /// Terminal points used (layer point indices; -2 for an open path's start when it is
   /// not a layer point) and their matching, for constructing a tour from it.
   std::vector<int> terminals;
