@@ -12,8 +12,14 @@ std::pair<int, int> edge(int u, int v) {
 }
 }  // namespace
 
-LinKernighan::LinKernighan(const TourCosts& costs, WallTour& tour, int max_depth)
-    : costs_(costs), tour_(tour), max_depth_(max_depth), queue_(tour.size()) {}
+LinKernighan::LinKernighan(const TourCosts& costs, WallTour& tour, int max_depth,
+                           int short_flip_items)
+    : costs_(costs),
+      tour_(tour),
+      view_(tour),
+      max_depth_(max_depth),
+      short_flip_items_(short_flip_items),
+      queue_(tour.size()) {}
 
 double LinKernighan::run(const StopCondition& stop) {
   double total = 0.0;
@@ -33,33 +39,8 @@ double LinKernighan::run(const StopCondition& stop) {
   return total;
 }
 
-bool LinKernighan::is_entry(int node) const {
-  // A wall is entered at its start node (even) unless it is reversed (WallTour::entry);
-  // no position lookup needed.
-  return (node & 1) == (tour_.reversed(node / 2) ? 1 : 0);
-}
-
-int LinKernighan::suc(int node) const {
-  const int p = tour_.position_of(node / 2);
-  return is_entry(node) ? tour_.exit(p) : tour_.entry(tour_.next(p));
-}
-
-int LinKernighan::pred(int node) const {
-  const int p = tour_.position_of(node / 2);
-  return is_entry(node) ? tour_.exit(tour_.prev(p)) : tour_.entry(p);
-}
-
-int LinKernighan::free_neighbour(int node) const {
-  return is_entry(node) ? pred(node) : suc(node);
-}
-
-int LinKernighan::index(int node) const {
-  return 2 * tour_.position_of(node / 2) + (is_entry(node) ? 0 : 1);
-}
-
-bool LinKernighan::between(bool forwards, int a, int b, int c) const {
-  const int n = 2 * tour_.size();
-  const int ia = index(a), ib = index(b), ic = index(c);
+bool LinKernighan::between(bool forwards, int ia, int ib, int ic) const {
+  const int n = 2 * view_.size();
   if (forwards) return (ib - ia + n) % n <= (ic - ia + n) % n;
   return (ia - ib + n) % n <= (ia - ic + n) % n;
 }
@@ -67,21 +48,43 @@ bool LinKernighan::between(bool forwards, int a, int b, int c) const {
 void LinKernighan::make_2opt(int a, int b, int c, int d) {
   // Walking a, b, ..., d, c one way round; b .. d are whole items (b enters its item, d
   // leaves its own), so reversing their positions keeps every fixed edge.
-  if (suc(a) == b)
-    tour_.reverse(tour_.position_of(b / 2), tour_.position_of(d / 2));
+  const int n = view_.size();
+  int first = view_.place(b / 2).position, last = view_.place(d / 2).position;
+  if (suc(spot(a)) != b) std::swap(first, last);
+  const int length = (last - first + n) % n + 1;
+  // A short flip is made on the WallTour at once (and undone there if the chain fails);
+  // from the first long one on, the chain's flips go to the view.
+  if (view_.runs() == 1 && std::min(length, n - length) <= short_flip_items_) {
+    tour_.reverse(first, last);
+    tour_flips_.push_back({a, b, c, d});
+  } else {
+    view_.reverse(first, last);
+    view_flips_.push_back({a, b, c, d});
+  }
+}
+
+void LinKernighan::flip_on_tour(int a, int b, int d) {
+  // With the view reset, it reads the WallTour.
+  const int pb = tour_.position_of(b / 2), pd = tour_.position_of(d / 2);
+  if (suc(spot(a)) == b)
+    tour_.reverse(pb, pd);
   else
-    tour_.reverse(tour_.position_of(d / 2), tour_.position_of(b / 2));
-  flips_.push_back({a, b, c, d});
+    tour_.reverse(pd, pb);
 }
 
 void LinKernighan::undo_chain() {
-  // The inverse of make_2opt(a, b, c, d) is make_2opt(c, b, a, d).
-  while (!flips_.empty()) {
-    const Flip f = flips_.back();
-    flips_.pop_back();
-    make_2opt(f.c, f.b, f.a, f.d);
-    flips_.pop_back();
-  }
+  view_.reset();
+  view_flips_.clear();
+  // The inverse of the flip for (a, b, c, d) is the flip for (c, b, a, d).
+  for (auto f = tour_flips_.rbegin(); f != tour_flips_.rend(); ++f) flip_on_tour(f->c, f->b, f->d);
+  tour_flips_.clear();
+}
+
+void LinKernighan::commit_chain() {
+  view_.reset();
+  for (const Flip& f : view_flips_) flip_on_tour(f.a, f.b, f.d);
+  view_flips_.clear();
+  tour_flips_.clear();
 }
 
 bool LinKernighan::was_added(int u, int v) const {
@@ -94,8 +97,7 @@ bool LinKernighan::was_removed(int u, int v) const {
 
 bool LinKernighan::improve_from(int t1, double& gain) {
   if (tour_.size() < 3) return false;
-  int t2 = free_neighbour(t1);
-  flips_.clear();
+  int t2 = free_neighbour(spot(t1));
   added_.clear();
   removed_.assign(1, edge(t1, t2));
   touched_.assign({t1, t2});
@@ -103,6 +105,7 @@ bool LinKernighan::improve_from(int t1, double& gain) {
   for (int depth = 0; depth < max_depth_; ++depth) {
     const Step step = best_step(t1, t2, open_gain, depth + 1 == max_depth_);
     if (step.improved) {
+      commit_chain();
       gain = step.gain;
       return true;
     }
@@ -116,9 +119,11 @@ bool LinKernighan::improve_from(int t1, double& gain) {
 
 LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain, bool last) {
   // Orientation: walking "forwards" means from t1 to t2. S and P follow it.
-  const bool forwards = suc(t1) == t2;
-  auto S = [&](int x) { return forwards ? suc(x) : pred(x); };
-  auto P = [&](int x) { return forwards ? pred(x) : suc(x); };
+  // Each node's place in the view is looked up once (a lookup walks the chain's runs).
+  const bool forwards = suc(spot(t1)) == t2;
+  auto S = [&](const Spot& x) { return forwards ? suc(x) : pred(x); };
+  auto P = [&](const Spot& x) { return forwards ? pred(x) : suc(x); };
+  const int i2 = index(spot(t2));
   Step out;
   double best_open = kEps;
   int best[4] = {-1, -1, -1, -1};  // t3, t4, t5, t6 of the best open step (t5 < 0: 2-opt)
@@ -126,7 +131,7 @@ LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain, boo
   auto finish = [&](int t3, int t4, int t5, int t6) {
     if (t5 < 0) {
       make_2opt(t1, t2, t3, t4);
-    } else if (S(t5) == t6) {
+    } else if (S(spot(t5)) == t6) {
       // t1 t2 A t5 t6 B t3 t4 C  ->  t1 t6 B t3 t2 A t5 t4 C
       make_2opt(t1, t2, t6, t5);
       make_2opt(t1, t5, t4, t3);
@@ -150,8 +155,9 @@ LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain, boo
     const double g1 = open_gain - c(t2, t3);
     if (g1 <= kEps) break;  // candidates come cheapest first
     if (t3 / 2 == t2 / 2 || t3 == t1 || was_removed(t2, t3)) continue;
+    const Spot s3 = spot(t3);
     for (int kind = 0; kind < 2; ++kind) {
-      const int t4 = kind == 0 ? P(t3) : S(t3);
+      const int t4 = kind == 0 ? P(s3) : S(s3);
       if (t4 / 2 == t3 / 2 || was_added(t3, t4)) continue;  // fixed or new edge
       const double g2 = g1 + c(t3, t4);
       if (kind == 0) {
@@ -174,10 +180,10 @@ LinKernighan::Step LinKernighan::best_step(int t1, int t2, double open_gain, boo
       for (int t5 : costs_.neighbours(t4)) {
         const double g3 = g2 - c(t4, t5);
         if (g3 <= kEps) break;
-        if (t5 == t2 || t5 == t3 || t5 / 2 == t4 / 2 || !between(forwards, t2, t5, t3) ||
-            was_removed(t4, t5))
-          continue;
-        const int t6 = free_neighbour(t5);
+        if (t5 == t2 || t5 == t3 || t5 / 2 == t4 / 2 || was_removed(t4, t5)) continue;
+        const Spot s5 = spot(t5);
+        if (!between(forwards, i2, index(s5), index(s3))) continue;
+        const int t6 = free_neighbour(s5);
         if (was_added(t5, t6)) continue;
         const double g4 = g3 + c(t5, t6);
         const double closed = g4 - c(t6, t1);

@@ -3,6 +3,8 @@
 
 #include "lin_kernighan.hpp"
 
+#include "flipped_tour.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -119,6 +121,87 @@ TEST(WallTour, ReversalMatchesAListModel) {
       tour.reverse(first, (first + length - 1) % items);
       ASSERT_TRUE(visits_every_item_once(tour)) << items << " " << round;
       ASSERT_EQ(air_moves(tour), air_moves(list)) << items << " " << round;
+    }
+  }
+}
+
+/// Free edges of a walk given by the entry node at each position, as unordered pairs.
+std::vector<std::pair<int, int>> air_moves(const std::vector<int>& entries) {
+  std::vector<std::pair<int, int>> out;
+  const int n = static_cast<int>(entries.size());
+  for (int p = 0; p < n; ++p) {
+    const int a = entries[p] ^ 1, b = entries[(p + 1) % n];
+    out.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The view a chain's long flips go to gives the tour a list model gives, whichever side
+// it reverses (a range that wraps, a single item, the whole tour), and finds each item
+// where it puts it; it never touches the tour under it, and a reset returns to it.
+TEST(FlippedTour, ReversalsMatchAListModel) {
+  std::mt19937_64 rng(7);
+  for (int items : {2, 3, 4, 5, 8, 13, 40}) {
+    const WallTour tour = random_tour(items, static_cast<std::uint64_t>(items) + 100);
+    std::vector<int> base(items);
+    for (int p = 0; p < items; ++p) base[p] = tour.entry(p);
+    FlippedTour view(tour);
+    for (int round = 0; round < 200; ++round) {
+      if (round % 12 == 0) view.reset();
+      // The model reverses the view's walk as it is now, position for position.
+      std::vector<int> before(items);
+      for (int p = 0; p < items; ++p) before[p] = view.entry(p);
+      std::vector<int> model = before;
+      const int first = static_cast<int>(rng() % items);
+      const int length = 1 + static_cast<int>(rng() % items);
+      for (int k = 0; k < length; ++k)
+        model[(first + k) % items] = before[(first + length - 1 - k) % items] ^ 1;
+      view.reverse(first, (first + length - 1) % items);
+      std::vector<int> walked(items);
+      for (int p = 0; p < items; ++p) {
+        walked[p] = view.entry(p);
+        const FlippedTour::Place at = view.place(walked[p] / 2);
+        ASSERT_EQ(at.position, p) << items << " " << round;
+        ASSERT_EQ(at.entry, walked[p]) << items << " " << round;
+      }
+      ASSERT_EQ(air_moves(walked), air_moves(model)) << items << " " << round;
+      ASSERT_LE(view.runs(), 1 + 2 * (round % 12 + 1)) << items << " " << round;
+    }
+    for (int p = 0; p < items; ++p) ASSERT_EQ(tour.entry(p), base[p]) << items;
+    view.reset();
+    for (int p = 0; p < items; ++p) ASSERT_EQ(view.entry(p), base[p]) << items;
+  }
+}
+
+// Where a chain's flips are made is only speed: every flip in the view, every flip on
+// the tour, or the first few on the tour and the rest in the view, the search makes the
+// same moves and ends in the same tour, position for position, with the same gain.
+TEST(LinKernighan, ChainsInTheViewEndInTheSameTour) {
+  const machine::MachineModel machine = testing::simple_machine();
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const floors::Layer layer = seed % 2 ? testing::random_layer(60, seed)
+                                         : testing::floor_plan_layer(12 + int(seed), seed);
+    const CostModel model(layer, machine, Metric::kEuclidean);
+    std::vector<int> segments(layer.segments.size());
+    std::iota(segments.begin(), segments.end(), 0);
+    TourCosts costs(model, segments, Objective::kDistance, false, Vec2::Zero(), std::nullopt);
+    costs.build_neighbours(8);
+    std::vector<std::vector<int>> ends;
+    std::vector<double> gains;
+    for (int short_flip_items : {1'000'000, 0, 3}) {
+      WallTour tour = random_tour(costs.item_count(), seed);
+      LinKernighan search(costs, tour, 10, short_flip_items);
+      for (int item = 0; item < tour.size(); ++item) search.push(item);
+      gains.push_back(search.run(StopCondition()));
+      ASSERT_TRUE(visits_every_item_once(tour)) << seed << " " << short_flip_items;
+      ends.emplace_back(tour.size());
+      for (int p = 0; p < tour.size(); ++p) ends.back()[p] = tour.entry(p);
+    }
+    EXPECT_GT(gains[0], 0.0) << seed;
+    for (std::size_t k = 1; k < ends.size(); ++k) {
+      EXPECT_EQ(ends[k], ends[0]) << seed << " " << k;
+      EXPECT_EQ(gains[k], gains[0]) << seed << " " << k;
     }
   }
 }
