@@ -177,6 +177,10 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
     reverse_block(work, 0, n - 1);
     return try_work(0, n);
   };
+  // The first position a move from position i may reach back to.
+  auto window_start = [&](std::size_t i) {
+    return std::max(fixed_prefix, i > window ? i - window : 0);
+  };
   // 2-opt and Or-opt moves that change the sequence from position i on.
   auto try_at = [&](std::size_t i) {
     for (std::size_t j = i; j < std::min(n, i + window); ++j) {
@@ -184,7 +188,7 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
       if (try_work(i, j + 1)) return true;
     }
     for (std::size_t length = 1; length <= 3 && i + length <= n; ++length) {
-      const std::size_t lo = std::max(fixed_prefix, i > window ? i - window : 0);
+      const std::size_t lo = window_start(i);
       const std::size_t hi = std::min(n - length, i + window);
       for (std::size_t to = lo; to <= hi; ++to) {
         if (to == i) continue;
@@ -224,7 +228,7 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
       for (std::size_t i = lo; i < hi && !out_of_budget(); ++i) {
         if (!try_at(i)) continue;
         again = true;
-        lo = std::min(lo, std::max(fixed_prefix, i > window ? i - window : 0));
+        lo = std::min(lo, window_start(i));
         hi = std::max(hi, std::min(n, i + window + 1));
       }
     }
@@ -265,8 +269,7 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
       const auto [start, first, second] = *bridge;
       move_block(work, start, first, start + second, rng() % 2 == 0);
       eval.accept(work, start, start + first + second);
-      descend_around(std::max(fixed_prefix, start > window ? start - window : 0),
-                     std::min(n, start + first + second + window));
+      descend_around(window_start(start), std::min(n, start + first + second + window));
       if (!keep_if_no_slower(kick + 1)) {
         eval.reset(best);
         work = best;

@@ -45,12 +45,17 @@ bool LinKernighan::between(bool forwards, int ia, int ib, int ic) const {
   return (ia - ib + n) % n <= (ia - ic + n) % n;
 }
 
-void LinKernighan::make_2opt(int a, int b, int c, int d) {
+std::pair<int, int> LinKernighan::flip_range(int a, int b, int d) const {
   // Walking a, b, ..., d, c one way round; b .. d are whole items (b enters its item, d
   // leaves its own), so reversing their positions keeps every fixed edge.
-  const int n = view_.size();
   int first = view_.place(b / 2).position, last = view_.place(d / 2).position;
   if (suc(spot(a)) != b) std::swap(first, last);
+  return {first, last};
+}
+
+void LinKernighan::make_2opt(int a, int b, int c, int d) {
+  const auto [first, last] = flip_range(a, b, d);
+  const int n = view_.size();
   const int length = (last - first + n) % n + 1;
   // A short flip is made on the WallTour at once (and undone there if the chain fails);
   // from the first long one on, the chain's flips go to the view.
@@ -64,12 +69,9 @@ void LinKernighan::make_2opt(int a, int b, int c, int d) {
 }
 
 void LinKernighan::flip_on_tour(int a, int b, int d) {
-  // With the view reset, it reads the WallTour.
-  const int pb = tour_.position_of(b / 2), pd = tour_.position_of(d / 2);
-  if (suc(spot(a)) == b)
-    tour_.reverse(pb, pd);
-  else
-    tour_.reverse(pd, pb);
+  // With the view reset, its positions are the WallTour's.
+  const auto [first, last] = flip_range(a, b, d);
+  tour_.reverse(first, last);
 }
 
 void LinKernighan::undo_chain() {

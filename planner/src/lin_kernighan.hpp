@@ -77,6 +77,8 @@ class LinKernighan {
   /// walking forwards or backwards.
   bool between(bool forwards, int ia, int ib, int ic) const;
 
+  /// The view positions first .. last that the flip for (a, b, ., d) reverses.
+  std::pair<int, int> flip_range(int a, int b, int d) const;
   /// Removes (a, b) and (c, d), adds (b, c) and (d, a): on the WallTour while the chain's
   /// flips are short, else in the view. Needs the walk a, b, ..., d, c in one of the two
   /// directions; reverses b .. d.

@@ -81,14 +81,35 @@ TEST(LinKernighan, GainsAreExactAndNoCandidateTwoOptIsLeft) {
   }
 }
 
-/// The tour's air moves as unordered node pairs: the same for a tour walked either way.
-std::vector<std::pair<int, int>> air_moves(const WallTour& tour) {
+/// The entry node at each position of a walk.
+std::vector<int> entries_of(const WallTour& tour) {
+  std::vector<int> entries(tour.size());
+  for (int p = 0; p < tour.size(); ++p) entries[p] = tour.entry(p);
+  return entries;
+}
+
+/// A walk's air moves (by its entry node at each position) as unordered node pairs: the
+/// same for a tour walked either way.
+std::vector<std::pair<int, int>> air_moves(const std::vector<int>& entries) {
   std::vector<std::pair<int, int>> out;
-  for (int p = 0; p < tour.size(); ++p) {
-    const int a = tour.exit(p), b = tour.entry(tour.next(p));
+  const int n = static_cast<int>(entries.size());
+  for (int p = 0; p < n; ++p) {
+    const int a = entries[p] ^ 1, b = entries[(p + 1) % n];
     out.emplace_back(std::min(a, b), std::max(a, b));
   }
   std::sort(out.begin(), out.end());
+  return out;
+}
+std::vector<std::pair<int, int>> air_moves(const WallTour& tour) {
+  return air_moves(entries_of(tour));
+}
+
+/// The list model of a reversal: the `length` positions from `first` (cyclic) in the
+/// other order, each item turned round.
+std::vector<int> reversed_walk(const std::vector<int>& entries, int first, int length) {
+  const int n = static_cast<int>(entries.size());
+  std::vector<int> out = entries;
+  for (int k = 0; k < length; ++k) out[(first + k) % n] = entries[(first + length - 1 - k) % n] ^ 1;
   return out;
 }
 
@@ -100,13 +121,9 @@ TEST(WallTour, ReversalMatchesAListModel) {
   for (int items : {2, 3, 4, 5, 8, 13}) {
     WallTour tour = random_tour(items, static_cast<std::uint64_t>(items));
     for (int round = 0; round < 300; ++round) {
-      std::vector<int> model(items);  // entry nodes by position
-      for (int p = 0; p < items; ++p) model[p] = tour.entry(p);
       const int first = static_cast<int>(rng() % items);
       const int length = 1 + static_cast<int>(rng() % items);  // the whole tour too
-      std::vector<int> flipped = model;
-      for (int k = 0; k < length; ++k)
-        flipped[(first + k) % items] = model[(first + length - 1 - k) % items] ^ 1;
+      const std::vector<int> flipped = reversed_walk(entries_of(tour), first, length);
       const WallTour list(
           [&] {
             std::vector<int> order;
@@ -125,18 +142,6 @@ TEST(WallTour, ReversalMatchesAListModel) {
   }
 }
 
-/// Free edges of a walk given by the entry node at each position, as unordered pairs.
-std::vector<std::pair<int, int>> air_moves(const std::vector<int>& entries) {
-  std::vector<std::pair<int, int>> out;
-  const int n = static_cast<int>(entries.size());
-  for (int p = 0; p < n; ++p) {
-    const int a = entries[p] ^ 1, b = entries[(p + 1) % n];
-    out.emplace_back(std::min(a, b), std::max(a, b));
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 // The view a chain's long flips go to gives the tour a list model gives, whichever side
 // it reverses (a range that wraps, a single item, the whole tour), and finds each item
 // where it puts it; it never touches the tour under it, and a reset returns to it.
@@ -144,19 +149,16 @@ TEST(FlippedTour, ReversalsMatchAListModel) {
   std::mt19937_64 rng(7);
   for (int items : {2, 3, 4, 5, 8, 13, 40}) {
     const WallTour tour = random_tour(items, static_cast<std::uint64_t>(items) + 100);
-    std::vector<int> base(items);
-    for (int p = 0; p < items; ++p) base[p] = tour.entry(p);
+    const std::vector<int> base = entries_of(tour);
     FlippedTour view(tour);
     for (int round = 0; round < 200; ++round) {
       if (round % 12 == 0) view.reset();
       // The model reverses the view's walk as it is now, position for position.
       std::vector<int> before(items);
       for (int p = 0; p < items; ++p) before[p] = view.entry(p);
-      std::vector<int> model = before;
       const int first = static_cast<int>(rng() % items);
       const int length = 1 + static_cast<int>(rng() % items);
-      for (int k = 0; k < length; ++k)
-        model[(first + k) % items] = before[(first + length - 1 - k) % items] ^ 1;
+      const std::vector<int> model = reversed_walk(before, first, length);
       view.reverse(first, (first + length - 1) % items);
       std::vector<int> walked(items);
       for (int p = 0; p < items; ++p) {
@@ -197,8 +199,7 @@ TEST(LinKernighan, ChainsInTheViewEndInTheSameTour) {
       // "improving" (the ends then differ).
       gains.push_back(search.run(StopCondition(5.0)));
       ASSERT_TRUE(visits_every_item_once(tour)) << seed << " " << short_flip_items;
-      ends.emplace_back(tour.size());
-      for (int p = 0; p < tour.size(); ++p) ends.back()[p] = tour.entry(p);
+      ends.push_back(entries_of(tour));
     }
     EXPECT_GT(gains[0], 0.0) << seed;
     for (std::size_t k = 1; k < ends.size(); ++k) {
