@@ -7,6 +7,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "item_queue.hpp"
 #include "lin_kernighan.hpp"
+#include "tour_merge.hpp"
 
 namespace ccbuild::planner::detail {
 
@@ -413,6 +414,52 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       break;
     }
     if (since_improvement >= settings.stall_kicks) break;
+    if (settings.restart_stall_kicks > 0 && since_improvement >= settings.restart_stall_kicks) {
+      since_improvement = 0;
+      // Counted as one kick plus the restart's own, so that a run stopped by the clock
+      // after K kicks is still the run of max_kicks = K.
+      const long left = settings.max_kicks - out.kicks - 1;
+      if (left <= 0) continue;  // the last kick: a restart would have none of its own
+      CCBUILD_CHECK(static_cast<bool>(settings.restart_tour), "restarts have a first tour");
+      SearchSettings own = settings;
+      own.restart_stall_kicks = 0;
+      own.max_kicks = std::min(settings.restart_kicks, left);
+      own.stall_kicks = settings.restart_stall_kicks;
+      own.on_better = nullptr;
+      own.seed = rng();
+      const SearchOutcome other =
+          chained_local_search(costs, settings.restart_tour(rng), own, stop);
+      const bool cut =
+          other.reason == StopReason::kTimeLimit || other.reason == StopReason::kCancelled;
+      if (cut && other.kicks == 0) {  // its first descent may be unfinished: not replayable
+        out.kicks += 1;
+        out.reason = other.reason;
+        break;
+      }
+      ++out.restarts;
+      kicked.clear();
+      double gain = 0.0;
+      if (other.cost < best - 1e-9) {
+        gain = best - other.cost;
+        tour = other.tour;
+      } else {
+        gain = merge_tours(costs, tour, other.tour, kicked);
+      }
+      if (gain > 0.0) {
+        current = best - gain;
+        current -= descend(kicked, never);
+        out.restart_gain += best - current;
+        best = current;
+        if (settings.on_better) settings.on_better(out.kicks + 1 + other.kicks, best);
+      }
+      out.kicks += other.kicks;
+      if (cut) {
+        out.kicks += 1;
+        out.reason = other.reason;
+        break;
+      }
+      continue;
+    }
     // The tour is the best so far; a kick that makes it longer is undone from the
     // journal of what it changed (not by copying the whole tour back).
     tour.begin_journal();

@@ -130,6 +130,13 @@ struct SearchSettings {
   bool two_opt_before_lk = false;
   long max_kicks = 0;
   long stall_kicks = 0;  ///< stop after this many kicks without improvement
+  /// After this many kicks in a row without a better tour, a restart: a search of its
+  /// own from `restart_tour` (at most `restart_kicks` kicks, and as many without a
+  /// better tour as this), whose better parts are then merged into the best tour
+  /// (tour_merge.hpp). A restart counts as one kick plus its own. 0: never.
+  long restart_stall_kicks = 0;
+  long restart_kicks = 0;
+  std::function<WallTour(std::mt19937_64&)> restart_tour;
   std::uint64_t seed = 1;
   /// Stop as soon as the cost reaches this (a lower bound), when set.
   std::optional<double> target_cost;
@@ -142,6 +149,8 @@ struct SearchOutcome {
   double cost = 0.0;
   long kicks = 0;
   StopReason reason = StopReason::kConverged;
+  long restarts = 0;          ///< restarts finished
+  double restart_gain = 0.0;  ///< what merging them (and the descents after) gained
 };
 
 /// Chained local search: 2-opt and Or-opt (blocks of 1-3 items) driven by neighbour
@@ -155,8 +164,12 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
 /// An initial tour: the T-join of odd points (minimum matching), components joined by
 /// doubled shortest links, then an Euler walk whose choices follow the current heading.
 /// `segments` and the path are as in TourCosts.
+/// With `variation`, another start for a restart: the odd points are matched as if each
+/// lay up to 10 cm off (so matchings of nearly equal cost come out otherwise) and each
+/// point's next wall is drawn at random (so the walls meeting at a point join otherwise).
 Sequence euler_construction(const CostModel& model, const std::vector<int>& segments, bool open,
-                            const Vec2& start, std::optional<Vec2> start_heading);
+                            const Vec2& start, std::optional<Vec2> start_heading,
+                            std::mt19937_64* variation = nullptr);
 
 /// Tour <-> sequence, for the items of `costs`.
 WallTour tour_from_sequence(const TourCosts& costs, const Sequence& sequence);

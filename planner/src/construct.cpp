@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <random>
 
 #include "cc_tsp.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -19,10 +20,16 @@ struct Edge {
   int segment = -1;  // -1: an air move
 };
 
+/// How far a varied walk moves each odd point before matching, metres. On ten 1,000-wall
+/// floor plans 0.1 m gained the restarts most: 0.095% against 0.028% for 0.03 m and 0.037%
+/// for 0.3 m (bench/README.md); it is a tenth of a door.
+constexpr double kVariationShift_m = 0.1;
+
 }  // namespace
 
 Sequence euler_construction(const CostModel& model, const std::vector<int>& segments, bool open,
-                            const Vec2& start, std::optional<Vec2> start_heading) {
+                            const Vec2& start, std::optional<Vec2> start_heading,
+                            std::mt19937_64* variation) {
   if (segments.empty()) return {};
   const auto& layer = model.layer();
   std::vector<Vec2> location(layer.points.begin(), layer.points.end());
@@ -57,6 +64,10 @@ Sequence euler_construction(const CostModel& model, const std::vector<int>& segm
     if (odd) {
       terminals.push_back(p);
       terminal_points.push_back(location[p]);
+      if (variation) {
+        std::uniform_real_distribution<double> shift(-kVariationShift_m, kVariationShift_m);
+        terminal_points.back() += Vec2(shift(*variation), shift(*variation));
+      }
     }
   }
   const MatchingBound matching = min_weight_matching(terminal_points, model.metric(), open);
@@ -149,7 +160,9 @@ Sequence euler_construction(const CostModel& model, const std::vector<int>& segm
       const Edge& edge = edges[e];
       const int w = edge.a == v ? edge.b : edge.a;
       double score = edge.segment >= 0 ? 0.0 : 10.0;  // walls first
-      if (heading && edge.segment >= 0) {
+      if (variation) {
+        score += std::uniform_real_distribution<double>(0.0, 1.0)(*variation);
+      } else if (heading && edge.segment >= 0) {
         const Vec2 d = (location[w] - location[v]).normalized();
         score += std::acos(std::clamp(heading->dot(d), -1.0, 1.0));
       }

@@ -139,22 +139,35 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   // them until the limit left no time for the polish (on a 1,000-wall plan 2,419 s of
   // airtime after a 3 s limit, against 1,797 s on the default budget).
   const bool anytime_polish = options.anytime && options.objective == Objective::kTime;
-  if (options.max_kicks) {
-    settings.max_kicks = settings.stall_kicks = *options.max_kicks;
-  } else if (options.anytime && !anytime_polish) {
-    settings.max_kicks = settings.stall_kicks = std::numeric_limits<long>::max();
-  } else {
-    settings.max_kicks = 2000 + 60 * items;
-    settings.stall_kicks = 1000 + 20 * items;
-    // LK: kicks are local, so the work grows with the layer, but past ~1,000
-    // walls LK finds with fewer kicks what more would (on 5,000-wall plans 0.03% shorter
-    // than the 2-opt/Or-opt search with its ~300,000, in about half its time; the cap
-    // trades time for length smoothly, bench/README.md). The time objective uses LK on
-    // layers of at most 200 walls only, whose budget is under the caps.
-    if (settings.neighbourhood == Neighbourhood::kLinKernighan) {
-      settings.max_kicks = std::min(settings.max_kicks, kLinKernighanMaxKicks);
-      settings.stall_kicks = std::min(settings.stall_kicks, kLinKernighanStallKicks);
+  // The default budget. LK: kicks are local, so the work grows with the layer, but past
+  // ~1,000 walls LK finds with fewer kicks what more would (on 5,000-wall plans 0.03%
+  // shorter than the 2-opt/Or-opt search with its ~300,000, in about half its time; the
+  // cap trades time for length smoothly, bench/README.md). The time objective uses LK on
+  // layers of at most 200 walls only, whose budget is under the caps.
+  long default_kicks = 2000 + 60 * items, default_stall_kicks = 1000 + 20 * items;
+  if (settings.neighbourhood == Neighbourhood::kLinKernighan) {
+    default_kicks = std::min(default_kicks, kLinKernighanMaxKicks);
+    default_stall_kicks = std::min(default_stall_kicks, kLinKernighanStallKicks);
+  }
+  if (options.max_kicks || (options.anytime && !anytime_polish)) {
+    settings.max_kicks = settings.stall_kicks =
+        options.max_kicks ? *options.max_kicks : std::numeric_limits<long>::max();
+    // With no stall rule, a search stalled for as long as the default budget allows
+    // restarts from a varied Euler walk, on the default budget, and merges what is better
+    // there into its best tour (docs/planning.md). Distance and LK only: the time
+    // objective's extra time goes to its polish.
+    if (options.objective == Objective::kDistance &&
+        settings.neighbourhood == Neighbourhood::kLinKernighan) {
+      settings.restart_kicks = default_kicks;
+      settings.restart_stall_kicks = default_stall_kicks;
+      settings.restart_tour = [&](std::mt19937_64& rng) {
+        return detail::tour_from_sequence(
+            costs, detail::euler_construction(model, rest, open, start, heading, &rng));
+      };
     }
+  } else {
+    settings.max_kicks = default_kicks;
+    settings.stall_kicks = default_stall_kicks;
   }
   if (options.on_progress)
     settings.on_better = [&](long kicks, double cost) {

@@ -416,8 +416,10 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
           ->add_option("--time-limit", o->time_limit_s,
                        "Search until this many seconds have passed, set-up included (anytime: "
                        "the answer is the best found, and depends on the machine's speed; "
-                       "--max-kicks with the kicks printed reproduces it). Not given: the "
-                       "search stops on its own budget (deterministic), within 30 s at most. "
+                       "--max-kicks with the kicks printed reproduces it; a search that stalls "
+                       "restarts from another first tour and merges in what is better there). "
+                       "Not given: the search stops on its own budget (deterministic), within "
+                       "30 s at most. "
                        "With --objective time the extra time goes to the exact-time "
                        "polish. With --nozzles or --algorithm exact: a cap on the whole run, "
                        "the heuristic searches on their own budgets")
@@ -428,8 +430,9 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
   command
       ->add_option("--max-kicks", o->max_kicks,
                    "Kicks of the chained search, exactly, unless the time limit or a proof of "
-                   "optimality comes first (default: a budget from the layer's size that "
-                   "ends early when kicks stop finding better tours; docs/planning.md)")
+                   "optimality comes first, restarts as with --time-limit (default: a budget "
+                   "from the layer's size that ends early when kicks stop finding better "
+                   "tours; docs/planning.md)")
       ->check(integer_in(0, 1000000000));
   command
       ->add_option("--neighbourhood", o->neighbourhood,
