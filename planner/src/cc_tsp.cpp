@@ -424,7 +424,7 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       SearchSettings own = settings;
       own.restart_stall_kicks = 0;
       own.max_kicks = std::min(settings.restart_kicks, left);
-      own.stall_kicks = settings.restart_stall_kicks;
+      own.stall_kicks = settings.restart_own_stall_kicks;
       own.on_better = nullptr;
       own.seed = rng();
       const SearchOutcome other =

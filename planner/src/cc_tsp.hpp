@@ -131,11 +131,13 @@ struct SearchSettings {
   long max_kicks = 0;
   long stall_kicks = 0;  ///< stop after this many kicks without improvement
   /// After this many kicks in a row without a better tour, a restart: a search of its
-  /// own from `restart_tour` (at most `restart_kicks` kicks, and as many without a
-  /// better tour as this), whose better parts are then merged into the best tour
-  /// (tour_merge.hpp). A restart counts as one kick plus its own. 0: never.
+  /// own from `restart_tour` (at most `restart_kicks` kicks, ending after
+  /// `restart_own_stall_kicks` without a better tour), whose better parts are then
+  /// merged into the best tour (tour_merge.hpp). A restart counts as one kick plus its
+  /// own. 0: never.
   long restart_stall_kicks = 0;
   long restart_kicks = 0;
+  long restart_own_stall_kicks = 0;
   std::function<WallTour(std::mt19937_64&)> restart_tour;
   std::uint64_t seed = 1;
   /// Stop as soon as the cost reaches this (a lower bound), when set.

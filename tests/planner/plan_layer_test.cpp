@@ -182,6 +182,24 @@ TEST(PlanLayer, AnAnytimeRunIsReproducedByItsKicks) {
   EXPECT_EQ(plan_layer(layer, testing::simple_machine(), replay).kicks, anytime.kicks - 1);
 }
 
+// A kick budget (like a time limit) has no stall rule, so a stalled search restarts from
+// varied Euler walks and merges what is better there (docs/planning.md): on this
+// 386-wall plan 30,000 kicks end 0.75% shorter than the same kicks without restarts,
+// where the default budget stops in the first basin.
+TEST(PlanLayer, AKickBudgetRestartsWhereTheSearchStalls) {
+  const floors::Layer layer = testing::floor_plan_layer(80, 3);
+  PlanOptions o;
+  o.waypoints = false;
+  o.bound = BoundKind::kMatching;
+  const LayerPlan by_default = plan_layer(layer, testing::simple_machine(), o);
+  ASSERT_EQ(by_default.stop, StopReason::kConverged);
+  o.max_kicks = 30000;
+  const LayerPlan budget = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_TRUE(covers_every_segment_once(budget.sequence, layer.segments.size()));
+  EXPECT_EQ(budget.kicks, 30000);
+  EXPECT_LT(budget.evaluation.airtime_distance_m, by_default.evaluation.airtime_distance_m - 1.0);
+}
+
 TEST(PlanLayer, TheDefaultBudgetEndsOnItsOwn) {
   const floors::Layer layer = testing::floor_plan_layer(60, 2);
   PlanOptions o;

@@ -52,6 +52,7 @@ struct Instance {
     if (restarts) {
       s.restart_kicks = 2000;
       s.restart_stall_kicks = 1000;
+      s.restart_own_stall_kicks = 1000;
       s.restart_tour = [this](std::mt19937_64& rng) { return euler(&rng); };
     }
     return chained_local_search(costs, std::move(start), s, stop);
