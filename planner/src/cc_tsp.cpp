@@ -453,6 +453,7 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
         if (settings.on_better) settings.on_better(out.kicks + 1 + other.kicks, best);
       }
       out.kicks += other.kicks;
+      out.kicks_in_restarts += other.kicks;
       if (cut) {
         out.kicks += 1;
         out.reason = other.reason;

@@ -151,8 +151,9 @@ struct SearchOutcome {
   double cost = 0.0;
   long kicks = 0;
   StopReason reason = StopReason::kConverged;
-  long restarts = 0;          ///< restarts finished
-  double restart_gain = 0.0;  ///< what merging them (and the descents after) gained
+  long restarts = 0;           ///< restarts finished
+  long kicks_in_restarts = 0;  ///< of `kicks`, those the restarts' own searches made
+  double restart_gain = 0.0;   ///< what merging them (and the descents after) gained
 };
 
 /// Chained local search: 2-opt and Or-opt (blocks of 1-3 items) driven by neighbour

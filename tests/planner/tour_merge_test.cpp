@@ -7,6 +7,7 @@
 
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "layouts.hpp"
 #include "test_support.hpp"
@@ -47,17 +48,32 @@ struct Instance {
   SearchOutcome search(WallTour start, long kicks, std::uint64_t seed, bool restarts,
                        const StopCondition& stop = StopCondition()) const {
     SearchSettings s;
-    s.max_kicks = s.stall_kicks = kicks;
-    s.seed = seed;
     if (restarts) {
       s.restart_kicks = 2000;
       s.restart_stall_kicks = 1000;
       s.restart_own_stall_kicks = 1000;
-      s.restart_tour = [this](std::mt19937_64& rng) { return euler(&rng); };
     }
+    return search(std::move(start), kicks, seed, s, stop);
+  }
+  SearchOutcome search(WallTour start, long kicks, std::uint64_t seed, SearchSettings s,
+                       const StopCondition& stop = StopCondition()) const {
+    s.max_kicks = s.stall_kicks = kicks;
+    s.seed = seed;
+    if (s.restart_stall_kicks > 0)
+      s.restart_tour = [this](std::mt19937_64& rng) { return euler(&rng); };
     return chained_local_search(costs, std::move(start), s, stop);
   }
 };
+
+WallTour random_tour(int items, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<int> order(items);
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<char> reversed(order.size());
+  for (char& r : reversed) r = static_cast<char>(rng() & 1);
+  return WallTour(order, reversed);
+}
 
 bool visits_every_item_once(const WallTour& tour) {
   std::vector<int> seen(tour.size(), 0);
@@ -66,35 +82,54 @@ bool visits_every_item_once(const WallTour& tour) {
   return true;
 }
 
-// Two local optima of the same layer, from differently varied first tours: the merged
-// tour is one tour through every wall, never longer, and cheaper by exactly the gain
-// reported. Across the layouts, cycles are kept, and some only after their pieces were
+// Merges `other` into `best` and checks the outcome: one tour through every wall, never
+// longer, cheaper by exactly the gain reported. Adds what the merge did to `all`.
+void check_merge(const Instance& in, WallTour best, const WallTour& other, MergeCounts& all,
+                 const std::string& what) {
+  const double before = best.cost(in.costs);
+  std::vector<int> touched;
+  MergeCounts counts;
+  const double gain = merge_tours(in.costs, best, other, touched, &counts);
+  ASSERT_TRUE(visits_every_item_once(best)) << what;
+  EXPECT_GE(gain, 0.0) << what;
+  EXPECT_NEAR(best.cost(in.costs), before - gain, 1e-6) << what;
+  EXPECT_LE(counts.kept, counts.cycles) << what;
+  EXPECT_EQ(gain > 0.0, counts.kept > 0) << what;
+  EXPECT_EQ(touched.empty(), counts.kept == 0) << what;
+  all.cycles += counts.cycles;
+  all.kept += counts.kept;
+  all.joins += counts.joins;
+}
+
+// Two local optima of the same layer, from differently varied first tours, as a restart
+// makes them; across the layouts cycles are kept, some only after their pieces were
 // joined again.
 TEST(TourMerge, AMergedTourIsOneTourCheaperByExactlyItsGain) {
   MergeCounts all;
-  double total_gain = 0.0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     const Instance in(testing::floor_plan_layer(40, seed));
     std::mt19937_64 rng(seed);
-    WallTour best = in.search(in.euler(), 20, seed, false).tour;
+    const WallTour best = in.search(in.euler(), 20, seed, false).tour;
     const WallTour other = in.search(in.euler(&rng), 20, seed + 100, false).tour;
-    const double before = best.cost(in.costs);
-    std::vector<int> touched;
-    MergeCounts counts;
-    const double gain = merge_tours(in.costs, best, other, touched, &counts);
-    ASSERT_TRUE(visits_every_item_once(best)) << seed;
-    EXPECT_GE(gain, 0.0) << seed;
-    EXPECT_NEAR(best.cost(in.costs), before - gain, 1e-6) << seed;
-    EXPECT_LE(counts.kept, counts.cycles) << seed;
-    EXPECT_EQ(gain > 0.0, counts.kept > 0) << seed;
-    EXPECT_EQ(touched.empty(), counts.kept == 0) << seed;
-    all.kept += counts.kept;
-    all.joins += counts.joins;
-    total_gain += gain;
+    check_merge(in, best, other, all, "seed " + std::to_string(seed));
   }
   EXPECT_GT(all.kept, 0);
   EXPECT_GT(all.joins, 0);
-  EXPECT_GT(total_gain, 1e-3);
+}
+
+// A random tour merged with a good one: many cheaper cycles, each leaving pieces, and
+// joins that take air moves of the cycles still to come; and the other way round.
+TEST(TourMerge, ARandomTourTakesManyCyclesFromAGoodOne) {
+  MergeCounts all;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const Instance in(testing::floor_plan_layer(40, seed));
+    const WallTour good = in.search(in.euler(), 200, seed, false).tour;
+    const WallTour bad = random_tour(in.costs.item_count(), seed);
+    check_merge(in, bad, good, all, "random into good, seed " + std::to_string(seed));
+    check_merge(in, good, bad, all, "good into random, seed " + std::to_string(seed));
+  }
+  EXPECT_GT(all.kept, 4);
+  EXPECT_GT(all.joins, 4);
 }
 
 TEST(TourMerge, ATourMergedWithItselfIsUnchanged) {
@@ -115,13 +150,7 @@ TEST(TourMerge, ATourMergedWithItselfIsUnchanged) {
 TEST(TourMerge, OfToursOneReversalApartTheBetterIsTaken) {
   const Instance in(testing::floor_plan_layer(10, 2));
   // A random tour: far from any local optimum, so improving reversals abound.
-  std::mt19937_64 rng(2);
-  std::vector<int> order(in.costs.item_count());
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), rng);
-  std::vector<char> reversed(order.size());
-  for (char& r : reversed) r = static_cast<char>(rng() & 1);
-  const WallTour start(order, reversed);
+  const WallTour start = random_tour(in.costs.item_count(), 2);
   int found = 0;
   for (int first = 1; first < start.size() && found < 5; ++first) {
     for (int last = first + 1; last + 1 < start.size() && found < 5; last += 3) {
@@ -176,14 +205,21 @@ TEST(Restarts, KeepAnOpenPathsStart) {
 }
 
 // A run with restarts stopped by its clock after K kicks is the run of max_kicks = K,
-// restarts and merges included (docs/planning.md, the stopping rule).
+// restarts and merges included (docs/planning.md, the stopping rule). Here the search
+// restarts after every kick that finds nothing, and a restart searches until its own
+// 5,000 kicks without a better tour: the clock stops it inside a restart.
 TEST(Restarts, ARunStoppedByTheClockIsReproducedByItsKicks) {
   const Instance in(testing::floor_plan_layer(40, 3));
-  const SearchOutcome timed = in.search(in.euler(), 1'000'000'000, 7, true, StopCondition(1.0));
+  SearchSettings s;
+  s.restart_stall_kicks = 1;
+  s.restart_kicks = 1'000'000'000;
+  s.restart_own_stall_kicks = 5000;
+  const SearchOutcome timed = in.search(in.euler(), 1'000'000'000, 7, s, StopCondition(1.0));
   ASSERT_EQ(timed.reason, StopReason::kTimeLimit);
   ASSERT_GT(timed.restarts, 0) << "no restart within 1 s: give it more time";
-  const SearchOutcome replay = in.search(in.euler(), timed.kicks, 7, true);
+  const SearchOutcome replay = in.search(in.euler(), timed.kicks, 7, s);
   EXPECT_EQ(replay.kicks, timed.kicks);
+  EXPECT_EQ(replay.kicks_in_restarts, timed.kicks_in_restarts);
   EXPECT_EQ(replay.restarts, timed.restarts);
   EXPECT_EQ(air_mates(replay.tour), air_mates(timed.tour));
 }
