@@ -404,6 +404,38 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
   long since_improvement = 0;
   const int max_block = std::max(1, std::min(50, n / 4));
   std::vector<int> kicked;
+  // A restart (SearchSettings::restart_stall_kicks) of at most `kicks` kicks: its own
+  // search, whose better parts are then merged into the best tour. Returns its outcome.
+  auto restart = [&](long kicks) {
+    CCBUILD_CHECK(static_cast<bool>(settings.restart_tour), "restarts have a first tour");
+    SearchSettings own = settings;
+    own.restart_stall_kicks = 0;
+    own.max_kicks = std::min(settings.restart_kicks, kicks);
+    own.stall_kicks = settings.restart_own_stall_kicks;
+    own.on_better = nullptr;
+    own.seed = rng();
+    SearchOutcome other = chained_local_search(costs, settings.restart_tour(rng), own, stop);
+    const bool cut =
+        other.reason == StopReason::kTimeLimit || other.reason == StopReason::kCancelled;
+    if (cut && other.kicks == 0) return other;  // its first descent may be unfinished
+    ++out.restarts;
+    kicked.clear();
+    double gain = 0.0;
+    if (other.cost < best - 1e-9) {
+      gain = best - other.cost;
+      tour = other.tour;
+    } else {
+      gain = merge_tours(costs, tour, other.tour, kicked);
+    }
+    if (gain > 0.0) {
+      current = best - gain;
+      current -= descend(kicked, never);
+      out.restart_gain += best - current;
+      best = current;
+      if (settings.on_better) settings.on_better(out.kicks + 1 + other.kicks, best);
+    }
+    return other;
+  };
   for (out.kicks = 0; n >= 5 && out.kicks < settings.max_kicks; ++out.kicks) {
     if (settings.target_cost && best <= *settings.target_cost + 1e-9) {
       out.reason = StopReason::kProvenOptimal;
@@ -420,41 +452,10 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       // after K kicks is still the run of max_kicks = K.
       const long left = settings.max_kicks - out.kicks - 1;
       if (left <= 0) continue;  // the last kick: a restart would have none of its own
-      CCBUILD_CHECK(static_cast<bool>(settings.restart_tour), "restarts have a first tour");
-      SearchSettings own = settings;
-      own.restart_stall_kicks = 0;
-      own.max_kicks = std::min(settings.restart_kicks, left);
-      own.stall_kicks = settings.restart_own_stall_kicks;
-      own.on_better = nullptr;
-      own.seed = rng();
-      const SearchOutcome other =
-          chained_local_search(costs, settings.restart_tour(rng), own, stop);
-      const bool cut =
-          other.reason == StopReason::kTimeLimit || other.reason == StopReason::kCancelled;
-      if (cut && other.kicks == 0) {  // its first descent may be unfinished: not replayable
-        out.kicks += 1;
-        out.reason = other.reason;
-        break;
-      }
-      ++out.restarts;
-      kicked.clear();
-      double gain = 0.0;
-      if (other.cost < best - 1e-9) {
-        gain = best - other.cost;
-        tour = other.tour;
-      } else {
-        gain = merge_tours(costs, tour, other.tour, kicked);
-      }
-      if (gain > 0.0) {
-        current = best - gain;
-        current -= descend(kicked, never);
-        out.restart_gain += best - current;
-        best = current;
-        if (settings.on_better) settings.on_better(out.kicks + 1 + other.kicks, best);
-      }
+      const SearchOutcome other = restart(left);
       out.kicks += other.kicks;
       out.kicks_in_restarts += other.kicks;
-      if (cut) {
+      if (other.reason == StopReason::kTimeLimit || other.reason == StopReason::kCancelled) {
         out.kicks += 1;
         out.reason = other.reason;
         break;
