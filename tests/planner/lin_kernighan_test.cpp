@@ -13,27 +13,10 @@
 
 #include "layouts.hpp"
 #include "test_support.hpp"
+#include "wall_tours.hpp"
 
 namespace ccbuild::planner::detail {
 namespace {
-
-WallTour random_tour(int items, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<int> order(items);
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), rng);
-  std::vector<char> reversed(items);
-  for (char& r : reversed) r = static_cast<char>(rng() % 2);
-  return WallTour(order, reversed);
-}
-
-bool visits_every_item_once(const WallTour& tour) {
-  std::vector<int> seen(tour.size(), 0);
-  for (int p = 0; p < tour.size(); ++p) ++seen[tour.item_at(p)];
-  for (int p = 0; p < tour.size(); ++p)
-    if (tour.position_of(tour.item_at(p)) != p) return false;
-  return std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; });
-}
 
 /// The best gain of any 2-opt move between two free edges whose new edge (t2, t3) has t3
 /// among t2's candidates: LK's first level must have found every one of them.

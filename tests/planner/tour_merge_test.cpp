@@ -11,6 +11,7 @@
 
 #include "layouts.hpp"
 #include "test_support.hpp"
+#include "wall_tours.hpp"
 
 namespace ccbuild::planner::detail {
 namespace {
@@ -64,23 +65,6 @@ struct Instance {
     return chained_local_search(costs, std::move(start), s, stop);
   }
 };
-
-WallTour random_tour(int items, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<int> order(items);
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), rng);
-  std::vector<char> reversed(order.size());
-  for (char& r : reversed) r = static_cast<char>(rng() & 1);
-  return WallTour(order, reversed);
-}
-
-bool visits_every_item_once(const WallTour& tour) {
-  std::vector<int> seen(tour.size(), 0);
-  for (int p = 0; p < tour.size(); ++p)
-    if (tour.position_of(tour.item_at(p)) != p || seen[tour.item_at(p)]++) return false;
-  return true;
-}
 
 // Merges `other` into `best` and checks the outcome: one tour through every wall, never
 // longer, cheaper by exactly the gain reported. Adds what the merge did to `all`.
