@@ -59,6 +59,7 @@ nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floor
   out["solve_s"] = rounded(plan.solve_s);
   out["stopped_by"] = planner::to_string(plan.stop);
   out["kicks"] = plan.kicks;
+  out["polish_kicks"] = plan.polish_kicks ? json(*plan.polish_kicks) : json(nullptr);
   out["max_idle_s"] = rounded(e.max_idle_s);
   out["idle_limit_s"] = rounded(machine.nozzle_idle_limit_s);
   out["idle_limit_violations"] = e.idle_limit_violations;

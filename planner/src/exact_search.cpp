@@ -144,11 +144,12 @@ Sequence moved_block(Sequence s, std::size_t i, std::size_t length, std::size_t 
 
 }  // namespace
 
-Sequence improve_exact_time(const CostModel& model, Sequence sequence, const PathSpec& path,
-                            std::size_t fixed_prefix, const ExactPolishSettings& settings,
-                            std::mt19937_64& rng, const StopCondition& stop) {
+ExactPolishOutcome improve_exact_time(const CostModel& model, Sequence sequence,
+                                      const PathSpec& path, std::size_t fixed_prefix,
+                                      const ExactPolishSettings& settings, std::mt19937_64& rng,
+                                      const StopCondition& stop) {
   const std::size_t n = sequence.size();
-  if (n < 2) return sequence;
+  if (n < 2) return {std::move(sequence), 0};
   IncrementalTime eval(model, path);
   eval.reset(sequence);
   const std::size_t window = std::max<std::size_t>(1, std::min(n, settings.window));
@@ -260,7 +261,8 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
     if (faster && settings.on_better) settings.on_better(kicks, best_cost);
     return true;
   };
-  for (long kick = 0; kick < settings.max_kicks && movable >= 4 && !out_of_budget(); ++kick) {
+  long kick = 0;
+  for (; kick < settings.max_kicks && movable >= 4 && !out_of_budget(); ++kick) {
     if (settings.local_kicks) {
       // The bridge taken whatever it costs, then a descent around it alone; back to the
       // best sequence when that ends slower.
@@ -270,6 +272,7 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
       move_block(work, start, first, start + second, rng() % 2 == 0);
       eval.accept(work, start, start + first + second);
       descend_around(window_start(start), std::min(n, start + first + second + window));
+      if (stop.should_stop()) break;  // its descent may be unfinished: dropped
       if (!keep_if_no_slower(kick + 1)) {
         eval.reset(best);
         work = best;
@@ -289,9 +292,10 @@ Sequence improve_exact_time(const CostModel& model, Sequence sequence, const Pat
     }
     work = eval.current();
     descend();
+    if (stop.should_stop()) break;  // as above
     keep_if_no_slower(kick + 1);
   }
-  return best;
+  return {std::move(best), kick};
 }
 
 }  // namespace ccbuild::planner::detail

@@ -93,6 +93,7 @@ constexpr long kLinKernighanStallKicks = 10'000;
 struct Solved {
   Sequence sequence;
   long kicks = 0;
+  std::optional<long> polish_kicks;  ///< unset: no exact-time polish ran
   StopReason reason = StopReason::kFinished;
 };
 
@@ -181,8 +182,7 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   // a time limit that cut the search short used to leave it nothing (a 1,000-wall plan:
   // 2,348 s of airtime with 0.6 s, against 1,797 s on the default budget). The search
   // gets at most half of what is left; its default budget ends far sooner.
-  const bool polish_wanted = !options.polish_kicks || *options.polish_kicks > 0;
-  const bool polish_follows = options.objective == Objective::kTime && polish_wanted;
+  const bool polish_follows = options.objective == Objective::kTime && options.exact_polish;
   const detail::SearchOutcome outcome =
       detail::chained_local_search(costs, detail::tour_from_sequence(costs, initial), settings,
                                    polish_follows ? stop.within(stop.remaining_s() / 2.0) : stop);
@@ -219,8 +219,10 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
       polish.max_step_evaluations = std::numeric_limits<long>::max();
       polish.local_kicks = large;
     }
-    out.sequence =
+    detail::ExactPolishOutcome polished =
         detail::improve_exact_time(model, out.sequence, path, prefix.size(), polish, rng, stop);
+    out.sequence = std::move(polished.sequence);
+    out.polish_kicks = polished.kicks;
     if (stop.should_stop()) out.reason = stop.reason();
   }
   if (path.closed && options.objective == Objective::kDistance) {
@@ -302,6 +304,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
       Solved solved = solve_cc_tsp(model, path, options, bound.proof_m(), stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
+      plan.polish_kicks = solved.polish_kicks;
       plan.stop = solved.reason;
       break;
     }

@@ -45,12 +45,21 @@ struct ExactPolishSettings {
   std::function<void(long, double)> on_better;
 };
 
+struct ExactPolishOutcome {
+  Sequence sequence;
+  /// Kicks made after the first descent. A kick the clock (or a cancel) cuts off is
+  /// dropped, not counted, so a polish stopped after K kicks returns what max_kicks = K
+  /// does, with no time limit.
+  long kicks = 0;
+};
+
 /// Improves a complete sequence under the exact time evaluation: rotations and reversal
 /// of a closed tour, 2-opt (single flips included) and Or-opt within a window, then
 /// kicks, until a budget is spent. `fixed_prefix` steps never move.
-Sequence improve_exact_time(const CostModel& model, Sequence sequence, const PathSpec& path,
-                            std::size_t fixed_prefix, const ExactPolishSettings& settings,
-                            std::mt19937_64& rng, const StopCondition& stop);
+ExactPolishOutcome improve_exact_time(const CostModel& model, Sequence sequence,
+                                      const PathSpec& path, std::size_t fixed_prefix,
+                                      const ExactPolishSettings& settings, std::mt19937_64& rng,
+                                      const StopCondition& stop);
 
 /// The value the solvers minimise, exactly: airtime distance or airtime seconds.
 double exact_objective(const CostModel& model, const Sequence& sequence, const PathSpec& path,

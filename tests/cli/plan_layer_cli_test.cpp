@@ -67,6 +67,7 @@ TEST(PlanLayerCli, JsonCarriesEveryRequiredField) {
                           "solve_s",
                           "stopped_by",
                           "kicks",
+                          "polish_kicks",
                           "max_idle_s",
                           "idle_limit_s",
                           "idle_limit_violations",
@@ -153,6 +154,44 @@ TEST(PlanLayerCli, ALongSearchReportsItsBestTourOnStderr) {
   EXPECT_EQ(run_ccbuild("plan-layer config/buildings/house.yaml --layer 12").err, "");
 }
 
+TEST(PlanLayerCli, AnAnytimeRunPrintsTheFlagsThatReplayIt) {
+  // Under the time objective the replay needs the polish's kicks as well as the
+  // search's; the run's own output names both, and the JSON carries them.
+  const std::string args =
+      "plan-layer config/buildings/house.yaml --layer 12 --objective time --quiet";
+  const auto r = run_ccbuild(args + " --time-limit 1.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.out.find("replay");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  long kicks = 0, polish_kicks = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "replay --max-kicks %ld --polish-kicks %ld", &kicks,
+                        &polish_kicks),
+            2)
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "time-limit after " + std::to_string(kicks) +
+                                  " kicks, exact-time polish " + std::to_string(polish_kicks) +
+                                  " kicks"))
+      << r.out;
+  const std::string replay = args + " --max-kicks " + std::to_string(kicks) + " --polish-kicks " +
+                             std::to_string(polish_kicks);
+  const auto again = run_ccbuild(replay + " --json");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const auto j = nlohmann::json::parse(again.out);
+  EXPECT_EQ(j["kicks"], kicks);
+  EXPECT_EQ(j["polish_kicks"], polish_kicks);
+  EXPECT_EQ(j["stopped_by"], "converged");
+  // The same plan: its sequence line, word for word.
+  const std::string sequence = r.out.substr(r.out.find("sequence"));
+  const auto text = run_ccbuild(replay);
+  EXPECT_EQ(text.out.substr(text.out.find("sequence")), sequence);
+  // A default run replays itself: no replay line; the distance objective has no polish.
+  EXPECT_FALSE(contains(run_ccbuild(args).out, "replay"));
+  EXPECT_TRUE(
+      nlohmann::json::parse(run_ccbuild("plan-layer config/buildings/house.yaml --layer 12 --json")
+                                .out)["polish_kicks"]
+          .is_null());
+}
+
 TEST(PlanLayerCli, BuildingLayerWithCutWalls) {
   const auto r = run_ccbuild("plan-layer config/buildings/house.yaml --floor 0 --layer 12 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -221,6 +260,13 @@ TEST(PlanLayerCli, BadInputExitsTwoWithAReason) {
       {"plan-layer tests/data/plans/cottage.yaml --time-limit -1",
        "--time-limit: must be more than 0 and at most 86400 s, got -1"},
       {"plan-layer tests/data/plans/cottage.yaml --time-limit nan", "expected a number"},
+      {"plan-layer tests/data/plans/cottage.yaml --polish-kicks 5",
+       "--polish-kicks: applies only with --objective time"},
+      {"plan-layer tests/data/plans/cottage.yaml --objective time --polish-kicks -1",
+       "--polish-kicks"},
+      {"plan-layer tests/data/plans/cottage.yaml --objective time --algorithm nearest "
+       "--polish-kicks 5",
+       "--polish-kicks: applies only to one nozzle's cc-tsp search"},
       {"plan-layer config/buildings/apartment.yaml --algorithm exact",
        "exact handles layers of at most"},
       {"plan-layer config/buildings/house.yaml --layer 99", "no layer 99"},

@@ -107,7 +107,7 @@ TEST(PlanLayer, LargeLayersGetTheExactTimePolish) {
   PlanOptions o;
   o.objective = Objective::kTime;
   const LayerPlan polished = plan_layer(layer, testing::simple_machine(), o);
-  o.polish_kicks = 0;  // no polish at all
+  o.exact_polish = false;
   const LayerPlan searched = plan_layer(layer, testing::simple_machine(), o);
   EXPECT_TRUE(covers_every_segment_once(polished.sequence, layer.segments.size()));
   EXPECT_LT(polished.evaluation.airtime_s, searched.evaluation.airtime_s - 1.0);
@@ -328,6 +328,66 @@ TEST(PlanLayer, AnAnytimeRunOnALargeLayerKicksLocallyInThePolish) {
   EXPECT_EQ(plan_layer(layer, testing::simple_machine(), o).sequence, kicked.sequence);
 }
 
+// Under the time objective an anytime run's extra time goes to the exact-time polish.
+// The search's kicks and the polish's, given back with `anytime`, replay it without the
+// clock (docs/planning.md): a polish kick the clock cuts off is dropped, not counted.
+// Both kinds of polish kick: a whole window pass (103 walls) and a descent around the
+// kick (225 walls).
+TEST(PlanLayer, AnAnytimeRunUnderTheTimeObjectiveIsReproducedByItsKicks) {
+  for (const auto& [rooms, seed] : {std::pair{20, 3}, std::pair{45, 2}}) {
+    const floors::Layer layer = testing::floor_plan_layer(rooms, seed);
+    const std::string what = std::to_string(layer.segments.size()) + " walls";
+    PlanOptions o;
+    o.waypoints = false;
+    o.objective = Objective::kTime;
+    o.bound = BoundKind::kMatching;
+    o.anytime = true;
+    o.time_limit_s = 1.0;
+    const LayerPlan anytime = plan_layer(layer, testing::simple_machine(), o);
+    ASSERT_EQ(anytime.stop, StopReason::kTimeLimit) << what;
+    ASSERT_TRUE(anytime.polish_kicks.has_value()) << what;
+    ASSERT_GT(*anytime.polish_kicks, 0) << what;
+    PlanOptions replay = o;
+    replay.time_limit_s = 60.0;
+    replay.max_kicks = anytime.kicks;
+    replay.polish_kicks = anytime.polish_kicks;
+    const LayerPlan again = plan_layer(layer, testing::simple_machine(), replay);
+    EXPECT_EQ(again.stop, StopReason::kConverged) << what;
+    EXPECT_EQ(again.kicks, anytime.kicks) << what;
+    EXPECT_EQ(again.polish_kicks, anytime.polish_kicks) << what;
+    EXPECT_EQ(again.sequence, anytime.sequence) << what;
+    EXPECT_NEAR(again.evaluation.airtime_s, anytime.evaluation.airtime_s, 1e-9) << what;
+  }
+}
+
+// polish_kicks counts the kicks after the polish's descent: 0 is the descent alone (the
+// default past 200 walls), not the absence of a polish, which is exact_polish = false.
+TEST(PlanLayer, NoPolishKicksIsTheDescentAlone) {
+  const floors::Layer layer = testing::floor_plan_layer(20, 3);
+  PlanOptions o;
+  o.waypoints = false;
+  o.objective = Objective::kTime;
+  o.bound = BoundKind::kMatching;
+  const LayerPlan kicked = plan_layer(layer, testing::simple_machine(), o);
+  // The default up to 200 walls is 20 kicks, fewer when its step budget runs out first.
+  ASSERT_TRUE(kicked.polish_kicks.has_value());
+  EXPECT_GT(*kicked.polish_kicks, 0);
+  EXPECT_LE(*kicked.polish_kicks, 20);
+  o.polish_kicks = 0;
+  const LayerPlan descent = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_EQ(descent.polish_kicks, 0);
+  o.exact_polish = false;
+  const LayerPlan searched = plan_layer(layer, testing::simple_machine(), o);
+  EXPECT_FALSE(searched.polish_kicks.has_value());
+  EXPECT_EQ(searched.kicks, descent.kicks);  // the same search before the polish
+  EXPECT_LT(descent.evaluation.airtime_s, searched.evaluation.airtime_s - 1.0);
+  EXPECT_LE(kicked.evaluation.airtime_s, descent.evaluation.airtime_s);
+  // The distance objective has no polish.
+  o = PlanOptions{};
+  o.waypoints = false;
+  EXPECT_FALSE(plan_layer(layer, testing::simple_machine(), o).polish_kicks.has_value());
+}
+
 TEST(PlanLayer, AShortTimeLimitStillLeavesThePolishTime) {
   // Under the time objective the search gets at most half of the limit, so the polish
   // that removes lifts always runs; before, a search cut short by the limit skipped it.
@@ -341,7 +401,7 @@ TEST(PlanLayer, AShortTimeLimitStillLeavesThePolishTime) {
   o.time_limit_s = 0.6;
   o.max_kicks = 1'000'000'000;
   const LayerPlan polished = plan_layer(layer, testing::simple_machine(), o);
-  o.polish_kicks = 0;  // no polish: the search has the whole limit
+  o.exact_polish = false;  // the search has the whole limit
   const LayerPlan searched = plan_layer(layer, testing::simple_machine(), o);
   EXPECT_EQ(polished.stop, StopReason::kTimeLimit);
   EXPECT_EQ(searched.stop, StopReason::kTimeLimit);

@@ -125,6 +125,7 @@ std::string flag_for_field(const std::string& field) {
   static const std::map<std::string, std::string> flags = {
       {"PlanOptions::time_limit_s", "--time-limit"},
       {"PlanOptions::max_kicks", "--max-kicks"},
+      {"PlanOptions::polish_kicks", "--polish-kicks"},
       {"PlanOptions::algorithm", "--algorithm"},
       {"PathSpec::first", "--first-wall"},
       {"MultiNozzleOptions::nozzles", "--nozzles"},

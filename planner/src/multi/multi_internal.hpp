@@ -45,12 +45,12 @@ CutLayer cut_layer(const floors::Layer& layer, RailAxis axis, const std::vector<
 
 /// A closed CC-TSP tour of some segments of `layer` (indices into `layer`), with the
 /// stage's planning options, at most `max_kicks` kicks (unset: the default budget) and
-/// `polish_kicks` of exact-time polish (unset: the options', else a short one). Once the
+/// a short exact-time polish (the options' kicks when set; `polish` false: none). Once the
 /// stage's time is up, the segments in their given order (no search), so that what is
 /// left of the call ends at once.
 Sequence closed_tour(const floors::Layer& layer, const std::vector<int>& segments,
                      const StageContext& ctx, std::optional<long> max_kicks = std::nullopt,
-                     std::optional<long> polish_kicks = std::nullopt);
+                     bool polish = true);
 
 /// Cuts chosen by iterative dividing (the section borders, nozzles - 1 of them).
 struct Division {

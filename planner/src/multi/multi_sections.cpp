@@ -55,8 +55,7 @@ CutLayer cut_layer(const floors::Layer& layer, RailAxis axis, const std::vector<
 }
 
 Sequence closed_tour(const floors::Layer& layer, const std::vector<int>& segments,
-                     const StageContext& ctx, std::optional<long> max_kicks,
-                     std::optional<long> polish_kicks) {
+                     const StageContext& ctx, std::optional<long> max_kicks, bool polish) {
   if (segments.empty()) return {};
   if (ctx.stop.should_stop()) {
     // Out of time: the walls in their given order, at once (the answer will say the
@@ -73,10 +72,8 @@ Sequence closed_tour(const floors::Layer& layer, const std::vector<int>& segment
   o.time_limit_s = std::max(0.05, std::min(o.time_limit_s, ctx.stop.remaining_s()));
   if (max_kicks) o.max_kicks = max_kicks;
   // Sections and zones are many and small: a short exact-time polish is plenty.
-  if (polish_kicks)
-    o.polish_kicks = polish_kicks;
-  else if (!o.polish_kicks)
-    o.polish_kicks = 5;
+  if (!o.polish_kicks) o.polish_kicks = 5;
+  o.exact_polish = o.exact_polish && polish;
   const LayerPlan plan = plan_layer(part, ctx.machine, o);
   Sequence out;
   for (const Step& step : plan.sequence) out.push_back({segments[step.segment], step.reversed});
@@ -137,7 +134,7 @@ Division compute_division(const StageContext& ctx) {
       }
       const floors::Layer part = floors::sub_layer(cut.layer, segments);
       const Sequence tour =
-          closed_tour(cut.layer, segments, ctx, kicks, 0);  // balancing: no polish
+          closed_tour(cut.layer, segments, ctx, kicks, false);  // balancing: no polish
       Sequence local;
       for (std::size_t i = 0; i < tour.size(); ++i)
         local.push_back(

@@ -73,13 +73,19 @@ struct PlanOptions {
   /// speed; the plan's `kicks`, given back as `max_kicks`, reproduces it exactly (unless
   /// the limit came during the first descent, before any kick). Under the time
   /// objective the symmetric search keeps its default budget and the exact-time polish
-  /// kicks until the limit instead (not reproduced by `max_kicks`). The exact
-  /// algorithm's warm start and plan_layer_multi ignore it: there the limit is a cap.
+  /// kicks until the limit instead, without its step budget; the plan's `kicks` and
+  /// `polish_kicks`, given back as `max_kicks` and `polish_kicks` (with `anytime`),
+  /// reproduce that too (unless the limit came during the polish's first descent). The
+  /// exact algorithm's warm start and plan_layer_multi ignore it: there the limit is a
+  /// cap.
   bool anytime = false;
-  /// Kicks of the exact-time polish (time objective only); unset: 500 on layers of up to
-  /// 16 walls (enough to reach the optimum the exact solver finds), 20 up to 200 walls,
-  /// and above that its descent alone, without kicks; 0 skips the polish.
+  /// Kicks of the exact-time polish after its descent (time objective only); unset: 500
+  /// on layers of up to 16 walls (enough to reach the optimum the exact solver finds),
+  /// 20 up to 200 walls, and above that 0, the descent alone; with `anytime`, until the
+  /// time limit.
   std::optional<long> polish_kicks;
+  /// False: no exact-time polish at all; the symmetric search's tour as it is.
+  bool exact_polish = true;
   /// Lower bound reported (and used to stop the search once met): the connected bound
   /// by default; the matching bound alone is faster on very large layers.
   BoundKind bound = BoundKind::kConnected;
@@ -109,6 +115,8 @@ struct LayerPlan {
   double bound_s = 0.0;  ///< of which the lower bound, s
   StopReason stop = StopReason::kFinished;
   long kicks = 0;  ///< kicks tried by cc-tsp
+  /// Kicks of the exact-time polish after its descent (time objective); unset: none ran.
+  std::optional<long> polish_kicks;
 
   /// (airtime distance - bound) / bound; 0 when both are 0.
   double gap() const;
