@@ -16,7 +16,9 @@ ccbuild=$1
 shift
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-$netns sh -c 'ip link set lo up && ip link set lo multicast on &&
+# A temporary folder of its own, which the run must leave as it found it.
+mkdir "$out/tmp"
+TMPDIR="$out/tmp" $netns sh -c 'ip link set lo up && ip link set lo multicast on &&
   ip route add 224.0.0.0/4 dev lo && exec "$@"' sh \
   "$ccbuild" dry-run "$@" --state-dir "$out/state" --journal "$out/journal.sqlite" \
   --log "$out/conversation.lcmlog" \
@@ -25,6 +27,8 @@ expect_exit=${EXPECT_EXIT:-0}
 [ "$code" = "$expect_exit" ] ||
   { cat "$out/summary.txt" "$out/progress.txt"; echo "exit code $code, expected $expect_exit"; exit 1; }
 grep -v '^floor ' "$out/summary.txt"
+left=$(ls -A "$out/tmp")
+[ -z "$left" ] || { echo "the run left $left in its temporary folder"; exit 1; }
 complete=$([ "$expect_exit" = 0 ] && echo yes || echo no)
 line=$(grep -E '^[^ ]+: [0-9]+ of [0-9]+ jobs executed on [0-9]+ machine' "$out/summary.txt")
 done_jobs=$(echo "$line" | sed -E 's/.*: ([0-9]+) of ([0-9]+) jobs.*/\1/')

@@ -302,9 +302,24 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   const bool can_guard = several && gantry_width_m + margin_m < planned_gap_m;
   const bool guard = can_guard && !o.no_watchdog;
 
-  const fs::path work =
-      fs::temp_directory_path() / ("ccbuild-dry-run-" + std::to_string(::getpid()));
-  fs::create_directories(work);
+  // The default journal and machine records live in a folder of this run's own, removed
+  // however the run ends (it used to stay behind whenever --journal was given). One left
+  // by a killed run with the same process id is cleared first: its machine records would
+  // be read back as this run's.
+  struct TemporaryFolder {
+    fs::path path;
+    ~TemporaryFolder() {
+      std::error_code ec;
+      if (!path.empty()) fs::remove_all(path, ec);
+    }
+  } temporary;
+  if (o.journal.empty() || o.state_dir.empty()) {
+    temporary.path = fs::temp_directory_path() / ("ccbuild-dry-run-" + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::remove_all(temporary.path, ec);
+    fs::create_directories(temporary.path);
+  }
+  const fs::path& work = temporary.path;
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
   orchestrator::Journal journal(journal_path);
   machine::Bus bus(o.lcm_url);
@@ -517,10 +532,6 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   exit_code = complete && !collided ? kExitOk : kExitNo;
   std::cout << (exit_code == kExitOk ? "completed within its constraints\n"
                                      : "NOT completed within its constraints\n");
-  if (o.journal.empty()) {
-    std::error_code ec;
-    fs::remove_all(work, ec);
-  }
 }
 
 }  // namespace
