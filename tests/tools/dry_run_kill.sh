@@ -12,8 +12,11 @@ shift 2
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 RANDOM=$seed
+# A temporary folder of the runs' own: given a journal and a state folder, a run makes
+# nothing there, so even a killed one leaves it empty.
+mkdir "$out/tmp"
 run() {
-  $netns sh -c 'ip link set lo up && ip link set lo multicast on &&
+  TMPDIR="$out/tmp" $netns sh -c 'ip link set lo up && ip link set lo multicast on &&
     ip route add 224.0.0.0/4 dev lo && exec "$@"' sh \
     "$ccbuild" dry-run "$@" --state-dir "$out/state" --journal "$out/journal.sqlite" \
     --seed "$seed"
@@ -40,4 +43,6 @@ ran=$(cat "$out"/state/*.state | awk '{print $1}' | sort | wc -l)
 unique=$(cat "$out"/state/*.state | awk '{print $1}' | sort -u | wc -l)
 [ "$ran" = "$unique" ] || { echo "a job ran twice: $ran runs of $unique jobs"; exit 1; }
 [ "$unique" = "$all_jobs" ] || { echo "the machines ran $unique of $all_jobs jobs: some were lost"; exit 1; }
+left=$(ls -A "$out/tmp")
+[ -z "$left" ] || { echo "the runs left $left in their temporary folder"; exit 1; }
 echo "dry_run_kill: killed $kills time(s) with $before jobs done; $all_jobs jobs, each run exactly once by the machines' own records"
