@@ -317,6 +317,7 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
       Solved solved = solve_cc_tsp(model, path, warm_start, bound.proof_m(), stop);
       plan.sequence = std::move(solved.sequence);
       plan.kicks = solved.kicks;
+      plan.polish_kicks = solved.polish_kicks;
       const double upper = detail::exact_objective(model, plan.sequence, path, options.objective);
       const auto better =
           detail::exact_sequence(model, all, path, options.objective, upper - 1e-9, stop);

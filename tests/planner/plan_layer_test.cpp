@@ -289,6 +289,9 @@ TEST(PlanLayer, ExactWithATimeLimitStillProvesItsAnswer) {
   EXPECT_EQ(anytime.stop, StopReason::kProvenOptimal);
   EXPECT_EQ(anytime.sequence, plain.sequence);
   EXPECT_EQ(anytime.kicks, plain.kicks);
+  // The warm start's polish is reported as the search's kicks are.
+  EXPECT_EQ(plain.polish_kicks, 500);
+  EXPECT_EQ(anytime.polish_kicks, plain.polish_kicks);
 }
 
 TEST(PlanLayer, AnAnytimeRunUnderTheTimeObjectiveSpendsItsTimeOnThePolish) {
