@@ -309,6 +309,16 @@ TEST(PlanLayer, AnAnytimeRunUnderTheTimeObjectiveSpendsItsTimeOnThePolish) {
   EXPECT_LE(anytime.evaluation.airtime_s, budget.evaluation.airtime_s + 1e-9);
 }
 
+// Options of the polish tests: the time objective, no waypoints, and the matching bound
+// (the bound plays no part in them).
+PlanOptions time_objective_options() {
+  PlanOptions o;
+  o.waypoints = false;
+  o.objective = Objective::kTime;
+  o.bound = BoundKind::kMatching;
+  return o;
+}
+
 TEST(PlanLayer, AnAnytimeRunOnALargeLayerKicksLocallyInThePolish) {
   // Past 200 walls the default polish is a descent without kicks; given time, its kicks
   // are followed by a descent around them only. Bounded by polish_kicks the run is
@@ -316,10 +326,7 @@ TEST(PlanLayer, AnAnytimeRunOnALargeLayerKicksLocallyInThePolish) {
   // against 355.2 s of airtime on these 225 walls).
   const floors::Layer layer = testing::floor_plan_layer(45, 2);
   ASSERT_GT(layer.segments.size(), 200u);
-  PlanOptions o;
-  o.waypoints = false;
-  o.objective = Objective::kTime;
-  o.bound = BoundKind::kMatching;  // the bound plays no part here
+  PlanOptions o = time_objective_options();
   const LayerPlan descent = plan_layer(layer, testing::simple_machine(), o);
   o.anytime = true;
   o.time_limit_s = 60.0;  // far beyond the 100 kicks: they end the run
@@ -340,10 +347,7 @@ TEST(PlanLayer, AnAnytimeRunUnderTheTimeObjectiveIsReproducedByItsKicks) {
   for (const auto& [rooms, seed] : {std::pair{20, 3}, std::pair{45, 2}}) {
     const floors::Layer layer = testing::floor_plan_layer(rooms, seed);
     const std::string what = std::to_string(layer.segments.size()) + " walls";
-    PlanOptions o;
-    o.waypoints = false;
-    o.objective = Objective::kTime;
-    o.bound = BoundKind::kMatching;
+    PlanOptions o = time_objective_options();
     o.anytime = true;
     o.time_limit_s = 1.0;
     const LayerPlan anytime = plan_layer(layer, testing::simple_machine(), o);
@@ -367,10 +371,7 @@ TEST(PlanLayer, AnAnytimeRunUnderTheTimeObjectiveIsReproducedByItsKicks) {
 // default past 200 walls), not the absence of a polish, which is exact_polish = false.
 TEST(PlanLayer, NoPolishKicksIsTheDescentAlone) {
   const floors::Layer layer = testing::floor_plan_layer(20, 3);
-  PlanOptions o;
-  o.waypoints = false;
-  o.objective = Objective::kTime;
-  o.bound = BoundKind::kMatching;
+  PlanOptions o = time_objective_options();
   const LayerPlan kicked = plan_layer(layer, testing::simple_machine(), o);
   // The default up to 200 walls is 20 kicks, fewer when its step budget runs out first.
   ASSERT_TRUE(kicked.polish_kicks.has_value());
@@ -397,10 +398,7 @@ TEST(PlanLayer, AShortTimeLimitStillLeavesThePolishTime) {
   // Kicks far beyond what the limit allows make the search as long as it may be (103
   // walls: 0 lifts left against 13 unpolished, 175.3 against 206.1 s of airtime).
   const floors::Layer layer = testing::floor_plan_layer(20, 3);
-  PlanOptions o;
-  o.waypoints = false;
-  o.objective = Objective::kTime;
-  o.bound = BoundKind::kMatching;
+  PlanOptions o = time_objective_options();
   o.time_limit_s = 0.6;
   o.max_kicks = 1'000'000'000;
   const LayerPlan polished = plan_layer(layer, testing::simple_machine(), o);
