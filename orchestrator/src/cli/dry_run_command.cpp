@@ -517,8 +517,13 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         watchdog->gaps_measured(), can_guard ? "" : " (only where both reported within 1 s)",
         watchdog->smallest_gap_m(), gantry_width_m, collided ? ": COLLISION" : "");
   }
+  // The default journal goes with the temporary folder: say so rather than print a path
+  // that is gone when the run ends.
+  const std::string journal_where =
+      o.journal.empty() ? "temporary (--journal FILE keeps one, and resumes from it)"
+                        : journal_path.string();
   std::cout << printf_string("journal: %s, %ld writes in %.2f s (%.1f%% of the run)\n",
-                             journal_path.string().c_str(), journal.writes(), journal.write_s(),
+                             journal_where.c_str(), journal.writes(), journal.write_s(),
                              real_s > 0 ? 100.0 * journal.write_s() / real_s : 0.0);
   if (!o.log.empty())
     std::cout << printf_string(
