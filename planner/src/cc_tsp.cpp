@@ -415,9 +415,8 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
     own.on_better = nullptr;
     own.seed = rng();
     SearchOutcome other = chained_local_search(costs, settings.restart_tour(rng), own, stop);
-    const bool cut =
-        other.reason == StopReason::kTimeLimit || other.reason == StopReason::kCancelled;
-    if (cut && other.kicks == 0) return other;  // its first descent may be unfinished
+    // Cut off in its first descent: that may be unfinished, so nothing is merged.
+    if (cut_short(other.reason) && other.kicks == 0) return other;
     ++out.restarts;
     kicked.clear();
     double gain = 0.0;
@@ -455,7 +454,7 @@ SearchOutcome chained_local_search(const TourCosts& costs, WallTour tour,
       const SearchOutcome other = restart(left);
       out.kicks += other.kicks;
       out.kicks_in_restarts += other.kicks;
-      if (other.reason == StopReason::kTimeLimit || other.reason == StopReason::kCancelled) {
+      if (cut_short(other.reason)) {
         out.kicks += 1;
         out.reason = other.reason;
         break;

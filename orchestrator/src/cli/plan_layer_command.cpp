@@ -208,7 +208,7 @@ void print_single(const PlanLayerOptions& o, const orchestrator::Project& projec
   // the clock. Not when the clock came during a first descent (nothing to count then),
   // or before the time objective's polish could start.
   const bool cut_in_descent =
-      plan.stop == planner::StopReason::kTimeLimit &&
+      planner::cut_short(plan.stop) &&
       (plan.objective == planner::Objective::kTime ? plan.polish_kicks.value_or(0) == 0
                                                    : plan.kicks == 0);
   if (o.anytime && o.algorithm == "cc-tsp" && !cut_in_descent)

@@ -9,7 +9,7 @@
 
 namespace ccbuild::planner {
 
-/// Why a solver finished. Converts to true when the answer is complete (not cut short).
+/// Why a solver finished.
 enum class StopReason {
   kFinished,       ///< a one-pass algorithm ran to its end
   kProvenOptimal,  ///< the answer meets a lower bound, or an exact search completed
@@ -18,6 +18,10 @@ enum class StopReason {
   kCancelled,      ///< the cancel flag was raised: the best answer so far
 };
 std::string to_string(StopReason reason);
+/// True when the clock or a cancel stopped the solver: its answer is the best so far.
+inline bool cut_short(StopReason reason) {
+  return reason == StopReason::kTimeLimit || reason == StopReason::kCancelled;
+}
 
 class StopCondition {
  public:
