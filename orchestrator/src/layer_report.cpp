@@ -1,6 +1,7 @@
 #include "ccbuild/orchestrator/layer_report.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "ccbuild/common/format.hpp"
 #include "report_common.hpp"
@@ -77,6 +78,39 @@ nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floor
   }
   out["moves"] = moves;
   out["waypoints"] = detail::waypoints_json(plan.waypoints);
+  return out;
+}
+
+nlohmann::ordered_json bound_certificate_json(const ReportContext& context,
+                                              const floors::Layer& layer,
+                                              const planner::LayerPlan& plan) {
+  if (!plan.connected_bound || !plan.connected_bound->certificate)
+    throw std::logic_error("bound_certificate_json: the plan kept no certificate");
+  const planner::ConnectedBound& bound = *plan.connected_bound;
+  const planner::ConnectedBoundCertificate& c = *bound.certificate;
+  json out = detail::header_json(context, layer, "ccbuild-bound-certificate-1");
+  out["metric"] = planner::to_string(plan.metric);
+  out["closed"] = c.start < 0;
+  out["lower_bound_distance_m"] = bound.lower_bound_m;
+  out["rounds"] = bound.rounds;
+  out["stopped_by"] = planner::to_string(bound.stopped_by);
+  out["pieces"] = detail::pieces_json(layer);
+  // Unrounded: a bound re-checked on rounded points would not be the one proven.
+  json points = json::array();
+  for (const auto& p : c.points_m) points.push_back(json::array({p.x(), p.y()}));
+  out["points_m"] = std::move(points);
+  json walls = json::array();
+  for (const auto& s : layer.segments) walls.push_back(json::array({s.start_point, s.end_point}));
+  out["walls"] = std::move(walls);
+  out["start_point"] = c.start < 0 ? json(nullptr) : json(c.start);
+  out["free_end_point"] = c.start < 0 ? json(nullptr) : json(c.points_m.size());
+  json moats = json::array();
+  for (const auto& m : c.moats)
+    moats.push_back({{"points", m.points},
+                     {"rhs", static_cast<int>(m.rhs)},
+                     {"width_m", m.width_m},
+                     {"exact", m.exact}});
+  out["moats"] = std::move(moats);
   return out;
 }
 

@@ -49,6 +49,7 @@ class ConnectedBoundSolver {
       // The open path closed by a free return: the end goes to the free end, which is
       // joined to the start like a wall.
       walls.emplace_back(free_end_, start);
+      start_ = start;
     } else {
       real_ = static_cast<int>(positions_.size());
     }
@@ -84,6 +85,7 @@ class ConnectedBoundSolver {
     ConnectedBound out;
     if (std::count(odd_.begin(), odd_.end(), 1) == 0 && components_ <= 1) {
       out.certified = true;  // one connected Eulerian layer: no air move is needed
+      if (limits_.keep_certificate) store_certificate({}, out);
       return out;
     }
     initial_columns();
@@ -102,9 +104,10 @@ class ConnectedBoundSolver {
     // at the end (the scaled dual is valid in between too, only weaker).
     auto price_and_certify = [&]() {
       double bound = 0.0;
+      std::vector<BoundMoat> moats;
       for (int pricing = 0; pricing < limits_.max_pricing_rounds; ++pricing) {
         std::vector<std::pair<double, std::pair<int, int>>> violated;
-        bound = certified_dual_value(&violated);
+        bound = certified_dual_value(&violated, limits_.keep_certificate ? &moats : nullptr);
         // The scaled dual is a valid bound at every step, so a stop loses only strength.
         if (violated.empty() || stop_.should_stop()) break;
         std::sort(violated.begin(), violated.end());
@@ -113,7 +116,10 @@ class ConnectedBoundSolver {
           add_column(violated[i].second.first, violated[i].second.second);
         if (lp_.solve_after_columns() != detail::LinearProgram::Status::kOptimal) return false;
       }
-      out.lower_bound_m = std::max(out.lower_bound_m, bound);
+      if (bound > out.lower_bound_m || !out.certified) {
+        out.lower_bound_m = bound;
+        if (limits_.keep_certificate) store_certificate(std::move(moats), out);
+      }
       out.certified = true;
       out.lp_value_m = lp_.objective();
       return true;
@@ -125,12 +131,15 @@ class ConnectedBoundSolver {
     double lp_at_last_check = lp_.objective();
     bool priced_last = true;
     for (out.rounds = 1;; ++out.rounds) {
+      // Stopped before this round's separation: count the rounds that ran.
       if (stop_.should_stop()) {
         out.stopped_by = stop_.cancelled() ? BoundStop::kCancelled : BoundStop::kTimeLimit;
+        --out.rounds;
         break;
       }
       if (out.rounds > limits_.max_rounds) {
         out.stopped_by = BoundStop::kRoundLimit;
+        --out.rounds;
         break;
       }
       const int added = separate();
@@ -282,8 +291,11 @@ class ConnectedBoundSolver {
 
   /// Dual values of the current LP made feasible for every pair of the complete graph,
   /// and their objective: a valid lower bound. Pairs with a negative reduced cost under
-  /// the LP's own duals are returned in `violated` (reduced cost, pair).
-  double certified_dual_value(std::vector<std::pair<double, std::pair<int, int>>>* violated) {
+  /// the LP's own duals are returned in `violated` (reduced cost, pair); with `moats`,
+  /// the feasible duals themselves (those of non-zero width).
+  double certified_dual_value(std::vector<std::pair<double, std::pair<int, int>>>* violated,
+                              std::vector<BoundMoat>* moats = nullptr) {
+    if (moats) moats->clear();
     const int rows = static_cast<int>(rows_.size());
     std::vector<double> y(rows);
     for (int r = 0; r < rows; ++r) {
@@ -338,9 +350,21 @@ class ConnectedBoundSolver {
         free_dual = std::min(free_dual, -other);
       }
       value += free_dual;  // rhs of the free end's row is 1
+      if (moats) moats->push_back({{free_end_}, 1.0, free_dual, true});
     }
+    if (moats)
+      for (int r = 0; r < rows; ++r)
+        if (!rows_[r].equality && y[r] > 0.0)
+          moats->push_back({rows_[r].members, rows_[r].rhs, scale * y[r], false});
     // A margin for the floating-point sums above.
     return std::max(0.0, value - 1e-9 * (1.0 + std::abs(value)));
+  }
+
+  void store_certificate(std::vector<BoundMoat> moats, ConnectedBound& out) const {
+    ConnectedBoundCertificate& c = out.certificate.emplace();
+    c.points_m.assign(positions_.begin(), positions_.begin() + real_);
+    if (free_end_ >= 0) c.start = start_;
+    c.moats = std::move(moats);
   }
 
   /// Offers `try_cut` the fundamental cuts below `rhs` of a Gomory-Hu tree of the LP
@@ -499,7 +523,7 @@ class ConnectedBoundSolver {
   const StopCondition& stop_;
   std::vector<Vec2> positions_;
   std::vector<int> by_x_;  // real points in ascending x
-  int real_ = 0, nodes_ = 0, free_end_ = -1, components_ = 0;
+  int real_ = 0, nodes_ = 0, free_end_ = -1, start_ = -1, components_ = 0;
   std::vector<char> odd_;
   std::vector<int> component_, component_size_;
   detail::LinearProgram lp_;

@@ -233,7 +233,8 @@ BoundSource LayerBound::source() const {
 }
 
 LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path,
-                               BoundKind kind, const StopCondition& stop) {
+                               BoundKind kind, const StopCondition& stop,
+                               const ConnectedBoundLimits& limits) {
   LayerBound bound;
   std::vector<int> degree(layer.points.size(), 0);
   for (const auto& s : layer.segments) {
@@ -277,7 +278,7 @@ LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const 
   // it takes about 1.3 s), the matching bound stands alone rather than overrun it.
   const double walls = static_cast<double>(layer.segments.size());
   if (kind == BoundKind::kConnected && stop.remaining_s() >= 1e-7 * walls * walls) {
-    bound.connected = connected_airtime_bound(layer, metric, path, {}, stop);
+    bound.connected = connected_airtime_bound(layer, metric, path, limits, stop);
     if (bound.connected->certified && bound.connected->lower_bound_m > bound.distance_m) {
       bound.distance_m = bound.connected->lower_bound_m;
       // certified_dual_value's margin, and as much again for the tour's own sum.

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "ccbuild/common/format.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -243,6 +244,43 @@ TEST(PlanLayerCli, SvgIsWrittenWholeAndNotOverwrittenUnasked) {
   fs::remove_all(dir);
 }
 
+TEST(PlanLayerCli, TheBoundsCertificateIsWrittenWithTheRoundsItRan) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_certificate_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string certificate = (dir / "bound.json").string();
+  const std::string svg = (dir / "plan.svg").string();
+  const std::string args = "plan-layer config/buildings/house.yaml --layer 12 --bound-rounds 3 ";
+  const auto r = run_ccbuild(args + "--bound-certificate " + certificate);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "after 3 rounds (round-limit)")) << r.out;
+  EXPECT_TRUE(contains(r.out, "moats (tools/check_bound.py " + certificate)) << r.out;
+  std::ifstream in(certificate);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["format"], "ccbuild-bound-certificate-1");
+  EXPECT_EQ(j["rounds"], 3);
+  EXPECT_EQ(j["stopped_by"], "round-limit");
+  EXPECT_EQ(j["walls"].size(), j["pieces"].size());
+  EXPECT_GT(j["moats"].size(), 0u);
+  // The same bound as the plan's text, to the printed millimetre.
+  EXPECT_TRUE(contains(
+      r.out, printf_string("connected     %.3f m", j["lower_bound_distance_m"].get<double>())))
+      << r.out;
+  // Not overwritten unasked.
+  const auto again = run_ccbuild(args + "--bound-certificate " + certificate);
+  EXPECT_EQ(again.exit_code, 2);
+  EXPECT_TRUE(contains(again.err, "--force"));
+  // No time for the bound: neither file is written, and the reason is given.
+  const std::string late = (dir / "late.json").string();
+  const auto no_time =
+      run_ccbuild(args + "--time-limit 0.0001 --svg " + svg + " --bound-certificate " + late);
+  EXPECT_EQ(no_time.exit_code, 2);
+  EXPECT_TRUE(contains(no_time.err, "the connected bound did not run")) << no_time.err;
+  EXPECT_FALSE(fs::exists(late));
+  EXPECT_FALSE(fs::exists(svg));
+  fs::remove_all(dir);
+}
+
 TEST(PlanLayerCli, BadInputExitsTwoWithAReason) {
   struct Case {
     const char* args;
@@ -270,6 +308,16 @@ TEST(PlanLayerCli, BadInputExitsTwoWithAReason) {
       {"plan-layer config/buildings/apartment.yaml --algorithm exact",
        "exact handles layers of at most"},
       {"plan-layer config/buildings/house.yaml --layer 99", "no layer 99"},
+      {"plan-layer tests/data/plans/cottage.yaml --bound matching --bound-certificate b.json",
+       "--bound-certificate: applies only to the connected bound"},
+      {"plan-layer tests/data/plans/cottage.yaml --nozzles 2 --gantry-width 1 --bound-rounds 9",
+       "--bound-rounds: applies only to one nozzle's plan"},
+      {"plan-layer tests/data/plans/cottage.yaml --bound-rounds 0", "--bound-rounds"},
+      {"plan-layer tests/data/plans/cottage.yaml --svg same.svg --bound-certificate same.svg",
+       "--bound-certificate: is the same file as --svg"},
+      {"plan-layer tests/data/plans/cottage.yaml --force --bound-certificate "
+       "tests/data/plans/cottage.yaml",
+       "cottage.yaml"},
       {"plan-layer tests/data/plans/cottage.yaml --machine tests/data/machines/missing_joint.yaml",
        "bridge_why"},
   };

@@ -8,7 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
+#include <iterator>
 #include <random>
 
 #include "ccbuild/planner/plan_layer.hpp"
@@ -190,6 +192,99 @@ TEST(ConnectedBound, SkippedWhenTheTimeLeftCannotHoldItsFirstSolve) {
   EXPECT_FALSE(late.connected.has_value());
   EXPECT_EQ(late.source(), BoundSource::kMatching);
   EXPECT_DOUBLE_EQ(late.distance_m, in_time.matching_m);
+}
+
+// Re-proves a connected bound from its certificate alone: each moat's rhs from the
+// walls, every pair of points within its distance, and the moats' sum against the bound.
+void expect_certificate_proves(const floors::Layer& layer, Metric metric, const PathSpec& path,
+                               const ConnectedBound& bound) {
+  ASSERT_TRUE(bound.certificate);
+  const ConnectedBoundCertificate& c = *bound.certificate;
+  const int real = static_cast<int>(c.points_m.size());
+  const bool open = c.start >= 0;
+  ASSERT_EQ(open, !path.closed);
+  const int nodes = real + (open ? 1 : 0);
+  std::vector<std::pair<int, int>> walls;
+  for (const auto& s : layer.segments) walls.emplace_back(s.start_point, s.end_point);
+  if (open) walls.emplace_back(real, c.start);
+  std::vector<std::vector<int>> moats_of(nodes);  // moat ids holding each node, ascending
+  std::vector<double> around(nodes, 0.0);         // the widths of those moats, summed
+  double sum = 0.0;
+  for (std::size_t k = 0; k < c.moats.size(); ++k) {
+    const BoundMoat& m = c.moats[k];
+    std::vector<char> in(nodes, 0);
+    for (int p : m.points) in[p] = 1;
+    int leaving = 0;
+    for (const auto& [a, b] : walls) leaving += in[a] != in[b];
+    if (m.rhs == 1.0) {
+      EXPECT_EQ(leaving % 2, 1) << "a moat of rhs 1 that an even number of walls leave";
+    } else {
+      EXPECT_EQ(m.rhs, 2.0);
+      EXPECT_EQ(leaving, 0) << "a moat of rhs 2 that walls leave";
+    }
+    if (m.exact) {
+      EXPECT_TRUE(open && m.points == std::vector<int>{real});
+    } else {
+      EXPECT_GE(m.width_m, 0.0);
+    }
+    sum += m.rhs * m.width_m;
+    for (int p : m.points) {
+      moats_of[p].push_back(static_cast<int>(k));
+      around[p] += m.width_m;
+    }
+  }
+  int violations = 0;
+  for (int u = 0; u < nodes; ++u)
+    for (int v = u + 1; v < nodes; ++v) {
+      double shared = 0.0;
+      std::vector<int> both;
+      std::set_intersection(moats_of[u].begin(), moats_of[u].end(), moats_of[v].begin(),
+                            moats_of[v].end(), std::back_inserter(both));
+      for (int k : both) shared += c.moats[k].width_m;
+      const double separating = around[u] + around[v] - 2.0 * shared;
+      const double d = v >= real ? 0.0 : metric_distance_m(metric, c.points_m[u], c.points_m[v]);
+      if (separating > d + 1e-9) ++violations;
+    }
+  EXPECT_EQ(violations, 0) << "pairs of points with moats wider than their distance between them";
+  // The bound is the sum less its margin for floating-point sums, no more.
+  EXPECT_LE(bound.lower_bound_m, sum);
+  EXPECT_NEAR(bound.lower_bound_m, sum, 1e-8 * (1.0 + sum));
+}
+
+TEST(ConnectedBound, ItsCertificateProvesIt) {
+  ConnectedBoundLimits keep;
+  keep.keep_certificate = true;
+  // A generated floor plan (odd points, doors and windows), closed and open, both
+  // metrics; and the two rooms, where only moats of rhs 2 see the gap.
+  const auto plan = testing::floor_plan_layer(12, 3);
+  // Open paths from one of its points, and from a point off the plan (an extra node).
+  const PathSpec from_a_point = PathSpec::open_from(plan.points[5]);
+  const PathSpec from_outside = PathSpec::open_from({-1.0, -1.0});
+  for (Metric metric : {Metric::kEuclidean, Metric::kRectilinear})
+    for (const PathSpec& path : {PathSpec::closed_tour(), from_a_point, from_outside}) {
+      const ConnectedBound b = connected_airtime_bound(plan, metric, path, keep);
+      ASSERT_TRUE(b.certified);
+      EXPECT_GT(b.lower_bound_m, 1.0);
+      expect_certificate_proves(plan, metric, path, b);
+    }
+  // The first LP's duals alone, scaled down to hold beyond its candidate pairs (on a
+  // larger plan its nearest-neighbour pairs miss some the duals load beyond their cost).
+  const auto larger = floors::slice_plan_at(floors::generate_plan_with_segments(1000, 1), 1.0, 2.0);
+  ConnectedBoundLimits first = keep;
+  first.max_pricing_rounds = 1;
+  first.max_rounds = 0;
+  const ConnectedBound scaled =
+      connected_airtime_bound(larger, Metric::kEuclidean, PathSpec::closed_tour(), first);
+  EXPECT_LT(scaled.lower_bound_m, scaled.lp_value_m - 1.0);  // scaled indeed
+  expect_certificate_proves(larger, Metric::kEuclidean, PathSpec::closed_tour(), scaled);
+  const auto rooms = two_rooms(6.0);
+  const ConnectedBound b =
+      connected_airtime_bound(rooms, Metric::kEuclidean, PathSpec::closed_tour(), keep);
+  EXPECT_NEAR(b.lower_bound_m, 12.0, 1e-6);
+  expect_certificate_proves(rooms, Metric::kEuclidean, PathSpec::closed_tour(), b);
+  // Kept only when asked for.
+  EXPECT_FALSE(
+      connected_airtime_bound(rooms, Metric::kEuclidean, PathSpec::closed_tour()).certificate);
 }
 
 }  // namespace

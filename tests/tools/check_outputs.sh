@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs `ccbuild COMMAND ARGS --json --svg` and re-checks both outputs with the independent
-# checkers: for plan-layer check_plan.py and check_svg.py, for climb check_climbs.py and
+# checkers: for plan-layer check_plan.py and check_svg.py (one nozzle: also the lower
+# bound's --bound-certificate with check_bound.py), for climb check_climbs.py and
 # the SVG parsed as XML with its groups present, for schedule check_schedule.py on its
 # -o file and check_report.py (headless Chromium) on its --report; with each JSON checker's self-test (it must catch planted corruptions of this
 # very output) when the run succeeded.
@@ -11,11 +12,16 @@ shift 4
 here=$(cd "$(dirname "$0")" && pwd)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
+# One nozzle's plan also writes the connected bound's certificate.
+certificate=()
+if [ "$command" = plan-layer ] && [[ " $* " != *" --nozzles "* ]]; then
+  certificate=(--bound-certificate "$out/bound.json")
+fi
 set +e
 if [ "$command" = schedule ]; then
   "$ccbuild" schedule "$@" --quiet -o "$out/out.json" --report "$out/out.html" > "$out/summary.txt"
 else
-  "$ccbuild" "$command" "$@" --json --svg "$out/out.svg" > "$out/out.json"
+  "$ccbuild" "$command" "$@" --json --svg "$out/out.svg" "${certificate[@]}" > "$out/out.json"
 fi
 code=$?
 set -e
@@ -27,6 +33,10 @@ case "$command" in
   plan-layer)
     "$python" "$here/check_plan.py" "$out/out.json"
     "$python" "$here/check_svg.py" "$out/out.svg" "$out/out.json"
+    if [ ${#certificate[@]} -gt 0 ]; then
+      "$python" "$here/check_bound.py" "$out/bound.json" --plan "$out/out.json"
+      [ "$expected" -ne 0 ] || "$python" "$here/check_bound.py" --self-test "$out/bound.json"
+    fi
     checker=check_plan.py
     ;;
   climb)

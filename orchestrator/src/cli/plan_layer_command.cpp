@@ -36,6 +36,8 @@ struct PlanLayerOptions {
   std::string objective = "distance";
   std::string algorithm = "cc-tsp";
   std::string bound = "connected";
+  std::optional<int> bound_rounds;
+  std::string bound_certificate;
   std::optional<std::int64_t> start_vertex;
   std::optional<std::int64_t> first_wall;
   double time_limit_s = 30.0;
@@ -193,6 +195,19 @@ void print_single(const PlanLayerOptions& o, const orchestrator::Project& projec
           // The bound is on distance; the fastest tour may travel further to avoid lifts.
           ? printf_string("%.2f%% in distance (time objective)", 100.0 * gap).c_str()
           : printf_string("%.2f%%", 100.0 * gap).c_str());
+  if (plan.connected_bound && (o.bound_rounds || !o.bound_certificate.empty())) {
+    const planner::ConnectedBound& c = *plan.connected_bound;
+    const bool out_of_time = c.stopped_by == planner::BoundStop::kTimeLimit;
+    std::cout << printf_string(
+        "  %-13s %s after %d rounds (%s%s)\n", "connected", L(c.lower_bound_m).c_str(), c.rounds,
+        planner::to_string(c.stopped_by).c_str(),
+        out_of_time ? ": the bound gets a third of --time-limit; a longer one runs more rounds"
+                    : "");
+    if (c.certificate)
+      std::cout << printf_string("  %-13s %s: %zu moats (tools/check_bound.py %s re-checks it)\n",
+                                 "certificate", o.bound_certificate.c_str(),
+                                 c.certificate->moats.size(), o.bound_certificate.c_str());
+  }
   std::cout << printf_string(
       "  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
       machine.nozzle_idle_limit_s,
@@ -244,6 +259,12 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   // Refuse a drawing path that would replace any file this run reads, before planning.
   const auto inputs = project.files_read();
   if (!o.svg.empty()) check_output_path(o.svg, o.force, inputs);
+  if (!o.bound_certificate.empty()) {
+    if (!o.svg.empty() && fs::absolute(o.svg).lexically_normal() ==
+                              fs::absolute(o.bound_certificate).lexically_normal())
+      throw InputError("", 0, "--bound-certificate", "is the same file as --svg");
+    check_output_path(o.bound_certificate, o.force, inputs);
+  }
   const floors::Building& b = project.building;
   const floors::Layer layer = orchestrator::layer_of(project, o.floor, o.layer);
   orchestrator::ReportContext context;
@@ -277,6 +298,20 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   }
   options.neighbourhood = *planner::parse_neighbourhood(o.neighbourhood);
   options.bound = *planner::parse_bound(o.bound);
+  for (const auto& [given, flag] :
+       {std::pair{o.bound_rounds.has_value(), "--bound-rounds"},
+        std::pair{!o.bound_certificate.empty(), "--bound-certificate"}}) {
+    if (!given) continue;
+    if (options.bound != planner::BoundKind::kConnected)
+      throw InputError("", 0, flag, "applies only to the connected bound (not --bound matching)");
+    if (o.nozzles >= 2) throw InputError("", 0, flag, "applies only to one nozzle's plan");
+  }
+  if (o.bound_rounds) {
+    // Run the cutting planes to the end, or to this many rounds: no stall rule.
+    options.connected_bound.max_rounds = *o.bound_rounds;
+    options.connected_bound.stall_fraction = 0.0;
+  }
+  options.connected_bound.keep_certificate = !o.bound_certificate.empty();
   if (o.first_wall && !o.start_vertex)
     throw InputError("", 0, "--first-wall", "needs --start-vertex");
   if (o.start_vertex) {
@@ -352,9 +387,20 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     exit_code = plan.status ? kExitOk : kExitNo;
   } else {
     const auto& plan = *result.single;
+    const bool certificate_kept = plan.connected_bound && plan.connected_bound->certificate;
+    if (!o.bound_certificate.empty() && !certificate_kept)
+      throw InputError("", 0, "--bound-certificate",
+                       "no certificate: the connected bound did not run (it gets a third of "
+                       "--time-limit; give more time)");
     if (!o.svg.empty())
       write_file_atomically(o.svg, orchestrator::layer_plan_svg(context, layer, plan), o.force,
                             inputs);
+    if (!o.bound_certificate.empty()) {
+      write_file_atomically(
+          o.bound_certificate,
+          orchestrator::bound_certificate_json(context, layer, plan).dump(1) + "\n", o.force,
+          inputs);
+    }
     if (o.json)
       std::cout
           << orchestrator::layer_plan_json(context, layer, project.machine_model(), plan).dump(2)
@@ -478,9 +524,20 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"lk", "2opt-oropt"}))
       ->capture_default_str();
   command->add_flag("--json", o->json, "Print one JSON object instead of text (errors too)");
+  command
+      ->add_option("--bound-rounds", o->bound_rounds,
+                   "Cutting-plane rounds of the connected bound, without its stall rule: a "
+                   "stronger bound, slower (default: up to 50 rounds, ending when they stop "
+                   "raising it). The bound gets a third of --time-limit (10 s by default)")
+      ->check(integer_in(1, 100000));
+  command->add_option(
+      "--bound-certificate", o->bound_certificate,
+      "Also write the connected bound's dual solution into this new JSON file (docs/json.md): "
+      "the proof of the lower bound, which tools/check_bound.py re-checks without ccbuild");
   command->add_option("--svg", o->svg, "Also draw the plan into this SVG file");
   command->add_flag("--force", o->force,
-                    "Overwrite an existing --svg file (never one this run reads)");
+                    "Overwrite an existing --svg or --bound-certificate file (never one this "
+                    "run reads)");
   command
       ->add_option(
           "--nozzles", o->nozzles,

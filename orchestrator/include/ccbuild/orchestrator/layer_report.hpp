@@ -36,6 +36,15 @@ nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floor
                                        const machine::MachineModel& machine,
                                        const planner::LayerPlan& plan);
 
+/// The connected bound's certificate as one JSON object (docs/json.md,
+/// "plan-layer --bound-certificate"): the layer's points and walls and the bound's dual
+/// moats, unrounded, so that tools/check_bound.py (or anyone) can re-check the bound
+/// without ccbuild. Throws std::logic_error when the plan kept no certificate
+/// (PlanOptions::connected_bound.keep_certificate).
+nlohmann::ordered_json bound_certificate_json(const ReportContext& context,
+                                              const floors::Layer& layer,
+                                              const planner::LayerPlan& plan);
+
 /// An SVG drawing: axes and a scale bar in the user's unit, walls labelled with their
 /// ids and arrowed in the deposition direction, air moves dashed on top (lifted ones
 /// red), the start marked, a legend.

@@ -62,6 +62,8 @@ struct ConnectedBoundLimits {
   /// Exact parity separation (a Gomory-Hu tree of all points) only up to this many
   /// points; above it, parity cuts come from the support graph's parts alone.
   int max_parity_tree_nodes = 4000;
+  /// Keep the dual solution behind the bound (ConnectedBound::certificate).
+  bool keep_certificate = false;
 };
 
 /// Why the connected bound's cutting planes stopped.
@@ -76,15 +78,43 @@ enum class BoundStop {
 /// "no-violated-cuts", "stalled", "round-limit", "time-limit", "cancelled", "lp-failed".
 std::string to_string(BoundStop stop);
 
+/// One set of the connected bound's dual solution. Its width is the dual of the row
+/// x(delta(points)) >= rhs: every air move between a point inside and a point outside
+/// pays it. Nested and overlapping sets add up ("moats" around the points).
+struct BoundMoat {
+  std::vector<int> points;  ///< sorted node ids (ConnectedBoundCertificate)
+  double rhs = 1.0;         ///< 1: an odd number of walls leave the set; 2: none, it is whole parts
+  double width_m = 0.0;     ///< the dual value, >= 0 unless `exact`
+  /// The open path's free end alone, whose row is an equality (exactly one air move
+  /// there): its width may be negative.
+  bool exact = false;
+};
+
+/// The dual solution behind ConnectedBound::lower_bound_m, complete enough to re-check
+/// the bound without ccbuild (docs/json.md, tools/check_bound.py): for every pair of
+/// points, the widths of the moats holding exactly one of them sum to at most their
+/// distance, and the bound is the sum of rhs * width over the moats.
+struct ConnectedBoundCertificate {
+  /// Node ids 0 .. points_m.size() - 1: the layer's points, then (open path) the start
+  /// when it is not one of them. An open path has one more node, the free end, with id
+  /// points_m.size(): joined to the start like a wall, at distance 0 from every point.
+  std::vector<Eigen::Vector2d> points_m;
+  int start = -1;                ///< the open path's start node; -1: a closed tour
+  std::vector<BoundMoat> moats;  ///< those of non-zero width
+};
+
 struct ConnectedBound {
   double lower_bound_m = 0.0;  ///< certified: a dual solution feasible on the complete graph
   double lp_value_m = 0.0;     ///< the last LP's value on its candidate pairs
   bool certified = false;
-  int rounds = 0;
-  int cuts = 0;  ///< cuts added beyond the initial ones
+  int rounds = 0;  ///< cutting-plane rounds run (each a separation; the last may find none)
+  int cuts = 0;    ///< cuts added beyond the initial ones
   int columns = 0;
   int rows = 0;
   BoundStop stopped_by = BoundStop::kNoViolatedCuts;
+  /// With ConnectedBoundLimits::keep_certificate, the dual solution whose value (less a
+  /// margin of about 1e-9 of it for floating-point sums) is lower_bound_m.
+  std::optional<ConnectedBoundCertificate> certificate;
 };
 
 /// The connected bound: air moves and walls together are connected and every point has
@@ -142,6 +172,7 @@ struct LayerBound {
 /// valid). Metres. The connected bound stops early, still valid, when `stop` says so.
 LayerBound airtime_lower_bound(const floors::Layer& layer, Metric metric, const PathSpec& path,
                                BoundKind kind = BoundKind::kConnected,
-                               const StopCondition& stop = StopCondition());
+                               const StopCondition& stop = StopCondition(),
+                               const ConnectedBoundLimits& limits = {});
 
 }  // namespace ccbuild::planner

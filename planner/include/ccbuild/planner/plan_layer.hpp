@@ -89,6 +89,9 @@ struct PlanOptions {
   /// Lower bound reported (and used to stop the search once met): the connected bound
   /// by default; the matching bound alone is faster on very large layers.
   BoundKind bound = BoundKind::kConnected;
+  /// Work limits of the connected bound, and whether to keep its dual solution
+  /// (LayerPlan::connected_bound).
+  ConnectedBoundLimits connected_bound;
   const std::atomic<bool>* cancel = nullptr;
   /// Called on the planning thread each time cc-tsp's best tour improves, in its search
   /// and then in the exact-time polish (SearchProgress::polish) (unset: not
@@ -111,6 +114,9 @@ struct LayerPlan {
   double lower_bound_m = 0.0;       ///< valid bound on airtime distance (see lower_bound.hpp)
   BoundSource lower_bound_source = BoundSource::kMatching;  ///< which bound it is
   int odd_points = 0;
+  /// The connected bound's run (rounds, why it stopped, the certificate when kept);
+  /// unset when it was not computed (BoundKind::kMatching, or no time for it).
+  std::optional<ConnectedBound> connected_bound;
   double solve_s = 0.0;  ///< wall-clock time of the whole run
   double bound_s = 0.0;  ///< of which the lower bound, s
   StopReason stop = StopReason::kFinished;
