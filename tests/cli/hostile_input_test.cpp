@@ -157,6 +157,21 @@ TEST(HostileInput, FlagsThatDoNotFitAreRefused) {
       {"plan-layer tests/data/plans/cottage.yaml --lyer 3", "did you mean '--layer'?"},
       {"plan-lyaer tests/data/plans/cottage.yaml", "did you mean 'plan-layer'?"},
       {"frobnicate", "the commands are: validate, layers, plan-layer, sweep, climb"},
+      // An empty output name (`-o "$UNSET"`) would otherwise write nothing, silently.
+      {"plan-layer tests/data/plans/cottage.yaml --svg ''",
+       "--svg: expected a file name, got an empty one"},
+      {"plan-layer tests/data/plans/cottage.yaml --bound-certificate ''",
+       "--bound-certificate: expected a file name"},
+      {"schedule tests/data/buildings/cottage.yaml -o ''", "--output: expected a file name"},
+      {"schedule tests/data/buildings/cottage.yaml --report ''", "--report: expected a file name"},
+      {"report tests/data/plans/cottage.yaml -o ''", "--output: expected a file name"},
+      {"climb tests/data/buildings/cottage.yaml --svg ''", "--svg: expected a file name"},
+      {"sweep tests/data/plans/cottage.yaml --nozzles 2 --gantry-width 1m --csv ''",
+       "--csv: expected a file name"},
+      {"dry-run tests/data/buildings/cottage.yaml --journal ''", "--journal: expected a file name"},
+      {"dry-run tests/data/buildings/cottage.yaml --state-dir ''",
+       "--state-dir: expected a file name"},
+      {"dry-run tests/data/buildings/cottage.yaml --log ''", "--log: expected a file name"},
   };
   for (const auto& c : cases) expect_refused(run_bounded(c.args), c.message, c.args);
 }

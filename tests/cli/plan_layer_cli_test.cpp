@@ -254,7 +254,7 @@ TEST(PlanLayerCli, TheBoundsCertificateIsWrittenWithTheRoundsItRan) {
   const auto r = run_ccbuild(args + "--bound-certificate " + certificate);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "after 3 rounds (round-limit)")) << r.out;
-  EXPECT_TRUE(contains(r.out, "moats (tools/check_bound.py " + certificate)) << r.out;
+  EXPECT_TRUE(contains(r.out, "moats (tests/tools/check_bound.py " + certificate)) << r.out;
   std::ifstream in(certificate);
   const auto j = nlohmann::json::parse(in);
   EXPECT_EQ(j["format"], "ccbuild-bound-certificate-1");

@@ -70,6 +70,14 @@ CLI::Validator finite_number() {
       "NUMBER");
 }
 
+CLI::Validator output_path() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "expected a file name, got an empty one" : "";
+      },
+      "PATH");
+}
+
 void add_input_options(CLI::App& command, InputOptions& options) {
   command
       .add_option("--units", options.units,

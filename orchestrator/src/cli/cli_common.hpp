@@ -29,6 +29,9 @@ CLI::Validator unsigned_integer();
 CLI::Validator number_in(const Range& range, const std::string& unit);
 /// A finite decimal number, its range checked where its unit is known.
 CLI::Validator finite_number();
+/// The name of a file (or folder) to write: not empty, so that `-o "$UNSET"` is refused
+/// instead of silently writing nothing.
+CLI::Validator output_path();
 
 /// Options every command that reads FILE shares.
 struct InputOptions {

@@ -132,7 +132,8 @@ void add_climb_command(CLI::App& app, int& exit_code) {
       ->check(number_in(Range::above(0.0, 3600.0), "s"))
       ->capture_default_str();
   command->add_flag("--json", o->json, "Print one JSON object (errors too)");
-  command->add_option("--svg", o->svg, "Also draw the platform and pipes in plan and elevation");
+  command->add_option("--svg", o->svg, "Also draw the platform and pipes in plan and elevation")
+      ->check(output_path());
   command->add_flag("--force", o->force,
                     "Overwrite an existing --svg file (never one this run reads)");
   add_input_options(*command, o->input);

@@ -571,12 +571,17 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
   command->add_option("--speed", o->speed, "Simulated seconds per real second")
       ->check(number_in(Range::closed(1.0, 1e9), ""))
       ->capture_default_str();
-  command->add_option("--journal", o->journal, "Keep the journal here (and resume from it)");
-  command->add_option("--state-dir", o->state_dir,
-                      "Where the simulated machines keep their records (<machine>.state: the "
-                      "jobs each ran), kept after the run; default: a temporary folder");
-  command->add_option("--log", o->log,
-                      "Write the whole conversation as an LCM log (lcm-logger's format) here");
+  command->add_option("--journal", o->journal, "Keep the journal here (and resume from it)")
+      ->check(output_path());
+  command
+      ->add_option("--state-dir", o->state_dir,
+                   "Where the simulated machines keep their records (<machine>.state: the "
+                   "jobs each ran), kept after the run; default: a temporary folder")
+      ->check(output_path());
+  command
+      ->add_option("--log", o->log,
+                   "Write the whole conversation as an LCM log (lcm-logger's format) here")
+      ->check(output_path());
   command->add_option(
       "--inject", o->inject,
       "Faults to inject, comma-separated. Network (into what the machines "

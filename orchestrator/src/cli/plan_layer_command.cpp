@@ -204,9 +204,9 @@ void print_single(const PlanLayerOptions& o, const orchestrator::Project& projec
         out_of_time ? ": the bound gets a third of --time-limit; a longer one runs more rounds"
                     : "");
     if (c.certificate)
-      std::cout << printf_string("  %-13s %s: %zu moats (tools/check_bound.py %s re-checks it)\n",
-                                 "certificate", o.bound_certificate.c_str(),
-                                 c.certificate->moats.size(), o.bound_certificate.c_str());
+      std::cout << printf_string(
+          "  %-13s %s: %zu moats (tests/tools/check_bound.py %s re-checks it)\n", "certificate",
+          o.bound_certificate.c_str(), c.certificate->moats.size(), o.bound_certificate.c_str());
   }
   std::cout << printf_string(
       "  %-13s %.2f s (limit %.0f s)%s\n", "longest idle", e.max_idle_s,
@@ -530,11 +530,15 @@ void add_plan_layer_command(CLI::App& app, int& exit_code) {
                    "stronger bound, slower (default: up to 50 rounds, ending when they stop "
                    "raising it). The bound gets a third of --time-limit (10 s by default)")
       ->check(integer_in(1, 100000));
-  command->add_option(
-      "--bound-certificate", o->bound_certificate,
-      "Also write the connected bound's dual solution into this new JSON file (docs/json.md): "
-      "the proof of the lower bound, which tools/check_bound.py re-checks without ccbuild");
-  command->add_option("--svg", o->svg, "Also draw the plan into this SVG file");
+  command
+      ->add_option(
+          "--bound-certificate", o->bound_certificate,
+          "Also write the connected bound's dual solution into this new JSON file (docs/json.md): "
+          "the proof of the lower bound, which tests/tools/check_bound.py re-checks without "
+          "ccbuild")
+      ->check(output_path());
+  command->add_option("--svg", o->svg, "Also draw the plan into this SVG file")
+      ->check(output_path());
   command->add_flag("--force", o->force,
                     "Overwrite an existing --svg or --bound-certificate file (never one this "
                     "run reads)");

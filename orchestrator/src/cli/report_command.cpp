@@ -48,7 +48,9 @@ void add_report_command(CLI::App& app, int& exit_code) {
       "  ccbuild report tower.json -o tower.html\n"
       "  ccbuild schedule config/buildings/house.yaml --report house.html");
   command->add_option("SCHEDULE", o->schedule, "A schedule JSON file")->required();
-  command->add_option("-o,--output", o->output, "The HTML file to write")->required();
+  command->add_option("-o,--output", o->output, "The HTML file to write")
+      ->required()
+      ->check(output_path());
   command->add_flag("--force", o->force, "Overwrite an existing output file");
   command->callback([o, &exit_code] { run_report(*o, exit_code); });
 }

@@ -138,9 +138,12 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       "  ccbuild schedule config/buildings/apartment.yaml --machine "
       "config/machines/cc-climber.yaml");
   command->add_option("BUILDING", o->file, "Building file (or a lone plan)")->required();
-  command->add_option("-o,--output", o->output, "Write the schedule JSON here");
-  command->add_option("--report", o->report,
-                      "Also write the HTML report (as `ccbuild report` draws it)");
+  command->add_option("-o,--output", o->output, "Write the schedule JSON here")
+      ->check(output_path());
+  command
+      ->add_option("--report", o->report,
+                   "Also write the HTML report (as `ccbuild report` draws it)")
+      ->check(output_path());
   command->add_flag("--force", o->force,
                     "Overwrite an existing -o or --report file (never one this run reads)");
   command->add_option("--seed", o->seed, "Random seed: the same seed gives the same schedule")

@@ -318,7 +318,8 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
                    "Bound on each layer's planning in each configuration, s")
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();
-  command->add_option("--csv", o->csv, "Also write the table as CSV (SI units)");
+  command->add_option("--csv", o->csv, "Also write the table as CSV (SI units)")
+      ->check(output_path());
   command->add_flag("--json", o->json, "Print the table as JSON");
   command->add_flag("--force", o->force, "Overwrite an existing --csv file");
   add_input_options(*command, o->input);

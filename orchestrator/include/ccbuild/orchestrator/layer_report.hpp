@@ -38,7 +38,7 @@ nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floor
 
 /// The connected bound's certificate as one JSON object (docs/json.md,
 /// "plan-layer --bound-certificate"): the layer's points and walls and the bound's dual
-/// moats, unrounded, so that tools/check_bound.py (or anyone) can re-check the bound
+/// moats, unrounded, so that tests/tools/check_bound.py (or anyone) can re-check the bound
 /// without ccbuild. Throws std::logic_error when the plan kept no certificate
 /// (PlanOptions::connected_bound.keep_certificate).
 nlohmann::ordered_json bound_certificate_json(const ReportContext& context,

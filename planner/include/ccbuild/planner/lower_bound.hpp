@@ -91,7 +91,7 @@ struct BoundMoat {
 };
 
 /// The dual solution behind ConnectedBound::lower_bound_m, complete enough to re-check
-/// the bound without ccbuild (docs/json.md, tools/check_bound.py): for every pair of
+/// the bound without ccbuild (docs/json.md, tests/tools/check_bound.py): for every pair of
 /// points, the widths of the moats holding exactly one of them sum to at most their
 /// distance, and the bound is the sum of rhs * width over the moats.
 struct ConnectedBoundCertificate {
