@@ -199,8 +199,8 @@ void print_single(const PlanLayerOptions& o, const orchestrator::Project& projec
     const planner::ConnectedBound& c = *plan.connected_bound;
     const bool out_of_time = c.stopped_by == planner::BoundStop::kTimeLimit;
     std::cout << printf_string(
-        "  %-13s %s after %d rounds (%s%s)\n", "connected", L(c.lower_bound_m).c_str(), c.rounds,
-        planner::to_string(c.stopped_by).c_str(),
+        "  %-13s %s after %d round%s (%s%s)\n", "connected", L(c.lower_bound_m).c_str(), c.rounds,
+        c.rounds == 1 ? "" : "s", planner::to_string(c.stopped_by).c_str(),
         out_of_time ? ": the bound gets a third of --time-limit; a longer one runs more rounds"
                     : "");
     if (c.certificate)
