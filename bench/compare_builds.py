@@ -18,6 +18,7 @@ Plans: `bench_layer_search --write-plans DIR`; plans larger than the bundled mac
 reach need a machine with longer axes (bench/README.md)."""
 
 import argparse
+import json
 import os
 import re
 import statistics
@@ -47,8 +48,15 @@ CHECK_BOUND = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir
                            "tools", "check_bound.py")
 
 
-def proven_bound(certificate):
+def proven_bound(certificate, plan):
     """The bound the certificate proves, m, as the independent checker computes it."""
+    try:
+        with open(certificate) as f:
+            made_from = json.load(f).get("file", "")
+    except (OSError, ValueError, AttributeError) as e:
+        sys.exit(f"compare_builds: {certificate}: {e}")
+    if os.path.basename(made_from) != os.path.basename(plan):
+        sys.exit(f"compare_builds: {certificate} is the bound of {made_from}, not of {plan}")
     done = subprocess.run([sys.executable, CHECK_BOUND, certificate], capture_output=True,
                           text=True)
     found = re.search(r"at least ([0-9.]+) m", done.stdout)
@@ -84,7 +92,7 @@ def main():
     if args.bounds:
         for plan in args.plans:
             stem = os.path.splitext(os.path.basename(plan))[0]
-            bounds[plan] = proven_bound(os.path.join(args.bounds, stem + ".json"))
+            bounds[plan] = proven_bound(os.path.join(args.bounds, stem + ".json"), plan)
 
     unit = "m" if args.objective == "distance" else "s"
     bound_columns = " bound m | A's room | B above bound |" if bounds else ""
