@@ -266,6 +266,14 @@ TEST(PlanLayerCli, TheBoundsCertificateIsWrittenWithTheRoundsItRan) {
   EXPECT_TRUE(contains(
       r.out, printf_string("connected     %.3f m", j["lower_bound_distance_m"].get<double>())))
       << r.out;
+  // The same inputs give the same file, byte for byte.
+  const std::string twin = (dir / "twin.json").string();
+  ASSERT_EQ(run_ccbuild(args + "--bound-certificate " + twin).exit_code, 0);
+  auto slurp = [](const std::string& path) {
+    std::ifstream f(path);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(slurp(twin), slurp(certificate));
   // Not overwritten unasked.
   const auto again = run_ccbuild(args + "--bound-certificate " + certificate);
   EXPECT_EQ(again.exit_code, 2);
