@@ -117,10 +117,11 @@ def main():
                f"{statistics.median(ratios):.2f} ({min(ratios):.2f}-{max(ratios):.2f}) |")
         if bounds:
             bound = bounds[plan]
-            room_all.append((a_m - bound) / a_m * 100.0)
             # The airtimes are printed to the millimetre: a tour at the bound may read below.
-            above = max(b_m - bound, 0.0) if b_m >= bound - 5e-4 else b_m - bound
-            above_all.append(above / bound * 100.0 if bound > 0 else 0.0)
+            def above(m):
+                return max(m - bound, 0.0) if m >= bound - 5e-4 else m - bound
+            room_all.append(above(a_m) / a_m * 100.0)
+            above_all.append(above(b_m) / bound * 100.0 if bound > 0 else 0.0)
             row += f" {bound:.4f} | {room_all[-1]:.4f}% | {above_all[-1]:.4f}% |"
         print(row)
     print(f"\nB less airtime: mean {statistics.mean(shorter_all):+.4f}%, worst "
