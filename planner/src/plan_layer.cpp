@@ -272,13 +272,14 @@ LayerPlan plan_layer(const floors::Layer& layer, const machine::MachineModel& ma
   // The bound gets a third of the time limit at most, so a tight limit still leaves the
   // search most of it (the default limit is far beyond what the bound needs).
   const StopCondition bound_stop = stop.within(options.time_limit_s / 3.0);
-  const LayerBound bound = airtime_lower_bound(layer, options.metric, path, options.bound,
-                                               bound_stop, options.connected_bound);
+  LayerBound bound = airtime_lower_bound(layer, options.metric, path, options.bound, bound_stop,
+                                         options.connected_bound);
   plan.lower_bound_m = bound.distance_m;
   plan.bound_s = stop.elapsed_s();
   plan.lower_bound_source = bound.source();
   plan.odd_points = bound.odd_points;
-  plan.connected_bound = bound.connected;
+  // Moved, not copied: with a kept certificate it holds every moat (after source()).
+  plan.connected_bound = std::move(bound.connected);
 
   std::vector<int> all(n);
   std::iota(all.begin(), all.end(), 0);

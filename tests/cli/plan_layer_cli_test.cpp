@@ -269,11 +269,7 @@ TEST(PlanLayerCli, TheBoundsCertificateIsWrittenWithTheRoundsItRan) {
   // The same inputs give the same file, byte for byte.
   const std::string twin = (dir / "twin.json").string();
   ASSERT_EQ(run_ccbuild(args + "--bound-certificate " + twin).exit_code, 0);
-  auto slurp = [](const std::string& path) {
-    std::ifstream f(path);
-    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  };
-  EXPECT_EQ(slurp(twin), slurp(certificate));
+  EXPECT_EQ(testing::slurp(twin), testing::slurp(certificate));
   // Not overwritten unasked.
   const auto again = run_ccbuild(args + "--bound-certificate " + certificate);
   EXPECT_EQ(again.exit_code, 2);
