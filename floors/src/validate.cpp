@@ -8,6 +8,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/limits.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "plan_internal.hpp"
 
@@ -73,6 +74,10 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
   const std::string prefix = context.empty() ? "" : context + ": ";
   // In the plan's unit, whatever it is.
   auto in_unit = [&](double value_m) { return length_text(value_m, plan.units); };
+  // Lengths too short for three decimals ("0.0005 m").
+  auto exact = [&](double value_m) {
+    return plain_number(value_m / meters_per(plan.units)) + " " + to_string(plan.units);
+  };
 
   if (plan.walls.empty())
     sink.add(Diagnostic{plan.source_file, 0, "walls",
@@ -120,6 +125,14 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
                   prefix + "wall " + std::to_string(w.id) + " has zero length (vertices " +
                       std::to_string(w.start_vertex) + " and " + std::to_string(w.end_vertex) +
                       " are at the same point)"));
+      continue;
+    }
+    if (length <= limits::kMinWallLength_m) {
+      sink.add(at(w.source, "",
+                  prefix + "wall " + std::to_string(w.id) + " is " + exact(length) +
+                      " long; walls must be longer than " + exact(limits::kMinWallLength_m) +
+                      " (points closer than that are one point in a layer, so the wall would "
+                      "vanish)"));
       continue;
     }
     wall_length[w.id] = length;

@@ -1,4 +1,5 @@
 #include <cmath>
+#include <map>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -128,19 +129,33 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
   if (items.size() < 3 || items.size() > static_cast<std::size_t>(kMaxUnits))
     units.fail("a climbing machine has 3 to " + std::to_string(kMaxUnits) + " units, got " +
                std::to_string(items.size()));
+  // Each unit is its own chain: a name or joint used twice would make two units one.
+  std::map<int, std::string> joint_owner;
+  for (int k = 0; k < 4; ++k) joint_owner[m.gantry_joints[k]] = "the printing gantry";
   for (const Field& item : items) {
     MapReader um(item, {"name", "swing", "reach", "wrist", "stroke", "pin"});
     um.reject_unknown();
     ClimbingUnit unit;
     unit.name = um.required("name").as_string();
+    for (const auto& other : m.units)
+      if (other.name == unit.name)
+        um.required("name").fail("unit name '" + unit.name +
+                                 "' is used twice; each unit has its own");
     const Eigen::Vector3d z = Eigen::Vector3d::UnitZ(), x = Eigen::Vector3d::UnitX();
     unit.joints = {reader.joint(um.required("swing"), "swing", {"revolute"}, z),
                    reader.joint(um.required("reach"), "reach", {"prismatic"}, x),
                    reader.joint(um.required("wrist"), "wrist", {"revolute"}, z),
                    reader.joint(um.required("stroke"), "stroke", {"prismatic"}, -z),
                    reader.joint(um.required("pin"), "pin", {"prismatic"}, x)};
-    // A chain: each joint's child link is the next one's parent.
     static const char* roles[] = {"swing", "reach", "wrist", "stroke", "pin"};
+    for (int k = 0; k < 5; ++k) {
+      const auto [it, fresh] = joint_owner.emplace(unit.joints[k], "unit " + unit.name);
+      if (!fresh)
+        um.required(roles[k]).fail("joint '" + robot.joint_info(unit.joints[k]).name +
+                                   "' is already " + it->second +
+                                   "'s; each unit moves joints of its own");
+    }
+    // A chain: each joint's child link is the next one's parent.
     for (int k = 0; k + 1 < 5; ++k) {
       const JointInfo& a = robot.joint_info(unit.joints[k]);
       const JointInfo& b = robot.joint_info(unit.joints[k + 1]);

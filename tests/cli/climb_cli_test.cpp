@@ -97,6 +97,23 @@ TEST(ClimberFixtures, AUnitMissingAJointInTheProfile) {
                  b.profile_path() + ":25: climbing.units[2]: missing required key 'stroke'");
 }
 
+TEST(ClimberFixtures, AUnitListedTwiceIsRefusedNotInfeasible) {
+  // The same joints under a second name once made `climb` answer "not feasible" (exit 1).
+  BrokenClimber b;
+  b.edit_profile(
+      "{name: U2, swing: u2_swing, reach: u2_reach, wrist: u2_wrist_yaw, stroke: u2_stroke, "
+      "pin: u2_pin_slide}",
+      "{name: U2, swing: u1_swing, reach: u1_reach, wrist: u1_wrist_yaw, stroke: u1_stroke, "
+      "pin: u1_pin_slide}");
+  expect_refused(b.climb(), b.profile_path() +
+                                ":24: climbing.units[1].swing: joint 'u1_swing' is already unit "
+                                "U1's; each unit moves joints of its own");
+  BrokenClimber names;
+  names.edit_profile("{name: U2,", "{name: U1,");
+  expect_refused(names.climb(), names.profile_path() +
+                                    ":24: climbing.units[1].name: unit name 'U1' is used twice");
+}
+
 TEST(ClimberFixtures, AJointOfTheWrongType) {
   BrokenClimber b;
   b.edit_urdf("<joint name=\"u1_swing\" type=\"revolute\"",

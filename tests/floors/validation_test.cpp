@@ -9,6 +9,7 @@
 
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/plan.hpp"
+#include "ccbuild/floors/slice.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::floors {
@@ -252,6 +253,20 @@ TEST(Boundaries, CoordinatesAndIdsAtTheirLimits) {
                          parse_plan_table(table("5", "0"), "t", LengthUnit::kMeter);
                        }).what(),
                        "expected a positive integer id, got '0'"));
+}
+
+TEST(Boundaries, AWallMustBeLongerThanALayerResolves) {
+  // Exactly 1 mm would vanish from every layer (points that close are one); a hair more
+  // is a wall of its layer.
+  auto one_wall = [](const std::string& x) {
+    return parse_plan_table("vertices\n1 0 0\n2 " + x + " 0\nwalls\n1 1 2\n", "t",
+                            LengthUnit::kMeter);
+  };
+  EXPECT_TRUE(contains(expect_input_error([&] { validate_plan(one_wall("0.001")); }).what(),
+                       "wall 1 is 0.001 m long; walls must be longer than 0.001 m"));
+  const FloorPlan kept = one_wall("0.0011");
+  EXPECT_NO_THROW(validate_plan(kept));
+  EXPECT_EQ(plan_as_layer(kept).segments.size(), 1u);
 }
 
 }  // namespace

@@ -258,15 +258,22 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   // Refuse a drawing path that would replace any file this run reads, before planning.
   const auto inputs = project.files_read();
-  if (!o.svg.empty()) check_output_path(o.svg, o.force, inputs);
-  if (!o.bound_certificate.empty()) {
-    if (!o.svg.empty() && fs::absolute(o.svg).lexically_normal() ==
-                              fs::absolute(o.bound_certificate).lexically_normal())
-      throw InputError("", 0, "--bound-certificate", "is the same file as --svg");
-    check_output_path(o.bound_certificate, o.force, inputs);
-  }
+  OutputClaims outputs(inputs);
+  if (!o.svg.empty()) outputs.claim_file("--svg", o.svg, o.force);
+  if (!o.bound_certificate.empty())
+    outputs.claim_file("--bound-certificate", o.bound_certificate, o.force);
   const floors::Building& b = project.building;
   const floors::Layer layer = orchestrator::layer_of(project, o.floor, o.layer);
+  if (layer.segments.empty()) {
+    const std::string where = printf_string("floor %d layer %d", o.floor, layer.index);
+    if (o.layer)
+      throw InputError("", 0, "layer",
+                       where + " has no walls to plan (every wall is inside an opening there)");
+    throw InputError(o.file, 0, "",
+                     where +
+                         " (the first layer; --layer names another) has no walls to plan "
+                         "(every wall is inside an opening there)");
+  }
   orchestrator::ReportContext context;
   context.file = o.file;
   context.floor = o.floor;

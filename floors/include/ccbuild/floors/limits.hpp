@@ -11,6 +11,9 @@ namespace ccbuild::floors::limits {
 
 /// Coordinates of plan vertices: within 100 km of the plan's origin.
 inline const Range kCoordinate_m = Range::closed(-100'000.0, 100'000.0);
+/// Walls must be longer than this: layers merge points this close into one and drop
+/// pieces this short (slice.hpp), so such a wall would vanish from every layer.
+inline constexpr double kMinWallLength_m = 1e-3;
 /// Wall thickness, when given.
 inline const Range kWallThickness_m = Range::above(0.0, 5.0);
 /// Openings and anchors: along a wall (their fit on the wall is checked separately).

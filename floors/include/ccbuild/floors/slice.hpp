@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/limits.hpp"
 #include "ccbuild/floors/plan.hpp"
 
 namespace ccbuild::floors {
@@ -46,7 +47,7 @@ struct Layer {
 
 struct SliceOptions {
   /// Endpoints closer than this are one point; pieces shorter than it are dropped.
-  double merge_tolerance_m = 1e-3;
+  double merge_tolerance_m = limits::kMinWallLength_m;
 };
 
 /// A straight piece of a wall, before endpoints are merged into a layer.
