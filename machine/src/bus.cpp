@@ -1,6 +1,9 @@
 #include "ccbuild/machine/bus.hpp"
 
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
 #include <lcm/lcm-cpp.hpp>
 
 #include "ccbuild/common/input_error.hpp"
@@ -73,7 +76,21 @@ void Bus::log_event(const lcm::ReceiveBuffer* buffer, const std::string& channel
   event.channel = channel;
   event.datalen = static_cast<int32_t>(buffer->data_size);
   event.data = buffer->data;
-  log_->writeEvent(&event);
+  if (!log_ || !log_error_.empty()) return;
+  errno = 0;
+  if (log_->writeEvent(&event) != 0 || std::fflush(log_->getFilePtr()) != 0 ||
+      std::ferror(log_->getFilePtr()))
+    log_error_ = errno != 0 ? std::strerror(errno) : "write failed";
+}
+
+bool Bus::close_log() {
+  if (!log_) return log_error_.empty();
+  errno = 0;
+  if (log_error_.empty() &&
+      (std::fflush(log_->getFilePtr()) != 0 || std::ferror(log_->getFilePtr())))
+    log_error_ = errno != 0 ? std::strerror(errno) : "write failed";
+  log_.reset();
+  return log_error_.empty();
 }
 
 int Bus::handle(int timeout_ms) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild_lcm/ccbuild_ack_t.hpp"
@@ -64,6 +65,44 @@ std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const TimedPath& p)
 }
 }  // namespace
 
+std::vector<RecordedJob> read_machine_record(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path);  // regular, within the size limit
+  std::vector<RecordedJob> out;
+  std::istringstream lines(text);
+  std::string line;
+  int number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    if (line.empty()) continue;
+    const auto bad = [&](const std::string& expected) {
+      return InputError(path.string(), number, "",
+                        expected + ", got '" +
+                            (line.size() > 200 ? line.substr(0, 200) + "..." : line) +
+                            "' (a machine's record is written by ccbuild-sim; this one is not)");
+    };
+    std::istringstream words(line);
+    RecordedJob r;
+    if (!(words >> r.job_id >> r.start_s >> r.end_s >> r.at[0] >> r.at[1] >> r.at[2] >> r.at[3]))
+      throw bad("expected 'job_id start_s end_s x_m y_m z_m heading_rad [fault waypoints_done]'");
+    const bool finite =
+        std::isfinite(r.start_s) && std::isfinite(r.end_s) &&
+        std::all_of(r.at.begin(), r.at.end(), [](double v) { return std::isfinite(v); });
+    if (r.job_id <= 0 || !finite || r.end_s < r.start_s || r.start_s < 0.0)
+      throw bad("expected a positive job id and finite times, the end not before the start");
+    if (words >> r.fault) {
+      r.ok = false;
+      if (r.fault != "clog" && r.fault != "pin-missed")
+        throw bad("expected the fault 'clog' or 'pin-missed' after the position");
+      if (!(words >> r.stopped_at) || r.stopped_at < 0)
+        throw bad("expected the waypoints done after the fault");
+    }
+    std::string extra;
+    if (words >> extra) throw bad("expected nothing more on the line");
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineModel& m,
                                                                 const TimedPath& p,
                                                                 bool check_z_range) {
@@ -110,33 +149,13 @@ SimMachine::SimMachine(Bus& bus, SimOptions options)
       position_(options_.home),
       pin_failures_left_(options_.pin_failures),
       rng_(options_.seed) {
-  if (!options_.state_file.empty()) {
-    std::ifstream in(options_.state_file);
-    std::string line;
-    int number = 0;
-    while (std::getline(in, line)) {
-      ++number;
-      if (line.empty()) continue;
-      std::istringstream words(line);
-      std::int64_t job = 0;
-      Done d{0.0, 0.0, {}, true, -1, ""};
-      if (!(words >> job >> d.start_s >> d.end_s >> d.at[0] >> d.at[1] >> d.at[2] >> d.at[3]) ||
-          job <= 0 || !std::isfinite(d.end_s))
-        throw InputError(options_.state_file.string(), number, "",
-                         "expected 'job_id start_s end_s x_m y_m z_m heading_rad "
-                         "[fault waypoints_done]', got '" +
-                             line + "'");
-      if (words >> d.detail) {
-        d.ok = false;
-        if (!(words >> d.stopped_at))
-          throw InputError(options_.state_file.string(), number, "",
-                           "expected the waypoints done after the fault, got '" + line + "'");
-        if (d.detail == "clog") clogged_once_ = true;
-      }
-      done_[job] = d;
-      executed_.push_back(job);
-      position_ = d.at;
-      clock_s_ = std::max(clock_s_, d.end_s);
+  if (!options_.state_file.empty() && std::filesystem::exists(options_.state_file)) {
+    for (const RecordedJob& r : read_machine_record(options_.state_file)) {
+      done_[r.job_id] = {r.start_s, r.end_s, r.at, r.ok, r.stopped_at, r.fault};
+      if (r.fault == "clog") clogged_once_ = true;
+      executed_.push_back(r.job_id);
+      position_ = r.at;
+      clock_s_ = std::max(clock_s_, r.end_s);
     }
   }
   const std::string id = options_.machine_id;

@@ -2,6 +2,7 @@
 // answering the jobs for --machine-id (docs/dispatch.md). Runs until SIGTERM or SIGINT.
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -10,10 +11,16 @@
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/sim_limits.hpp"
 #include "ccbuild/machine/sim_machine.hpp"
 
 namespace {
+namespace sim_limits = ccbuild::machine::sim_limits;
 volatile std::sig_atomic_t stop_requested = 0;
+
+CLI::Range range(const ccbuild::Range& r) {
+  return CLI::Range(r.min, r.max);
+}
 extern "C" void on_stop(int) {
   stop_requested = 1;
 }
@@ -40,23 +47,23 @@ int main(int argc, char** argv) {
   app.add_option("--lcm-url", url, "LCM provider URL (ttl=0: this host only)")
       ->capture_default_str();
   app.add_option("--speed", options.speed, "Simulated seconds per real second while busy")
-      ->check(CLI::Range(1.0, 1e9))
+      ->check(range(sim_limits::kSpeed))
       ->capture_default_str();
   app.add_option("--status-period", options.status_period_s, "Status every this many simulated s")
-      ->check(CLI::Range(0.001, 86400.0))
+      ->check(range(sim_limits::kStatusPeriod_s))
       ->capture_default_str();
   app.add_option("--state", state, "Its record of the jobs it ran (appended; read at start)");
   app.add_option("--drop", options.drop, "Injected: the probability a message is lost")
-      ->check(CLI::Range(0.0, 0.9));
+      ->check(range(sim_limits::kDrop));
   app.add_option("--duplicate", options.duplicate, "Injected: ... that one is handled twice")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(range(sim_limits::kDuplicate));
   app.add_option("--reorder", options.reorder, "Injected: ... that one is held behind the next")
-      ->check(CLI::Range(0.0, 0.9));
+      ->check(range(sim_limits::kReorder));
   app.add_option("--delay", options.delay,
                  "Injected: ... that one is held back for up to --delay-max real seconds")
-      ->check(CLI::Range(0.0, 0.9));
+      ->check(range(sim_limits::kDelay));
   app.add_option("--delay-max", options.delay_max_s, "The longest injected delay, real s")
-      ->check(CLI::Range(0.0, 60.0))
+      ->check(range(sim_limits::kDelayMax_s))
       ->capture_default_str();
   app.add_option("--seed", options.seed, "Seed of the injected faults")->capture_default_str();
   std::string profile, clog_at;
@@ -72,26 +79,26 @@ int main(int argc, char** argv) {
   app.add_option("--min-interval", options.min_interval_s,
                  "The material's minimum layer interval, s (a layer covering this machine's "
                  "layer below sooner is refused: too early)")
-      ->check(CLI::Range(0.0, 1e7));
+      ->check(range(sim_limits::kMinInterval_s));
   app.add_option("--max-interval", options.max_interval_s,
                  "... its maximum, s (covered later: a cold joint)")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(range(sim_limits::kMaxInterval_s));
   app.add_option("--anchor-min-age", options.anchor_min_age_s,
                  "How old an anchor must be before a unit pins into it, s (a pin sooner after "
                  "the unit's last pipe is refused: anchor too young)")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(range(sim_limits::kAnchorMinAge_s));
   app.add_option("--clog-at", clog_at,
                  "Injected: the pump clogs part-way through this layer, FLOOR:LAYER (from 0)");
   app.add_option("--pin-failures", options.pin_failures,
                  "Injected: the first N pin insertions miss their pipe")
-      ->check(CLI::Range(0, 1000));
+      ->check(CLI::Range(0, sim_limits::kMaxPinFailures));
   app.add_option("--crash-after", options.crash_after_jobs,
                  "Injected: the process ends (exit 70) right after recording its N-th job")
-      ->check(CLI::Range(0L, 100000000L));
+      ->check(CLI::Range(0L, sim_limits::kMaxCrashAfterJobs));
   app.add_option("--stall-at", options.stall_at_s,
                  "Injected: the rail axis stalls from this schedule time on, s (the drive does "
                  "not notice)")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(range(sim_limits::kStallAt_s));
   CLI11_PARSE(app, argc, argv);
   options.state_file = state;
   options.check_z_range = !climbing;
@@ -99,15 +106,18 @@ int main(int argc, char** argv) {
   try {
     if (!clog_at.empty()) {
       const auto colon = clog_at.find(':');
-      char *end1 = nullptr, *end2 = nullptr;
       const std::string floor = clog_at.substr(0, colon);
       const std::string layer = colon == std::string::npos ? "" : clog_at.substr(colon + 1);
-      options.clog_floor = static_cast<int>(std::strtol(floor.c_str(), &end1, 10));
-      options.clog_layer = static_cast<int>(std::strtol(layer.c_str(), &end2, 10));
-      if (floor.empty() || layer.empty() || *end1 || *end2 || options.clog_floor < 0 ||
-          options.clog_layer < 0)
-        throw ccbuild::InputError("", 0, "--clog-at",
-                                  "expected FLOOR:LAYER (numbers from 0), got '" + clog_at + "'");
+      const auto whole = [](const std::string& text, int max, int& value) {
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        return !text.empty() && ec == std::errc() && end == text.data() + text.size() &&
+               value >= 0 && value <= max;
+      };
+      if (!whole(floor, sim_limits::kMaxClogFloor, options.clog_floor) ||
+          !whole(layer, sim_limits::kMaxClogLayer, options.clog_layer))
+        throw ccbuild::InputError(
+            "", 0, "--clog-at",
+            "expected FLOOR:LAYER (whole numbers from 0), got '" + clog_at + "'");
     }
     if (!profile.empty())
       options.model = std::make_shared<const ccbuild::machine::MachineModel>(

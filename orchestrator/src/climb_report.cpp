@@ -53,9 +53,16 @@ ClimbReport plan_climbs(const Project& project, std::optional<int> floor,
   return report;
 }
 
-nlohmann::ordered_json anchor_json(const Project& project, const climb::Anchor& a) {
+std::vector<std::string> unit_names(const Project& project) {
+  std::vector<std::string> names;
+  if (project.climber)
+    for (const auto& u : project.climber->units) names.push_back(u.name);
+  return names;
+}
+
+nlohmann::ordered_json anchor_json(const std::vector<std::string>& units, const climb::Anchor& a) {
   return {{"id", a.id},
-          {"unit", project.climber->units[a.unit].name},
+          {"unit", units.at(a.unit)},
           {"floor", a.floor < 0 ? json(nullptr) : json(a.floor)},
           {"wall", a.floor < 0 ? json(nullptr) : json(a.wall_id)},
           {"after_layer", a.floor < 0 ? json(nullptr) : json(a.layer)},
@@ -66,9 +73,10 @@ nlohmann::ordered_json anchor_json(const Project& project, const climb::Anchor& 
           {"by_default_rule", a.by_default_rule}};
 }
 
-nlohmann::ordered_json stage_json(const Project& project, const climb::ClimbStage& s) {
+nlohmann::ordered_json stage_json(const std::vector<std::string>& units,
+                                  const climb::ClimbStage& s) {
   json anchors = json::array();
-  for (const auto& a : s.anchors) anchors.push_back(anchor_json(project, a));
+  for (const auto& a : s.anchors) anchors.push_back(anchor_json(units, a));
   return {{"stage", s.index},
           {"platform_z_m", rounded(s.platform_z_m)},
           {"first", {{"floor", s.first.floor}, {"layer", s.first.layer}}},
@@ -77,9 +85,8 @@ nlohmann::ordered_json stage_json(const Project& project, const climb::ClimbStag
           {"anchors", anchors}};
 }
 
-nlohmann::ordered_json climb_plan_json(const Project& project, const climb::ClimbPlan& c,
-                                       bool with_planning_time) {
-  const machine::ClimbingMachine& m = *project.climber;
+nlohmann::ordered_json climb_plan_json(const std::vector<std::string>& units,
+                                       const climb::ClimbPlan& c, bool with_planning_time) {
   json phases = json::array();
   for (const auto& p : c.phases) {
     json waypoints = json::array();
@@ -95,7 +102,7 @@ nlohmann::ordered_json climb_plan_json(const Project& project, const climb::Clim
       waypoints.push_back(point);
     }
     json phase = {{"kind", climb::to_string(p.kind)},
-                  {"unit", p.unit >= 0 ? json(m.units[p.unit].name) : json(nullptr)},
+                  {"unit", p.unit >= 0 ? json(units.at(p.unit)) : json(nullptr)},
                   {"joints", p.joints},
                   {"following_joints", p.following_joints},
                   {"duration_s", rounded(p.duration_s)}};
@@ -155,10 +162,11 @@ nlohmann::ordered_json climb_report_json(const Project& project, const ClimbRepo
   out["status"] = climb::to_string(status.code());
   out["status_reason"] = status.reason();
   json stages = json::array();
-  for (const auto& s : report.stages.stages) stages.push_back(stage_json(project, s));
+  const auto units = unit_names(project);
+  for (const auto& s : report.stages.stages) stages.push_back(stage_json(units, s));
   out["stages"] = stages;
   json climbs = json::array();
-  for (const auto& c : report.climbs) climbs.push_back(climb_plan_json(project, c, true));
+  for (const auto& c : report.climbs) climbs.push_back(climb_plan_json(units, c, true));
   out["climbs"] = climbs;
   out["totals"] = {{"stage_count", report.stages.stages.size()},
                    {"climb_count", report.climbs.size()},

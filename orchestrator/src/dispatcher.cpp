@@ -91,7 +91,8 @@ std::string policy_of(std::int8_t kind) {
   }
 }
 
-Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
+Journal::Journal(const std::filesystem::path& path, const std::string& schedule_sha256)
+    : path_(path.string()) {
   if (sqlite3_open(path_.c_str(), &db_) != SQLITE_OK) {
     const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -107,6 +108,7 @@ Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
       "CREATE TABLE IF NOT EXISTS fault (id INTEGER PRIMARY KEY AUTOINCREMENT, machine_id TEXT "
       "NOT NULL, job_id INTEGER NOT NULL, kind INTEGER NOT NULL, message TEXT NOT NULL, policy "
       "TEXT NOT NULL, utime INTEGER NOT NULL);"
+      "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
       "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state LIMIT 0;";
   char* error = nullptr;
   if (sqlite3_exec(db_, setup, nullptr, nullptr, &error) != SQLITE_OK) {
@@ -115,6 +117,35 @@ Journal::Journal(const std::filesystem::path& path) : path_(path.string()) {
     sqlite3_close(db_);
     db_ = nullptr;
     throw InputError(path_, 0, "--journal", "not a ccbuild dispatch journal: " + why);
+  }
+  if (schedule_sha256.empty()) return;
+  // Which schedule it belongs to: a journal resumes that schedule only.
+  std::string recorded;
+  long rows = 0;
+  {
+    Statement s(db_, "SELECT value FROM meta WHERE key = 'schedule_sha256'");
+    if (sqlite3_step(*s) == SQLITE_ROW) recorded = text(*s, 0);
+    Statement count(db_, "SELECT (SELECT COUNT(*) FROM job_state) + (SELECT COUNT(*) FROM fault)");
+    if (sqlite3_step(*count) == SQLITE_ROW) rows = sqlite3_column_int64(*count, 0);
+  }
+  const auto refuse = [&](const std::string& why) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(path_, 0, "--journal",
+                     why +
+                         "; a journal resumes only the schedule it was written for: give a new "
+                         "--journal file (or remove this one to start over)");
+  };
+  if (!recorded.empty() && recorded != schedule_sha256)
+    refuse("belongs to another schedule (SHA-256 " + recorded.substr(0, 12) +
+           "...), not to this one (" + schedule_sha256.substr(0, 12) + "...)");
+  if (recorded.empty() && rows > 0)
+    refuse("holds " + std::to_string(rows) +
+           " records but names no schedule (an older ccbuild wrote it)");
+  if (recorded.empty()) {
+    Statement s(db_, "INSERT INTO meta (key, value) VALUES ('schedule_sha256', ?1)");
+    sqlite3_bind_text(*s, 1, schedule_sha256.c_str(), -1, SQLITE_TRANSIENT);
+    CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
   }
 }
 

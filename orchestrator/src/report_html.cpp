@@ -27,32 +27,30 @@ std::string script_safe(std::string text) {
   return text;
 }
 
-std::string text_of(const nlohmann::json& j, const char* key) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
-
 }  // namespace
 
-std::string schedule_report_html(const nlohmann::json& schedule, const ReportOptions& options) {
+std::string schedule_report_html(const ScheduleDocument& document, const ReportOptions& options) {
   const std::string three = read_script(
       options.three_js.empty() ? std::filesystem::path(CCBUILD_THREE_JS) : options.three_js);
   const std::string orbit = read_script(options.orbit_controls_js.empty()
                                             ? std::filesystem::path(CCBUILD_ORBIT_CONTROLS_JS)
                                             : options.orbit_controls_js);
-  const nlohmann::json& inputs = schedule.at("inputs");
-  const std::string name =
-      text_of(inputs, "name").empty() ? text_of(inputs, "building") : text_of(inputs, "name");
+  const RecordedInputs& inputs = document.inputs;
+  const std::string name = inputs.name.empty() ? inputs.building : inputs.name;
+  nlohmann::ordered_json schedule = schedule_json(inputs, document.schedule);
+  for (const auto& note : options.notes) schedule["warnings"].push_back(note);
+  const std::string data = script_safe(schedule.dump());
+  schedule = nlohmann::ordered_json();  // only its text is needed from here on
   std::string html;
-  html.reserve(schedule.size() + three.size() + 200'000);
+  html.reserve(data.size() + three.size() + 200'000);
   html += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>";
   html += svg::escape("ccbuild schedule: " + name);
   html += "</title>\n<style>\n";
   html += detail::kReportCss;
   html += "</style>\n</head>\n<body>\n<header><h1>" + svg::escape(name) +
-          "</h1><div class=\"sub\">schedule of " + svg::escape(text_of(inputs, "building")) +
-          ", seed " + inputs.value("seed", nlohmann::json(0)).dump() + ", ccbuild " +
-          svg::escape(text_of(schedule, "ccbuild_version")) + "</div></header>\n<main>\n";
+          "</h1><div class=\"sub\">schedule of " + svg::escape(inputs.building) + ", seed " +
+          std::to_string(inputs.seed) + ", ccbuild " + svg::escape(inputs.ccbuild_version) +
+          "</div></header>\n<main>\n";
   html += R"(<div id="verdict"></div>
 <section id="summary"><h2>Summary</h2></section>
 <section id="gantt"><h2>The build over time</h2></section>
@@ -71,7 +69,7 @@ std::string schedule_report_html(const nlohmann::json& schedule, const ReportOpt
 </main>
 <div id="tooltip" class="tooltip"></div>
 <script id="schedule-data" type="application/json">)";
-  html += script_safe(schedule.dump());
+  html += data;
   html += "</script>\n<script>\n";
   html += script_safe(three);
   html += "\n</script>\n<script>\n";

@@ -138,7 +138,9 @@ void Scheduler::prepare() {
       if (fresh) reps_.push_back(l);
       slices_.push_back({f.index, std::move(l), it->second});
     }
-  CCBUILD_CHECK(!slices_.empty(), "a validated building has walls");
+  if (slices_.empty())
+    throw InputError(project_.file.string(), 0, "",
+                     "nothing to print: no layer of any floor has a wall outside its openings");
   const int count = static_cast<int>(slices_.size());
   layer_end_s_.assign(count, 0.0);
 
@@ -585,37 +587,7 @@ Schedule Scheduler::run() {
   }
   std::stable_sort(schedule_.events.begin(), schedule_.events.end(),
                    [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
-  ScheduleTotals& tot = schedule_.totals;
-  for (const auto& l : schedule_.layers) {
-    tot.makespan_s = std::max(tot.makespan_s, l.end_s);
-    tot.deposition_s += l.deposition_s;
-    tot.airtime_s += l.airtime_s;
-    tot.waits_s += l.wait_before_s;
-    tot.moves_s += l.move_before_s;
-    tot.machine_s += l.end_s - l.start_s + l.move_before_s;
-  }
-  for (const auto& e : schedule_.events) {
-    tot.makespan_s = std::max(tot.makespan_s, e.end_s);
-    const double d = e.end_s - e.start_s;
-    switch (e.kind) {
-      case Event::Kind::kPipe:
-        tot.pipes_s += d;
-        tot.machine_s += d;
-        break;
-      case Event::Kind::kSlab:
-        tot.slabs_s += d;
-        break;
-      case Event::Kind::kPurge:
-        tot.purges_s += d;
-        tot.machine_s += d;
-        break;
-      case Event::Kind::kClimb:
-        tot.climbs_s += d;
-        tot.machine_s += d;
-        tot.waits_s += e.climb->wait_before_s;
-        break;
-    }
-  }
+  schedule_.totals = totals_of(schedule_.layers, schedule_.events);
   schedule_.bookkeeping_s =
       seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
   return std::move(schedule_);
@@ -635,6 +607,42 @@ std::string to_string(Event::Kind kind) {
       return "purge";
   }
   return "?";
+}
+
+ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
+                         const std::vector<Event>& events) {
+  ScheduleTotals tot;
+  for (const auto& l : layers) {
+    tot.makespan_s = std::max(tot.makespan_s, l.end_s);
+    tot.deposition_s += l.deposition_s;
+    tot.airtime_s += l.airtime_s;
+    tot.waits_s += l.wait_before_s;
+    tot.moves_s += l.move_before_s;
+    tot.machine_s += l.end_s - l.start_s + l.move_before_s;
+  }
+  for (const auto& e : events) {
+    tot.makespan_s = std::max(tot.makespan_s, e.end_s);
+    const double d = e.end_s - e.start_s;
+    switch (e.kind) {
+      case Event::Kind::kPipe:
+        tot.pipes_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kSlab:
+        tot.slabs_s += d;
+        break;
+      case Event::Kind::kPurge:
+        tot.purges_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kClimb:
+        tot.climbs_s += d;
+        tot.machine_s += d;
+        if (e.climb) tot.waits_s += e.climb->wait_before_s;
+        break;
+    }
+  }
+  return tot;
 }
 
 Schedule build_schedule(const Project& project, const ScheduleOptions& options) {

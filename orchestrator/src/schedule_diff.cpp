@@ -2,114 +2,78 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <map>
 
 #include "ccbuild/common/format.hpp"
-#include "ccbuild/common/input_error.hpp"
-#include "ccbuild/orchestrator/schedule_json.hpp"
 
 namespace ccbuild::orchestrator {
 namespace {
 
-using json = nlohmann::json;
-/// Schedules of tall buildings hold many timed paths; far above any real one.
-constexpr std::uintmax_t kMaxScheduleBytes = 1024ull * 1024 * 1024;
-
-double number(const json& j, const char* key) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_number() ? it->get<double>() : std::nan("");
+/// A number as the schedule's JSON writes it ("null" when unset).
+std::string text(std::optional<double> value) {
+  return value ? nlohmann::json(*value).dump() : "null";
 }
-
-std::string text(const json& j, const char* key) {
-  const auto it = j.find(key);
-  if (it == j.end() || it->is_null()) return "null";
-  return it->is_string() ? it->get<std::string>() : it->dump();
+std::string text(int value) {
+  return std::to_string(value);
 }
 
 std::string hours(double s) {
   return std::isfinite(s) ? printf_string("%.1f s (%.2f h)", s, s / 3600.0) : "null";
 }
 
-std::string layer_name(const json& l) {
-  return "floor " + text(l, "floor") + " layer " + text(l, "layer");
+std::string layer_name(const ScheduledLayer& l) {
+  return "floor " + std::to_string(l.floor) + " layer " + std::to_string(l.layer);
 }
 
-void require(const std::filesystem::path& path, const char* field, bool ok,
-             const std::string& expected) {
-  if (!ok) throw InputError(path.string(), 0, field, expected);
+bool same_waypoints(const std::vector<planner::Waypoint>& a,
+                    const std::vector<planner::Waypoint>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](const planner::Waypoint& x, const planner::Waypoint& y) {
+                      return x.t_s == y.t_s && x.position_m == y.position_m && x.z_m == y.z_m &&
+                             x.heading_rad == y.heading_rad && x.extruding == y.extruding &&
+                             x.wall == y.wall && x.piece == y.piece;
+                    });
+}
+
+bool same_plan(const SchedulePlan& a, const SchedulePlan& b) {
+  if (a.geometry != b.geometry || a.nozzles != b.nozzles || a.method != b.method ||
+      a.z_top_m != b.z_top_m || a.layer_time_s != b.layer_time_s || a.min_gap_m != b.min_gap_m ||
+      a.waypoints.size() != b.waypoints.size() ||
+      a.layer.segments.size() != b.layer.segments.size())
+    return false;
+  for (std::size_t k = 0; k < a.layer.segments.size(); ++k) {
+    const auto &s = a.layer.segments[k], &t = b.layer.segments[k];
+    if (s.wall_id != t.wall_id || s.piece != t.piece || s.piece_count != t.piece_count ||
+        s.length_m != t.length_m || a.layer.start_m(s) != b.layer.start_m(t) ||
+        a.layer.end_m(s) != b.layer.end_m(t))
+      return false;
+  }
+  for (std::size_t n = 0; n < a.waypoints.size(); ++n)
+    if (!same_waypoints(a.waypoints[n], b.waypoints[n])) return false;
+  return true;
 }
 
 }  // namespace
 
-bool DiffTolerance::allows(double old_value, double new_value) const {
-  if (std::isnan(old_value) || std::isnan(new_value))
-    return std::isnan(old_value) == std::isnan(new_value);
-  return std::abs(new_value - old_value) <=
-         std::max(absolute_s, relative * std::abs(old_value)) + 1e-9;
+bool DiffTolerance::allows(std::optional<double> old_value, std::optional<double> new_value) const {
+  if (!old_value || !new_value) return old_value.has_value() == new_value.has_value();
+  return std::abs(*new_value - *old_value) <=
+         std::max(absolute_s, relative * std::abs(*old_value)) + 1e-9;
 }
 
-json read_schedule_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(path.string(), 0, "", "not found or not a regular file");
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > kMaxScheduleBytes)
-    throw InputError(
-        path.string(), 0, "",
-        printf_string("is %ju bytes; at most %ju are accepted", size, kMaxScheduleBytes));
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  json doc;
-  try {
-    doc = json::parse(bytes);
-  } catch (const json::parse_error& e) {
-    // Line of the byte the parser stopped at.
-    const std::size_t at = std::min<std::size_t>(e.byte, bytes.size());
-    const int line = 1 + static_cast<int>(std::count(bytes.begin(), bytes.begin() + at, '\n'));
-    throw InputError(path.string(), line, "", std::string("not valid JSON: ") + e.what());
-  }
-  require(path, "format", doc.is_object() && text(doc, "format") == "ccbuild-schedule",
-          "expected a ccbuild schedule (\"format\": \"ccbuild-schedule\"), from `ccbuild schedule "
-          "-o`");
-  require(path, "schema_version",
-          doc.contains("schema_version") && doc["schema_version"] == kScheduleSchemaVersion,
-          "expected schema_version " + std::to_string(kScheduleSchemaVersion) + ", got " +
-              text(doc, "schema_version"));
-  for (const char* key : {"layers", "events"})
-    require(path, key, doc.contains(key) && doc[key].is_array(), "expected an array");
-  for (const char* key : {"totals", "plans"})
-    require(path, key, doc.contains(key) && doc[key].is_object(), "expected an object");
-  require(path, "feasible", doc.contains("feasible") && doc["feasible"].is_boolean(),
-          "expected true or false");
-  for (std::size_t k = 0; k < doc["layers"].size(); ++k) {
-    const json& l = doc["layers"][k];
-    const std::string field = "layers[" + std::to_string(k) + "]";
-    bool ok = l.is_object();
-    for (const char* key : {"floor", "layer", "start_s", "end_s", "nozzles"})
-      ok = ok && l.contains(key) && l[key].is_number();
-    if (!ok)
-      throw InputError(path.string(), 0, field,
-                       "expected an object with numbers floor, layer, start_s, end_s, nozzles");
-  }
-  return doc;
-}
-
-ScheduleDiff diff_schedules(const json& a, const json& b, const DiffTolerance& tol, int shown) {
+ScheduleDiff diff_schedules(const ScheduleDocument& old_doc, const ScheduleDocument& new_doc,
+                            const DiffTolerance& tol, int shown) {
+  const Schedule& a = old_doc.schedule;
+  const Schedule& b = new_doc.schedule;
   ScheduleDiff out;
-  if (a["feasible"] != b["feasible"])
-    out.changes.push_back(std::string("feasible: ") + (a["feasible"].get<bool>() ? "yes" : "no") +
-                          " -> " + (b["feasible"].get<bool>() ? "yes" : "no") +
-                          (b.contains("infeasibility") && b["infeasibility"].is_object()
-                               ? " (" + text(b["infeasibility"], "message") + ")"
-                               : ""));
+  if (a.feasible != b.feasible)
+    out.changes.push_back(std::string("feasible: ") + (a.feasible ? "yes" : "no") + " -> " +
+                          (b.feasible ? "yes" : "no") +
+                          (b.infeasibility ? " (" + b.infeasibility->message + ")" : ""));
   // Inputs: checksums tell whether the same files went in.
   std::map<std::string, std::string> old_files, new_files;
-  if (a.contains("inputs") && a["inputs"].contains("files"))
-    for (const auto& f : a["inputs"]["files"]) old_files[text(f, "path")] = text(f, "sha256");
-  if (b.contains("inputs") && b["inputs"].contains("files"))
-    for (const auto& f : b["inputs"]["files"]) new_files[text(f, "path")] = text(f, "sha256");
+  for (const auto& f : old_doc.inputs.files) old_files[f.path] = f.sha256;
+  for (const auto& f : new_doc.inputs.files) new_files[f.path] = f.sha256;
   for (const auto& [path, sum] : new_files) {
     const auto it = old_files.find(path);
     if (it == old_files.end())
@@ -122,34 +86,43 @@ ScheduleDiff diff_schedules(const json& a, const json& b, const DiffTolerance& t
     if (!new_files.count(path)) out.notes.push_back("input " + path + " is no longer read");
 
   // Totals.
-  for (const auto& [key, value] : a["totals"].items()) {
-    if (!value.is_number() || !b["totals"].contains(key)) continue;
-    const double x = value.get<double>(), y = number(b["totals"], key.c_str());
-    if (x == y) continue;
-    const std::string line =
-        "totals." + key + ": " +
-        (key == "layers" ? text(a["totals"], key.c_str()) + " -> " + text(b["totals"], key.c_str())
-                         : hours(x) + " -> " + hours(y)) +
-        (std::isfinite(x) && std::isfinite(y) && x != 0
-             ? printf_string(" (%+.2f%%)", 100.0 * (y - x) / x)
-             : "");
-    (key != "layers" && tol.allows(x, y) ? out.notes : out.changes).push_back(line);
-  }
+  const auto total = [&](const char* key, double x, double y) {
+    if (x == y) return;
+    const std::string line = std::string("totals.") + key + ": " + hours(x) + " -> " + hours(y) +
+                             (std::isfinite(x) && std::isfinite(y) && x != 0
+                                  ? printf_string(" (%+.2f%%)", 100.0 * (y - x) / x)
+                                  : "");
+    (tol.allows(x, y) ? out.notes : out.changes).push_back(line);
+  };
+  const ScheduleTotals &ta = a.totals, &tb = b.totals;
+  total("makespan_s", ta.makespan_s, tb.makespan_s);
+  if (a.layers.size() != b.layers.size())
+    out.changes.push_back(
+        printf_string("totals.layers: %zu -> %zu", a.layers.size(), b.layers.size()));
+  total("deposition_s", ta.deposition_s, tb.deposition_s);
+  total("airtime_s", ta.airtime_s, tb.airtime_s);
+  total("moves_s", ta.moves_s, tb.moves_s);
+  total("waits_s", ta.waits_s, tb.waits_s);
+  total("pipes_s", ta.pipes_s, tb.pipes_s);
+  total("purges_s", ta.purges_s, tb.purges_s);
+  total("climbs_s", ta.climbs_s, tb.climbs_s);
+  total("slabs_s", ta.slabs_s, tb.slabs_s);
+  total("machine_s", ta.machine_s, tb.machine_s);
 
   // Per floor: its span, nozzles and waits.
   struct FloorSummary {
     double start_s = INFINITY, end_s = -INFINITY, waits_s = 0;
     int layers = 0, max_nozzles = 0;
   };
-  auto floors_of = [](const json& s) {
+  auto floors_of = [](const Schedule& s) {
     std::map<int, FloorSummary> f;
-    for (const auto& l : s["layers"]) {
-      FloorSummary& x = f[l["floor"].get<int>()];
-      x.start_s = std::min(x.start_s, l["start_s"].get<double>());
-      x.end_s = std::max(x.end_s, l["end_s"].get<double>());
-      x.waits_s += std::isfinite(number(l, "wait_before_s")) ? number(l, "wait_before_s") : 0.0;
+    for (const auto& l : s.layers) {
+      FloorSummary& x = f[l.floor];
+      x.start_s = std::min(x.start_s, l.start_s);
+      x.end_s = std::max(x.end_s, l.end_s);
+      x.waits_s += l.wait_before_s;
       x.layers += 1;
-      x.max_nozzles = std::max(x.max_nozzles, l["nozzles"].get<int>());
+      x.max_nozzles = std::max(x.max_nozzles, l.nozzles);
     }
     return f;
   };
@@ -174,27 +147,33 @@ ScheduleDiff diff_schedules(const json& a, const json& b, const DiffTolerance& t
     if (!fa.count(floor)) out.changes.push_back("floor " + std::to_string(floor) + ": new");
 
   // Layers, matched by floor and layer.
-  std::map<std::pair<int, int>, const json*> new_layers;
-  for (const auto& l : b["layers"]) new_layers[{l["floor"].get<int>(), l["layer"].get<int>()}] = &l;
-  std::map<std::string, std::string> plan_pairs;  // old plan key -> new, for the plan check
-  for (const auto& l : a["layers"]) {
-    const auto it = new_layers.find({l["floor"].get<int>(), l["layer"].get<int>()});
+  std::map<std::pair<int, int>, const ScheduledLayer*> new_layers;
+  for (const auto& l : b.layers) new_layers[{l.floor, l.layer}] = &l;
+  for (const auto& l : a.layers) {
+    const auto it = new_layers.find({l.floor, l.layer});
     std::string what;
+    const auto add = [&what](const std::string& key, const std::string& from,
+                             const std::string& to) {
+      what += (what.empty() ? "" : ", ") + key + " " + from + " -> " + to;
+    };
     if (it == new_layers.end()) {
       what = "only in the old schedule";
     } else {
-      const json& m = *it->second;
+      const ScheduledLayer& m = *it->second;
       new_layers.erase(it);
-      for (const char* key : {"nozzles", "plan", "method", "geometry"})
-        if (text(l, key) != text(m, key))
-          what += std::string(what.empty() ? "" : ", ") + key + " " + text(l, key) + " -> " +
-                  text(m, key);
-      for (const char* key :
-           {"start_s", "end_s", "wait_before_s", "local_interval_min_s", "local_interval_max_s"})
-        if (!tol.allows(number(l, key), number(m, key)))
-          what += std::string(what.empty() ? "" : ", ") + key + " " + text(l, key) + " -> " +
-                  text(m, key);
-      if (text(l, "plan") == text(m, "plan")) plan_pairs[text(l, "plan")] = text(m, "plan");
+      if (l.nozzles != m.nozzles) add("nozzles", text(l.nozzles), text(m.nozzles));
+      if (l.plan != m.plan) add("plan", l.plan, m.plan);
+      if (l.method != m.method) add("method", l.method, m.method);
+      if (l.geometry != m.geometry) add("geometry", text(l.geometry), text(m.geometry));
+      const std::pair<const char*, std::pair<std::optional<double>, std::optional<double>>>
+          times[] = {{"start_s", {l.start_s, m.start_s}},
+                     {"end_s", {l.end_s, m.end_s}},
+                     {"wait_before_s", {l.wait_before_s, m.wait_before_s}},
+                     {"local_interval_min_s", {l.local_interval_min_s, m.local_interval_min_s}},
+                     {"local_interval_max_s", {l.local_interval_max_s, m.local_interval_max_s}}};
+      for (const auto& [key, values] : times)
+        if (!tol.allows(values.first, values.second))
+          add(key, text(values.first), text(values.second));
     }
     if (what.empty()) continue;
     if (++out.differing_layers <= shown) out.changes.push_back(layer_name(l) + ": " + what);
@@ -205,36 +184,41 @@ ScheduleDiff diff_schedules(const json& a, const json& b, const DiffTolerance& t
   if (out.differing_layers > shown)
     out.changes.push_back(printf_string("... %d differing layers in all", out.differing_layers));
 
-  // Plans kept under the same key: their timed paths.
-  for (const auto& [key, same] : plan_pairs) {
-    if (!a["plans"].contains(key) || !b["plans"].contains(same)) continue;
-    if (a["plans"][key] != b["plans"][same]) {
-      ++out.differing_plans;
-      out.changes.push_back("plan " + key + ": its timed paths differ");
-    }
+  // Plans, by key: those in one schedule only, and those whose timed paths differ.
+  const auto plan_change = [&](const std::string& line) {
+    if (++out.differing_plans <= shown) out.changes.push_back(line);
+  };
+  for (const auto& [key, p] : a.plans) {
+    const auto it = b.plans.find(key);
+    if (it == b.plans.end())
+      plan_change("plan " + key + ": only in the old schedule");
+    else if (!same_plan(p, it->second))
+      plan_change("plan " + key + ": its timed paths differ");
   }
+  for (const auto& [key, p] : b.plans)
+    if (!a.plans.count(key)) plan_change("plan " + key + ": only in the new schedule");
+  if (out.differing_plans > shown)
+    out.changes.push_back(printf_string("... %d differing plans in all", out.differing_plans));
 
   // Events, in order.
-  const json& ea = a["events"];
-  const json& eb = b["events"];
+  const auto& ea = a.events;
+  const auto& eb = b.events;
   const std::size_t n = std::max(ea.size(), eb.size());
+  const auto name = [](const Event& e) { return to_string(e.kind) + " " + e.detail; };
   for (std::size_t k = 0; k < n; ++k) {
     std::string what;
     if (k >= ea.size()) {
-      what = "new: " + text(eb[k], "kind") + " " + text(eb[k], "detail");
+      what = "new: " + name(eb[k]);
     } else if (k >= eb.size()) {
-      what = "gone: " + text(ea[k], "kind") + " " + text(ea[k], "detail");
+      what = "gone: " + name(ea[k]);
     } else {
-      if (text(ea[k], "kind") != text(eb[k], "kind") ||
-          text(ea[k], "detail") != text(eb[k], "detail"))
-        what = text(ea[k], "kind") + " " + text(ea[k], "detail") + " -> " + text(eb[k], "kind") +
-               " " + text(eb[k], "detail");
-      for (const char* key : {"start_s", "end_s"})
-        if (!tol.allows(number(ea[k], key), number(eb[k], key)))
-          what +=
-              std::string(what.empty() ? text(ea[k], "kind") + " " + text(ea[k], "detail") + ": "
-                                       : ", ") +
-              key + " " + text(ea[k], key) + " -> " + text(eb[k], key);
+      if (name(ea[k]) != name(eb[k])) what = name(ea[k]) + " -> " + name(eb[k]);
+      const std::pair<const char*, std::pair<double, double>> times[] = {
+          {"start_s", {ea[k].start_s, eb[k].start_s}}, {"end_s", {ea[k].end_s, eb[k].end_s}}};
+      for (const auto& [key, values] : times)
+        if (!tol.allows(values.first, values.second))
+          what += std::string(what.empty() ? name(ea[k]) + ": " : ", ") + key + " " +
+                  text(values.first) + " -> " + text(values.second);
     }
     if (what.empty()) continue;
     if (++out.differing_events <= shown)

@@ -27,6 +27,40 @@ json reasons_json(const std::vector<WaitReason>& reasons) {
   return out;
 }
 
+json recorded_machine_json(const RecordedMachine& m) {
+  json out;
+  out["name"] = m.name;
+  out["deposition_speed_m_s"] = rounded(m.deposition_speed_m_s);
+  out["travel_speed_m_s"] = rounded(m.travel_speed_m_s);
+  out["x_speed_m_s"] = rounded(m.x_speed_m_s);
+  out["y_speed_m_s"] = rounded(m.y_speed_m_s);
+  out["z_speed_m_s"] = rounded(m.z_speed_m_s);
+  out["rotation_speed_rad_s"] = rounded(m.rotation_speed_rad_s);
+  out["rotate_while_moving"] = m.rotate_while_moving;
+  out["accel_delay_s"] = rounded(m.accel_delay_s);
+  out["lift_height_m"] = rounded(m.lift_height_m);
+  out["lift_time_s"] = rounded(m.lift_time_s);
+  out["lower_time_s"] = rounded(m.lower_time_s);
+  out["stopper_min_rad"] = optional_number(m.stopper_min_rad);
+  out["stopper_max_rad"] = optional_number(m.stopper_max_rad);
+  out["nozzle_idle_limit_s"] = rounded(m.nozzle_idle_limit_s);
+  out["nozzle_width_m"] = rounded(m.nozzle_width_m);
+  out["x_range_m"] = {rounded(m.x_min_m), rounded(m.x_max_m)};
+  out["y_range_m"] = {rounded(m.y_min_m), rounded(m.y_max_m)};
+  out["z_range_m"] = {rounded(m.z_min_m), rounded(m.z_max_m)};
+  out["origin"] = m.origin;
+  out["nozzles"] = m.nozzles;
+  out["gantry_width_m"] = rounded(m.gantry_width_m);
+  out["rail_axis"] = std::string(1, m.rail_axis);
+  out["purge_s"] = rounded(m.purge_s);
+  out["kind"] = m.climbing ? "climbing" : "fixed gantry";
+  if (m.climbing) {
+    out["anchor_strength_mpa"] = rounded(m.anchor_strength_mpa);
+    out["pipe_embed_s"] = rounded(m.pipe_embed_s);
+  }
+  return out;
+}
+
 json material_json(const floors::MaterialProfile& m) {
   json curve = json::array();
   for (const auto& p : m.strength_curve)
@@ -41,38 +75,82 @@ json material_json(const floors::MaterialProfile& m) {
 
 }  // namespace
 
+RecordedInputs recorded_inputs(const Project& project, const ScheduleOptions& options) {
+  RecordedInputs in;
+  const floors::Building& b = project.building;
+  in.building = project.file.string();
+  in.name = b.name;
+  in.units = floors::to_string(b.units);
+  in.layer_height_m = b.layer_height_m;
+  in.slab_stage_s = b.slab_stage_s;
+  in.seed = options.seed;
+  for (const auto& path : project.files_read())
+    in.files.push_back({path.string(), sha256_file_hex(path)});
+  const machine::MachineModel& m = *project.machine;
+  RecordedMachine& r = in.machine;
+  r.name = m.name;
+  r.deposition_speed_m_s = m.deposition_speed_m_s;
+  r.travel_speed_m_s = m.travel_speed_m_s;
+  r.x_speed_m_s = m.x.speed_m_s;
+  r.y_speed_m_s = m.y.speed_m_s;
+  r.z_speed_m_s = m.z.speed_m_s;
+  r.rotation_speed_rad_s = m.rotation_speed_rad_s;
+  r.rotate_while_moving = m.rotate_while_moving;
+  r.accel_delay_s = m.accel_delay_s;
+  r.lift_height_m = m.lift_height_m;
+  r.lift_time_s = m.lift_time_s;
+  r.lower_time_s = m.lower_time_s;
+  if (std::isfinite(m.stopper_min_rad) && std::isfinite(m.stopper_max_rad)) {
+    r.stopper_min_rad = m.stopper_min_rad;
+    r.stopper_max_rad = m.stopper_max_rad;
+  }
+  r.nozzle_idle_limit_s = m.nozzle_idle_limit_s;
+  r.nozzle_width_m = m.nozzle_width_m;
+  r.x_min_m = m.x.min_m;
+  r.x_max_m = m.x.max_m;
+  r.y_min_m = m.y.min_m;
+  r.y_max_m = m.y.max_m;
+  r.z_min_m = m.z.min_m;
+  r.z_max_m = m.z.max_m;
+  r.origin = project.machine_origin;
+  r.nozzles = m.nozzles;
+  r.gantry_width_m = m.gantry_width_m;
+  r.rail_axis = m.rail_axis;
+  r.purge_s = m.purge_s;
+  r.climbing = project.climber != nullptr;
+  if (project.climber) {
+    r.anchor_strength_mpa = project.climber->anchor_strength_mpa;
+    r.pipe_embed_s = project.climber->pipe_embed_s;
+  }
+  in.material = project.material;
+  in.material_origin = project.material_origin;
+  in.unit_names = unit_names(project);
+  return in;
+}
+
 nlohmann::ordered_json schedule_json(const Project& project, const ScheduleOptions& options,
                                      const Schedule& schedule) {
-  const floors::Building& b = project.building;
+  return schedule_json(recorded_inputs(project, options), schedule);
+}
+
+nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& schedule) {
   json out;
   out["format"] = "ccbuild-schedule";
   out["schema_version"] = kScheduleSchemaVersion;
-  out["ccbuild_version"] = kCcbuildVersion;
+  out["ccbuild_version"] = in.ccbuild_version;
 
   json files = json::array();
-  for (const auto& path : project.files_read())
-    files.push_back({{"path", path.string()}, {"sha256", sha256_file_hex(path)}});
-  json machine = detail::machine_json(*project.machine);
-  machine["origin"] = project.machine_origin;
-  machine["nozzles"] = project.machine->nozzles;
-  machine["gantry_width_m"] = rounded(project.machine->gantry_width_m);
-  machine["rail_axis"] = std::string(1, project.machine->rail_axis);
-  machine["purge_s"] = rounded(project.machine->purge_s);
-  machine["kind"] = project.climber ? "climbing" : "fixed gantry";
-  if (project.climber) {
-    machine["anchor_strength_mpa"] = rounded(project.climber->anchor_strength_mpa);
-    machine["pipe_embed_s"] = rounded(project.climber->pipe_embed_s);
-  }
-  json material = material_json(project.material);
-  material["origin"] = project.material_origin;
-  out["inputs"] = {{"building", project.file.string()},
-                   {"name", b.name},
-                   {"units", floors::to_string(b.units)},
-                   {"layer_height_m", rounded(b.layer_height_m)},
-                   {"slab_stage_s", rounded(b.slab_stage_s)},
-                   {"seed", options.seed},
+  for (const auto& f : in.files) files.push_back({{"path", f.path}, {"sha256", f.sha256}});
+  json material = material_json(in.material);
+  material["origin"] = in.material_origin;
+  out["inputs"] = {{"building", in.building},
+                   {"name", in.name},
+                   {"units", in.units},
+                   {"layer_height_m", rounded(in.layer_height_m)},
+                   {"slab_stage_s", rounded(in.slab_stage_s)},
+                   {"seed", in.seed},
                    {"files", files},
-                   {"machine", machine},
+                   {"machine", recorded_machine_json(in.machine)},
                    {"material", material}};
 
   out["feasible"] = schedule.feasible;
@@ -152,7 +230,7 @@ nlohmann::ordered_json schedule_json(const Project& project, const ScheduleOptio
   out["plans"] = plans;
 
   json stages = json::array();
-  for (const auto& s : schedule.stages) stages.push_back(stage_json(project, s));
+  for (const auto& s : schedule.stages) stages.push_back(stage_json(in.unit_names, s));
   out["stages"] = stages;
 
   json events = json::array();
@@ -160,7 +238,7 @@ nlohmann::ordered_json schedule_json(const Project& project, const ScheduleOptio
     json j = {{"kind", to_string(e.kind)}, {"start_s", rounded(e.start_s)},
               {"end_s", rounded(e.end_s)}, {"floor", e.floor},
               {"after_layer", e.layer},    {"detail", e.detail}};
-    if (e.anchor) j["anchor"] = anchor_json(project, *e.anchor);
+    if (e.anchor) j["anchor"] = anchor_json(in.unit_names, *e.anchor);
     if (e.climb) {
       const ClimbEvent& c = *e.climb;
       json anchors = json::array();
@@ -175,7 +253,7 @@ nlohmann::ordered_json schedule_json(const Project& project, const ScheduleOptio
       j["wait_before_s"] = rounded(c.wait_before_s);
       j["wait_reasons"] = reasons_json(c.wait_reasons);
       j["anchors"] = anchors;
-      j["climb"] = climb_plan_json(project, c.plan, false);
+      j["climb"] = climb_plan_json(in.unit_names, c.plan, false);
     }
     events.push_back(j);
   }

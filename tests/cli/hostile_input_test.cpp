@@ -102,6 +102,16 @@ TEST(HostileInput, FixturesAreRefusedWithAReason) {
       {"layers tests/data/plans/cottage.yaml --material tests/data/hostile/absurd_material.yaml",
        "strength_curve[1].strength_mpa: must be from 0 to 200 MPa, got 1e9 MPa"},
       {"validate /dev/zero", "/dev/zero: is not a regular file"},
+      {"schedule tests/data/hostile/tiny_room.yaml",
+       "tiny_room.yaml:11: walls[0]: wall 1 is 0.0005 m long; walls must be longer than 0.001 m"},
+      {"schedule tests/data/hostile/all_openings.yaml",
+       "all_openings.yaml: nothing to print: no layer of any floor has a wall outside its "
+       "openings"},
+      {"plan-layer tests/data/hostile/all_openings.yaml",
+       "all_openings.yaml: floor 0 layer 0 (the first layer; --layer names another) has no "
+       "walls to plan"},
+      {"plan-layer tests/data/hostile/all_openings.yaml --layer 2",
+       "--layer: floor 0 layer 2 has no walls to plan"},
       {"validate tests/data", "tests/data: is a directory, expected a file"},
   };
   for (const auto& c : cases) expect_refused(run_bounded(c.args), c.message, c.args);

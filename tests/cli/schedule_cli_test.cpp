@@ -105,32 +105,55 @@ TEST(ScheduleCommand, BadInputIsExitTwo) {
 
 TEST(DiffCommand, NamesWhatChangedAndHonoursTheTolerance) {
   const fs::path dir = scratch("diff");
-  ASSERT_EQ(
-      run_ccbuild("schedule config/buildings/house.yaml --quiet -o " + (dir / "old.json").string())
-          .exit_code,
-      0);
-  auto doc = nlohmann::json::parse(slurp(dir / "old.json"));
-  // Floor 1 layer 3 starts 10 s later; its end moves with it.
+  const std::string old_json = (dir / "old.json").string();
+  ASSERT_EQ(run_ccbuild("schedule tests/data/buildings/twin-cottages.yaml --quiet -o " + old_json)
+                .exit_code,
+            0);
+  // The same schedule started 10 s later: every layer and event moves by 10 s (a valid
+  // schedule, unlike one layer moved alone, which read_schedule refuses).
+  auto doc = nlohmann::ordered_json::parse(slurp(old_json));
   for (auto& l : doc["layers"])
-    if (l["floor"] == 1 && l["layer"] == 3) {
-      l["start_s"] = l["start_s"].get<double>() + 10.0;
-      l["end_s"] = l["end_s"].get<double>() + 10.0;
-    }
-  std::ofstream(dir / "new.json") << doc.dump(1);
-  const std::string files = (dir / "old.json").string() + " " + (dir / "new.json").string();
+    for (const char* key : {"start_s", "end_s"}) l[key] = l[key].get<double>() + 10.0;
+  for (auto& e : doc["events"])
+    for (const char* key : {"start_s", "end_s"}) e[key] = e[key].get<double>() + 10.0;
+  doc["totals"]["makespan_s"] = doc["totals"]["makespan_s"].get<double>() + 10.0;
+  std::ofstream(dir / "later.json") << doc.dump(1) << "\n";
+  const std::string files = old_json + " " + (dir / "later.json").string();
   const auto differ = run_ccbuild("diff " + files);
-  EXPECT_EQ(differ.exit_code, 1);
-  EXPECT_TRUE(contains(differ.out, "floor 1 layer 3: start_s"));
-  EXPECT_TRUE(contains(differ.out, "1 layers"));
+  EXPECT_EQ(differ.exit_code, 1) << differ.err;
+  EXPECT_TRUE(contains(differ.out, "floor 0 layer 0: start_s"));
+  EXPECT_TRUE(contains(differ.out, "20 layers"));
   // 10 s moved: a tolerance of 10 s allows it, 9.999 s does not.
   EXPECT_EQ(run_ccbuild("diff " + files + " --tolerance 10s").exit_code, 0);
   EXPECT_EQ(run_ccbuild("diff " + files + " --tolerance 9.999s").exit_code, 1);
-  // A nozzle count is never within a tolerance.
-  doc["layers"][5]["nozzles"] = 2;
-  std::ofstream(dir / "new.json") << doc.dump(1);
-  const auto nozzles = run_ccbuild("diff " + files + " --tolerance 100%");
+  // A nozzle count is never within a tolerance: the twin cottages with a mix that one
+  // nozzle keeps up with.
+  const std::string one = (dir / "one.json").string();
+  ASSERT_EQ(run_ccbuild("schedule tests/data/buildings/twin-cottages.yaml --quiet --material "
+                        "tests/data/materials/quick-set-mix.yaml -o " +
+                        one)
+                .exit_code,
+            0);
+  const auto nozzles = run_ccbuild("diff " + old_json + " " + one + " --tolerance 100%");
   EXPECT_EQ(nozzles.exit_code, 1);
-  EXPECT_TRUE(contains(nozzles.out, "nozzles 1 -> 2"));
+  EXPECT_TRUE(contains(nozzles.out, "nozzles 2 -> 1"));
+  EXPECT_TRUE(contains(nozzles.out, "note: input tests/data/materials/quick-set-mix.yaml is new"));
+  // Plans are compared by key: one more plan, though no layer uses it, is a change.
+  auto extra = nlohmann::ordered_json::parse(slurp(old_json));
+  const std::string key = extra["layers"][0]["plan"];
+  extra["plans"]["g99n1"] = extra["plans"][key];
+  extra["plans"]["g99n1"]["nozzles_used"] = 2;
+  std::ofstream(dir / "extra.json") << extra.dump(1) << "\n";
+  const auto plans = run_ccbuild("diff " + old_json + " " + (dir / "extra.json").string());
+  EXPECT_EQ(plans.exit_code, 1) << plans.err;
+  EXPECT_TRUE(contains(plans.out, "plan g99n1: only in the new schedule"));
+  // ... and no plans at all is not a schedule.
+  extra["plans"] = nlohmann::ordered_json::object();
+  std::ofstream(dir / "none.json") << extra.dump(1) << "\n";
+  const auto none = run_ccbuild("diff " + old_json + " " + (dir / "none.json").string());
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_TRUE(contains(none.err, "none.json:"));
+  EXPECT_TRUE(contains(none.err, "/layers/0/plan: plans:"));
   fs::remove_all(dir);
 }
 

@@ -36,9 +36,9 @@ machine::TimedPath path_of(const DispatchJob& d) {
   return machine::path_of(d.chunks);
 }
 
-nlohmann::json golden(const std::string& name) {
-  std::ifstream in(testing::source_path("tests/regression/" + name + ".schedule.json"));
-  return nlohmann::json::parse(in);
+ScheduleDocument golden(const std::string& name) {
+  const auto path = testing::source_path("tests/regression/" + name + ".schedule.json");
+  return parse_schedule(testing::slurp(path), path.string());
 }
 
 TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {

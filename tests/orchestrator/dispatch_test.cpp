@@ -27,18 +27,18 @@ namespace {
 using ccbuild_lcm::ccbuild_job_t;
 using ccbuild_lcm::ccbuild_path_chunk_t;
 
-nlohmann::json house_schedule() {
-  static const nlohmann::json doc = [] {
+const ScheduleDocument& house_schedule() {
+  static const ScheduleDocument doc = [] {
     const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
     ScheduleOptions o;
     o.max_kicks = 200;
-    return nlohmann::json(schedule_json(house, o, build_schedule(house, o)));
+    return ScheduleDocument{recorded_inputs(house, o), build_schedule(house, o)};
   }();
   return doc;
 }
 
 TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
-  const nlohmann::json s = house_schedule();
+  const ScheduleDocument& s = house_schedule();
   const auto jobs = jobs_of_schedule(s);
   int deposits = 0, slabs = 0, purges = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
@@ -53,12 +53,12 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
     if (j.kind != ccbuild_job_t::DEPOSIT) continue;
     ++deposits;
     // The chunks put back together are the plan's waypoints, at this layer's height.
-    const nlohmann::json* layer = nullptr;
-    for (const auto& l : s["layers"])
-      if (l["floor"] == j.floor && l["layer"] == j.layer) layer = &l;
+    const ScheduledLayer* layer = nullptr;
+    for (const auto& l : s.schedule.layers)
+      if (l.floor == j.floor && l.layer == j.layer) layer = &l;
     ASSERT_NE(layer, nullptr);
-    const auto& plan = s["plans"][j.plan];
-    const auto& path = plan["nozzles"][j.nozzle]["waypoints"];
+    const SchedulePlan& plan = s.schedule.plans.at(j.plan);
+    const auto& path = plan.waypoints.at(j.nozzle);
     ASSERT_EQ(j.point_count, static_cast<int>(path.size()));
     int at = 0;
     for (const auto& c : jobs[k].chunks) {
@@ -66,16 +66,13 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
       EXPECT_LE(c.n, ccbuild_path_chunk_t::MAX_POINTS);
       EXPECT_LE(c.getEncodedSize(), 64'000);
       for (int p = 0; p < c.n; ++p, ++at) {
-        EXPECT_EQ(c.t_s[p], path[at]["t_s"].get<double>());
-        EXPECT_EQ(c.wall[p], path[at]["wall"].get<std::int64_t>());
-        EXPECT_NEAR(c.z_m[p],
-                    path[at]["z_m"].get<double>() - plan["z_top_m"].get<double>() +
-                        (*layer)["z_m"].get<double>(),
-                    1e-9);
+        EXPECT_EQ(c.t_s[p], path[at].t_s);
+        EXPECT_EQ(c.wall[p], path[at].wall);
+        EXPECT_NEAR(c.z_m[p], path[at].z_m - plan.z_top_m + layer->z_top_m, 1e-9);
       }
     }
     EXPECT_EQ(at, j.point_count);
-    EXPECT_DOUBLE_EQ(j.start_s, (*layer)["start_s"].get<double>());
+    EXPECT_DOUBLE_EQ(j.start_s, layer->start_s);
   }
   EXPECT_EQ(deposits, 60);  // one nozzle, 60 layers
   EXPECT_EQ(slabs, 1);
@@ -86,22 +83,26 @@ TEST(DispatchJobs, PathsSplitIntoChunksAtTheirBoundary) {
   // A one-layer schedule whose path has exactly MAX_POINTS waypoints, then one more.
   const int most = ccbuild_path_chunk_t::MAX_POINTS;
   for (int points : {most, most + 1}) {
-    nlohmann::json path = nlohmann::json::array();
-    for (int k = 0; k < points; ++k)
-      path.push_back({{"t_s", k * 1.0},
-                      {"x_m", k * 0.01},
-                      {"y_m", 0.0},
-                      {"z_m", 0.1},
-                      {"heading_rad", 0.0},
-                      {"extruding", k + 1 < points},
-                      {"wall", 1},
-                      {"piece", 1}});
-    nlohmann::json s = {
-        {"layers",
-         {{{"floor", 0}, {"layer", 0}, {"plan", "g1n1"}, {"start_s", 0.0}, {"z_m", 0.1}}}},
-        {"plans",
-         {{"g1n1", {{"z_top_m", 0.1}, {"nozzles", {{{"nozzle", 0}, {"waypoints", path}}}}}}}},
-        {"events", nlohmann::json::array()}};
+    ScheduleDocument s;
+    SchedulePlan plan;
+    plan.key = "g1n1";
+    plan.z_top_m = 0.1;
+    plan.waypoints.resize(1);
+    for (int k = 0; k < points; ++k) {
+      planner::Waypoint w;
+      w.t_s = k * 1.0;
+      w.position_m = {k * 0.01, 0.0};
+      w.z_m = 0.1;
+      w.extruding = k + 1 < points;
+      w.wall = 1;
+      w.piece = 1;
+      plan.waypoints[0].push_back(w);
+    }
+    s.schedule.plans["g1n1"] = plan;
+    ScheduledLayer layer;
+    layer.plan = "g1n1";
+    layer.z_top_m = 0.1;
+    s.schedule.layers.push_back(layer);
     const auto jobs = jobs_of_schedule(s);
     ASSERT_EQ(jobs.size(), 1u);
     const int expected = points == most ? 1 : 2;
@@ -109,10 +110,11 @@ TEST(DispatchJobs, PathsSplitIntoChunksAtTheirBoundary) {
     EXPECT_EQ(jobs[0].chunks.back().n, expected == 1 ? points : 1);
     EXPECT_EQ(jobs[0].chunks.back().chunk_index, expected - 1);
   }
-  // A schedule without what jobs need is an input error, not a crash.
-  EXPECT_EQ(
-      testing::expect_input_error([] { jobs_of_schedule(nlohmann::json::object()); }).first().field,
-      "schedule");
+  // A layer whose plan is missing is an input error, not a crash.
+  ScheduleDocument broken;
+  broken.schedule.layers.emplace_back().plan = "g9n1";
+  EXPECT_EQ(testing::expect_input_error([&] { jobs_of_schedule(broken); }).first().field,
+            "schedule");
 }
 
 TEST(Bus, DeliversTypedMessagesAndCountsMalformedOnes) {
@@ -213,6 +215,35 @@ TEST(Dispatch, ARestartedDispatcherAndMachineLoseNothingAndRunNothingTwice) {
   const auto& ran = sim->executed();
   EXPECT_EQ(std::set<std::int64_t>(ran.begin(), ran.end()).size(), ran.size()) << "a job ran twice";
   EXPECT_EQ(ran.size(), jobs.size()) << "a job was lost";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Journal, BelongsToTheScheduleItWasWrittenFor) {
+  const auto dir = scratch("journal");
+  const std::string mine(64, 'a'), other(64, 'b');
+  const auto path = dir / "journal.sqlite";
+  {
+    Journal journal(path, mine);
+    journal.record(10, "gantry-1", "done");
+  }
+  {
+    Journal again(path, mine);  // the same schedule resumes
+    EXPECT_EQ(again.states().at(10), "done");
+  }
+  const InputError e = testing::expect_input_error([&] { Journal(path, other); });
+  EXPECT_EQ(e.first().field, "--journal");
+  EXPECT_TRUE(testing::contains(e.what(), "belongs to another schedule (SHA-256 aaaaaaaaaaaa"));
+  // A journal with records but no schedule named (an older ccbuild's): not guessed.
+  const auto old = dir / "old.sqlite";
+  { Journal(old).record(10, "gantry-1", "done"); }
+  EXPECT_TRUE(testing::contains(testing::expect_input_error([&] { Journal(old, mine); }).what(),
+                                "names no schedule"));
+  // An empty one takes the schedule given.
+  { Journal(dir / "new.sqlite"); }
+  { Journal(dir / "new.sqlite", other); }
+  EXPECT_TRUE(testing::contains(
+      testing::expect_input_error([&] { Journal(dir / "new.sqlite", mine); }).what(),
+      "another schedule"));
   std::filesystem::remove_all(dir);
 }
 

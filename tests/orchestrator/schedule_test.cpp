@@ -148,7 +148,7 @@ TEST(Schedule, TheSameWhateverTheJobs) {
   const auto again = schedule_json(house, quick(2), build_schedule(house, quick(2))).dump();
   EXPECT_EQ(two, again);
   EXPECT_FALSE(
-      diff_schedules(nlohmann::json::parse(one), nlohmann::json::parse(two), {}).differs());
+      diff_schedules(parse_schedule(one, "one"), parse_schedule(two, "two"), {}).differs());
 }
 
 // A two-floor building of generated plans (seeded) with `material` and the bundled gantry.

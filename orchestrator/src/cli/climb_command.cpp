@@ -31,7 +31,7 @@ std::string minutes(double s) {
 void run_climb(const ClimbOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   const auto inputs = project.files_read();
-  if (!o.svg.empty()) check_output_path(o.svg, o.force, inputs);
+  if (!o.svg.empty()) OutputClaims(inputs).claim_file("--svg", o.svg, o.force);
   climb::ClimbOptions options;
   options.seed = o.seed;
   options.time_limit_s = o.time_limit_s;

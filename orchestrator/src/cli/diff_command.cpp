@@ -43,9 +43,16 @@ orchestrator::DiffTolerance parse_tolerance(const std::vector<std::string>& text
 
 void run_diff(const DiffOptions& o, int& exit_code) {
   const orchestrator::DiffTolerance tol = parse_tolerance(o.tolerances);
-  const auto a = orchestrator::read_schedule_file(o.old_file);
-  const auto b = orchestrator::read_schedule_file(o.new_file);
-  const orchestrator::ScheduleDiff d = orchestrator::diff_schedules(a, b, tol, o.shown);
+  // Comparing schedules made from different inputs is what diff is for: inputs changed on
+  // disk since are named, not refused.
+  orchestrator::ReadScheduleOptions read;
+  read.inputs = orchestrator::RecordedInputCheck::kNote;
+  const auto a = orchestrator::read_schedule(o.old_file, read);
+  const auto b = orchestrator::read_schedule(o.new_file, read);
+  const orchestrator::ScheduleDiff d =
+      orchestrator::diff_schedules(a.document, b.document, tol, o.shown);
+  for (const auto& n : a.notes) std::cout << "note: " << o.old_file << ": " << n << "\n";
+  for (const auto& n : b.notes) std::cout << "note: " << o.new_file << ": " << n << "\n";
   for (const auto& n : d.notes) std::cout << "note: " << n << "\n";
   for (const auto& c : d.changes) std::cout << c << "\n";
   if (d.differs()) {
@@ -67,11 +74,13 @@ void add_diff_command(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "diff",
       "Compare two schedules (from `ccbuild schedule -o`): feasibility, totals, each floor, "
-      "the first differing layers and events, and the timed paths of plans kept under the same "
-      "key. Times may move within --tolerance; anything else (nozzle counts, plans, layers or "
-      "events in one schedule only) must be equal.\n"
+      "the first differing layers and events, and the plans by key (in one schedule only, or "
+      "with other timed paths). Times may move within --tolerance (absolute, or a share of "
+      "the OLD value); anything else (nozzle counts, plans, layers or events in one schedule "
+      "only) must be equal. Both files are read back and checked first (docs/schedule.md); "
+      "input files changed since a schedule was made are noted.\n"
       "Exit code 0 when they agree, 1 when they differ beyond the tolerance, 2 when a file is "
-      "not a schedule.\n"
+      "not a schedule or breaks a rule (named with its place).\n"
       "Examples:\n"
       "  ccbuild diff tests/regression/house.schedule.json new.json\n"
       "  ccbuild diff old.json new.json --tolerance 0.5% --tolerance 2s");

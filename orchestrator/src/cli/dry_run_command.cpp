@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -19,12 +20,16 @@
 #include <optional>
 #include <set>
 
+#include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/document.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/common/sha256.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/machine/sim_limits.hpp"
+#include "ccbuild/machine/sim_machine.hpp"
 #include "ccbuild/orchestrator/dispatcher.hpp"
 #include "ccbuild/orchestrator/schedule.hpp"
-#include "ccbuild/orchestrator/schedule_diff.hpp"
 #include "ccbuild/orchestrator/schedule_json.hpp"
 #include "ccbuild/orchestrator/site_watchdog.hpp"
 #include "cli_common.hpp"
@@ -50,77 +55,152 @@ struct DryRunOptions {
   double status_period_s = 0.0;  ///< 0: chosen from the speed
   bool no_watchdog = false;
   bool force = false;
+  bool allow_infeasible = false;
+};
+
+/// One machine fault --inject asks for.
+struct MachineFault {
+  std::string item;          ///< as the user wrote it, for messages
+  std::string name;          ///< clog, pin, crash, stall
+  std::string machine;       ///< gantry-1 unless MACHINE@ named another
+  int floor = 0, layer = 0;  ///< clog
+  long count = 0;            ///< pin, crash
+  double at_s = 0.0;         ///< stall
 };
 
 /// What --inject asks for: network faults with their probabilities, and machine faults
 /// with the machine they happen on.
 struct Injected {
-  std::vector<std::pair<std::string, double>> network;  ///< drop, duplicate, reorder
+  std::vector<std::pair<std::string, double>> network;  ///< drop, duplicate, reorder, delay
+  std::vector<MachineFault> machine;
   /// machine -> its ccbuild-sim flags ("--clog-at", "0:3"), ...
-  std::map<std::string, std::vector<std::string>> machine;
+  std::map<std::string, std::vector<std::string>> flags() const {
+    std::map<std::string, std::vector<std::string>> out;
+    for (const auto& f : machine) {
+      auto& args = out[f.machine];
+      if (f.name == "clog")
+        args.insert(args.end(), {"--clog-at", printf_string("%d:%d", f.floor, f.layer)});
+      if (f.name == "pin") args.insert(args.end(), {"--pin-failures", std::to_string(f.count)});
+      if (f.name == "crash") args.insert(args.end(), {"--crash-after", std::to_string(f.count)});
+      if (f.name == "stall")
+        args.insert(args.end(), {"--stall-at", printf_string("%.17g", f.at_s)});
+    }
+    return out;
+  }
 };
 
+const char* const kInjectGrammar =
+    "expected comma-separated drop=P, duplicate=P, reorder=P, delay=P (P from 0 to 0.9), "
+    "clog=[MACHINE@]FLOOR:LAYER, pin=[MACHINE@]N, crash=[MACHINE@]N or stall=[MACHINE@]SECONDS";
+
+InputError bad_inject(const std::string& item, const std::string& why) {
+  return InputError("", 0, "--inject", why + " in '" + item + "'; " + kInjectGrammar);
+}
+
+template <class Number>
+bool parse_whole(const std::string& text, Number& value) {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return !text.empty() && ec == std::errc() && end == text.data() + text.size();
+}
+
 /// --inject "drop=0.1,duplicate=0.1,reorder=0.1,clog=0:3,pin=1,crash=5,stall=gantry-2@60":
-/// each fault and its value; a machine fault happens on gantry-1 unless MACHINE@ names
-/// another. Throws InputError (field --inject) for anything else.
+/// each fault and its value, within what ccbuild-sim accepts. Throws InputError (field
+/// --inject) for anything else. check_injected() then holds it against the schedule.
 Injected injected(const std::string& text) {
+  namespace lim = machine::sim_limits;
   Injected out;
   std::size_t at = 0;
-  const auto bad = [](const std::string& item, const std::string& why) {
-    return InputError(
-        "", 0, "--inject",
-        why + " in '" + item +
-            "'; expected comma-separated drop=P, duplicate=P, reorder=P, delay=P (P from "
-            "0 to 0.9), clog=[MACHINE@]FLOOR:LAYER, pin=[MACHINE@]N, "
-            "crash=[MACHINE@]N or stall=[MACHINE@]SECONDS");
-  };
   while (at < text.size()) {
     const std::size_t end = std::min(text.find(',', at), text.size());
     const std::string item = text.substr(at, end - at);
     at = end + 1;
     const std::size_t eq = item.find('=');
-    if (eq == std::string::npos) throw bad(item, "no '='");
+    if (eq == std::string::npos) throw bad_inject(item, "no '='");
     const std::string name = item.substr(0, eq);
     std::string value = item.substr(eq + 1);
     if (name == "drop" || name == "duplicate" || name == "reorder" || name == "delay") {
-      char* stop = nullptr;
-      const double p = std::strtod(value.c_str(), &stop);
-      if (value.empty() || *stop != '\0' || !(p >= 0.0 && p <= 0.9))
-        throw bad(item, "a probability from 0 to 0.9 expected");
+      double p = 0.0;
+      if (!parse_whole(value, p) || !(p >= 0.0 && p <= 0.9))
+        throw bad_inject(item, "a probability from 0 to 0.9 expected");
+      for (const auto& [seen, v] : out.network)
+        if (seen == name) throw bad_inject(item, name + " given twice");
       out.network.emplace_back(name, p);
       continue;
     }
-    std::string machine = orchestrator::gantry_id(0);
+    MachineFault f;
+    f.item = item;
+    f.name = name;
+    f.machine = orchestrator::gantry_id(0);
     if (const std::size_t amp = value.find('@'); amp != std::string::npos) {
-      machine = value.substr(0, amp);
+      f.machine = value.substr(0, amp);
       value = value.substr(amp + 1);
     }
-    char* stop = nullptr;
     if (name == "clog") {
       const std::size_t colon = value.find(':');
-      const long floor = std::strtol(value.c_str(), &stop, 10);
-      if (colon == std::string::npos || stop != value.c_str() + colon || floor < 0)
-        throw bad(item, "FLOOR:LAYER expected");
-      const long layer = std::strtol(value.c_str() + colon + 1, &stop, 10);
-      if (*stop != '\0' || layer < 0 || colon + 1 == value.size())
-        throw bad(item, "FLOOR:LAYER expected");
-      out.machine[machine].insert(out.machine[machine].end(), {"--clog-at", value});
+      if (colon == std::string::npos || !parse_whole(value.substr(0, colon), f.floor) ||
+          !parse_whole(value.substr(colon + 1), f.layer) || f.floor < 0 || f.layer < 0 ||
+          f.floor > lim::kMaxClogFloor || f.layer > lim::kMaxClogLayer)
+        throw bad_inject(item, "FLOOR:LAYER expected (whole numbers from 0)");
     } else if (name == "pin" || name == "crash") {
-      const long n = std::strtol(value.c_str(), &stop, 10);
-      if (value.empty() || *stop != '\0' || n < 1 || n > 100000)
-        throw bad(item, "a count from 1 expected");
-      out.machine[machine].insert(out.machine[machine].end(),
-                                  {name == "pin" ? "--pin-failures" : "--crash-after", value});
+      const long most = name == "pin" ? lim::kMaxPinFailures : lim::kMaxCrashAfterJobs;
+      if (!parse_whole(value, f.count) || f.count < 1 || f.count > most)
+        throw bad_inject(item, printf_string("a count from 1 to %ld expected", most));
     } else if (name == "stall") {
-      const double t = std::strtod(value.c_str(), &stop);
-      if (value.empty() || *stop != '\0' || !(t >= 0.0 && t <= 1e9))
-        throw bad(item, "a schedule time in seconds expected");
-      out.machine[machine].insert(out.machine[machine].end(), {"--stall-at", value});
+      if (!parse_whole(value, f.at_s) || !lim::kStallAt_s.contains(f.at_s))
+        throw bad_inject(item, "a schedule time in seconds from 0 to 1e9 expected");
     } else {
-      throw bad(item, "unknown fault '" + name + "'");
+      throw bad_inject(item, "unknown fault '" + name + "'");
     }
+    for (const auto& seen : out.machine)
+      if (seen.name == f.name && seen.machine == f.machine)
+        throw bad_inject(item, name + " on " + f.machine + " given twice");
+    out.machine.push_back(std::move(f));
   }
   return out;
+}
+
+/// Refuses a machine fault that could never happen on this schedule: on a machine it does
+/// not have, a layer that machine does not deposit, a pin where nothing climbs, a crash
+/// after more jobs than the machine runs, a stall after the schedule ends.
+void check_injected(const Injected& inject, const orchestrator::ScheduleDocument& document,
+                    const std::vector<orchestrator::DispatchJob>& jobs,
+                    const std::vector<std::string>& ids) {
+  std::string machines;
+  for (const auto& id : ids) machines += (machines.empty() ? "" : ", ") + id;
+  int inserts = 0;
+  for (const auto& e : document.schedule.events)
+    if (e.climb)
+      for (const auto& p : e.climb->plan.phases)
+        inserts += p.kind == climb::ClimbPhase::Kind::kInsert;
+  for (const auto& f : inject.machine) {
+    if (std::find(ids.begin(), ids.end(), f.machine) == ids.end())
+      throw bad_inject(f.item,
+                       "the schedule has no machine " + f.machine + " (it has " + machines + ")");
+    long runs = 0;
+    bool deposits = false;
+    for (const auto& j : jobs) {
+      if (j.job.machine_id != f.machine) continue;
+      ++runs;
+      deposits = deposits || (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT &&
+                              j.job.floor == f.floor && j.job.layer == f.layer);
+    }
+    if (f.name == "clog" && !deposits)
+      throw bad_inject(f.item, printf_string("%s deposits nothing on floor %d layer %d of this "
+                                             "schedule, so it cannot clog there",
+                                             f.machine.c_str(), f.floor, f.layer));
+    if (f.name == "pin" && inserts == 0)
+      throw bad_inject(f.item, "the schedule has no climbs, so no pin is ever inserted");
+    if (f.name == "pin" && f.machine != orchestrator::gantry_id(0))
+      throw bad_inject(f.item, "climbs run as jobs of " + orchestrator::gantry_id(0) +
+                                   "; a pin can only miss there");
+    if (f.name == "crash" && f.count > runs)
+      throw bad_inject(f.item, printf_string("%s runs %ld jobs in this schedule, so it never "
+                                             "reaches its %ld-th",
+                                             f.machine.c_str(), runs, f.count));
+    if (f.name == "stall" && f.at_s > document.schedule.totals.makespan_s)
+      throw bad_inject(f.item, printf_string("the schedule ends at %.1f s, before the stall",
+                                             document.schedule.totals.makespan_s));
+  }
 }
 
 /// The simulated machines, one process each; stopped (SIGTERM) when this goes. One that
@@ -130,7 +210,8 @@ class Machines {
   /// `homes`: where each machine is parked before its first job (x, y, z, heading).
   Machines(const std::vector<std::string>& ids,
            const std::map<std::string, std::array<double, 4>>& homes,
-           std::vector<std::string> common, const Injected& inject, const fs::path& state_dir)
+           std::vector<std::string> common,
+           const std::map<std::string, std::vector<std::string>>& faults, const fs::path& state_dir)
       : sim_(fs::read_symlink("/proc/self/exe").parent_path() / "ccbuild-sim") {
     if (!fs::exists(sim_))
       throw InputError(sim_.string(), 0, "", "ccbuild-sim not found beside ccbuild (build it)");
@@ -142,24 +223,39 @@ class Machines {
         args.push_back("--home");
         for (const double v : home->second) args.push_back(printf_string("%.17g", v));
       }
-      const auto it = inject.machine.find(id);
-      if (it != inject.machine.end()) args.insert(args.end(), it->second.begin(), it->second.end());
+      const auto it = faults.find(id);
+      if (it != faults.end()) args.insert(args.end(), it->second.begin(), it->second.end());
       running_.push_back({id, args, start(args)});
     }
   }
   ~Machines() {
-    for (const auto& m : running_) ::kill(m.pid, SIGTERM);
-    for (const auto& m : running_) ::waitpid(m.pid, nullptr, 0);
+    for (const auto& m : running_)
+      if (m.pid > 0) ::kill(m.pid, SIGTERM);
+    for (const auto& m : running_)
+      if (m.pid > 0) ::waitpid(m.pid, nullptr, 0);
   }
-  /// Starts again the machines that ended; returns what happened, in words.
-  std::vector<std::string> restart_ended() {
+  /// Starts again the machines that ended; returns what happened, in words. Throws
+  /// InputError when a machine refused its input (exit code 2: its own message is above),
+  /// and sets `given_up` when one ended more often than kMostRestarts.
+  std::vector<std::string> restart_ended(std::optional<std::string>& given_up) {
     std::vector<std::string> said;
     for (auto& m : running_) {
       int status = 0;
-      if (::waitpid(m.pid, &status, WNOHANG) != m.pid) continue;
+      if (m.pid <= 0 || ::waitpid(m.pid, &status, WNOHANG) != m.pid) continue;
+      m.pid = -1;
+      const bool exited = WIFEXITED(status);
+      const int code = exited ? WEXITSTATUS(status) : WTERMSIG(status);
+      if (exited && (code == 2 || code == 127))
+        throw InputError("", 0, m.id,
+                         code == 2 ? "ccbuild-sim refused what it was given (exit code 2; its "
+                                     "message is above): nothing was started again"
+                                   : "ccbuild-sim could not be started (exit code 127)");
+      if (++m.restarts > kMostRestarts) {
+        given_up = printf_string("%s ended %d times; not started again", m.id.c_str(), m.restarts);
+        continue;
+      }
       said.push_back(printf_string("%s ended (%s %d); started again on its own record",
-                                   m.id.c_str(), WIFEXITED(status) ? "exit code" : "signal",
-                                   WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status)));
+                                   m.id.c_str(), exited ? "exit code" : "signal", code));
       // It crashed once; it runs on without that fault.
       for (std::size_t k = 0; k + 1 < m.args.size(); ++k)
         if (m.args[k] == "--crash-after") m.args.erase(m.args.begin() + k, m.args.begin() + k + 2);
@@ -182,31 +278,43 @@ class Machines {
     }
     return pid;
   }
+  /// A machine ending more often than this is not started again: the run stops.
+  static constexpr int kMostRestarts = 10;
   struct Running {
     std::string id;
     std::vector<std::string> args;
     pid_t pid;
+    int restarts = 0;
   };
   fs::path sim_;
   std::vector<Running> running_;
 };
 
-/// The machine profile a schedule was made with: --machine, the building's, or the one
-/// among the schedule's input files that loads as the machine it names.
-std::string machine_profile(const nlohmann::json& schedule, const DryRunOptions& o,
+/// The machine profile a schedule was made with: the building's (when FILE is one), else
+/// --machine (which must be one of the files the schedule recorded), else the recorded file
+/// that loads as the machine the schedule names. The recorded files were checked against
+/// their SHA-256 already.
+std::string machine_profile(const orchestrator::ScheduleDocument& schedule, const DryRunOptions& o,
                             const std::optional<orchestrator::Project>& project) {
   if (project) return project->machine->source_file;
-  if (!o.input.machine.empty()) return o.input.machine;
-  const std::string name = schedule.at("inputs").at("machine").at("name").get<std::string>();
-  for (const auto& f : schedule.at("inputs").at("files")) {
-    const fs::path path = f.at("path").get<std::string>();
+  if (!o.input.machine.empty()) {
+    const std::string sum = sha256_file_hex(o.input.machine);
+    for (const auto& f : schedule.inputs.files)
+      if (f.sha256 == sum) return o.input.machine;
+    throw InputError(o.input.machine, 0, "--machine",
+                     "is not among the files the schedule " + o.file +
+                         " was made from; a schedule runs on its own machine");
+  }
+  const std::string& name = schedule.inputs.machine.name;
+  for (const auto& f : schedule.inputs.files) {
+    const fs::path path = f.path;
     if (path.extension() != ".yaml" && path.extension() != ".json") continue;
     try {
       if (machine::load_machine(path).name == name) return path.string();
     } catch (const InputError&) {
     }
   }
-  throw InputError(o.file, 0, "inputs.machine",
+  throw InputError(o.file, 0, "/inputs/machine/name",
                    "the machine profile '" + name +
                        "' is not among the schedule's files here; name it with --machine");
 }
@@ -217,11 +325,11 @@ std::string machine_profile(const nlohmann::json& schedule, const DryRunOptions&
 /// a gantry width apart.
 std::map<std::string, std::array<double, 4>> homes_of(
     const std::vector<orchestrator::DispatchJob>& jobs, const std::vector<std::string>& ids,
-    char rail_axis, double gantry_width_m, const nlohmann::json& machine_json) {
+    const orchestrator::RecordedMachine& machine) {
+  const char rail_axis = machine.rail_axis;
+  const double gantry_width_m = machine.gantry_width_m;
   const int rail = rail_axis == 'y' ? 1 : 0;
-  const auto range = machine_json.value(rail_axis == 'y' ? "y_range_m" : "x_range_m",
-                                        std::vector<double>{0.0, 1e9});
-  const double rail_max_m = range.size() == 2 ? range[1] : 1e9;
+  const double rail_max_m = rail_axis == 'y' ? machine.y_max_m : machine.x_max_m;
   double first_s = std::numeric_limits<double>::infinity();
   for (const auto& j : jobs)
     if (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT)
@@ -246,6 +354,36 @@ std::map<std::string, std::array<double, 4>> homes_of(
   return homes;
 }
 
+/// The folder of machine records (--state-dir) belongs to one schedule, named in its
+/// `schedule.sha256`: records of another schedule would be taken as jobs done. Checks each
+/// machine's record, so that one a machine would refuse is refused here, before anything
+/// starts. Throws InputError naming the file.
+void check_state_dir(const fs::path& dir, const std::vector<std::string>& ids,
+                     const std::string& schedule_sha256) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return;  // made when the run starts
+  const fs::path marker = dir / "schedule.sha256";
+  bool records = false;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    records = records || entry.path().extension() == ".state";
+  if (fs::exists(marker, ec)) {
+    const std::string recorded = read_text_file(marker);
+    if (recorded.substr(0, 64) != schedule_sha256)
+      throw InputError(dir.string(), 0, "--state-dir",
+                       "holds the machines' records of another schedule (SHA-256 " +
+                           recorded.substr(0, 12) + "..., this one is " +
+                           schedule_sha256.substr(0, 12) +
+                           "...); give a new folder (or empty this one to start over)");
+  } else if (records) {
+    throw InputError(dir.string(), 0, "--state-dir",
+                     "holds machine records (*.state) but names no schedule (schedule.sha256); "
+                     "they cannot be matched to this schedule: give a new folder");
+  }
+  for (const auto& id : ids)
+    if (const fs::path record = dir / (id + ".state"); fs::exists(record, ec))
+      machine::read_machine_record(record);
+}
+
 std::string duration(double s) {
   if (s >= 2 * 86400.0) return printf_string("%.2f d", s / 86400.0);
   if (s >= 2 * 3600.0) return printf_string("%.2f h", s / 3600.0);
@@ -253,20 +391,40 @@ std::string duration(double s) {
 }
 
 void run_dry_run(const DryRunOptions& o, int& exit_code) {
-  // A schedule file as it is; a building scheduled first.
-  nlohmann::json schedule;
+  namespace lim = machine::sim_limits;
+  const Injected inject = injected(o.inject);  // its grammar, before any work
+  // A schedule file read back and checked (its input files unchanged: the machines run
+  // from them); a building scheduled first.
+  orchestrator::ScheduleDocument schedule;
   std::optional<orchestrator::Project> project;
+  OutputClaims outputs;
   if (fs::path(o.file).extension() == ".json") {
-    schedule = orchestrator::read_schedule_file(o.file);
+    orchestrator::ReadScheduleOptions read;
+    read.inputs = orchestrator::RecordedInputCheck::kRefuseChangedOrMissing;
+    schedule = orchestrator::read_schedule(o.file, read).document;
+    outputs.add_input(o.file);
   } else {
     project = open_input(o.file, o.input);
     orchestrator::ScheduleOptions options;
-    schedule = orchestrator::schedule_json(*project, options,
-                                           orchestrator::build_schedule(*project, options));
+    schedule = {orchestrator::recorded_inputs(*project, options),
+                orchestrator::build_schedule(*project, options)};
   }
-  const Injected inject = injected(o.inject);  // checked before anything starts
-  if (!o.log.empty() && fs::exists(o.log) && !o.force)
-    throw InputError(o.log, 0, "--log", "exists already; --force to overwrite it");
+  for (const auto& f : schedule.inputs.files) outputs.add_input(f.path);
+  if (!o.input.machine.empty()) outputs.add_input(o.input.machine);
+  if (!o.input.material.empty()) outputs.add_input(o.input.material);
+  const orchestrator::RecordedMachine& machine_rec = schedule.inputs.machine;
+  const floors::MaterialProfile& material = schedule.inputs.material;
+  if (!schedule.schedule.feasible && !o.allow_infeasible)
+    throw InputError(o.file, 0, project ? "" : "/feasible",
+                     "the schedule is not feasible (" + schedule.schedule.infeasibility->message +
+                         "); its machines would be sent work that breaks the material's "
+                         "constraints. Fix it first, or pass --allow-infeasible to see where "
+                         "the machines stop it");
+  // The schedule's identity, for the journal and the machines' records: the SHA-256 of
+  // its JSON as `ccbuild schedule -o` writes it (the same for the building and its file).
+  const std::string schedule_sha256 =
+      sha256_hex(orchestrator::schedule_json(schedule.inputs, schedule.schedule).dump(1) + "\n");
+
   auto jobs = orchestrator::jobs_of_schedule(schedule);
   std::vector<std::string> ids;  // in rail order
   for (int k = 0;; ++k) {
@@ -276,28 +434,58 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       break;
     ids.push_back(id);
   }
-  nlohmann::json machine_json, material_json;
-  try {
-    machine_json = schedule.at("inputs").at("machine");
-    material_json = schedule.at("inputs").at("material");
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(o.file, 0, "inputs", "the schedule names no machine or material");
-  }
+  check_injected(inject, schedule, jobs, ids);
   const std::string profile = machine_profile(schedule, o, project);
-  const char rail_axis = machine_json.value("rail_axis", std::string("x")) == "y" ? 'y' : 'x';
-  const double gantry_width_m = machine_json.value("gantry_width_m", 1.5);
-  const double rail_speed_m_s =
-      machine_json.value(rail_axis == 'y' ? "y_speed_m_s" : "x_speed_m_s", 0.5);
-  const bool climbing = machine_json.value("kind", std::string("fixed gantry")) != "fixed gantry";
-  // Statuses at a fixed rate of machine time, no more than 200 a real second.
+  const char rail_axis = machine_rec.rail_axis;
+  const double gantry_width_m = machine_rec.gantry_width_m;
+  const double rail_speed_m_s = machine_rec.rail_speed_m_s();
+  const bool climbing = machine_rec.climbing;
+  // Statuses at a fixed rate of machine time, no more than 200 a real second, within what
+  // the machines accept.
   const double status_period_s =
-      o.status_period_s > 0.0 ? o.status_period_s : std::max(1.0, o.speed * 0.005);
-  // What two gantries close between two statuses and a pause reaching them (20 ms real).
+      o.status_period_s > 0.0 ? o.status_period_s
+                              : std::clamp(std::max(1.0, o.speed * 0.005), lim::kStatusPeriod_s.min,
+                                           lim::kStatusPeriod_s.max);
+  // Every value the machines will be given, checked as they will check it.
+  const double anchor_age_s =
+      climbing ? material.age_for_strength_s(machine_rec.anchor_strength_mpa) : 0.0;
+  const struct {
+    const char* what;
+    double value;
+    const Range& range;
+  } passed[] = {
+      {"--speed", o.speed, lim::kSpeed},
+      {"--status-period", status_period_s, lim::kStatusPeriod_s},
+      {"the material's min_layer_interval_s", material.min_layer_interval_s, lim::kMinInterval_s},
+      {"the material's max_layer_interval_s", material.max_layer_interval_s, lim::kMaxInterval_s},
+      {"the age at which anchors reach the anchor strength",
+       std::isfinite(anchor_age_s) ? anchor_age_s : 0.0, lim::kAnchorMinAge_s}};
+  for (const auto& p : passed)
+    if (!p.range.contains(p.value))
+      throw InputError(o.file, 0, p.what,
+                       "the simulated machines accept " + p.range.describe("") + ", got " +
+                           plain_number(p.value));
+  // What a machine reads: its profile (it loads the same files again).
+  if (!o.external) machine::load_machine(profile);
+
+  // Outputs: never an input, never two on one file, never a device or FIFO replaced; the
+  // journal and the machines' records belong to this schedule only.
+  if (!o.log.empty()) outputs.claim_file("--log", o.log, o.force);
+  if (!o.journal.empty())
+    outputs.claim_read_write("--journal", o.journal, {"-wal", "-shm", "-journal"});
+  if (!o.state_dir.empty()) {
+    outputs.claim_folder("--state-dir", o.state_dir);
+    for (const auto& id : ids)
+      outputs.claim_read_write("--state-dir", fs::path(o.state_dir) / (id + ".state"));
+    outputs.claim_file("--state-dir", fs::path(o.state_dir) / "schedule.sha256", true);
+    check_state_dir(o.state_dir, ids, schedule_sha256);
+  }
+
+  // The planned gap between gantries, and how far they can close between two statuses.
   const double margin_m = 2.0 * rail_speed_m_s * (status_period_s + o.speed * 0.02);
   double planned_gap_m = std::numeric_limits<double>::infinity();
-  for (const auto& [key, plan] : schedule.at("plans").items())
-    if (plan.contains("min_gap_m") && plan["min_gap_m"].is_number())
-      planned_gap_m = std::min(planned_gap_m, plan["min_gap_m"].get<double>());
+  for (const auto& [key, plan] : schedule.schedule.plans)
+    if (plan.nozzles > 1) planned_gap_m = std::min(planned_gap_m, plan.min_gap_m);
   const bool several = ids.size() > 1;
   const bool can_guard = several && gantry_width_m + margin_m < planned_gap_m;
   const bool guard = can_guard && !o.no_watchdog;
@@ -321,9 +509,15 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   const fs::path& work = temporary.path;
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
-  orchestrator::Journal journal(journal_path);
+  orchestrator::Journal journal(journal_path, schedule_sha256);
   machine::Bus bus(o.lcm_url);
-  if (!o.log.empty()) bus.log_to(o.log);
+  // The log goes to a temporary file beside it, in place once the run ends (or straight
+  // into a character device such as /dev/null).
+  std::optional<PendingOutput> log;
+  if (!o.log.empty()) {
+    log.emplace(o.log);
+    bus.log_to(log->writing_path().string());
+  }
   long malformed = 0;
   bus.on_malformed([&](const std::string& channel, int size) {
     ++malformed;
@@ -332,58 +526,43 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   });
   std::unique_ptr<Machines> machines;
   const fs::path state_dir = o.state_dir.empty() ? work : fs::path(o.state_dir);
-  if (!o.state_dir.empty()) fs::create_directories(state_dir);
+  if (!o.state_dir.empty()) {
+    fs::create_directories(state_dir);
+    write_file_atomically(state_dir / "schedule.sha256", schedule_sha256 + "\n", true);
+  }
   if (!o.external) {
     std::vector<std::string> common = {
-        "--lcm-url",
-        o.lcm_url,
-        "--speed",
-        printf_string("%.17g", o.speed),
-        "--seed",
-        std::to_string(o.seed),
-        "--status-period",
-        printf_string("%.17g", status_period_s),
-        "--machine",
-        profile,
-        "--min-interval",
-        printf_string("%.17g", material_json.value("min_layer_interval_s", 0.0)),
-        "--max-interval",
-        printf_string("%.17g", material_json.value("max_layer_interval_s", 1e9))};
+        "--lcm-url",       o.lcm_url,
+        "--speed",         printf_string("%.17g", o.speed),
+        "--seed",          std::to_string(o.seed),
+        "--status-period", printf_string("%.17g", status_period_s),
+        "--machine",       profile,
+        "--min-interval",  printf_string("%.17g", material.min_layer_interval_s),
+        "--max-interval",  printf_string("%.17g", material.max_layer_interval_s)};
     if (climbing) {
       common.push_back("--climbing");
       // The age at which the material reaches the anchor strength the climber needs.
-      floors::MaterialProfile material;
-      for (const auto& p : material_json.at("strength_curve"))
-        material.strength_curve.push_back(
-            {p.at("age_s").get<double>(), p.at("strength_mpa").get<double>()});
-      const double age_s =
-          material.age_for_strength_s(machine_json.value("anchor_strength_mpa", 0.0));
-      if (std::isfinite(age_s) && age_s > 0.0)
-        common.insert(common.end(), {"--anchor-min-age", printf_string("%.17g", age_s)});
+      if (std::isfinite(anchor_age_s) && anchor_age_s > 0.0)
+        common.insert(common.end(), {"--anchor-min-age", printf_string("%.17g", anchor_age_s)});
     }
     for (const auto& [name, p] : inject.network) {
       common.push_back("--" + name);
       common.push_back(printf_string("%.17g", p));
     }
-    machines = std::make_unique<Machines>(
-        ids, homes_of(jobs, ids, rail_axis, gantry_width_m, machine_json), common, inject,
-        state_dir);
+    machines = std::make_unique<Machines>(ids, homes_of(jobs, ids, machine_rec), common,
+                                          inject.flags(), state_dir);
   }
   orchestrator::DispatchOptions d;
   d.speed = o.speed;
   d.ack_timeout_s = o.retry_after_s;
   d.done_slack_s = 2.0 * o.retry_after_s;
-  d.purge_s = machine_json.value("purge_s", 120.0);
+  d.purge_s = machine_rec.purge_s;
   if (several) {  // the rest of a clogged layer may need its neighbours out of the way
     d.gantry_width_m = gantry_width_m;
     d.rail_axis = rail_axis;
-    d.travel_speed_m_s = machine_json.value("travel_speed_m_s", 0.5);
-    const auto range = machine_json.value(rail_axis == 'y' ? "y_range_m" : "x_range_m",
-                                          std::vector<double>{-1e9, 1e9});
-    if (range.size() == 2) {
-      d.rail_min_m = range[0];
-      d.rail_max_m = range[1];
-    }
+    d.travel_speed_m_s = machine_rec.travel_speed_m_s;
+    d.rail_min_m = rail_axis == 'y' ? machine_rec.y_min_m : machine_rec.x_min_m;
+    d.rail_max_m = rail_axis == 'y' ? machine_rec.y_max_m : machine_rec.x_max_m;
   }
   orchestrator::Dispatcher dispatcher(bus, jobs, journal, d);
   std::optional<orchestrator::SiteWatchdog> watchdog;
@@ -429,11 +608,21 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         std::cerr << "dry-run: " << *why << "\n";
         dispatcher.stop(*why);  // guarding: before they touch; else: they collided
       }
-    if (machines)
-      for (const auto& said : machines->restart_ended()) {
+    if (machines) {
+      std::optional<std::string> given_up;
+      for (const auto& said : machines->restart_ended(given_up)) {
         events.push_back(said);
         std::cerr << "dry-run: " << said << "\n";
       }
+      if (given_up) {
+        events.push_back(*given_up);
+        std::cerr << "dry-run: " << *given_up << "\n";
+        dispatcher.stop(*given_up);
+      }
+    }
+    if (!bus.log_error().empty())
+      throw InputError(o.log, 0, "--log",
+                       "writing the LCM log failed: " + bus.log_error() + "; the run stopped");
     if (now - last_line > std::chrono::seconds(2)) {
       last_line = now;
       for (const auto& [machine, silent_s] : dispatcher.silent(3.0))
@@ -525,16 +714,23 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   std::cout << printf_string("journal: %s, %ld writes in %.2f s (%.1f%% of the run)\n",
                              journal_where.c_str(), journal.writes(), journal.write_s(),
                              real_s > 0 ? 100.0 * journal.write_s() / real_s : 0.0);
-  if (!o.log.empty())
+  if (log) {
+    if (!bus.close_log())
+      throw InputError(o.log, 0, "--log", "writing the LCM log failed: " + bus.log_error());
+    log->commit();
     std::cout << printf_string(
         "LCM log: %s, %ld messages, %.0f a second (lcm-logplayer replays it)\n", o.log.c_str(),
         bus.logged(), real_s > 0 ? bus.logged() / real_s : 0.0);
+  }
   const bool complete = dispatcher.finished() && !dispatcher.stopped();
   if (dispatcher.stopped())
     std::cout << "STOPPED safely: " << *dispatcher.stopped() << "\n";
   else if (!complete)
     std::cout << "NOT complete: timed out after " << duration(o.timeout_s) << "\n";
-  exit_code = complete && !collided ? kExitOk : kExitNo;
+  if (!schedule.schedule.feasible)
+    std::cout << "the schedule itself is NOT feasible: " << schedule.schedule.infeasibility->message
+              << "\n";
+  exit_code = complete && !collided && schedule.schedule.feasible ? kExitOk : kExitNo;
   std::cout << (exit_code == kExitOk ? "completed within its constraints\n"
                                      : "NOT completed within its constraints\n");
 }
@@ -557,8 +753,12 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       "pauses them all before two come closer than the gantry width (at speeds where "
       "statuses come often enough; else it audits the gaps). A machine that crashes is "
       "started again on its own record. Ends with planned against executed, layer by "
-      "layer, every fault and what was done. Exit 0 when the building was completed within "
-      "its constraints, 1 otherwise. Run it in a network namespace of its own "
+      "layer, every fault and what was done. Before anything starts, a schedule file is read "
+      "back and checked (a hand-edited one that breaks a rule is refused with the place), "
+      "its input files must be unchanged, a schedule marked not feasible is refused, and "
+      "every flag and fault is checked against what the machines accept and the schedule "
+      "holds (exit 2). Exit 0 when the building was completed within its constraints, 1 "
+      "otherwise. Run it in a network namespace of its own "
       "(scripts/in-netns.sh; docs/dispatch.md).\n"
       "Examples:\n"
       "  ccbuild dry-run config/buildings/house.yaml\n"
@@ -569,18 +769,24 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
   command->add_option("--lcm-url", o->lcm_url, "LCM provider URL (ttl=0: this host only)")
       ->capture_default_str();
   command->add_option("--speed", o->speed, "Simulated seconds per real second")
-      ->check(number_in(Range::closed(1.0, 1e9), ""))
+      ->check(number_in(machine::sim_limits::kSpeed, ""))
       ->capture_default_str();
-  command->add_option("--journal", o->journal, "Keep the journal here (and resume from it)")
+  command
+      ->add_option("--journal", o->journal,
+                   "Keep the journal here (SQLite) and resume from it; it records the schedule "
+                   "it belongs to, and another schedule's journal is refused")
       ->check(output_path());
   command
       ->add_option("--state-dir", o->state_dir,
                    "Where the simulated machines keep their records (<machine>.state: the "
-                   "jobs each ran), kept after the run; default: a temporary folder")
+                   "jobs each ran, and schedule.sha256: whose they are), kept after the run; "
+                   "default: a temporary folder. Another schedule's records are refused")
       ->check(output_path());
   command
       ->add_option("--log", o->log,
-                   "Write the whole conversation as an LCM log (lcm-logger's format) here")
+                   "Write the whole conversation as an LCM log (lcm-logger's format) here, in "
+                   "place when the run ends (or into a character device such as /dev/null); "
+                   "never over an input, the journal or another output")
       ->check(output_path());
   command->add_option(
       "--inject", o->inject,
@@ -604,11 +810,14 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       ->add_option("--status-period", o->status_period_s,
                    "The machines' status every this many seconds of machine time (default: "
                    "1 s, or what keeps them under 200 a real second)")
-      ->check(number_in(Range::above(0.0, 86400.0), "s"));
+      ->check(number_in(machine::sim_limits::kStatusPeriod_s, "s"));
   command->add_flag("--no-watchdog", o->no_watchdog,
                     "Let gantries collide: the site watchdog only measures the gaps (to "
                     "show what it prevents)");
   command->add_flag("--force", o->force, "Overwrite the --log file when it exists");
+  command->add_flag("--allow-infeasible", o->allow_infeasible,
+                    "Run a schedule marked not feasible anyway, to see where its machines stop "
+                    "it (it never ends 'completed within its constraints': exit 1)");
   command->add_option("--timeout", o->timeout_s, "Give up after this many real seconds")
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();

@@ -17,16 +17,27 @@ struct ReportCommandOptions {
   std::string schedule;
   std::string output;
   bool force = false;
+  bool allow_changed_inputs = false;
 };
 
 void run_report(const ReportCommandOptions& o, int& exit_code) {
-  check_output_path(o.output, o.force, {o.schedule});
-  const auto schedule = orchestrator::read_schedule_file(o.schedule);
-  const std::string html = orchestrator::schedule_report_html(schedule);
+  OutputClaims outputs({o.schedule});
+  outputs.claim_file("--output", o.output, o.force);
+  orchestrator::ReadScheduleOptions read;
+  read.inputs = o.allow_changed_inputs ? orchestrator::RecordedInputCheck::kNote
+                                       : orchestrator::RecordedInputCheck::kRefuseChanged;
+  const orchestrator::ReadSchedule schedule = orchestrator::read_schedule(o.schedule, read);
+  orchestrator::ReportOptions options;
+  for (const auto& note : schedule.notes) {
+    std::cerr << "report: note: " << note << "\n";
+    options.notes.push_back(note);
+  }
+  const std::string html = orchestrator::schedule_report_html(schedule.document, options);
   write_file_atomically(o.output, html, o.force, {o.schedule});
   std::cout << printf_string(
       "report of %s written to %s (%.1f MB)%s\n", o.schedule.c_str(), o.output.c_str(),
-      html.size() / 1e6, schedule.value("feasible", false) ? "" : "; the schedule is NOT feasible");
+      html.size() / 1e6,
+      schedule.document.schedule.feasible ? "" : "; the schedule is NOT feasible");
   exit_code = kExitOk;
 }
 
@@ -42,7 +53,9 @@ void add_report_command(CLI::App& app, int& exit_code) {
       "pan, hover for what, when and why), each layer's intervals against the material's band "
       "and one layer's local intervals as a heat map on its plan, the anchors' strength at "
       "every climb and the buildability margin over time, every distinct plan's tool path with "
-      "its gantries' x/t curves, and a 3-D playback of the build with a time slider.\n"
+      "its gantries' x/t curves, and a 3-D playback of the build with a time slider. The schedule "
+      "is read back and checked first (docs/schedule.md): a hand-edited one that breaks a rule "
+      "is refused with the rule and the place, and so is one whose input files changed.\n"
       "Examples:\n"
       "  ccbuild schedule config/buildings/tower.yaml -o tower.json\n"
       "  ccbuild report tower.json -o tower.html\n"
@@ -52,6 +65,9 @@ void add_report_command(CLI::App& app, int& exit_code) {
       ->required()
       ->check(output_path());
   command->add_flag("--force", o->force, "Overwrite an existing output file");
+  command->add_flag("--allow-changed-inputs", o->allow_changed_inputs,
+                    "Draw a schedule whose input files changed since it was made (the report "
+                    "then says which); by default it is refused, being out of date");
   command->callback([o, &exit_code] { run_report(*o, exit_code); });
 }
 

@@ -38,8 +38,9 @@ std::string duration(double s) {
 void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   const auto inputs = project.files_read();
-  if (!o.output.empty()) check_output_path(o.output, o.force, inputs);
-  if (!o.report.empty()) check_output_path(o.report, o.force, inputs);
+  OutputClaims outputs(inputs);  // every output checked before any planning
+  if (!o.output.empty()) outputs.claim_file("--output", o.output, o.force);
+  if (!o.report.empty()) outputs.claim_file("--report", o.report, o.force);
   orchestrator::ScheduleOptions options;
   options.seed = o.seed;
   options.jobs = o.jobs;
@@ -47,8 +48,10 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const orchestrator::Schedule s = orchestrator::build_schedule(project, options);
   if (!o.output.empty() || !o.report.empty()) {
-    const auto doc = orchestrator::schedule_json(project, options, s);
-    if (!o.output.empty()) write_file_atomically(o.output, doc.dump(1) + "\n", o.force, inputs);
+    const orchestrator::ScheduleDocument doc{orchestrator::recorded_inputs(project, options), s};
+    if (!o.output.empty())
+      write_file_atomically(o.output, orchestrator::schedule_json(doc.inputs, s).dump(1) + "\n",
+                            o.force, inputs);
     if (!o.report.empty())
       write_file_atomically(o.report, orchestrator::schedule_report_html(doc), o.force, inputs);
   }

@@ -78,7 +78,7 @@ std::string csv_quoted(const std::string& text) {
 void run_sweep(const SweepOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   const auto inputs = project.files_read();
-  if (!o.csv.empty()) check_output_path(o.csv, o.force, inputs);
+  if (!o.csv.empty()) OutputClaims(inputs).claim_file("--csv", o.csv, o.force);
   const floors::Building& b = project.building;
   const floors::LengthUnit unit = b.units;
   std::vector<double> platforms, gantries;

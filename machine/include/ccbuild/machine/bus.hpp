@@ -62,9 +62,15 @@ class Bus {
 
   /// Writes every message on the bus (whatever its channel, whoever sent it) to an LCM
   /// log at `path`, in the format lcm-logger writes, so that lcm-logplayer and lcm-spy
-  /// replay it. Throws InputError (field `--log`) when the file cannot be created.
+  /// replay it. Each message is flushed as it is logged, so that a write error (a full
+  /// disk, /dev/full) shows at once in log_error(). Throws InputError (field `--log`) when
+  /// the file cannot be created.
   void log_to(const std::string& path);
   long logged() const { return logged_; }
+  /// Why writing the log failed (the system's words), empty while it has not.
+  const std::string& log_error() const { return log_error_; }
+  /// Flushes and closes the log; returns false (and sets log_error()) when that failed.
+  bool close_log();
 
   /// Handles the messages that arrive within `timeout_ms` (at least one if any does);
   /// returns how many were handled.
@@ -80,6 +86,7 @@ class Bus {
   std::unique_ptr<lcm::LCM> lcm_;
   std::unique_ptr<lcm::LogFile> log_;
   long logged_ = 0;
+  std::string log_error_;
   std::vector<std::pair<std::string, Decoder>> decoders_;
   std::function<void(const std::string&, int)> malformed_handler_;
   long malformed_ = 0;

@@ -89,6 +89,23 @@ struct SimOptions {
   double stall_at_s = -1.0;
 };
 
+/// One line of a simulated machine's record (its state file): a job it ran, when, where it
+/// ended, and the fault it ended on, if any.
+struct RecordedJob {
+  std::int64_t job_id = 0;
+  double start_s = 0.0, end_s = 0.0;             ///< schedule s
+  std::array<double, 4> at{0.0, 0.0, 0.0, 0.0};  ///< x, y, z (m), heading (rad) at its end
+  bool ok = true;
+  std::string fault;    ///< "clog" or "pin-missed" when not ok
+  int stopped_at = -1;  ///< waypoints done when it ended on a fault
+};
+
+/// Reads a machine's record (SimOptions::state_file). Throws InputError naming the file
+/// and line when it is not a regular file, is larger than limits::kMaxInputFileBytes, or a
+/// line is not "job_id start_s end_s x_m y_m z_m heading_rad [clog|pin-missed
+/// waypoints_done]" with finite numbers, a positive job id and end_s not before start_s.
+std::vector<RecordedJob> read_machine_record(const std::filesystem::path& path);
+
 /// Why `path` breaks `model`'s limits (a fault kind and the words), or nothing: a
 /// waypoint outside an axis range (z only when `check_z_range`) or the stopper is a
 /// JOINT_LIMIT; a segment faster along an axis, or in heading, than its velocity limit

@@ -31,14 +31,19 @@ struct ClimbReport {
 ClimbReport plan_climbs(const Project& project, std::optional<int> floor,
                         const climb::ClimbOptions& options);
 
-/// One pipe: id, unit, floor, wall, after_layer (null in the foundation), centre, outward.
-nlohmann::ordered_json anchor_json(const Project& project, const climb::Anchor& anchor);
+/// The names of the climbing machine's units, by index (empty on a fixed gantry).
+std::vector<std::string> unit_names(const Project& project);
+/// One pipe: id, unit (named by `units`), floor, wall, after_layer (null in the
+/// foundation), centre, outward.
+nlohmann::ordered_json anchor_json(const std::vector<std::string>& units,
+                                   const climb::Anchor& anchor);
 /// One stage: platform height, first and last layer printed, top, anchors.
-nlohmann::ordered_json stage_json(const Project& project, const climb::ClimbStage& stage);
+nlohmann::ordered_json stage_json(const std::vector<std::string>& units,
+                                  const climb::ClimbStage& stage);
 /// One climb: status, duration, clearance, and its phases with their timed joint paths.
 /// Planning times only `with_planning_time` (they differ from run to run).
-nlohmann::ordered_json climb_plan_json(const Project& project, const climb::ClimbPlan& plan,
-                                       bool with_planning_time);
+nlohmann::ordered_json climb_plan_json(const std::vector<std::string>& units,
+                                       const climb::ClimbPlan& plan, bool with_planning_time);
 nlohmann::ordered_json climb_report_json(const Project& project, const ClimbReport& report);
 
 /// The platform, the units' pins and the walls: in plan (the top floor) and in elevation

@@ -7,10 +7,10 @@
 // order (by planned start) in tens, from 10 (the nine after each are for the jobs that recover from
 // its faults); the same schedule gives the same jobs.
 
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "ccbuild/orchestrator/schedule_json.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
 
@@ -24,9 +24,9 @@ struct DispatchJob {
   std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks;  ///< job.chunk_count of them
 };
 
-/// Every job of `schedule`, in the order they are to be sent (by planned start, then
-/// gantry). Throws InputError (field of the schedule) when the document lacks what a job
-/// needs.
-std::vector<DispatchJob> jobs_of_schedule(const nlohmann::json& schedule);
+/// Every job of `schedule` (as read_schedule gives it, re-validated), in the order they are
+/// to be sent (by planned start, then gantry). Throws InputError when a layer's plan is
+/// missing.
+std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& schedule);
 
 }  // namespace ccbuild::orchestrator

@@ -52,9 +52,12 @@ struct FaultRecord {
 /// The dispatch journal: each job's last state, and every fault and what was done.
 class Journal {
  public:
-  /// Opens or creates the journal at `path` (":memory:" for none on disk). Throws
-  /// InputError naming the file when SQLite cannot open it or it is not a journal.
-  explicit Journal(const std::filesystem::path& path);
+  /// Opens or creates the journal at `path` (":memory:" for none on disk) for the schedule
+  /// whose canonical JSON has the SHA-256 `schedule_sha256` (empty: any). A new journal
+  /// records it; an existing one must have recorded the same. Throws InputError (field
+  /// `--journal`) naming the file when SQLite cannot open it, it is not a journal, it
+  /// belongs to another schedule, or it holds jobs but names no schedule.
+  explicit Journal(const std::filesystem::path& path, const std::string& schedule_sha256 = "");
   ~Journal();
   Journal(const Journal&) = delete;
   Journal& operator=(const Journal&) = delete;

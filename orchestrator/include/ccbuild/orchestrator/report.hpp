@@ -8,8 +8,10 @@
 // 3-D playback of the build (three.js from Debian's libjs-three, inlined).
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
+
+#include "ccbuild/orchestrator/schedule_json.hpp"
 
 namespace ccbuild::orchestrator {
 
@@ -18,10 +20,14 @@ struct ReportOptions {
   /// libjs-three by default.
   std::filesystem::path three_js;
   std::filesystem::path orbit_controls_js;
+  /// Said among the schedule's warnings (e.g. an input changed since it was made).
+  std::vector<std::string> notes;
 };
 
-/// The report of `schedule` (as schedule_json or read_schedule_file give it). Throws
-/// InputError (field `three.js`) when three.js cannot be read, saying what to install.
-std::string schedule_report_html(const nlohmann::json& schedule, const ReportOptions& options = {});
+/// The report of `schedule` (as build_schedule with recorded_inputs, or read_schedule,
+/// give it). Throws InputError (field `three.js`) when three.js cannot be read, saying
+/// what to install.
+std::string schedule_report_html(const ScheduleDocument& schedule,
+                                 const ReportOptions& options = {});
 
 }  // namespace ccbuild::orchestrator

@@ -167,6 +167,11 @@ struct Schedule {
   int plans_computed = 0;
 };
 
+/// The totals as `layers` and `events` add them up (the machine busy: layers, moves,
+/// pipes, purges, climbs; waits include the climbs' waits).
+ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
+                         const std::vector<Event>& events);
+
 /// Schedules the whole building. Throws InputError for a project that cannot be
 /// scheduled at all (a fixed gantry's building taller than its reach is caught by
 /// open_project already); an infeasible building is an answer (feasible false).

@@ -5,17 +5,19 @@
 // nozzle count, a plan, a layer or event that is there in one schedule only) differs
 // whenever it is not equal.
 
-#include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "ccbuild/orchestrator/schedule_json.hpp"
 
 namespace ccbuild::orchestrator {
 
 struct DiffTolerance {
   double absolute_s = 0.0;  ///< a time may move by this much
   double relative = 0.0;    ///< ... or by this fraction of its old value, whichever is more
-  bool allows(double old_value, double new_value) const;
+  /// Whether `new_value` is within the tolerance of the reference `old_value` (the
+  /// relative part is a share of the reference). Unset values are equal to each other only.
+  bool allows(std::optional<double> old_value, std::optional<double> new_value) const;
 };
 
 struct ScheduleDiff {
@@ -25,13 +27,12 @@ struct ScheduleDiff {
   bool differs() const { return !changes.empty(); }
 };
 
-/// Reads a schedule JSON file. Throws InputError naming the file and, for a document that
-/// is not a schedule, the field (format, schema_version, layers, ...).
-nlohmann::json read_schedule_file(const std::filesystem::path& path);
-
-/// Compares two schedules; `shown` bounds how many differing layers and events are
-/// listed one by one (all are counted).
-ScheduleDiff diff_schedules(const nlohmann::json& old_schedule, const nlohmann::json& new_schedule,
-                            const DiffTolerance& tolerance, int shown = 5);
+/// Compares two schedules (as read_schedule gives them); `shown` bounds how many
+/// differing layers, events and plans are listed one by one (all are counted). Plans are
+/// compared by key: a plan in one schedule only, or whose timed paths or pieces differ,
+/// is a change.
+ScheduleDiff diff_schedules(const ScheduleDocument& old_schedule,
+                            const ScheduleDocument& new_schedule, const DiffTolerance& tolerance,
+                            int shown = 5);
 
 }  // namespace ccbuild::orchestrator

@@ -1,0 +1,295 @@
+// Hostile input to the commands that read schedules back (report, diff, dry-run) and to
+// every output path: the findings of the second mutation fuzz (issue 27), each refused
+// with exit code 2, its message and its place, and no file changed.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "run_command.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild {
+namespace {
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+using testing::contains;
+using testing::run_shell;
+
+// ccbuild ARGS under a deadline: a hang is a failure (exit code 124), not a stuck test.
+testing::CommandResult run_bounded(const std::string& args, int seconds = 60) {
+  return run_shell("timeout " + std::to_string(seconds) + " " + testing::ccbuild_binary() + " " +
+                   args);
+}
+
+void expect_refused(const testing::CommandResult& r, const std::string& message,
+                    const std::string& what) {
+  EXPECT_EQ(r.exit_code, 2) << what << "\n" << r.err << r.out;
+  EXPECT_TRUE(contains(r.err, "ccbuild: error: ")) << what;
+  EXPECT_TRUE(contains(r.err, message)) << what;
+  EXPECT_FALSE(contains(r.err, "internal error")) << what;
+}
+
+/// A folder of this test's files: copies of a plan, the bundled gantry (profile and URDF)
+/// and the standard mix, so that nothing outside it can be damaged, and a schedule of them.
+class Site {
+ public:
+  explicit Site(const std::string& name)
+      : dir_(fs::temp_directory_path() /
+             ("ccbuild_hostile_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    for (const auto& [from, to] : {std::pair{"tests/data/plans/cottage.yaml", "plan.yaml"},
+                                   std::pair{"config/machines/cc-gantry.yaml", "cc-gantry.yaml"},
+                                   std::pair{"config/machines/cc_gantry.urdf", "cc_gantry.urdf"},
+                                   std::pair{"config/materials/standard-mix.yaml", "mix.yaml"}})
+      fs::copy_file(testing::source_path(from), dir_ / to);
+  }
+  ~Site() { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string inputs() const {
+    return path("plan.yaml") + " --machine " + path("cc-gantry.yaml") + " --material " +
+           path("mix.yaml");
+  }
+  /// Schedules the plan to `name`; returns its path.
+  std::string schedule(const std::string& name = "s.json") const {
+    const auto r = run_bounded("schedule " + inputs() + " --quiet -o " + path(name));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return path(name);
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return path(name);
+  }
+  std::string bytes(const std::string& name) const { return testing::slurp(dir_ / name); }
+
+ private:
+  fs::path dir_;
+};
+
+TEST(HostileInput, HandEditedSchedulesAreRefusedByReportDiffAndDryRun) {
+  const Site site("edited");
+  const std::string good = site.schedule();
+  const std::string text = site.bytes("s.json");
+  const json doc = json::parse(text);
+  const std::string key = doc["layers"][0]["plan"];
+  struct Edit {
+    const char* name;
+    std::function<std::string()> make;
+    std::string message;
+  };
+  const auto edited = [&](const std::function<void(json&)>& f) {
+    json d = doc;
+    f(d);
+    return d.dump(1) + "\n";
+  };
+  const Edit edits[] = {
+      {"overlap",
+       [&] {
+         return edited([](json& d) {
+           d["layers"][5]["start_s"] = d["layers"][5]["start_s"].get<double>() - 300.0;
+           d["layers"][5]["end_s"] = d["layers"][5]["end_s"].get<double>() - 300.0;
+         });
+       },
+       "/layers/5/start_s: one layer at a time"},
+      {"nozzle count", [&] { return edited([](json& d) { d["layers"][3]["nozzles"] = 2; }); },
+       "/layers/3/nozzles: nozzles: 2, but its plan"},
+      {"missing key", [&] { return edited([](json& d) { d["layers"][3].erase("z_m"); }); },
+       "/layers/3: \"z_m\" is missing"},
+      {"wrong type",
+       [&] {
+         return edited(
+             [&](json& d) { d["plans"][key]["nozzles"][0]["waypoints"][3]["x_m"] = "1.5"; });
+       },
+       "/plans/" + key + "/nozzles/0/waypoints/3/x_m: expected a number, got the string \"1.5\""},
+      {"overflow",
+       [&] {
+         std::string t = text;
+         const std::size_t at = t.find("\"makespan_s\": ") + 14;
+         return t.replace(at, t.find(',', at) - at, "1e400");
+       },
+       "not valid JSON: number overflow"},
+      {"deep nesting",
+       [&] {
+         std::string t = text;
+         const std::size_t at = t.find("\"warnings\": [") + 13;
+         return t.insert(at, std::string(100000, '[') + std::string(100000, ']'));
+       },
+       "nested more than 64 deep"},
+      {"truncated", [&] { return text.substr(0, text.size() / 2); }, "not valid JSON"},
+  };
+  for (const Edit& e : edits) {
+    SCOPED_TRACE(e.name);
+    const std::string bad = site.write("bad.json", e.make());
+    const std::string before = site.bytes("bad.json");
+    const std::string html = site.path("out.html");
+    for (const std::string& command :
+         {"report " + bad + " -o " + html, "diff " + good + " " + bad, "diff " + bad + " " + good,
+          "dry-run " + bad + " --lcm-url memq:// --timeout 5"}) {
+      const auto r = run_bounded(command);
+      expect_refused(r, bad + ":", command);
+      expect_refused(r, e.message, command);
+      EXPECT_FALSE(fs::exists(html)) << command;
+      EXPECT_EQ(site.bytes("bad.json"), before) << command;
+    }
+  }
+}
+
+TEST(HostileInput, ASchedulesChangedInputIsNamed) {
+  const Site site("changed");
+  const std::string s = site.schedule();
+  std::ofstream(site.path("mix.yaml"), std::ios::app) << "# edited after the schedule\n";
+  const std::string html = site.path("out.html");
+  // The dry-run runs its machines from the schedule's files, the report would draw a
+  // schedule out of date: both refuse; diff, whose purpose is comparing schedules of
+  // different inputs, names it.
+  for (const std::string& command :
+       {"report " + s + " -o " + html, "dry-run " + s + " --lcm-url memq:// --timeout 5"}) {
+    const auto r = run_bounded(command);
+    expect_refused(r, s + ": /inputs/files/", command);
+    expect_refused(r, "mix.yaml changed since this schedule was made (SHA-256", command);
+  }
+  EXPECT_FALSE(fs::exists(html));
+  const auto drawn = run_bounded("report " + s + " -o " + html + " --allow-changed-inputs");
+  EXPECT_EQ(drawn.exit_code, 0) << drawn.err;
+  EXPECT_TRUE(contains(drawn.err, "mix.yaml changed since this schedule was made"));
+  EXPECT_TRUE(contains(testing::slurp(html), "mix.yaml changed since this schedule was made"));
+  const auto diff = run_bounded("diff " + s + " " + s);
+  EXPECT_EQ(diff.exit_code, 0) << diff.err;
+  EXPECT_TRUE(contains(diff.out, "mix.yaml changed since this schedule was made"));
+}
+
+TEST(HostileInput, ASchedulePastTheSizeLimitIsRefusedAtOnce) {
+  const Site site("big");
+  const std::string big = site.write("big.json", "{");
+  fs::resize_file(big, 257ull * 1024 * 1024);  // sparse: no disk used
+  expect_refused(run_bounded("report " + big + " -o " + site.path("x.html"), 20),
+                 "is 257 MiB; ccbuild reads schedules of at most 256 MiB", "257 MiB");
+}
+
+TEST(HostileInput, OutputsNeverReplaceWhatTheyShouldNot) {
+  const Site site("outputs");
+  const std::string s = site.schedule();
+  const std::string plan = site.bytes("plan.yaml"), urdf = site.bytes("cc_gantry.urdf");
+  // Two outputs on one file: the schedule would be lost under the report.
+  const std::string both = site.path("both");
+  fs::create_directories(site.path("sub"));
+  expect_refused(
+      run_bounded("schedule " + site.inputs() + " --quiet -o " + both + " --report " + both),
+      "--report: is the same file as --output", "-o x --report x");
+  EXPECT_FALSE(fs::exists(both));
+  expect_refused(run_bounded("plan-layer " + site.path("plan.yaml") + " --svg " + both +
+                             " --bound-certificate " + site.path("sub/../both")),
+                 "--bound-certificate: is the same file as --svg", "--svg x --bound-certificate x");
+  // An input, through a link or `..`.
+  fs::create_symlink(site.path("plan.yaml"), site.path("link"));
+  for (const std::string& out : {site.path("link"), site.path("sub/../plan.yaml")})
+    expect_refused(run_bounded("schedule " + site.inputs() + " --quiet --force -o " + out),
+                   "output would overwrite an input file", out);
+  EXPECT_EQ(site.bytes("plan.yaml"), plan);
+  // A FIFO is never replaced (nor waited on); a directory neither.
+  const std::string fifo = site.path("fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_refused(run_bounded("report " + s + " --force -o " + fifo, 20), "is a FIFO", "FIFO");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  expect_refused(run_bounded("report " + s + " --force -o " + site.path("sub")), "is a directory",
+                 "folder");
+  // A character device is written into, never replaced; a write that fails says so.
+  const auto full = run_bounded("report " + s + " -o /dev/full");
+  expect_refused(full, "/dev/full: cannot write output file: No space left on device", "full");
+  EXPECT_TRUE(fs::is_character_file("/dev/full"));
+  const std::string device = site.path("null");
+  if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {  // as root: /dev/null's
+    const auto into = run_bounded("report " + s + " --force -o " + device);
+    EXPECT_EQ(into.exit_code, 0) << into.err;
+    EXPECT_TRUE(fs::is_character_file(device));
+    // The dry-run's journal on a device: refused before SQLite leaves a file beside it.
+    expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --journal " + device),
+                   "--journal: is a device", "journal on a device");
+    EXPECT_FALSE(fs::exists(device + "-journal"));
+    EXPECT_FALSE(fs::exists(device + "-wal"));
+  }
+  // The dry-run's log: never an input (the schedule, the machine's profile or URDF, by any
+  // path), never the journal, never a FIFO.
+  for (const std::string& log :
+       {s, site.path("cc_gantry.urdf"), site.path("cc-gantry.yaml"), site.path("sub/../s.json")})
+    expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --force --log " + log),
+                   "--log: output would overwrite an input file", log);
+  fs::create_symlink(site.path("cc_gantry.urdf"), site.path("urdf-link"));
+  expect_refused(
+      run_bounded("dry-run " + s + " --lcm-url memq:// --force --log " + site.path("urdf-link")),
+      "--log: output would overwrite an input file", "link to the URDF");
+  EXPECT_EQ(site.bytes("cc_gantry.urdf"), urdf);
+  const std::string same = site.path("same");
+  expect_refused(
+      run_bounded("dry-run " + s + " --lcm-url memq:// --log " + same + " --journal " + same),
+      "--journal: is the same file as --log", "log = journal");
+  EXPECT_FALSE(fs::exists(same));
+  expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --force --log " + fifo, 20),
+                 "--log: is a FIFO", "log on a FIFO");
+  // --state-dir naming a file.
+  const std::string notes = site.write("notes.txt", "precious");
+  expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --state-dir " + notes),
+                 "--state-dir: exists and is not a folder", "state dir is a file");
+  EXPECT_EQ(site.bytes("notes.txt"), "precious");
+}
+
+TEST(HostileInput, DryRunFlagsAndFaultsAreCheckedAgainstTheMachinesAndTheSchedule) {
+  const Site site("flags");
+  const std::string s = site.schedule();
+  const std::string dry = "dry-run " + s + " --lcm-url memq:// --timeout 5 ";
+  const std::pair<std::string, std::string> cases[] = {
+      {"--status-period 0.0005", "--status-period: must be from 0.001 to 86400 s"},
+      {"--speed 2e9", "--speed: must be from 1 to 1e+09"},
+      {"--inject pin=1001", "a count from 1 to 1000 expected in 'pin=1001'"},
+      {"--inject clog=0:99999999999999999999", "FLOOR:LAYER expected"},
+      {"--inject clog=gantry-9@0:1", "the schedule has no machine gantry-9 (it has gantry-1)"},
+      {"--inject crash=gantry-2@1", "the schedule has no machine gantry-2"},
+      {"--inject clog=9:0", "gantry-1 deposits nothing on floor 9 layer 0"},
+      {"--inject clog=0:99", "gantry-1 deposits nothing on floor 0 layer 99"},
+      {"--inject pin=1", "the schedule has no climbs, so no pin is ever inserted"},
+      {"--inject stall=1e8", "before the stall"},
+      {"--inject crash=100000", "never reaches its 100000-th"},
+      {"--inject clog=0:1,clog=0:2", "clog on gantry-1 given twice"},
+  };
+  for (const auto& [flags, message] : cases)
+    expect_refused(run_bounded(dry + flags), message, flags);
+  // The machines' records: another schedule's, unnamed, or not a record at all.
+  fs::create_directories(site.path("state"));
+  const std::string state = " --state-dir " + site.path("state");
+  site.write("state/gantry-1.state", "10 0 5 0 0 0 0\n");
+  expect_refused(run_bounded(dry + state), "names no schedule (schedule.sha256)", "no marker");
+  site.write("state/schedule.sha256", std::string(64, 'a') + "\n");
+  expect_refused(run_bounded(dry + state), "holds the machines' records of another schedule",
+                 "another schedule's records");
+  const auto sum = run_shell("sha256sum " + s);
+  site.write("state/schedule.sha256", sum.out.substr(0, 64) + "\n");
+  site.write("state/gantry-1.state", "10 0 5 0 0 0 0\nnot a record\n");
+  expect_refused(run_bounded(dry + state),
+                 site.path("state/gantry-1.state") + ":2: expected 'job_id start_s end_s",
+                 "garbage record");
+  EXPECT_EQ(site.bytes("state/gantry-1.state"), "10 0 5 0 0 0 0\nnot a record\n");
+}
+
+TEST(HostileInput, AnInfeasibleScheduleIsNotDryRunUnlessAsked) {
+  const Site site("infeasible");
+  const std::string s = site.path("s.json");
+  const auto r = run_bounded(
+      "schedule tests/data/buildings/cottage.yaml --quiet --machine "
+      "tests/data/machines/two-gantries.yaml --material "
+      "tests/data/materials/two-gantry-mix.yaml -o " +
+      s);
+  ASSERT_EQ(r.exit_code, 1) << r.err << r.out;
+  expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --timeout 5"),
+                 s + ": /feasible: the schedule is not feasible (floor", "infeasible");
+}
+
+}  // namespace
+}  // namespace ccbuild
