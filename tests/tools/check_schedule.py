@@ -25,11 +25,17 @@ ones, never used to compute them. It checks:
   6. local intervals: per piece end, the time between the layer below depositing that
      point of the wall and this layer depositing it, compared with the document and
      with the material's minimum and maximum (an infeasible schedule must say so and
-     may exceed the maximum);
+     may exceed the maximum); local_interval_min_at and _max_at must name a piece end
+     where the recomputed interval is that minimum or maximum;
   7. strength: the layer below is old enough, at every piece end, to carry the walls
-     from its bottom to this layer's top (density, g, safety factor, strength curve),
-     older layers of the floor too (aged from their ends); each min-interval and
-     strength wait reason is the wait recomputed for it, and a needed wait has one;
+     from its bottom to this layer's top (density, g, safety factor, strength curve);
+     so is every older layer, of this floor and of the floors below, aged from its end.
+     Each min-interval and strength reason is the wait recomputed for it from the
+     earliest start (the start less the wait and, when a purge preceded the layer, less
+     the purge, which follows the wait): the layer below's strength and the older
+     layers' (the longest any of them needs) are separate reasons; a needed wait has
+     its reason. A load the material never carries is a problem, or, in a schedule
+     marked infeasible, a note (no wait helps) at or after the place it names;
   8. events: in time order, outside every layer, each after the layer it names; pipes
      name their anchor; purges before the layers that say so; a climb starts only when
      every anchor of its stage has reached the anchor strength, counted from the end
@@ -41,6 +47,10 @@ ones, never used to compute them. It checks:
 Usage: check_schedule.py SCHEDULE.json              exit 0 when sound, 1 with the problems
        check_schedule.py SCHEDULE.json --self-test  corrupts the document in many ways
                                                     and exits 0 only when each is caught
+The self-test's corruptions that need a feature the document lacks (several nozzles, a
+climb, a strength wait, a purge, a layer whose intervals differ) are left out; CTest's
+feasible schedules (tests/CMakeLists.txt) between them have every feature but those of
+an infeasible schedule.
 Exit 2: not a schedule (unreadable, not JSON, another format or schema version).
 """
 
@@ -96,6 +106,7 @@ LAYER = {"floor": INT, "layer": INT, "z_m": NUM, "z_bottom_m": NUM, "geometry": 
          "purge_before": BOOL, "interval_s": (NUM, NULL), "local_interval_min_s": (NUM, NULL),
          "local_interval_max_s": (NUM, NULL), "local_interval_min_at": (OBJ, NULL),
          "local_interval_max_at": (OBJ, NULL), "piece_ends_checked": INT}
+PIECE_END = {"wall": INT, "piece": INT, "x_m": NUM, "y_m": NUM}
 REASON = {"kind": STR, "required_s": NUM, "detail": STR}
 PLAN = {"geometry": INT, "nozzles_used": INT, "method": STR, "z_top_m": NUM,
         "layer_time_s": NUM, "pieces": LIST, "nozzles": LIST}
@@ -169,6 +180,10 @@ def check_structure(doc, problems):
             where = "floor %d layer %d" % (layer["floor"], layer["layer"])
             for j, r in enumerate(layer["wait_reasons"]):
                 keys_ok(r, REASON, "%s wait_reasons[%d]" % (where, j), problems)
+            for name in ("min", "max"):
+                at = layer["local_interval_%s_at" % name]
+                if at is not None:
+                    keys_ok(at, PIECE_END, "%s local_interval_%s_at" % (where, name), problems)
     for key, plan in doc["plans"].items():
         where = "plan %s" % key
         if not keys_ok(plan, PLAN, where, problems):
@@ -539,9 +554,13 @@ def check_layers(doc, infos, problems):
 
 
 def pair_intervals(this, below):
-    """Over this plan's piece ends on a wall the plan below deposits: (ends, smallest,
-    largest of this time - below time, where), in plan times; computed once per pair."""
-    count, low, high = 0, None, None
+    """This plan's piece ends on a wall the plan below deposits, with their intervals in
+    plan times (this time - below time; where a point is passed more than once, the
+    smallest difference counts for the minimum and the largest for the maximum).
+    Returns (count, ends, low, high): ends maps (wall, piece) to [(x, y, smallest,
+    largest)], low and high are (interval, wall, piece, x, y) at the extremes.
+    Computed once per pair of plans."""
+    count, ends, low, high = 0, {}, None, None
     for wall, piece, x, y, own in this.ends:
         under = below.times_at(wall, x, y)
         if not under or not own:
@@ -549,37 +568,70 @@ def pair_intervals(this, below):
         count += 1
         lo = min(own) - max(under)
         hi = max(own) - min(under)
+        ends.setdefault((wall, piece), []).append((x, y, lo, hi))
         if low is None or lo < low[0]:
             low = (lo, wall, piece, x, y)
         if high is None or hi > high[0]:
             high = (hi, wall, piece, x, y)
-    return count, low, high
+    return count, ends, low, high
 
 
-def older_layers(layers, i, curve, rho_g_sf, where, problems):
-    """The older layers of the floor (below the layer below) carry the walls from their
-    bottoms to this layer's top, at their ages counted from their ends at this layer's
-    start. Returns the wait each would need from the earliest start."""
+def index_of(layers, floor, layer):
+    """The index of floor `floor` layer `layer` in layers, or None."""
+    return next((i for i, l in enumerate(layers) if (l["floor"], l["layer"]) == (floor, layer)), None)
+
+
+def layer_below(layers, i):
+    """The layer just below layers[i] on its floor; None for a floor's first layer, which
+    stands on the slab."""
+    if i and layers[i - 1]["floor"] == layers[i]["floor"] and \
+            layers[i - 1]["layer"] == layers[i]["layer"] - 1:
+        return layers[i - 1]
+    return None
+
+
+def earliest_start(layer, purge_s):
+    """When the layer could have started had nothing held it back: its start less its
+    wait and, when the nozzle was purged before it, less the purge, which follows the
+    wait (docs/schedule.md, Waits). Every wait reason is counted from there."""
+    return layer["start_s"] - layer["wait_before_s"] - (purge_s if layer["purge_before"] else 0.0)
+
+
+def older_layers(layers, i, has_below, curve, rho_g_sf, earliest, feasible, where, problems, notes):
+    """Every layer under layers[i] but the one just below it (that one is checked piece
+    by piece), on its floor and on the floors below, must carry the walls from its
+    bottom to this layer's top at its age counted from its end, at this layer's start.
+    Returns ((wait, that layer), never): the longest wait any of them needs from the
+    earliest start (None when there is no such layer), and whether one of them carries
+    more than the material ever reaches.
+    In a document marked infeasible, a load the material never carries is the answer,
+    not a bug: no wait can help, so the layer's older-layer shortfalls are notes and it
+    needs no older-layer wait."""
     layer = layers[i]
-    earliest = layer["start_s"] - layer["wait_before_s"]
-    needs = []
-    j = i - 2
-    while j >= 0 and layers[j]["floor"] == layer["floor"]:
+    worst, short, never = None, [], False
+    for j in range(i - 2 if has_below else i - 1, -1, -1):
         old = layers[j]
         load = rho_g_sf * (layer["z_m"] - old["z_bottom_m"])
         age = age_reaching(curve, load)
+        never = never or math.isinf(age)
         if layer["start_s"] - old["end_s"] < age - T_DOC:
-            problems.append("%s: floor %d layer %d is %.6f s old at its start, it needs %.6f s to carry "
-                            "%.6f MPa" % (where, old["floor"], old["layer"], layer["start_s"] - old["end_s"],
-                                          age, load))
-        needs.append(age - (earliest - old["end_s"]))
-        j -= 1
-    return needs
+            short.append("%s: floor %d layer %d is %.6f s old at its start, it needs %.6f s to "
+                         "carry %.6f MPa" % (where, old["floor"], old["layer"],
+                                             layer["start_s"] - old["end_s"], age, load))
+        need = age - (earliest - old["end_s"])
+        if worst is None or need > worst[0]:
+            worst = (need, old)
+    if never and not feasible:
+        notes.extend(short)
+        return None, never
+    problems.extend(short)
+    return worst, never
 
 
-def check_reasons(where, layer, min_need, below_need, older_needs, problems):
+def check_reasons(where, layer, min_need, below_need, older, problems):
     """Each min-interval and strength reason is the wait recomputed for it; a wait that
-    is needed has its reason."""
+    is needed has its reason. Strength has two: the layer just below (piece by piece)
+    and the older layers (the longest wait any of them needs)."""
     reasons = layer["wait_reasons"]
     by_kind = {}
     for r in reasons:
@@ -595,16 +647,45 @@ def check_reasons(where, layer, min_need, below_need, older_needs, problems):
                     where, got, min_need))
     elif mins:
         problems.append("%s: a min-interval reason without a layer below" % where)
-    needs = ([below_need] if below_need is not None else []) + older_needs
+    needs = []                  # (who, the wait it needs)
+    if below_need is not None:
+        needs.append(("the layer below", below_need))
+    if older is not None:
+        needs.append(("floor %d layer %d" % (older[1]["floor"], older[1]["layer"]), older[0]))
     strengths = by_kind.get("strength", [])
+    recomputed = ", ".join("%s %.6f s" % n for n in needs) or "no layer under it"
     for got in strengths:
-        if not any(abs(got - n) <= T_DOC for n in needs):
-            problems.append("%s: strength reason requires %.6f s, no layer below needs that (%s)" % (
-                where, got, ", ".join("%.3f" % n for n in needs[:4]) or "none"))
-    most = max(needs, default=0.0)
-    if most > T_DOC and max(strengths, default=-math.inf) < most - T_DOC:
-        problems.append("%s: the layers below need a %.6f s wait for their strength, the strength "
-                        "reasons say %s" % (where, most, strengths or "none"))
+        if not any(abs(got - n) <= T_DOC for _, n in needs):
+            problems.append("%s: strength reason requires %.6f s, recomputed: %s" % (
+                where, got, recomputed))
+    for who, need in needs:
+        if need > T_DOC and not any(abs(got - need) <= T_DOC for got in strengths):
+            problems.append("%s: %s needs a %.6f s wait for its strength, the strength reasons "
+                            "say %s" % (where, who, need,
+                                        ", ".join("%.6f s" % s for s in strengths) or "none"))
+
+
+def check_at(where, layer, name, extreme, shift, ends, problems):
+    """local_interval_<name>_at names a piece end of this layer's plan over a wall of the
+    layer below whose recomputed interval is the extreme (any of them on a tie)."""
+    key = "local_interval_%s_at" % name
+    at = layer[key]
+    if at is None:
+        problems.append("%s: %s is null, the %s is %.6f s" % (where, key, name, extreme))
+        return
+    there = [e for e in ends.get((at["wall"], at["piece"]), ())
+             if abs(e[0] - at["x_m"]) <= ROUND_P and abs(e[1] - at["y_m"]) <= ROUND_P]
+    if not there:
+        problems.append("%s: %s names wall %d piece %d at (%.6f, %.6f) m, not an end of a piece of "
+                        "plan %s over a wall deposited below" % (
+                            where, key, at["wall"], at["piece"], at["x_m"], at["y_m"], layer["plan"]))
+        return
+    value = shift + (min(e[2] for e in there) if name == "min" else max(e[3] for e in there))
+    if abs(value - extreme) > T_DOC:
+        problems.append("%s: %s names wall %d piece %d at (%.4f, %.4f) m, covered %.6f s after the "
+                        "layer below there; the %s is %.6f s" % (
+                            where, key, at["wall"], at["piece"], at["x_m"], at["y_m"], value, name,
+                            extreme))
 
 
 def check_intervals(doc, infos, problems, notes, stats):
@@ -614,32 +695,44 @@ def check_intervals(doc, infos, problems, notes, stats):
     curve = [(p["age_s"], p["strength_mpa"]) for p in material["strength_curve"]]
     lo_bound, hi_bound = material["min_layer_interval_s"], material["max_layer_interval_s"]
     rho_g_sf = material["density_kg_m3"] * G * material["safety_factor"] * 1e-6
+    purge_s = doc["inputs"]["machine"]["purge_s"]
     feasible = doc["feasible"]
     cache = {}
     overs = []                  # (layer, interval) over the maximum, when infeasible
+    first_never = None          # the first layer some layer under it can never carry
+    # Where a layer waits for strength (layer index -> the wait and what needs it), for
+    # the self-test's choice of what to corrupt.
+    stats["strength_waits"] = {}
     for i, layer in enumerate(layers):
         where = "floor %d layer %d" % (layer["floor"], layer["layer"])
-        below = layers[i - 1] if i and layers[i - 1]["floor"] == layer["floor"] and \
-            layers[i - 1]["layer"] == layer["layer"] - 1 else None
+        below = layer_below(layers, i)
+        earliest = earliest_start(layer, purge_s)
+        older, never = older_layers(layers, i, below is not None, curve, rho_g_sf, earliest,
+                                    feasible, where, problems, notes)
+        if never and first_never is None:
+            first_never = i
+        if older is not None and older[0] > T_DOC:
+            stats["strength_waits"][i] = (older[0], older[1])
+        claimed = ["local_interval_%s" % k for k in ("min_s", "max_s", "min_at", "max_at")
+                   if layer["local_interval_%s" % k] is not None]
         if below is None:
-            if layer["local_interval_min_s"] is not None or layer["local_interval_max_s"] is not None:
-                problems.append("%s: local intervals without a layer below on its floor" % where)
+            if claimed:
+                problems.append("%s: %s without a layer below on its floor" % (where, ", ".join(claimed)))
+            check_reasons(where, layer, None, None, older, problems)
             continue
         pair = (layer["plan"], below["plan"])
         if pair not in cache:
             cache[pair] = pair_intervals(infos[pair[0]], infos[pair[1]])
-        count, low, high = cache[pair]
+        count, ends, low, high = cache[pair]
         stats["ends"] += count
         shift = layer["start_s"] - below["start_s"]
         if count != layer["piece_ends_checked"]:
             problems.append("%s: piece_ends_checked %d, %d piece ends of plan %s lie on a wall "
                             "plan %s deposits below" % (where, layer["piece_ends_checked"], count,
                                                          pair[0], pair[1]))
-        older = older_layers(layers, i, curve, rho_g_sf, where, problems)
         if count == 0:
-            if layer["local_interval_min_s"] is not None or layer["local_interval_max_s"] is not None:
-                problems.append("%s: local intervals %s..%s, no piece end has a wall under it" % (
-                    where, layer["local_interval_min_s"], layer["local_interval_max_s"]))
+            if claimed:
+                problems.append("%s: %s, no piece end has a wall under it" % (where, ", ".join(claimed)))
             check_reasons(where, layer, None, None, older, problems)
             continue
         stats["layers"] += 1
@@ -649,6 +742,7 @@ def check_intervals(doc, infos, problems, notes, stats):
             if said is None or abs(said - value) > T_DOC:
                 problems.append("%s: local_interval_%s_s %s, recomputed %.6f s (wall %d piece %d at "
                                 "(%.4f, %.4f) m)" % ((where, name, said, value) + at[1:]))
+            check_at(where, layer, name, value, shift, ends, problems)
         if smallest < lo_bound - INTERVAL:
             problems.append("%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer "
                             "below, under the minimum interval %g s" % ((where,) + low[1:] + (smallest, lo_bound)))
@@ -664,14 +758,32 @@ def check_intervals(doc, infos, problems, notes, stats):
         load = rho_g_sf * (layer["z_m"] - below["z_bottom_m"])
         age = age_reaching(curve, load)
         if smallest < age - T_DOC:
-            problems.append("%s: wall %d piece %d at (%.4f, %.4f) m of the layer below is %.6f s "
-                            "old, it needs %.6f s to carry %.6f MPa" % (
-                                (where,) + low[1:] + (smallest, age, load)))
-        # The waits as they would be recomputed: from the earliest start (start - wait),
-        # the smallest interval would have been smallest - wait.
-        early = smallest - layer["wait_before_s"]
-        check_reasons(where, layer, lo_bound - early, age - early, older, problems)
+            # As for the older layers: a load never carried is a note when infeasible.
+            (notes if math.isinf(age) and not feasible else problems).append(
+                "%s: wall %d piece %d at (%.4f, %.4f) m of the layer below is %.6f s old, it "
+                "needs %.6f s to carry %.6f MPa" % ((where,) + low[1:] + (smallest, age, load)))
+        # The waits as they would be recomputed: had the layer started at its earliest
+        # start, its smallest interval would have been this much shorter.
+        early = smallest - (layer["start_s"] - earliest)
+        if math.isinf(age) and first_never is None:
+            first_never = i
+        below_need = None if math.isinf(age) and not feasible else age - early
+        check_reasons(where, layer, lo_bound - early, below_need, older, problems)
+        if below_need is not None and below_need > T_DOC and (
+                i not in stats["strength_waits"] or below_need > stats["strength_waits"][i][0]):
+            stats["strength_waits"][i] = (below_need, below)
     stats["pairs"] = len(cache)
+    stats["overs"] = len(overs)
+    stats["first_never"] = first_never
+    bad = doc["infeasibility"]
+    if first_never is not None and not feasible and isinstance(bad, dict):
+        # The first place the schedule cannot be built is the one its infeasibility names.
+        at = index_of(layers, bad.get("floor"), bad.get("layer"))
+        if at is not None and at > first_never:
+            problems.append("floor %d layer %d: a layer under it carries more than the material ever "
+                            "reaches, before floor %s layer %s that the infeasibility names" % (
+                                layers[first_never]["floor"], layers[first_never]["layer"],
+                                bad.get("floor"), bad.get("layer")))
     if not feasible:
         bad = doc["infeasibility"]
         if not isinstance(bad, dict) or not str(bad.get("message", "")).strip() or \
@@ -965,11 +1077,119 @@ def summary(doc, stats):
 
 # ---------------------------------------------------------------- self-test
 
+def shift_from(d, i, delta):
+    """Moves layer i, the purge before it and everything after it by delta s, as if the
+    scheduler had started layer i that much later; of the intervals, only layer i's to the
+    layer below change. For the self-test's corruptions that must stay consistent."""
+    layer = d["layers"][i]
+    purge = d["inputs"]["machine"]["purge_s"] if layer["purge_before"] else 0.0
+    since = layer["start_s"] - purge - ROUND_T
+    for e in d["events"]:
+        if e["start_s"] >= since:
+            e["start_s"] += delta
+            e["end_s"] += delta
+    for later in d["layers"][i:]:
+        later["start_s"] += delta
+        later["end_s"] += delta
+    for key in ("interval_s", "local_interval_min_s", "local_interval_max_s"):
+        if layer[key] is not None:
+            layer[key] += delta
+    d["totals"]["makespan_s"] += delta
+
+
+def place_corruptions(doc, stats, add):
+    """local_interval_min_at / _max_at moved to a piece end where the interval is not the
+    extreme, and the minimum's place written from the maximum's (a bug that once
+    survived the tests)."""
+    layers, infos = doc["layers"], stats["infos"]
+    moved = {}                  # "min"/"max" -> (layer index, the end it is moved to)
+    from_max = None             # a layer whose minimum is not where its maximum is
+    for i, layer in enumerate(layers):
+        below = layer_below(layers, i)
+        if below is None or layer["local_interval_min_at"] is None:
+            continue
+        _, ends, low, high = pair_intervals(infos[layer["plan"]], infos[below["plan"]])
+        for (wall, piece), there in ends.items():
+            for x, y, lo, hi in there:
+                end = {"wall": wall, "piece": piece, "x_m": x, "y_m": y}
+                if "min" not in moved and lo > low[0] + 1.0:
+                    moved["min"] = (i, end)
+                if "max" not in moved and hi < high[0] - 1.0:
+                    moved["max"] = (i, end)
+        at = layer["local_interval_max_at"]
+        if from_max is None and at is not None:
+            there = [e for e in ends.get((at["wall"], at["piece"]), ())
+                     if abs(e[0] - at["x_m"]) <= ROUND_P and abs(e[1] - at["y_m"]) <= ROUND_P]
+            if there and min(e[2] for e in there) > low[0] + 1.0:
+                from_max = i
+    for name, (i, end) in sorted(moved.items()):
+        key = "local_interval_%s_at" % name
+        add("%s moved to another piece end" % key, key + " names")(
+            lambda d, i=i, key=key, end=end: d["layers"][i].update({key: dict(end)}))
+    if from_max is not None:
+        add("local_interval_min_at written from the maximum's piece end", "local_interval_min_at names")(
+            lambda d: d["layers"][from_max].update(
+                local_interval_min_at=dict(d["layers"][from_max]["local_interval_max_at"])))
+
+
+def wait_corruptions(doc, stats, add):
+    """A strength wait shortened (for each kind of layer that needs it: the layer below,
+    an older layer of the floor, a layer of a floor below), the rest of the schedule
+    moved with it; and a purge after a wait taken out, the rest moved with it."""
+    layers = doc["layers"]
+    purge_s = doc["inputs"]["machine"]["purge_s"]
+    chosen = {}
+    # The last layer of each kind: the fewer layers after it, the fewer follow-on problems.
+    for i, (need, who) in sorted(stats["strength_waits"].items(), reverse=True):
+        layer = layers[i]
+        if abs(need - layer["wait_before_s"]) > T_DOC:
+            continue            # another reason needs a longer wait
+        others = max([r["required_s"] for r in layer["wait_reasons"]
+                      if r["kind"] != "strength" or abs(r["required_s"] - need) > T_DOC], default=0.0)
+        cut = 0.5 * (layer["wait_before_s"] - others)
+        # A purge after the wait leaves its own time as a margin: cut more than that.
+        if cut < 1.0 or (layer["purge_before"] and cut < purge_s + 1.0):
+            continue
+        if who is layer_below(layers, i):
+            kind = ("the layer below", "of the layer below is")
+        elif who["floor"] == layer["floor"]:
+            kind = ("an older layer of its floor", "old at its start")
+        else:
+            kind = ("a layer of a floor below", "old at its start")
+        chosen.setdefault(kind, (i, need, cut))
+    for (what, expect), (i, need, cut) in sorted(chosen.items()):
+        def shorter(d, i=i, need=need, cut=cut):
+            layer = d["layers"][i]
+            for r in layer["wait_reasons"]:
+                if r["kind"] == "strength" and abs(r["required_s"] - need) <= T_DOC:
+                    r["required_s"] -= cut
+            layer["wait_before_s"] -= cut
+            d["totals"]["waits_s"] -= cut
+            shift_from(d, i, -cut)
+        add("a strength wait for %s shortened" % what, expect)(shorter)
+    purged = [i for i, l in enumerate(layers) if l["purge_before"]]
+    if purged:
+        # Preferably a purge that follows a wait, not one after a slab or a climb; the last.
+        i = next((i for i in reversed(purged) if layers[i]["wait_before_s"] > 0), purged[-1])
+
+        def no_purge(d):
+            layer = d["layers"][i]
+            d["events"] = [e for e in d["events"]
+                           if not (e["kind"] == "purge" and abs(e["end_s"] - layer["start_s"]) <= ROUND_T)]
+            layer["purge_before"] = False
+            d["totals"]["purges_s"] -= purge_s
+            d["totals"]["machine_s"] -= purge_s
+            shift_from(d, i, -purge_s)
+        add("the purge before a layer taken out", "and no purge")(no_purge)
+
+
 def corruptions(doc):
     """(name, change(doc), text the problems must contain) for the self-test; each change
     is applied to a fresh copy. Some need a feature of the document (several nozzles,
-    a climb) and are left out without it."""
+    a climb, a strength wait, a purge, a layer whose intervals differ) and are left out
+    without it."""
     layers, plans = doc["layers"], doc["plans"]
+    stats = check(doc)[2]
     out = []
 
     def add(name, expect):
@@ -1081,9 +1301,18 @@ def corruptions(doc):
     purged = [n for n, l in enumerate(layers) if l["purge_before"]]
     if purged:
         add("a purge not flagged", "purge_before")(lambda d: d["layers"][purged[0]].update(purge_before=False))
-    if len(notes_of(doc)) > 1:
+    if stats["overs"] > 1:
         add("later infeasible layers not warned", "not in warnings")(lambda d: d.update(warnings=[]))
-    add("a weaker concrete", "to carry")(lambda d: d["inputs"]["material"].update(safety_factor=1e4))
+    if doc["feasible"]:
+        add("a weaker concrete", "to carry")(lambda d: d["inputs"]["material"].update(safety_factor=1e4))
+    if not doc["feasible"] and stats["first_never"] is not None and \
+            isinstance(doc["infeasibility"], dict):
+        add("an infeasibility named after a load never carried", "that the infeasibility names")(
+            lambda d: d["infeasibility"].update(floor=layers[-1]["floor"], layer=layers[-1]["layer"]))
+    add("a slower concrete", "to carry")(
+        lambda d: [p.update(age_s=p["age_s"] * 1e3) for p in d["inputs"]["material"]["strength_curve"]])
+    place_corruptions(doc, stats, add)
+    wait_corruptions(doc, stats, add)
     add("a wrong makespan", "makespan_s")(lambda d: d["totals"].update(makespan_s=d["totals"]["makespan_s"] + 100.0))
     add("a wrong total deposition", "deposition_s")(lambda d: d["totals"].update(deposition_s=d["totals"]["deposition_s"] * 1.01))
     events = doc["events"]
@@ -1118,11 +1347,6 @@ def corruptions(doc):
         add("a pipe without its anchor", "no `anchor`")(
             lambda d: next(e for e in d["events"] if e["kind"] == "pipe").pop("anchor"))
     return out
-
-
-def notes_of(doc):
-    """The layers over the maximum interval of a document marked infeasible."""
-    return check(doc)[1]
 
 
 def self_test(text, doc):
@@ -1162,7 +1386,7 @@ def main(argv=None):
     for n in notes[:5]:
         print("info (infeasible, as the document says): " + n)
     if len(notes) > 5:
-        print("info: %d more layers over the maximum interval" % (len(notes) - 5))
+        print("info: %d more of those" % (len(notes) - 5))
     if problems:
         for p in problems[:MAX_SHOWN]:
             print("problem: " + p)
