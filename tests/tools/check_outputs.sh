@@ -3,7 +3,7 @@
 # checkers: for plan-layer check_plan.py and check_svg.py (one nozzle: also the lower
 # bound's --bound-certificate with check_bound.py), for climb check_climbs.py and
 # the SVG parsed as XML with its groups present, for schedule check_schedule.py on its
-# -o file and check_report.py (headless Chromium) on its --report; with each JSON checker's self-test (it must catch planted corruptions of this
+# -o file (and `ccbuild report` reading it back) and check_report.py (headless Chromium) on its --report; with each JSON checker's self-test (it must catch planted corruptions of this
 # very output) when the run succeeded.
 # Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT plan-layer|climb|schedule ARGS...
 set -euo pipefail
@@ -54,6 +54,8 @@ PY
     ;;
   schedule)
     "$python" "$here/check_schedule.py" "$out/out.json"
+    # ccbuild's own re-validation (read_schedule) accepts what the scheduler wrote.
+    "$ccbuild" report "$out/out.json" -o "$out/again.html" > /dev/null
     # The report, in headless Chromium: every section drawn, no console error.
     "$python" "$here/check_report.py" "$out/out.html" $([ "$expected" -eq 1 ] && echo --infeasible)
     checker=check_schedule.py
