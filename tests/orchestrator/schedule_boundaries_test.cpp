@@ -1,6 +1,8 @@
 // The scheduler's rules, each at its boundary, on buildings small enough to time by
 // hand: the walls above carried by every older layer, on its floor and the floors below,
-// with the safety factor (the wait in seconds from the material's curve).
+// with the safety factor (the wait in seconds from the material's curve), and the
+// computed nozzle-count fix that, when applied, makes the schedule feasible while one
+// nozzle fewer does not.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -151,6 +153,94 @@ TEST(ScheduleBoundaries, AFloorsFirstLayerLoadsTheLayersOfTheFloorBelow) {
   ASSERT_NE(why, nullptr);
   EXPECT_NEAR(why->required_s, above.wait_before_s, 1e-6);
   EXPECT_TRUE(contains(why->detail, "floor 0 layer 1 carries 0.500 m"));
+}
+
+/// A one-floor building (three 0.25 m layers) of `rooms` 2 m square rooms in a row along
+/// x (the rails), with `material`, on the bundled gantry with `nozzles` nozzles.
+Project row_building(const fs::path& dir, const std::string& material, int rooms, int nozzles) {
+  std::ofstream(dir / "material.yaml") << material;
+  std::ostringstream b;
+  b << "units: m\nlayer_height: 0.25\nslab_stage_h: 0\nmaterial: material.yaml\nmachine: "
+    << testing::source_path("config/machines/cc-gantry.yaml").string()
+    << "\nfloors:\n  - height: 0.75\n    plan:\n      vertices:\n";
+  for (int k = 0; k <= rooms; ++k)
+    b << "        - {id: " << 2 * k + 1 << ", x: " << 1 + 2 * k << ", y: 1}\n"
+      << "        - {id: " << 2 * k + 2 << ", x: " << 1 + 2 * k << ", y: 3}\n";
+  b << "      walls:\n";
+  // Room k's cross wall is 3k + 1, its two long walls 3k + 2 and 3k + 3.
+  for (int k = 0; k <= rooms; ++k) {
+    b << "        - {id: " << 3 * k + 1 << ", start: " << 2 * k + 1 << ", end: " << 2 * k + 2
+      << "}\n";
+    if (k == rooms) break;
+    b << "        - {id: " << 3 * k + 2 << ", start: " << 2 * k + 1 << ", end: " << 2 * k + 3
+      << "}\n        - {id: " << 3 * k + 3 << ", start: " << 2 * k + 2 << ", end: " << 2 * k + 4
+      << "}\n";
+  }
+  std::ofstream(dir / "building.yaml") << b.str();
+  Project p = open_project(dir / "building.yaml");
+  auto machine = std::make_shared<machine::MachineModel>(*p.machine);
+  machine->nozzles = nozzles;
+  p.machine = machine;
+  return p;
+}
+
+/// A mix strong enough at once for anything in these buildings: only the interval
+/// window [10 s, `max_s`] matters.
+std::string strong_mix(double max_s) {
+  return linear_mix(1.0, 2.0, 1.5, 10.0, max_s);
+}
+
+double worst_interval_s(const Schedule& s) {
+  double worst_s = 0.0;
+  for (const auto& l : s.layers)
+    if (l.local_interval_max_s) worst_s = std::max(worst_s, *l.local_interval_max_s);
+  return worst_s;
+}
+
+TEST(ScheduleBoundaries, TheNozzleFixCountsTheWholeIntervalAndMakesTheScheduleFeasible) {
+  // Eight rooms in a row, 16 m along the rails. Their interval with two nozzles (the
+  // layer's time, the move up to the next layer, and the piece ends' offsets) is I2.
+  // With one nozzle and a maximum of exactly I2 the fix is two nozzles; a millisecond
+  // less and it is three, although two nozzles' layer time alone is well within it. The
+  // fix, applied, is feasible; one nozzle fewer is not.
+  const ScratchDir dir("nozzle_fix");
+  const Schedule two = build_schedule(row_building(dir.path(), strong_mix(200.0), 8, 2), quick());
+  ASSERT_TRUE(two.feasible);
+  ASSERT_EQ(two.layers.size(), 3u);
+  for (const auto& l : two.layers) ASSERT_EQ(l.nozzles, 2);
+  const double two_s = worst_interval_s(two);
+  const double two_layer_s = two.layers[1].end_s - two.layers[1].start_s;
+  ASSERT_GT(two_s, two_layer_s + 1.0) << "the move and offsets must count for something";
+
+  auto schedule = [&](double max_s, int nozzles) {
+    return build_schedule(row_building(dir.path(), strong_mix(max_s), 8, nozzles), quick());
+  };
+  {  // At exactly I2: two nozzles, and they do.
+    const Schedule one = schedule(two_s, 1);
+    ASSERT_FALSE(one.feasible);
+    ASSERT_TRUE(one.infeasibility->nozzles_needed);
+    EXPECT_EQ(*one.infeasibility->nozzles_needed, 2);
+    EXPECT_TRUE(contains(one.infeasibility->fix, "or 2 nozzles (the machine has 1)"));
+    EXPECT_TRUE(schedule(two_s, 2).feasible);
+  }
+  {  // Just under I2: two nozzles' layer time fits, their interval does not.
+    const double max_s = two_s - 1e-3;
+    ASSERT_LT(two_layer_s, max_s);
+    const Schedule one = schedule(max_s, 1);
+    ASSERT_FALSE(one.feasible);
+    ASSERT_TRUE(one.infeasibility->nozzles_needed);
+    const int needed = *one.infeasibility->nozzles_needed;
+    EXPECT_EQ(needed, 3);
+    const Schedule fixed = schedule(max_s, needed);
+    EXPECT_TRUE(fixed.feasible) << fixed.infeasibility->message;
+    EXPECT_LE(worst_interval_s(fixed), max_s);
+    // From the first layer on: two nozzles' layer time fits, but not with the move up
+    // to the next layer, so the run starts with three.
+    for (const auto& l : fixed.layers) EXPECT_EQ(l.nozzles, needed);
+    const Schedule short_by_one = schedule(max_s, needed - 1);
+    EXPECT_FALSE(short_by_one.feasible);
+    EXPECT_GT(worst_interval_s(short_by_one), max_s);
+  }
 }
 
 }  // namespace
