@@ -31,6 +31,7 @@ namespace {
 using ccbuild_lcm::ccbuild_fault_t;
 using ccbuild_lcm::ccbuild_job_t;
 using ccbuild_lcm::ccbuild_path_chunk_t;
+using testing::contains;
 
 machine::TimedPath path_of(const DispatchJob& d) {
   return machine::path_of(d.chunks);
@@ -405,7 +406,10 @@ TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
   EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);
 }
 
-void status(machine::Bus& bus, const std::string& id, double t_s, double x_m) {
+/// A status of machine `id` at machine time `t_s`, on `channel_of`'s status channel (by
+/// default its own).
+void status(machine::Bus& bus, const std::string& id, double t_s, double x_m,
+            const std::string& channel_of = "") {
   static std::int64_t seq = 0;
   ccbuild_lcm::ccbuild_status_t s{};
   s.utime = machine::utime_now();
@@ -414,7 +418,7 @@ void status(machine::Bus& bus, const std::string& id, double t_s, double x_m) {
   s.state = ccbuild_lcm::ccbuild_status_t::BUSY;
   s.sim_time_s = t_s;
   s.x_m = x_m;
-  bus.publish(machine::channel("STATUS", id), s);
+  bus.publish(machine::channel("STATUS", channel_of.empty() ? id : channel_of), s);
   bus.handle(0);
 }
 
@@ -434,15 +438,70 @@ TEST(SiteWatchdog, PausesBelowTheGantryWidthPlusItsMarginNotAtIt) {
   status(bus, "gantry-2", 5.0, 2.501);
   EXPECT_FALSE(dog.check(0.01));
   EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
-  status(bus, "gantry-2", 10.0, 2.999);  // 1.999 m: under by a millimetre
+  // Another machine's status on gantry-2's channel is not believed: "gantry-3" at 1.2 m,
+  // 0.2 m from gantry-1, is neither gantry-2's position nor its heartbeat.
+  EXPECT_FALSE(dog.check(1.5));
+  status(bus, "gantry-1", 10.0, 1.0);
+  status(bus, "gantry-3", 10.0, 1.2, "gantry-2");
+  EXPECT_FALSE(dog.check(1.0));
+  EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
+  EXPECT_EQ(dog.silent(), std::vector<std::string>{"gantry-2"});  // 2.5 s since its last
+  status(bus, "gantry-2", 10.0, 2.999);                           // 1.999 m: under by a millimetre
+  EXPECT_TRUE(dog.silent().empty());
   const auto why = dog.check(0.01);
   ASSERT_TRUE(why);
   EXPECT_NE(why->find("every machine paused"), std::string::npos);
   EXPECT_FALSE(dog.check(0.01)) << "said twice";
-  // Another machine's status on gantry-2's channel is not believed.
-  EXPECT_TRUE(dog.silent().empty());
   EXPECT_EQ(dog.check(5.0), std::nullopt);
-  EXPECT_EQ(dog.silent().size(), 2u);
+  EXPECT_EQ(dog.silent(), (std::vector<std::string>{"gantry-1", "gantry-2"}));
+}
+
+TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) {
+  // Gaps are taken at the latest instant both machines have reported; the one that
+  // reported later is placed between its two statuses, in proportion to the time from the
+  // earlier one. Off the middle of the span, so that the wrong end shows.
+  WatchdogOptions w;
+  w.machines = {"gantry-1", "gantry-2"};
+  w.gantry_width_m = 1.5;
+  w.margin_m = 0.5;  // acted on under 2 m
+  {
+    // gantry-1 moves up at 0.125 m/s and has reported 8 s; gantry-2 has reported 2 s:
+    // gantry-1 was at 0.25 m then, exactly 2 m from gantry-2 (at 0.75 m from the wrong end).
+    machine::Bus bus("memq://");
+    SiteWatchdog dog(bus, w);
+    status(bus, "gantry-1", 0.0, 0.0);
+    status(bus, "gantry-2", 0.0, 3.0);
+    EXPECT_FALSE(dog.check(0.01));
+    status(bus, "gantry-1", 8.0, 1.0);
+    status(bus, "gantry-2", 2.0, 2.25);
+    EXPECT_FALSE(dog.check(0.01));
+    EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+    // At 3 s: gantry-1 at 0.375 m, gantry-2 at 2.374 m: a millimetre under.
+    status(bus, "gantry-2", 3.0, 2.374);
+    const auto why = dog.check(0.01);
+    ASSERT_TRUE(why);
+    EXPECT_TRUE(contains(why->c_str(),
+                         "at 3.0 s of machine time gantry-1 at 0.375 m and "
+                         "gantry-2 at 2.374 m on the rails are 1.999 m apart"))
+        << *why;
+  }
+  {
+    // Now gantry-2 reported later: it moves down from 4 m at 0.2 m/s; at 7.5 s (gantry-1's
+    // last status, at 0.5 m) it was at 2.5 m, 2 m from gantry-1; at 8 s, 1.95 m.
+    machine::Bus bus("memq://");
+    SiteWatchdog dog(bus, w);
+    status(bus, "gantry-1", 0.0, 0.0);
+    status(bus, "gantry-2", 0.0, 4.0);
+    status(bus, "gantry-2", 10.0, 2.0);
+    status(bus, "gantry-1", 7.5, 0.5);
+    EXPECT_FALSE(dog.check(0.01));
+    EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+    status(bus, "gantry-1", 8.0, 0.45);
+    const auto why = dog.check(0.01);
+    ASSERT_TRUE(why);
+    EXPECT_TRUE(contains(*why, "gantry-2 at 2.400 m")) << *why;
+    EXPECT_NEAR(dog.smallest_gap_m(), 1.95, 1e-9);
+  }
 }
 
 }  // namespace
