@@ -1,6 +1,7 @@
-// Climbing: hand-built scenes where a unit must detour round a wall, where it is boxed
-// in, where the platform would tip; the apartment's climbs (a setback on its top floors)
-// all planned, re-checked and repeatable; stages and pipes placed as the rules say.
+// Climbing: hand-built scenes where a unit must detour round a wall (one standing only in
+// the last layer printed among them), where it is boxed in, where the platform would tip
+// or stands within its stability margin; the apartment's climbs (a setback on its top
+// floors) all planned, re-checked and repeatable; stages and pipes placed as the rules say.
 
 #include "ccbuild/climb/climb.hpp"
 
@@ -128,6 +129,37 @@ TEST(Climb, AUnitDetoursRoundAWallInItsWay) {
   // The planned one passes the independent re-check at 5 mm.
   EXPECT_TRUE(verify_climb(climber(), scene.building(), from, to, plan))
       << verify_climb(climber(), scene.building(), from, to, plan).to_string();
+}
+
+TEST(Climb, TheLastPrintedLayerIsInTheScene) {
+  // A 0.5 m fin of wall 5 stands only in the last layer printed from the stage (2.9 m to
+  // 3 m; a door takes the rest of it), where U1's boom (2.75 m to 3 m from the ground)
+  // swings on its way from x = 0.6 m to 2 m. Planned without the fin, the boom goes
+  // through it; planned with it, round it.
+  const std::string fin_vertices =
+      "        - {id: 5, x: 1.2, y: 0}\n        - {id: 6, x: 1.2, y: -0.5}\n";
+  const std::string fin_wall = "        - {id: 5, start: 5, end: 6}\n";
+  const Scene scene(fin_vertices, fin_wall,
+                    "        - {wall: 5, offset: 0, width: 0.5, sill: 0, head: 2.9}\n");
+  const auto [from, to] = stages(0.6, 2.0);
+  ASSERT_EQ(from.last.layer, 29);  // 2.9 m to 3 m
+  const Scene bare;
+  const ClimbPlan unaware = plan_climb(climber(), bare.building(), from, to);
+  ASSERT_TRUE(unaware.status) << unaware.status.to_string();
+  const ClimbStatus through = verify_climb(climber(), scene.building(), from, to, unaware);
+  EXPECT_EQ(through.code(), ClimbStatus::Code::kBlocked) << through.to_string();
+  EXPECT_TRUE(contains(through.reason(), "U1's link u1_boom touches wall 5 of floor 0"))
+      << through.to_string();
+  const ClimbPlan plan = plan_climb(climber(), scene.building(), from, to);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  EXPECT_TRUE(verify_climb(climber(), scene.building(), from, to, plan))
+      << verify_climb(climber(), scene.building(), from, to, plan).to_string();
+  // From a stage whose last layer is the one below, the fin is not built yet.
+  ClimbStage earlier = from;
+  earlier.last = {0, 28};
+  earlier.top_m = 2.9;
+  EXPECT_TRUE(verify_climb(climber(), scene.building(), earlier, to, unaware))
+      << verify_climb(climber(), scene.building(), earlier, to, unaware).to_string();
 }
 
 TEST(Climb, AUnitBoxedInIsInfeasibleWithItsReason) {
