@@ -292,6 +292,29 @@ TEST(Climb, TheReCheckKeepsTheCentreOfMassTheMarginInsideThePins) {
       << within_margin.to_string();
 }
 
+TEST(Climb, APinGoesIntoAWallOnlyAlongItsPipe) {
+  // A planned climb re-checked with U1's new pipe declared a few millimetres along the
+  // wall from where its pin goes in: within 5 mm of the pipe's axis the pin enters it,
+  // further off it goes into solid wall.
+  const Scene scene;
+  const auto [from, to] = stages(0.6, 0.6);
+  const ClimbPlan plan = plan_climb(climber(), scene.building(), from, to);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  for (const double off_m : {0.004, 0.006}) {
+    ClimbStage moved = to;
+    moved.anchors[0].centre_m.x() += off_m;
+    const ClimbStatus checked = verify_climb(climber(), scene.building(), from, moved, plan);
+    if (off_m < 0.005) {
+      EXPECT_TRUE(checked) << off_m << ": " << checked.to_string();
+    } else {
+      EXPECT_EQ(checked.code(), ClimbStatus::Code::kBlocked) << off_m;
+      EXPECT_TRUE(
+          contains(checked.reason(), "(insert): U1's link u1_pin touches wall 1 of floor 0"))
+          << checked.to_string();
+    }
+  }
+}
+
 class Apartment : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
