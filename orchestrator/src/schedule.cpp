@@ -14,9 +14,8 @@
 namespace ccbuild::orchestrator {
 namespace detail {
 
-double Scheduler::move_between(const std::string& from_key, const std::string& to_key) const {
-  const auto& from = schedule_.plans.at(from_key).waypoints;
-  const auto& to = schedule_.plans.at(to_key).waypoints;
+double Scheduler::move_s(const std::vector<std::vector<planner::Waypoint>>& from,
+                         const std::vector<std::vector<planner::Waypoint>>& to) const {
   double longest = 0.0;
   for (std::size_t n = 0; n < to.size() && n < from.size(); ++n) {
     if (from[n].empty() || to[n].empty()) continue;
@@ -30,6 +29,10 @@ double Scheduler::move_between(const std::string& from_key, const std::string& t
   }
   // The nozzle rises by one layer height.
   return longest + project_.building.layer_height_m / machine_.z.speed_m_s;
+}
+
+double Scheduler::move_between(const std::string& from_key, const std::string& to_key) const {
+  return move_s(schedule_.plans.at(from_key).waypoints, schedule_.plans.at(to_key).waypoints);
 }
 
 const IntervalOffsets& Scheduler::offsets(const Slice& upper, const std::string& upper_key,

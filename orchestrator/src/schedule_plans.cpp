@@ -147,7 +147,10 @@ int Scheduler::fewest_nozzles(int geometry, double between_s) {
   for (int n = 1; n <= machine_.nozzles; ++n) {
     const Planned& p = planned(geometry, n);
     if (!p.usable) continue;
-    if (p.layer_time_s + between_s <= material_.max_layer_interval_s) return n;
+    // The next layer like it starts after this one, its pipes and the move up.
+    if (p.layer_time_s + between_s + move_s(p.waypoints, p.waypoints) <=
+        material_.max_layer_interval_s)
+      return n;
     if (p.layer_time_s < fastest_s) {
       fastest_s = p.layer_time_s;
       fastest = n;

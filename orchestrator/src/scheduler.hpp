@@ -79,11 +79,11 @@ class Scheduler {
   }
   Planned plan(int geometry, int nozzles) const;
   const Planned& planned(int geometry, int nozzles);
-  /// The fewest nozzles whose plan of `geometry` is usable and no longer than the maximum
-  /// interval: below that, the next layer of the same geometry cannot keep its intervals,
-  /// and a layer deposited slowly makes the one above it late at the pieces it did first.
-  /// `between_s`: the most time spent between two layers of the run (pipes). When no
-  /// count is fast enough, the fastest.
+  /// The fewest nozzles whose plan of `geometry` is usable and, with the move up to its
+  /// own start, no longer than the maximum interval: below that, the next layer of the
+  /// same geometry cannot keep its intervals, and a layer deposited slowly makes the one
+  /// above it late at the pieces it did first. `between_s`: the most time spent between
+  /// two layers of the run (pipes). When no count is fast enough, the fastest.
   int fewest_nozzles(int geometry, double between_s);
   void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
   /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
@@ -101,6 +101,9 @@ class Scheduler {
   static std::string follow_key(const Slice& slice, const std::string& below_key, bool hold_back) {
     return printf_string("g%d~%s%s", slice.geometry + 1, below_key.c_str(), hold_back ? "h" : "");
   }
+  /// From the end of the nozzles' paths `from` to the start of `to`, one layer up, s.
+  double move_s(const std::vector<std::vector<planner::Waypoint>>& from,
+                const std::vector<std::vector<planner::Waypoint>>& to) const;
   double move_between(const std::string& from_key, const std::string& to_key) const;
   const IntervalOffsets& offsets(const Slice& upper, const std::string& upper_key,
                                  const std::string& lower_key);

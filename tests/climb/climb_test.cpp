@@ -1,6 +1,7 @@
-// Climbing: hand-built scenes where a unit must detour round a wall, where it is boxed
-// in, where the platform would tip; the apartment's climbs (a setback on its top floors)
-// all planned, re-checked and repeatable; stages and pipes placed as the rules say.
+// Climbing: hand-built scenes where a unit must detour round a wall (one standing only in
+// the last layer printed among them), where it is boxed in, where the platform would tip
+// or stands within its stability margin; the apartment's climbs (a setback on its top
+// floors) all planned, re-checked and repeatable; stages and pipes placed as the rules say.
 
 #include "ccbuild/climb/climb.hpp"
 
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "ccbuild/floors/slice.hpp"
@@ -130,6 +132,37 @@ TEST(Climb, AUnitDetoursRoundAWallInItsWay) {
       << verify_climb(climber(), scene.building(), from, to, plan).to_string();
 }
 
+TEST(Climb, TheLastPrintedLayerIsInTheScene) {
+  // A 0.5 m fin of wall 5 stands only in the last layer printed from the stage (2.9 m to
+  // 3 m; a door takes the rest of it), where U1's boom (2.75 m to 3 m from the ground)
+  // swings on its way from x = 0.6 m to 2 m. Planned without the fin, the boom goes
+  // through it; planned with it, round it.
+  const std::string fin_vertices =
+      "        - {id: 5, x: 1.2, y: 0}\n        - {id: 6, x: 1.2, y: -0.5}\n";
+  const std::string fin_wall = "        - {id: 5, start: 5, end: 6}\n";
+  const Scene scene(fin_vertices, fin_wall,
+                    "        - {wall: 5, offset: 0, width: 0.5, sill: 0, head: 2.9}\n");
+  const auto [from, to] = stages(0.6, 2.0);
+  ASSERT_EQ(from.last.layer, 29);  // 2.9 m to 3 m
+  const Scene bare;
+  const ClimbPlan unaware = plan_climb(climber(), bare.building(), from, to);
+  ASSERT_TRUE(unaware.status) << unaware.status.to_string();
+  const ClimbStatus through = verify_climb(climber(), scene.building(), from, to, unaware);
+  EXPECT_EQ(through.code(), ClimbStatus::Code::kBlocked) << through.to_string();
+  EXPECT_TRUE(contains(through.reason(), "U1's link u1_boom touches wall 5 of floor 0"))
+      << through.to_string();
+  const ClimbPlan plan = plan_climb(climber(), scene.building(), from, to);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  EXPECT_TRUE(verify_climb(climber(), scene.building(), from, to, plan))
+      << verify_climb(climber(), scene.building(), from, to, plan).to_string();
+  // From a stage whose last layer is the one below, the fin is not built yet.
+  ClimbStage earlier = from;
+  earlier.last = {0, 28};
+  earlier.top_m = 2.9;
+  EXPECT_TRUE(verify_climb(climber(), scene.building(), earlier, to, unaware))
+      << verify_climb(climber(), scene.building(), earlier, to, unaware).to_string();
+}
+
 TEST(Climb, AUnitBoxedInIsInfeasibleWithItsReason) {
   // The fin runs out past U1's mount: there is no way round it.
   const Scene scene("        - {id: 5, x: 1.2, y: 0}\n        - {id: 6, x: 1.2, y: -3.0}\n",
@@ -171,6 +204,115 @@ TEST(Climb, ATransferThatWouldTipThePlatformIsRefused) {
   int balances = 0;
   for (const auto& p : fine.phases) balances += p.kind == ClimbPhase::Kind::kBalance;
   EXPECT_EQ(balances, 4);
+}
+
+// Signed distance from `p` to the edges of the triangle a, b, c (counter-clockwise),
+// positive inside, m.
+double inside_triangle_m(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                         const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  double inside = std::numeric_limits<double>::infinity();
+  for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+    const Eigen::Vector2d d = (to - from).normalized();
+    inside = std::min(inside, d.x() * (p - from).y() - d.y() * (p - from).x());
+  }
+  return inside;
+}
+
+TEST(Climb, TheReCheckKeepsTheCentreOfMassTheMarginInsideThePins) {
+  // U1 out of its pipe: the platform stands on U2, U3 and U4, whose pins make a triangle
+  // with its long edge from U4 (0.6, 15.85) to U2 (29.6, 0) across the middle of the
+  // building. The gantry, parked, is placed along x so that the centre of mass is the
+  // stability margin (0.3 m) inside that triangle plus or minus a millimetre; then U1's
+  // pin is released. A millimetre inside the margin is refused as unstable, although the
+  // centre of mass is inside the polygon.
+  const machine::ClimbingMachine& m = climber();
+  const machine::Kinematics& robot = *m.robot;
+  ASSERT_DOUBLE_EQ(m.stability_margin_m, 0.3);
+  const Scene scene;
+  const auto [from, to] = stages(0.6, 0.6);
+  const Eigen::Isometry3d platform(Eigen::Translation3d(0, 0, from.platform_z_m));
+  // The machine as the re-check starts it: every unit's pin engaged in its pipe.
+  std::vector<double> q = robot.zero();
+  for (int u = 0; u < 4; ++u) {
+    const Anchor& a = from.anchors[u];
+    Eigen::Vector3d foot = a.centre_m;
+    foot.head<2>() += a.outward * (0.5 * a.wall_thickness_m + m.pin_gap_m + m.foot_to_pin_m());
+    const auto pose = m.unit_ik(u, platform, q, foot, -a.outward,
+                                0.5 * a.wall_thickness_m + m.pin_gap_m + m.pin_past_centre_m);
+    ASSERT_TRUE(pose);
+    m.set_unit(u, *pose, q);
+  }
+  const int gx = m.gantry_joints[0], gy = m.gantry_joints[1], gz = m.gantry_joints[2];
+  q[gz] = robot.joint_info(gz).upper;
+  q[gy] = 0.5 * (robot.joint_info(gy).lower + robot.joint_info(gy).upper);
+  const Eigen::Vector2d u2 = from.anchors[1].centre_m.head<2>(),
+                        u3 = from.anchors[2].centre_m.head<2>(),
+                        u4 = from.anchors[3].centre_m.head<2>();
+  auto inside_at = [&](double x) {
+    std::vector<double> at = q;
+    at[gx] = x;
+    const Eigen::Vector3d com = robot.centre_of_mass(robot.link_poses(platform, at));
+    return inside_triangle_m(com.head<2>(), u2, u3, u4);
+  };
+  // The centre of mass moves linearly with the gantry: where is it the margin inside?
+  const double x0 = q[gx], x1 = x0 + 1.0;
+  const double per_m = inside_at(x1) - inside_at(x0);
+  ASSERT_GT(per_m, 0.01);
+  auto plan_at = [&](double inside_m) {
+    const double x = x0 + (inside_m - inside_at(x0)) / per_m;
+    EXPECT_NEAR(inside_at(x), inside_m, 1e-9);
+    EXPECT_GE(x, robot.joint_info(gx).lower);
+    EXPECT_LE(x, robot.joint_info(gx).upper);
+    ClimbPlan plan;
+    auto phase = [&](ClimbPhase::Kind kind, int unit, const std::vector<int>& joints,
+                     const std::vector<double>& state) {
+      ClimbPhase p;
+      p.kind = kind;
+      p.unit = unit;
+      for (int j : joints) p.joints.push_back(robot.joint_info(j).name);
+      p.path = {state, state};
+      p.t_s = {0.0, 1.0};
+      plan.phases.push_back(p);
+    };
+    const int pin = m.units[0].joints[4];
+    phase(ClimbPhase::Kind::kPark, -1, {gz}, {q[gz]});
+    phase(ClimbPhase::Kind::kBalance, 0, {gx, gy}, {x, q[gy]});
+    phase(ClimbPhase::Kind::kRelease, 0, {pin}, {q[pin]});
+    return plan;
+  };
+  const ClimbStatus outside_margin =
+      verify_climb(m, scene.building(), from, to, plan_at(0.3 + 1e-3));
+  EXPECT_TRUE(outside_margin) << outside_margin.to_string();
+  const ClimbStatus within_margin =
+      verify_climb(m, scene.building(), from, to, plan_at(0.3 - 1e-3));
+  EXPECT_EQ(within_margin.code(), ClimbStatus::Code::kUnstable) << within_margin.to_string();
+  EXPECT_TRUE(contains(within_margin.reason(),
+                       "phase 3 (release): unstable: the centre of mass is 0.30 m inside the "
+                       "holding pins' polygon (the margin is 0.30 m)"))
+      << within_margin.to_string();
+}
+
+TEST(Climb, APinGoesIntoAWallOnlyAlongItsPipe) {
+  // A planned climb re-checked with U1's new pipe declared a few millimetres along the
+  // wall from where its pin goes in: within 5 mm of the pipe's axis the pin enters it,
+  // further off it goes into solid wall.
+  const Scene scene;
+  const auto [from, to] = stages(0.6, 0.6);
+  const ClimbPlan plan = plan_climb(climber(), scene.building(), from, to);
+  ASSERT_TRUE(plan.status) << plan.status.to_string();
+  for (const double off_m : {0.004, 0.006}) {
+    ClimbStage moved = to;
+    moved.anchors[0].centre_m.x() += off_m;
+    const ClimbStatus checked = verify_climb(climber(), scene.building(), from, moved, plan);
+    if (off_m < 0.005) {
+      EXPECT_TRUE(checked) << off_m << ": " << checked.to_string();
+    } else {
+      EXPECT_EQ(checked.code(), ClimbStatus::Code::kBlocked) << off_m;
+      EXPECT_TRUE(
+          contains(checked.reason(), "(insert): U1's link u1_pin touches wall 1 of floor 0"))
+          << checked.to_string();
+    }
+  }
 }
 
 class Apartment : public ::testing::Test {

@@ -1,8 +1,11 @@
 // What the simulated machine refuses and what the dispatcher does about faults: the
 // machine's limits from its URDF (the examples' paths keep them; a path just over one
-// does not), the material's interval window at its boundary, the site watchdog at the
-// gantry width plus its margin, a pin that misses (tried again, then a safe stop) and a
-// clog (purged, the rest of the layer re-planned, the same recovery after a restart).
+// does not), the material's interval window at its boundary (from when a late layer
+// really starts), where the machine is between waypoints, the site watchdog at the
+// gantry width plus its margin (positions interpolated from the right end, within its
+// span), a pin that misses (tried again, then a safe stop) and a clog (purged, the rest
+// of the layer re-planned, the same recovery after a restart; a gantry moved clear only
+// when closer than its width).
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -31,6 +34,7 @@ namespace {
 using ccbuild_lcm::ccbuild_fault_t;
 using ccbuild_lcm::ccbuild_job_t;
 using ccbuild_lcm::ccbuild_path_chunk_t;
+using testing::contains;
 
 machine::TimedPath path_of(const DispatchJob& d) {
   return machine::path_of(d.chunks);
@@ -282,6 +286,62 @@ TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
   }
 }
 
+TEST(SimMachine, FollowsItsPathBetweenWaypointsOnItsClock) {
+  // At machine speed 1, a quarter of the way into the 5 s piece from (0, 0) to (1, 0):
+  // at 0.25 m, and so says its status.
+  machine::SimOptions so = window(0.0, 1e9);
+  so.speed = 1.0;
+  Rig rig(so, {piece_job(10, 0, 0.0)});
+  std::vector<double> reported_x_m;
+  rig.bus.subscribe<ccbuild_lcm::ccbuild_status_t>(
+      machine::channel("STATUS", "gantry-1"),
+      [&](const ccbuild_lcm::ccbuild_status_t& s) { reported_x_m.push_back(s.x_m); });
+  // Until the machine has started the job (on its arrival or at the end of a step).
+  for (int k = 0; k < 5'000 && !rig.sim.busy(); ++k) {
+    rig.dispatcher->step(1e-3);
+    rig.bus.handle(0);
+    if (!rig.sim.busy()) rig.sim.step(1e-3);
+    rig.bus.handle(0);
+  }
+  ASSERT_TRUE(rig.sim.busy());
+  const double started_s = rig.sim.clock_s();
+  EXPECT_DOUBLE_EQ(started_s, 0.0);
+  rig.sim.step(1.25);
+  rig.bus.handle(0);
+  EXPECT_DOUBLE_EQ(rig.sim.clock_s(), 1.25);
+  EXPECT_NEAR(rig.sim.position()[0], 0.25, 1e-12);
+  EXPECT_NEAR(rig.sim.position()[1], 0.0, 1e-12);
+  ASSERT_FALSE(reported_x_m.empty());
+  EXPECT_NEAR(reported_x_m.back(), 0.25, 1e-12);
+  rig.run();
+  EXPECT_EQ(rig.sim.executed(), std::vector<std::int64_t>{10});
+  EXPECT_DOUBLE_EQ(rig.sim.position()[0], 1.0);
+}
+
+TEST(SimMachine, ALayerStartedLateIsCheckedFromWhenItStarts) {
+  // Layer 1 is planned 3 s after layer 0, which takes 5 s: the machine starts it when it
+  // is free, at 5 s, and its piece is covered 5 s after it was deposited: a cold joint
+  // over a 4.5 s maximum, and no longer too early for a 4 s minimum.
+  const struct {
+    double min_s, max_s;
+    std::int8_t fault;  // 0: accepted
+  } cases[] = {{0.0, 4.5, ccbuild_fault_t::COLD_JOINT}, {4.0, 1e9, 0}};
+  for (const auto& c : cases) {
+    Rig rig(window(c.min_s, c.max_s), {piece_job(10, 0, 0.0), piece_job(20, 1, 3.0)});
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    if (c.fault == 0) {
+      ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+      EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(20).first, 5.0);
+    } else {
+      ASSERT_TRUE(rig.dispatcher->stopped());
+      EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{c.fault});
+      EXPECT_TRUE(contains(*rig.dispatcher->stopped(), "covered 5.0 s after it was deposited"))
+          << *rig.dispatcher->stopped();
+    }
+  }
+}
+
 TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
   const auto dir =
       std::filesystem::temp_directory_path() / ("ccbuild_clog_" + std::to_string(::getpid()));
@@ -405,7 +465,48 @@ TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
   EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);
 }
 
-void status(machine::Bus& bus, const std::string& id, double t_s, double x_m) {
+TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
+  // As above, but gantry-2's wall ends at 8 m: exactly the gantry width past the rest of
+  // gantry-1's wall (up to 6 m). Nothing to move clear; the rest runs as soon as gantry-2
+  // is done.
+  const std::vector<DispatchJob> layer = {along_x("gantry-1", 10, 0.0, 6.0),
+                                          along_x("gantry-2", 20, 13.0, 8.0)};
+  machine::Bus bus("memq://");
+  Journal journal(":memory:");
+  machine::SimOptions one = window(0.0, 1e9);
+  one.clog_floor = 0;
+  one.clog_layer = 0;
+  machine::SimOptions two = window(0.0, 1e9);
+  two.machine_id = "gantry-2";
+  machine::SimMachine sim1(bus, one), sim2(bus, two);
+  DispatchOptions o;
+  o.speed = one.speed;
+  o.gantry_width_m = 2.0;
+  o.purge_s = 1.0;
+  o.rail_axis = 'x';
+  o.rail_min_m = -2.0;
+  o.rail_max_m = 20.0;
+  Dispatcher d(bus, layer, journal, o);
+  for (int k = 0; k < 100'000 && !d.finished(); ++k) {
+    d.step(1e-3);
+    bus.handle(0);
+    sim1.step(1e-3);
+    sim2.step(1e-3);
+    bus.handle(0);
+  }
+  ASSERT_TRUE(d.finished());
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  EXPECT_EQ(sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(sim2.executed(), (std::vector<std::int64_t>{20}));          // no move
+  EXPECT_EQ(d.jobs().size(), 4u);
+  EXPECT_DOUBLE_EQ(sim2.position()[0], 8.0);
+  EXPECT_DOUBLE_EQ(d.executed().at(12).first, d.executed().at(20).second);
+}
+
+/// A status of machine `id` at machine time `t_s`, on `channel_of`'s status channel (by
+/// default its own).
+void status(machine::Bus& bus, const std::string& id, double t_s, double x_m,
+            const std::string& channel_of = "") {
   static std::int64_t seq = 0;
   ccbuild_lcm::ccbuild_status_t s{};
   s.utime = machine::utime_now();
@@ -414,7 +515,7 @@ void status(machine::Bus& bus, const std::string& id, double t_s, double x_m) {
   s.state = ccbuild_lcm::ccbuild_status_t::BUSY;
   s.sim_time_s = t_s;
   s.x_m = x_m;
-  bus.publish(machine::channel("STATUS", id), s);
+  bus.publish(machine::channel("STATUS", channel_of.empty() ? id : channel_of), s);
   bus.handle(0);
 }
 
@@ -434,15 +535,80 @@ TEST(SiteWatchdog, PausesBelowTheGantryWidthPlusItsMarginNotAtIt) {
   status(bus, "gantry-2", 5.0, 2.501);
   EXPECT_FALSE(dog.check(0.01));
   EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
-  status(bus, "gantry-2", 10.0, 2.999);  // 1.999 m: under by a millimetre
+  // Another machine's status on gantry-2's channel is not believed: "gantry-3" at 1.2 m,
+  // 0.2 m from gantry-1, is neither gantry-2's position nor its heartbeat.
+  EXPECT_FALSE(dog.check(1.5));
+  status(bus, "gantry-1", 10.0, 1.0);
+  status(bus, "gantry-3", 10.0, 1.2, "gantry-2");
+  EXPECT_FALSE(dog.check(1.0));
+  EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
+  EXPECT_EQ(dog.silent(), std::vector<std::string>{"gantry-2"});  // 2.5 s since its last
+  status(bus, "gantry-2", 10.0, 2.999);                           // 1.999 m: under by a millimetre
+  EXPECT_TRUE(dog.silent().empty());
   const auto why = dog.check(0.01);
   ASSERT_TRUE(why);
   EXPECT_NE(why->find("every machine paused"), std::string::npos);
   EXPECT_FALSE(dog.check(0.01)) << "said twice";
-  // Another machine's status on gantry-2's channel is not believed.
-  EXPECT_TRUE(dog.silent().empty());
   EXPECT_EQ(dog.check(5.0), std::nullopt);
-  EXPECT_EQ(dog.silent().size(), 2u);
+  EXPECT_EQ(dog.silent(), (std::vector<std::string>{"gantry-1", "gantry-2"}));
+}
+
+TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) {
+  // Gaps are taken at the latest instant both machines have reported; the one that
+  // reported later is placed between its two statuses, in proportion to the time from the
+  // earlier one. Off the middle of the span, so that the wrong end shows.
+  WatchdogOptions w;
+  w.machines = {"gantry-1", "gantry-2"};
+  w.gantry_width_m = 1.5;
+  w.margin_m = 0.5;  // acted on under 2 m
+  for (const double span_s : {8.0, 8.5}) {
+    // gantry-1 moves up at 0.125 m/s and has reported at 0 s and `span_s`; gantry-2 has
+    // reported 2 s: gantry-1 was at 0.25 m then, exactly 2 m from gantry-2 (at 0.75 m from
+    // the wrong end). Statuses at most 8 s apart are interpolated: 8 s is, 8.5 s is not.
+    machine::Bus bus("memq://");
+    WatchdogOptions spanned = w;
+    spanned.max_span_s = 8.0;
+    SiteWatchdog dog(bus, spanned);
+    status(bus, "gantry-1", 0.0, 0.0);
+    status(bus, "gantry-2", 0.0, 3.0);
+    EXPECT_FALSE(dog.check(0.01));
+    EXPECT_EQ(dog.gaps_measured(), 1);
+    status(bus, "gantry-1", span_s, 0.125 * span_s);
+    status(bus, "gantry-2", 2.0, 2.25);
+    EXPECT_FALSE(dog.check(0.01));
+    if (span_s > spanned.max_span_s) {
+      EXPECT_EQ(dog.gaps_measured(), 1) << "a position guessed over " << span_s << " s";
+      EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 3.0);
+      continue;
+    }
+    EXPECT_EQ(dog.gaps_measured(), 2);
+    EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+    // At 3 s: gantry-1 at 0.375 m, gantry-2 at 2.374 m: a millimetre under.
+    status(bus, "gantry-2", 3.0, 2.374);
+    const auto why = dog.check(0.01);
+    ASSERT_TRUE(why);
+    EXPECT_TRUE(contains(*why,
+                         "at 3.0 s of machine time gantry-1 at 0.375 m and "
+                         "gantry-2 at 2.374 m on the rails are 1.999 m apart"))
+        << *why;
+  }
+  {
+    // Now gantry-2 reported later: it moves down from 4 m at 0.2 m/s; at 7.5 s (gantry-1's
+    // last status, at 0.5 m) it was at 2.5 m, 2 m from gantry-1; at 8 s, 1.95 m.
+    machine::Bus bus("memq://");
+    SiteWatchdog dog(bus, w);
+    status(bus, "gantry-1", 0.0, 0.0);
+    status(bus, "gantry-2", 0.0, 4.0);
+    status(bus, "gantry-2", 10.0, 2.0);
+    status(bus, "gantry-1", 7.5, 0.5);
+    EXPECT_FALSE(dog.check(0.01));
+    EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+    status(bus, "gantry-1", 8.0, 0.45);
+    const auto why = dog.check(0.01);
+    ASSERT_TRUE(why);
+    EXPECT_TRUE(contains(*why, "gantry-2 at 2.400 m")) << *why;
+    EXPECT_NEAR(dog.smallest_gap_m(), 1.95, 1e-9);
+  }
 }
 
 }  // namespace

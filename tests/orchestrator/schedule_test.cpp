@@ -149,6 +149,18 @@ TEST(Schedule, TheSameWhateverTheJobs) {
   EXPECT_EQ(two, again);
   EXPECT_FALSE(
       diff_schedules(parse_schedule(one, "one"), parse_schedule(two, "two"), {}).differs());
+  // Equal bytes are what the regression tests compare with `diff` and no tolerance: that
+  // comparison is exact, a layer started a millisecond later differs and is named.
+  ScheduleDocument later = parse_schedule(two, "two");
+  auto& layer = later.schedule.layers[10];
+  layer.start_s += 1e-3;
+  layer.end_s += 1e-3;
+  const ScheduleDiff moved = diff_schedules(parse_schedule(one, "one"), later, {});
+  EXPECT_TRUE(moved.differs());
+  EXPECT_EQ(moved.differing_layers, 1);
+  std::string changes;
+  for (const auto& c : moved.changes) changes += c + "\n";
+  EXPECT_TRUE(contains(changes, "floor 0 layer 10")) << changes;
 }
 
 // A two-floor building of generated plans (seeded) with `material` and the bundled gantry.
