@@ -267,6 +267,15 @@ class Rules {
           printf_string("%.6f m, but the gantries come %.6f m apart", plan.min_gap_m, smallest_m));
   }
 
+  /// A wait is as long as its longest reason (none: no wait).
+  void check_wait(const std::string& at, double wait_s, const std::vector<WaitReason>& reasons) {
+    double longest_s = 0.0;
+    for (const auto& r : reasons) longest_s = std::max(longest_s, r.required_s);
+    if (std::abs(wait_s - longest_s) > kStated_s)
+      broken(at + "/wait_before_s", "waits",
+             printf_string("%.6f s, but its longest reason needs %.6f s", wait_s, longest_s));
+  }
+
   // ---------------------------------------------------------------- layers
   const DepositIndex& index(const std::string& key) {
     auto it = indexes_.find(key);
@@ -330,13 +339,7 @@ class Rules {
         broken(at + "/end_s", "layer time",
                printf_string("the layer lasts %.6f s, its plan %s %.6f s", l.end_s - l.start_s,
                              l.plan.c_str(), plan.layer_time_s));
-      // Waits: as long as the longest reason.
-      double longest_s = 0.0;
-      for (const auto& r : l.wait_reasons) longest_s = std::max(longest_s, r.required_s);
-      if (std::abs(l.wait_before_s - longest_s) > kStated_s)
-        broken(at + "/wait_before_s", "waits",
-               printf_string("%.6f s, but its longest reason needs %.6f s", l.wait_before_s,
-                             longest_s));
+      check_wait(at, l.wait_before_s, l.wait_reasons);
       if (previous) {
         // One layer at a time: after the one before, the events between, the move, the
         // wait and the purge.
@@ -487,12 +490,7 @@ class Rules {
                  printf_string("climbs from stage %d to %d; expected consecutive stages among "
                                "the %d",
                                c.from_stage, c.to_stage, stages));
-        double longest_s = 0.0;
-        for (const auto& r : c.wait_reasons) longest_s = std::max(longest_s, r.required_s);
-        if (std::abs(c.wait_before_s - longest_s) > kStated_s)
-          broken(at + "/wait_before_s", "waits",
-                 printf_string("%.6f s, but its longest reason needs %.6f s", c.wait_before_s,
-                               longest_s));
+        check_wait(at, c.wait_before_s, c.wait_reasons);
       }
     }
     // A purge before every layer that says so, ending where it starts.
