@@ -36,12 +36,6 @@ double FloorPlan::wall_length_m(const Wall& wall) const {
   return (wall_end_m(wall) - wall_start_m(wall)).norm();
 }
 
-double FloorPlan::total_wall_length_m() const {
-  double total = 0.0;
-  for (const auto& w : walls) total += wall_length_m(w);
-  return total;
-}
-
 namespace {
 bool near(double a, double b, double tolerance) {
   return std::abs(a - b) <= tolerance;

@@ -130,12 +130,6 @@ const JointInfo* UrdfInfo::find(const std::string& name) const {
   return nullptr;
 }
 
-const LinkInfo* UrdfInfo::find_link(const std::string& name) const {
-  for (const auto& l : links)
-    if (l.name == name) return &l;
-  return nullptr;
-}
-
 namespace {
 
 Eigen::Isometry3d to_eigen(const urdf::Pose& pose) {

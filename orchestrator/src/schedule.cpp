@@ -52,14 +52,12 @@ double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, 
   // The weight of the walls from layer j's bottom up to the new layer's top, times the
   // safety factor, must not exceed layer j's strength at its age (from its end).
   const double top_m = slices_[i].layer.z_top_m;
-  const double worst_age_s =
-      material_.age_for_strength_s(material_.safety_factor * stress_per_m_mpa_ * top_m);
+  const double worst_age_s = material_.age_for_strength_s(required_strength_mpa(top_m));
   double ready_s = -kInf;
   for (int j = first_checked - 1; j >= 0; --j) {
     // Older layers carry at most the whole height; once that is within their age, stop.
     if (std::isfinite(worst_age_s) && layer_end_s_[j] + worst_age_s <= earliest_s) break;
-    const double required_mpa =
-        material_.safety_factor * stress_per_m_mpa_ * (top_m - slices_[j].layer.z_bottom_m);
+    const double required_mpa = required_strength_mpa(top_m - slices_[j].layer.z_bottom_m);
     const double age_s = material_.age_for_strength_s(required_mpa);
     if (!std::isfinite(age_s)) {
       impossible = true;
@@ -205,7 +203,7 @@ void Scheduler::prepare() {
     std::vector<std::pair<int, int>> more;
     for (int g = 0; g < static_cast<int>(reps_.size()); ++g) {
       const Planned& p = planned_.at({g, 1});
-      if (!p.usable || p.layer_time_s > 0.9 * material_.max_layer_interval_s)
+      if (!p.usable || p.layer_time_s > kTryMoreNozzlesShare * material_.max_layer_interval_s)
         for (int n = 2; n <= machine_.nozzles; ++n) more.push_back({g, n});
     }
     plan_batch(more, "layer geometries too slow for one nozzle");
@@ -245,8 +243,6 @@ void Scheduler::prepare() {
 }
 
 bool Scheduler::schedule_layer(int i) {
-  const int count = static_cast<int>(slices_.size());
-  (void)count;
   const Slice& slice = slices_[i];
   ScheduledLayer out;
   out.floor = slice.floor;
@@ -274,10 +270,9 @@ bool Scheduler::schedule_layer(int i) {
   }
   // The stress on the layer just below, from its bottom to this layer's top, and the age
   // its concrete needs for it.
-  const double below_age_s =
-      below ? material_.age_for_strength_s(material_.safety_factor * stress_per_m_mpa_ *
-                                           (slice.layer.z_top_m - below->z_bottom_m))
-            : 0.0;
+  const double below_age_s = below ? material_.age_for_strength_s(required_strength_mpa(
+                                         slice.layer.z_top_m - below->z_bottom_m))
+                                   : 0.0;
   if (below && !std::isfinite(below_age_s) && !impossible) {
     Infeasibility inf;
     inf.kind = "strength";

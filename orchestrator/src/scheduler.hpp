@@ -22,6 +22,9 @@ namespace ccbuild::orchestrator::detail {
 using Clock = std::chrono::steady_clock;
 inline constexpr double kGravity_m_s2 = 9.80665;
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
+/// A geometry whose one-nozzle layer takes more than this share of the maximum interval
+/// is planned at every nozzle count too: the move and the waits still have to fit.
+inline constexpr double kTryMoreNozzlesShare = 0.9;
 
 inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -130,6 +133,11 @@ class Scheduler {
   const floors::MaterialProfile& material_;
   /// The stress of a metre of wall on what carries it, MPa.
   const double stress_per_m_mpa_;
+  /// The strength a layer needs to carry `height_m` of wall above its bottom, with the
+  /// material's safety factor, MPa: the one statement of the buildability rule.
+  double required_strength_mpa(double height_m) const {
+    return material_.safety_factor * stress_per_m_mpa_ * height_m;
+  }
   int jobs_;
 
   std::vector<Slice> slices_;

@@ -64,7 +64,6 @@ struct FloorPlan {
   Eigen::Vector2d wall_start_m(const Wall& wall) const;
   Eigen::Vector2d wall_end_m(const Wall& wall) const;
   double wall_length_m(const Wall& wall) const;
-  double total_wall_length_m() const;
 };
 
 /// True when two plans hold the same vertices, walls and openings (in the same order,

@@ -27,7 +27,6 @@ class Kinematics {
   const JointInfo& joint_info(int joint) const { return urdf_.joints[joint]; }
   int root() const { return root_; }
   /// The joint whose child is `link` (-1 for the root) and the link above it.
-  int parent_joint(int link) const { return parent_joint_[link]; }
   int parent_link(int link) const { return parent_link_[link]; }
   /// True when `ancestor` is `link` or lies on its path to the root.
   bool is_ancestor(int ancestor, int link) const;

@@ -130,7 +130,6 @@ class SimMachine {
   const std::vector<std::int64_t>& executed() const { return executed_; }
   double clock_s() const { return clock_s_; }
   bool busy() const { return current_.has_value(); }
-  bool paused() const { return paused_; }
   long faults() const { return faults_; }
   /// Messages rejected as replays (seen before, or too old).
   long replays_rejected() const { return replays_; }

@@ -50,7 +50,6 @@ struct UrdfInfo {
   std::vector<JointInfo> joints;
   std::vector<LinkInfo> links;
   const JointInfo* find(const std::string& name) const;
-  const LinkInfo* find_link(const std::string& name) const;
 };
 
 /// Parses a URDF file with urdfdom. Throws InputError naming the file, with urdfdom's own

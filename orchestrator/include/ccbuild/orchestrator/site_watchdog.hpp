@@ -44,7 +44,6 @@ class SiteWatchdog {
   long gaps_measured() const { return gaps_measured_; }
   /// Machines silent for longer than the heartbeat timeout, now.
   std::vector<std::string> silent() const;
-  bool tripped() const { return tripped_; }
 
  private:
   void on_status(const ccbuild_lcm::ccbuild_status_t& s);

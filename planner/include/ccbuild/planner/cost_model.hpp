@@ -156,7 +156,6 @@ class CostModel {
   }
 
   const floors::Layer& layer() const { return *layer_; }
-  const std::shared_ptr<const floors::Layer>& shared_layer() const { return layer_; }
   const machine::MachineModel& machine() const { return machine_; }
   Metric metric() const { return metric_; }
   double deposition_s() const { return deposition_s_; }
