@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "ccbuild/orchestrator/project.hpp"
-#include "ccbuild/orchestrator/schedule.hpp"
+#include "ccbuild/schedule/schedule.hpp"
 
 using namespace ccbuild;
 
@@ -36,15 +36,15 @@ int main(int argc, char** argv) {
   std::printf("%s, %d runs, --jobs %d\n", building_file.c_str(), runs, jobs);
   std::printf("run  total_s  layers_s  climbs_s  rest_s  plans  layers  climbs  feasible\n");
   for (int r = 0; r < runs; ++r) {
-    orchestrator::ScheduleOptions options;
+    schedule::ScheduleOptions options;
     options.jobs = jobs;
     const auto t0 = std::chrono::steady_clock::now();
-    const orchestrator::Schedule s = orchestrator::build_schedule(project, options);
+    const schedule::Schedule s = schedule::build_schedule(project, options);
     const double total_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     totals.push_back(total_s);
     int climbs = 0;
-    for (const auto& e : s.events) climbs += e.kind == orchestrator::Event::Kind::kClimb;
+    for (const auto& e : s.events) climbs += e.kind == schedule::Event::Kind::kClimb;
     std::printf("%3d  %7.2f  %8.2f  %8.2f  %6.2f  %5d  %6zu  %6d  %s\n", r + 1, total_s,
                 s.layer_planning_s, s.climb_planning_s, s.bookkeeping_s, s.plans_computed,
                 s.layers.size(), climbs, s.feasible ? "yes" : "no");

@@ -32,18 +32,6 @@ floors::MaterialProfile default_material() {
 
 }  // namespace
 
-std::vector<fs::path> Project::files_read() const {
-  std::vector<fs::path> out = building.files_read;
-  if (machine) out.insert(out.end(), machine->files_read.begin(), machine->files_read.end());
-  if (!material.source_file.empty()) out.emplace_back(material.source_file);
-  if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
-  return out;
-}
-
-std::string Project::length(double value_m, int decimals) const {
-  return floors::length_text(value_m, building.units, decimals);
-}
-
 Project open_project(const fs::path& file, const ProjectOptions& options) {
   Project project;
   project.file = file;
@@ -137,14 +125,6 @@ void check_fit(const Project& project) {
   sink.throw_if_any();
 }
 
-void check_floor(const Project& project, int floor) {
-  const auto floors = project.building.floors.size();
-  if (floor < 0 || floor >= static_cast<int>(floors))
-    throw InputError("", 0, "floor",
-                     "no floor " + std::to_string(floor) + "; " + project.file.string() +
-                         " has floors 0 to " + std::to_string(floors - 1));
-}
-
 floors::Layer layer_of(const Project& project, int floor, std::optional<int> layer) {
   const floors::Building& b = project.building;
   check_floor(project, floor);
@@ -195,46 +175,9 @@ std::vector<DistinctLayer> distinct_layers(const Project& project, std::optional
   return out;
 }
 
-double LayerPlanResult::layer_time_s() const {
-  if (single) return single->evaluation.layer_time_s;
-  if (multi) return multi->layer_time_s;
-  return 0.0;
-}
-
-double LayerPlanResult::max_idle_s() const {
-  double idle = 0.0;
-  if (single) idle = single->evaluation.max_idle_s;
-  if (multi)
-    for (const auto& stage : multi->stages)
-      for (const auto& n : stage.nozzles) idle = std::max(idle, n.evaluation.max_idle_s);
-  return idle;
-}
-
-int LayerPlanResult::idle_limit_violations() const {
-  int count = 0;
-  if (single) count = single->evaluation.idle_limit_violations;
-  if (multi)
-    for (const auto& stage : multi->stages)
-      for (const auto& n : stage.nozzles) count += n.evaluation.idle_limit_violations;
-  return count;
-}
-
 LayerPlanResult plan_layer(const Project& project, const floors::Layer& layer,
                            const LayerPlanRequest& request) {
-  LayerPlanResult out;
-  out.nozzles = request.nozzles;
-  if (request.nozzles < 1)
-    throw InputError("", 0, "MultiNozzleOptions::nozzles", "must be at least 1");
-  if (request.nozzles == 1) {
-    out.single = planner::plan_layer(layer, *project.machine, request.planning);
-    out.status = planner::PlanStatus();
-    return out;
-  }
-  planner::MultiNozzleOptions multi = request.multi;
-  multi.nozzles = request.nozzles;
-  out.multi = planner::plan_layer_multi(layer, *project.machine, multi);
-  out.status = out.multi->status;
-  return out;
+  return planner::plan_layer_nozzles(layer, *project.machine, request);
 }
 
 }  // namespace ccbuild::orchestrator

@@ -6,7 +6,7 @@
 
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/orchestrator/climb_report.hpp"
+#include "ccbuild/report/climb_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -35,13 +35,13 @@ void run_climb(const ClimbOptions& o, int& exit_code) {
   climb::ClimbOptions options;
   options.seed = o.seed;
   options.time_limit_s = o.time_limit_s;
-  const orchestrator::ClimbReport report = orchestrator::plan_climbs(project, o.floor, options);
+  const schedule::ClimbReport report = schedule::plan_climbs(project, o.floor, options);
   const climb::ClimbStatus status = report.status();
   if (!o.svg.empty())
-    write_file_atomically(o.svg, orchestrator::climb_report_svg(project, report), o.force, inputs);
+    write_file_atomically(o.svg, report::climb_report_svg(project, report), o.force, inputs);
   exit_code = status ? kExitOk : kExitNo;
   if (o.json) {
-    std::cout << orchestrator::climb_report_json(project, report).dump(2) << "\n";
+    std::cout << report::climb_report_json(project, report).dump(2) << "\n";
     return;
   }
   auto L = [&](double value_m) { return project.length(value_m, 2); };

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/orchestrator/schedule_diff.hpp"
+#include "ccbuild/schedule/schedule_diff.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -18,8 +18,8 @@ struct DiffOptions {
   int shown = 5;
 };
 
-orchestrator::DiffTolerance parse_tolerance(const std::vector<std::string>& texts) {
-  orchestrator::DiffTolerance tol;
+schedule::DiffTolerance parse_tolerance(const std::vector<std::string>& texts) {
+  schedule::DiffTolerance tol;
   for (const auto& text : texts) {
     const bool percent = !text.empty() && text.back() == '%';
     const bool secs = !text.empty() && text.back() == 's';
@@ -42,15 +42,14 @@ orchestrator::DiffTolerance parse_tolerance(const std::vector<std::string>& text
 }
 
 void run_diff(const DiffOptions& o, int& exit_code) {
-  const orchestrator::DiffTolerance tol = parse_tolerance(o.tolerances);
+  const schedule::DiffTolerance tol = parse_tolerance(o.tolerances);
   // Comparing schedules made from different inputs is what diff is for: inputs changed on
   // disk since are named, not refused.
-  orchestrator::ReadScheduleOptions read;
-  read.inputs = orchestrator::RecordedInputCheck::kNote;
-  const auto a = orchestrator::read_schedule(o.old_file, read);
-  const auto b = orchestrator::read_schedule(o.new_file, read);
-  const orchestrator::ScheduleDiff d =
-      orchestrator::diff_schedules(a.document, b.document, tol, o.shown);
+  schedule::ReadScheduleOptions read;
+  read.inputs = schedule::RecordedInputCheck::kNote;
+  const auto a = schedule::read_schedule(o.old_file, read);
+  const auto b = schedule::read_schedule(o.new_file, read);
+  const schedule::ScheduleDiff d = schedule::diff_schedules(a.document, b.document, tol, o.shown);
   for (const auto& n : a.notes) std::cout << "note: " << o.old_file << ": " << n << "\n";
   for (const auto& n : b.notes) std::cout << "note: " << o.new_file << ": " << n << "\n";
   for (const auto& n : d.notes) std::cout << "note: " << n << "\n";

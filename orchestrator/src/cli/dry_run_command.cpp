@@ -24,14 +24,14 @@
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/sha256.hpp"
+#include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/site_watchdog.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/machine/sim_limits.hpp"
 #include "ccbuild/machine/sim_machine.hpp"
-#include "ccbuild/orchestrator/dispatcher.hpp"
-#include "ccbuild/orchestrator/schedule.hpp"
-#include "ccbuild/orchestrator/schedule_json.hpp"
-#include "ccbuild/orchestrator/site_watchdog.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -130,7 +130,7 @@ Injected injected(const std::string& text) {
     MachineFault f;
     f.item = item;
     f.name = name;
-    f.machine = orchestrator::gantry_id(0);
+    f.machine = dispatch::gantry_id(0);
     if (const std::size_t amp = value.find('@'); amp != std::string::npos) {
       f.machine = value.substr(0, amp);
       value = value.substr(amp + 1);
@@ -162,8 +162,8 @@ Injected injected(const std::string& text) {
 /// Refuses a machine fault that could never happen on this schedule: on a machine it does
 /// not have, a layer that machine does not deposit, a pin where nothing climbs, a crash
 /// after more jobs than the machine runs, a stall after the schedule ends.
-void check_injected(const Injected& inject, const orchestrator::ScheduleDocument& document,
-                    const std::vector<orchestrator::DispatchJob>& jobs,
+void check_injected(const Injected& inject, const schedule::ScheduleDocument& document,
+                    const std::vector<dispatch::DispatchJob>& jobs,
                     const std::vector<std::string>& ids) {
   std::string machines;
   for (const auto& id : ids) machines += (machines.empty() ? "" : ", ") + id;
@@ -190,8 +190,8 @@ void check_injected(const Injected& inject, const orchestrator::ScheduleDocument
                                              f.machine.c_str(), f.floor, f.layer));
     if (f.name == "pin" && inserts == 0)
       throw bad_inject(f.item, "the schedule has no climbs, so no pin is ever inserted");
-    if (f.name == "pin" && f.machine != orchestrator::gantry_id(0))
-      throw bad_inject(f.item, "climbs run as jobs of " + orchestrator::gantry_id(0) +
+    if (f.name == "pin" && f.machine != dispatch::gantry_id(0))
+      throw bad_inject(f.item, "climbs run as jobs of " + dispatch::gantry_id(0) +
                                    "; a pin can only miss there");
     if (f.name == "crash" && f.count > runs)
       throw bad_inject(f.item, printf_string("%s runs %ld jobs in this schedule, so it never "
@@ -294,7 +294,7 @@ class Machines {
 /// --machine (which must be one of the files the schedule recorded), else the recorded file
 /// that loads as the machine the schedule names. The recorded files were checked against
 /// their SHA-256 already.
-std::string machine_profile(const orchestrator::ScheduleDocument& schedule, const DryRunOptions& o,
+std::string machine_profile(const schedule::ScheduleDocument& schedule, const DryRunOptions& o,
                             const std::optional<orchestrator::Project>& project) {
   if (project) return project->machine->source_file;
   if (!o.input.machine.empty()) {
@@ -324,8 +324,8 @@ std::string machine_profile(const orchestrator::ScheduleDocument& schedule, cons
 /// at the far end of the rails, a gantry width from the next. Neighbours' homes are kept
 /// a gantry width apart.
 std::map<std::string, std::array<double, 4>> homes_of(
-    const std::vector<orchestrator::DispatchJob>& jobs, const std::vector<std::string>& ids,
-    const orchestrator::RecordedMachine& machine) {
+    const std::vector<dispatch::DispatchJob>& jobs, const std::vector<std::string>& ids,
+    const schedule::RecordedMachine& machine) {
   const char rail_axis = machine.rail_axis;
   const double gantry_width_m = machine.gantry_width_m;
   const int rail = rail_axis == 'y' ? 1 : 0;
@@ -395,24 +395,24 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   const Injected inject = injected(o.inject);  // its grammar, before any work
   // A schedule file read back and checked (its input files unchanged: the machines run
   // from them); a building scheduled first.
-  orchestrator::ScheduleDocument schedule;
+  schedule::ScheduleDocument schedule;
   std::optional<orchestrator::Project> project;
   OutputClaims outputs;
   if (fs::path(o.file).extension() == ".json") {
-    orchestrator::ReadScheduleOptions read;
-    read.inputs = orchestrator::RecordedInputCheck::kRefuseChangedOrMissing;
-    schedule = orchestrator::read_schedule(o.file, read).document;
+    schedule::ReadScheduleOptions read;
+    read.inputs = schedule::RecordedInputCheck::kRefuseChangedOrMissing;
+    schedule = schedule::read_schedule(o.file, read).document;
     outputs.add_input(o.file);
   } else {
     project = open_input(o.file, o.input);
-    orchestrator::ScheduleOptions options;
-    schedule = {orchestrator::recorded_inputs(*project, options),
-                orchestrator::build_schedule(*project, options)};
+    schedule::ScheduleOptions options;
+    schedule = {schedule::recorded_inputs(*project, options),
+                schedule::build_schedule(*project, options)};
   }
   for (const auto& f : schedule.inputs.files) outputs.add_input(f.path);
   if (!o.input.machine.empty()) outputs.add_input(o.input.machine);
   if (!o.input.material.empty()) outputs.add_input(o.input.material);
-  const orchestrator::RecordedMachine& machine_rec = schedule.inputs.machine;
+  const schedule::RecordedMachine& machine_rec = schedule.inputs.machine;
   const floors::MaterialProfile& material = schedule.inputs.material;
   if (!schedule.schedule.feasible && !o.allow_infeasible)
     throw InputError(o.file, 0, project ? "" : "/feasible",
@@ -423,14 +423,14 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   // The schedule's identity, for the journal and the machines' records: the SHA-256 of
   // its JSON as `ccbuild schedule -o` writes it (the same for the building and its file).
   const std::string schedule_sha256 =
-      sha256_hex(orchestrator::schedule_json(schedule.inputs, schedule.schedule).dump(1) + "\n");
+      sha256_hex(schedule::schedule_json(schedule.inputs, schedule.schedule).dump(1) + "\n");
 
-  auto jobs = orchestrator::jobs_of_schedule(schedule);
+  auto jobs = dispatch::jobs_of_schedule(schedule);
   std::vector<std::string> ids;  // in rail order
   for (int k = 0;; ++k) {
-    const std::string id = orchestrator::gantry_id(k);
+    const std::string id = dispatch::gantry_id(k);
     if (std::none_of(jobs.begin(), jobs.end(),
-                     [&](const orchestrator::DispatchJob& j) { return j.job.machine_id == id; }))
+                     [&](const dispatch::DispatchJob& j) { return j.job.machine_id == id; }))
       break;
     ids.push_back(id);
   }
@@ -509,7 +509,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   const fs::path& work = temporary.path;
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
-  orchestrator::Journal journal(journal_path, schedule_sha256);
+  dispatch::Journal journal(journal_path, schedule_sha256);
   machine::Bus bus(o.lcm_url);
   // The log goes to a temporary file beside it, in place once the run ends (or straight
   // into a character device such as /dev/null).
@@ -552,7 +552,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     machines = std::make_unique<Machines>(ids, homes_of(jobs, ids, machine_rec), common,
                                           inject.flags(), state_dir);
   }
-  orchestrator::DispatchOptions d;
+  dispatch::DispatchOptions d;
   d.speed = o.speed;
   d.ack_timeout_s = o.retry_after_s;
   d.done_slack_s = 2.0 * o.retry_after_s;
@@ -564,10 +564,10 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     d.rail_min_m = rail_axis == 'y' ? machine_rec.y_min_m : machine_rec.x_min_m;
     d.rail_max_m = rail_axis == 'y' ? machine_rec.y_max_m : machine_rec.x_max_m;
   }
-  orchestrator::Dispatcher dispatcher(bus, jobs, journal, d);
-  std::optional<orchestrator::SiteWatchdog> watchdog;
+  dispatch::Dispatcher dispatcher(bus, jobs, journal, d);
+  std::optional<dispatch::SiteWatchdog> watchdog;
   if (several) {
-    orchestrator::WatchdogOptions w;
+    dispatch::WatchdogOptions w;
     w.machines = ids;
     w.rail_axis = rail_axis;
     w.gantry_width_m = gantry_width_m;
@@ -694,8 +694,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   for (const auto& f : dispatcher.fault_records())
     std::cout << printf_string(
         "  %s job %lld: %s: %s -> %s\n", f.machine_id.empty() ? "dispatcher" : f.machine_id.c_str(),
-        static_cast<long long>(f.job_id), orchestrator::fault_name(f.kind).c_str(),
-        f.message.c_str(), f.policy.c_str());
+        static_cast<long long>(f.job_id), dispatch::fault_name(f.kind).c_str(), f.message.c_str(),
+        f.policy.c_str());
   for (const auto& e : events) std::cout << "event: " << e << "\n";
   bool collided = false;
   if (watchdog) {

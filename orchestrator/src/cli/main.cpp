@@ -16,7 +16,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/orchestrator/schedule_json.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -113,8 +113,7 @@ int main(int argc, char** argv) {
       "plan); 2 bad input or usage; 3 internal error.\n"
       "Run `ccbuild COMMAND --help` for a command's options and examples.",
       "ccbuild");
-  app.set_version_flag("--version",
-                       std::string("ccbuild ") + ccbuild::orchestrator::kCcbuildVersion);
+  app.set_version_flag("--version", std::string("ccbuild ") + ccbuild::schedule::kCcbuildVersion);
   app.require_subcommand(1, 1);
   app.fallthrough(false);
   app.failure_message(

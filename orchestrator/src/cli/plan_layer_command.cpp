@@ -15,11 +15,11 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/machine/machine_model.hpp"
-#include "ccbuild/orchestrator/layer_report.hpp"
-#include "ccbuild/orchestrator/multi_report.hpp"
 #include "ccbuild/orchestrator/project.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
+#include "ccbuild/report/layer_report.hpp"
+#include "ccbuild/report/multi_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -113,7 +113,7 @@ class SearchReporter {
 };
 
 void print_multi(const PlanLayerOptions& o, const orchestrator::Project& project,
-                 const orchestrator::ReportContext& context, const floors::Layer& layer,
+                 const report::ReportContext& context, const floors::Layer& layer,
                  const planner::MultiNozzlePlan& plan, const planner::MultiNozzleOptions& options) {
   auto L = [&](double m) { return project.length(m, 3); };
   std::cout << printf_string(
@@ -164,13 +164,13 @@ void print_multi(const PlanLayerOptions& o, const orchestrator::Project& project
           n.sequence.size(), n.start_offset, n.busy_s, n.wait_s);
       if (!n.sequence.empty())
         std::cout << printf_string("  %-13s %s\n", "",
-                                   orchestrator::signed_sequence(n.layer, n.sequence).c_str());
+                                   report::signed_sequence(n.layer, n.sequence).c_str());
     }
   }
 }
 
 void print_single(const PlanLayerOptions& o, const orchestrator::Project& project,
-                  const orchestrator::ReportContext& context, const floors::Layer& layer,
+                  const report::ReportContext& context, const floors::Layer& layer,
                   const planner::LayerPlan& plan) {
   const auto& e = plan.evaluation;
   const machine::MachineModel& machine = project.machine_model();
@@ -231,7 +231,7 @@ void print_single(const PlanLayerOptions& o, const orchestrator::Project& projec
         "  %-13s --max-kicks %ld%s (the same plan without the clock)\n", "replay", plan.kicks,
         plan.polish_kicks ? printf_string(" --polish-kicks %ld", *plan.polish_kicks).c_str() : "");
   std::cout << printf_string("  %-13s %s\n", "sequence",
-                             orchestrator::signed_sequence(layer, plan.sequence).c_str());
+                             report::signed_sequence(layer, plan.sequence).c_str());
   if (!o.svg.empty()) std::cout << printf_string("  %-13s %s\n", "drawing", o.svg.c_str());
 }
 
@@ -274,7 +274,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
                          " (the first layer; --layer names another) has no walls to plan "
                          "(every wall is inside an opening there)");
   }
-  orchestrator::ReportContext context;
+  report::ReportContext context;
   context.file = o.file;
   context.floor = o.floor;
   context.layer = project.is_building || o.layer ? std::optional<int>(layer.index) : std::nullopt;
@@ -381,12 +381,11 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   if (result.multi) {
     const auto& plan = *result.multi;
     if (!o.svg.empty())
-      write_file_atomically(o.svg,
-                            orchestrator::multi_plan_svg(context, layer, plan, request.multi),
+      write_file_atomically(o.svg, report::multi_plan_svg(context, layer, plan, request.multi),
                             o.force, inputs);
     if (o.json)
-      std::cout << orchestrator::multi_plan_json(context, layer, project.machine_model(), plan,
-                                                 request.multi)
+      std::cout << report::multi_plan_json(context, layer, project.machine_model(), plan,
+                                           request.multi)
                        .dump(2)
                 << "\n";
     else
@@ -400,18 +399,15 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
                        "no certificate: the connected bound did not run (it gets a third of "
                        "--time-limit; give more time)");
     if (!o.svg.empty())
-      write_file_atomically(o.svg, orchestrator::layer_plan_svg(context, layer, plan), o.force,
-                            inputs);
+      write_file_atomically(o.svg, report::layer_plan_svg(context, layer, plan), o.force, inputs);
     if (!o.bound_certificate.empty()) {
-      write_file_atomically(
-          o.bound_certificate,
-          orchestrator::bound_certificate_json(context, layer, plan).dump(1) + "\n", o.force,
-          inputs);
+      write_file_atomically(o.bound_certificate,
+                            report::bound_certificate_json(context, layer, plan).dump(1) + "\n",
+                            o.force, inputs);
     }
     if (o.json)
-      std::cout
-          << orchestrator::layer_plan_json(context, layer, project.machine_model(), plan).dump(2)
-          << "\n";
+      std::cout << report::layer_plan_json(context, layer, project.machine_model(), plan).dump(2)
+                << "\n";
     else
       print_single(o, project, context, layer, plan);
     exit_code = kExitOk;

@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "ccbuild/common/atomic_file.hpp"
-#include "ccbuild/orchestrator/report.hpp"
-#include "ccbuild/orchestrator/schedule_diff.hpp"
+#include "ccbuild/report/report.hpp"
+#include "ccbuild/schedule/schedule_diff.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -23,16 +23,16 @@ struct ReportCommandOptions {
 void run_report(const ReportCommandOptions& o, int& exit_code) {
   OutputClaims outputs({o.schedule});
   outputs.claim_file("--output", o.output, o.force);
-  orchestrator::ReadScheduleOptions read;
-  read.inputs = o.allow_changed_inputs ? orchestrator::RecordedInputCheck::kNote
-                                       : orchestrator::RecordedInputCheck::kRefuseChanged;
-  const orchestrator::ReadSchedule schedule = orchestrator::read_schedule(o.schedule, read);
-  orchestrator::ReportOptions options;
+  schedule::ReadScheduleOptions read;
+  read.inputs = o.allow_changed_inputs ? schedule::RecordedInputCheck::kNote
+                                       : schedule::RecordedInputCheck::kRefuseChanged;
+  const schedule::ReadSchedule schedule = schedule::read_schedule(o.schedule, read);
+  report::ReportOptions options;
   for (const auto& note : schedule.notes) {
     std::cerr << "report: note: " << note << "\n";
     options.notes.push_back(note);
   }
-  const std::string html = orchestrator::schedule_report_html(schedule.document, options);
+  const std::string html = report::schedule_report_html(schedule.document, options);
   write_file_atomically(o.output, html, o.force, {o.schedule});
   std::cout << printf_string(
       "report of %s written to %s (%.1f MB)%s\n", o.schedule.c_str(), o.output.c_str(),

@@ -7,9 +7,9 @@
 #include <thread>
 
 #include "ccbuild/common/atomic_file.hpp"
-#include "ccbuild/orchestrator/report.hpp"
-#include "ccbuild/orchestrator/schedule.hpp"
-#include "ccbuild/orchestrator/schedule_json.hpp"
+#include "ccbuild/report/report.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -41,19 +41,19 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   OutputClaims outputs(inputs);  // every output checked before any planning
   if (!o.output.empty()) outputs.claim_file("--output", o.output, o.force);
   if (!o.report.empty()) outputs.claim_file("--report", o.report, o.force);
-  orchestrator::ScheduleOptions options;
+  schedule::ScheduleOptions options;
   options.seed = o.seed;
   options.jobs = o.jobs;
   options.layer_time_limit_s = o.layer_time_limit_s;
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
-  const orchestrator::Schedule s = orchestrator::build_schedule(project, options);
+  const schedule::Schedule s = schedule::build_schedule(project, options);
   if (!o.output.empty() || !o.report.empty()) {
-    const orchestrator::ScheduleDocument doc{orchestrator::recorded_inputs(project, options), s};
+    const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options), s};
     if (!o.output.empty())
-      write_file_atomically(o.output, orchestrator::schedule_json(doc.inputs, s).dump(1) + "\n",
+      write_file_atomically(o.output, schedule::schedule_json(doc.inputs, s).dump(1) + "\n",
                             o.force, inputs);
     if (!o.report.empty())
-      write_file_atomically(o.report, orchestrator::schedule_report_html(doc), o.force, inputs);
+      write_file_atomically(o.report, report::schedule_report_html(doc), o.force, inputs);
   }
   exit_code = s.feasible ? kExitOk : kExitNo;
 
@@ -91,7 +91,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
                                why.c_str());
   }
   for (const auto& e : s.events) {
-    if (e.kind != orchestrator::Event::Kind::kClimb) continue;
+    if (e.kind != schedule::Event::Kind::kClimb) continue;
     const auto& c = *e.climb;
     std::cout << printf_string(
         "climb %d -> %d after floor %d layer %d: starts at %s after a "

@@ -22,6 +22,9 @@
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/planner/multi_nozzle.hpp"
 #include "ccbuild/planner/plan_layer.hpp"
+#include "ccbuild/planner/plan_nozzles.hpp"
+#include "ccbuild/schedule/climbs.hpp"
+#include "ccbuild/schedule/setup.hpp"
 
 namespace ccbuild::orchestrator {
 
@@ -36,23 +39,10 @@ struct ProjectOptions {
   std::filesystem::path material_profile;
 };
 
-struct Project {
-  std::filesystem::path file;  ///< as the user named it
+/// A user's FILE opened: what a schedule is made for (schedule::Setup), and whether FILE
+/// was a building or a lone plan.
+struct Project : schedule::Setup {
   bool is_building = false;
-  floors::Building building;  ///< a lone plan is a one-floor building named after its file
-  std::shared_ptr<const machine::MachineModel> machine;  ///< the printing gantry
-  /// The climbing machine, when the profile has a `climbing:` section; null for a fixed
-  /// gantry. Its gantry is `machine`.
-  std::shared_ptr<const machine::ClimbingMachine> climber;
-  std::string machine_origin;  ///< "config/machines/cc-gantry.yaml (the building's)", ...
-  floors::MaterialProfile material;
-  std::string material_origin;
-
-  const machine::MachineModel& machine_model() const { return *machine; }
-  /// Every file read: the FILE, its plans, the profiles, the URDF.
-  std::vector<std::filesystem::path> files_read() const;
-  /// A length in the building's own unit, for messages: "3.000 m", "9.843 ft".
-  std::string length(double value_m, int decimals = 3) const;
 };
 
 /// Opens FILE and everything it refers to, each file read and parsed once, and checks
@@ -73,7 +63,7 @@ struct LayerRef {
 };
 
 /// Throws InputError (field `floor`) when the project has no floor `floor`.
-void check_floor(const Project& project, int floor);
+using schedule::check_floor;
 
 /// One layer of a floor (InputError, field `floor` or `layer`, when there is none). For
 /// a lone plan without a layer number, the plan with every wall whole (openings ignored).
@@ -94,24 +84,8 @@ std::vector<DistinctLayer> distinct_layers(const Project& project,
                                            std::optional<int> floor = std::nullopt,
                                            std::optional<int> layer = std::nullopt);
 
-/// What to plan a layer with: one nozzle (planning), or several (multi, whose own
-/// `nozzles` field is ignored in favour of `nozzles`).
-struct LayerPlanRequest {
-  int nozzles = 1;
-  planner::PlanOptions planning;
-  planner::MultiNozzleOptions multi;
-};
-
-struct LayerPlanResult {
-  int nozzles = 1;
-  std::optional<planner::LayerPlan> single;       ///< nozzles == 1
-  std::optional<planner::MultiNozzlePlan> multi;  ///< nozzles >= 2
-  planner::PlanStatus status;                     ///< solved, or why no plan
-  double layer_time_s() const;
-  /// The longest air move of any nozzle, s, and how many exceed the idle limit.
-  double max_idle_s() const;
-  int idle_limit_violations() const;
-};
+using planner::LayerPlanRequest;
+using planner::LayerPlanResult;
 
 /// Plans `layer` with the project's machine. Throws InputError (fields of PlanOptions,
 /// PathSpec or MultiNozzleOptions) for options that cannot work.

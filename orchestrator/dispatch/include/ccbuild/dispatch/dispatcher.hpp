@@ -1,0 +1,196 @@
+#pragma once
+// Sends a schedule's jobs to the machines and sees them done (docs/dispatch.md). Each
+// machine gets its jobs one at a time, in order: a job and its path chunks, then its
+// acknowledgement, then its completion. Jobs with the same planned start (a layer's
+// deposits on several gantries) are released together, once every earlier job is done,
+// with a common start: planned, plus the delay the run has built up. A job not
+// acknowledged in time is sent again, and so is one not done in time (a machine
+// acknowledges a job it has seen again and never runs it twice). A fault is met by its
+// kind's policy (policy_of): retry the job, re-plan the rest of the layer, ignore a
+// rejected message, or stop safely (every machine paused, nothing more sent). Every
+// change of a job's state and every fault is written to the journal (SQLite, WAL,
+// synchronous) before it is acted on, so that a dispatcher restarted on the same journal
+// sends no completed job again, loses none, and rebuilds the same recovery jobs. Not
+// thread-safe: step() and the bus run in one thread.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccbuild/dispatch/dispatch_jobs.hpp"
+#include "ccbuild/machine/bus.hpp"
+#include "ccbuild_lcm/ccbuild_ack_t.hpp"
+#include "ccbuild_lcm/ccbuild_done_t.hpp"
+#include "ccbuild_lcm/ccbuild_fault_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
+
+struct sqlite3;
+
+namespace ccbuild::dispatch {
+
+/// One job's row in the journal.
+struct JournalRow {
+  std::string machine_id;
+  /// "sent", "acked", "refused", "done", "clogged", "pin-missed".
+  std::string state;
+  double started_s = 0.0, finished_s = 0.0;  ///< schedule s, once it ended
+  int stopped_at = -1;                       ///< waypoints done when it ended on a fault
+};
+
+/// A fault as the dispatcher met it.
+struct FaultRecord {
+  std::string machine_id;
+  std::int64_t job_id = 0;
+  std::int8_t kind = 0;
+  std::string message;
+  std::string policy;  ///< what was done: "retry", "re-plan the rest of the layer", ...
+};
+
+/// The dispatch journal: each job's last state, and every fault and what was done.
+class Journal {
+ public:
+  /// Opens or creates the journal at `path` (":memory:" for none on disk) for the schedule
+  /// whose canonical JSON has the SHA-256 `schedule_sha256` (empty: any). A new journal
+  /// records it; an existing one must have recorded the same. Throws InputError (field
+  /// `--journal`) naming the file when SQLite cannot open it, it is not a journal, it
+  /// belongs to another schedule, or it holds jobs but names no schedule.
+  explicit Journal(const std::filesystem::path& path, const std::string& schedule_sha256 = "");
+  ~Journal();
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+
+  /// Records a job's state (durably, before the caller acts on it).
+  void record(std::int64_t job_id, const JournalRow& row);
+  void record(std::int64_t job_id, const std::string& machine_id, const std::string& state) {
+    record(job_id, JournalRow{machine_id, state});
+  }
+  /// Records a fault and the policy applied (durably, before it is applied).
+  void record_fault(const FaultRecord& fault);
+  /// Every job recorded.
+  std::map<std::int64_t, JournalRow> rows() const;
+  /// The state of every job recorded.
+  std::map<std::int64_t, std::string> states() const;
+  std::vector<FaultRecord> faults() const;
+  /// Records written, and the wall-clock seconds they took (each synced to disk).
+  long writes() const { return writes_; }
+  double write_s() const { return write_s_; }
+
+ private:
+  void exec(const std::string& sql_text);
+  sqlite3* db_ = nullptr;
+  long writes_ = 0;
+  double write_s_ = 0.0;
+  std::string path_;
+};
+
+/// The policy for a fault kind: "retry" (a pin that missed: the same job again, up to
+/// three times), "re-plan the rest of the layer" (a clog: purge, then the rest of the
+/// path as a new job), "ignore" (a malformed or foreign message the machine rejected:
+/// nothing ran), or "stop" (every other kind: pause every machine and send nothing more).
+std::string policy_of(std::int8_t fault_kind);
+/// The fault kind's name, e.g. "PUMP_CLOG".
+std::string fault_name(std::int8_t fault_kind);
+
+struct DispatchOptions {
+  double ack_timeout_s = 1.0;  ///< real seconds before a job is sent again
+  double done_slack_s = 2.0;   ///< beyond its expected real duration, before it is sent again
+  double speed = 10'000.0;     ///< the machines' speed factor (for the expected duration)
+  double purge_s = 120.0;      ///< clearing a clogged nozzle, before the rest of its layer
+  int pin_attempts = 3;        ///< a pin insertion tried at most this often
+  /// For the rest of a clogged layer on shared rails: gantries in the way are moved clear
+  /// first (0: not checked).
+  double gantry_width_m = 0.0;
+  char rail_axis = 'x';
+  double rail_min_m = -1e9, rail_max_m = 1e9;  ///< the rail axis's range
+  double travel_speed_m_s = 0.5;
+};
+
+class Dispatcher {
+ public:
+  /// `jobs` in schedule order (by planned start, as jobs_of_schedule gives them). Jobs
+  /// already "done" in `journal` are not sent again; the recovery jobs its faults made
+  /// are made again. `bus` and `journal` must outlive the dispatcher. Throws
+  /// InternalError when `jobs` are out of order.
+  Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal& journal,
+             DispatchOptions options = {});
+
+  /// Lets `real_dt_s` seconds of real time pass: sends what is due, again what timed out.
+  void step(double real_dt_s);
+  /// Every job done (then stopped() is empty), or stopped safely.
+  bool finished() const;
+  /// Stops safely: every machine paused, nothing more sent; the reason is journalled.
+  void stop(const std::string& reason);
+  /// Why it stopped, if it did.
+  const std::optional<std::string>& stopped() const { return stopped_; }
+  long resent() const { return resent_; }
+  long faults() const { return static_cast<long>(fault_records_.size()); }
+  const std::vector<FaultRecord>& fault_records() const { return fault_records_; }
+  /// Completion as the machines reported it: job id -> (start, end), schedule seconds,
+  /// including jobs done before a restart (from the journal).
+  const std::map<std::int64_t, std::pair<double, double>>& executed() const { return executed_; }
+  /// The jobs, the schedule's and the recovery jobs made so far.
+  const std::vector<DispatchJob>& jobs() const { return jobs_; }
+  /// The schedule job that jobs()[index] is or recovers from.
+  std::size_t origin_of(std::size_t index) const { return origin_[index]; }
+  /// The delay the run has built up against the schedule, s.
+  double delay_s() const { return delay_s_; }
+  /// Machines not heard from (no status) for longer than `silence_s` real seconds, or
+  /// never, and for how long.
+  std::vector<std::pair<std::string, double>> silent(double silence_s) const;
+
+ private:
+  struct Queue {
+    std::vector<std::size_t> jobs;  ///< indices into jobs_, in order
+    std::size_t next = 0;           ///< the job in flight (or next to send)
+    enum class Wait { kSend, kAck, kDone } wait = Wait::kSend;
+    double waited_s = 0.0;
+    bool heard = false;     ///< a status has come from the machine
+    double silent_s = 0.0;  ///< real seconds since its last status
+  };
+  void send(std::size_t index);
+  void on_ack(const ccbuild_lcm::ccbuild_ack_t& ack);
+  void on_done(const ccbuild_lcm::ccbuild_done_t& done);
+  void on_fault(const ccbuild_lcm::ccbuild_fault_t& fault);
+  Queue* queue_of(const std::string& machine_id, std::int64_t job_id);
+  /// After the job at `index` ended as `row`: the jobs that recover from it, inserted
+  /// after it in its machine's queue (a purge and the rest of a clogged path, run once
+  /// the layer's other jobs are done, with the gantries in its way moved clear first; a
+  /// pin again). Returns false when there is no recovery (then the run stops).
+  bool recover(std::size_t index, const JournalRow& row);
+  /// Puts `job` after the job at `after` in its machine's queue, with the next id of
+  /// `origin`'s range. Returns false when the range is full.
+  bool insert_after(std::size_t after, std::size_t origin, DispatchJob job, bool after_layer);
+  /// Moves that clear the rails for `rest` (the rest of a clogged path of the job at
+  /// `index`): (job index whose machine moves, the move). Nothing when none is needed;
+  /// false when a gantry cannot get out of the way.
+  bool clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
+                      std::vector<std::pair<std::size_t, DispatchJob>>& moves) const;
+  /// The job ended (done, or recovered from): its machine moves on.
+  void advance(Queue& q, std::size_t index, const JournalRow& row);
+  bool released(std::size_t index) const;
+
+  machine::Bus& bus_;
+  std::vector<DispatchJob> jobs_;
+  /// Per job: the schedule job it stands for (itself, or the one a recovery job recovers).
+  std::vector<std::size_t> origin_;
+  std::vector<bool> ended_;             ///< per job: done, or ended and recovered from
+  std::size_t schedule_jobs_ = 0;       ///< the schedule's jobs come first in jobs_
+  mutable std::size_t first_open_ = 0;  ///< every schedule job before it has ended
+  /// Per job: released only once every other job of its layer has ended.
+  std::vector<bool> after_layer_;
+  std::map<std::int64_t, std::size_t> index_of_;
+  Journal& journal_;
+  DispatchOptions options_;
+  std::map<std::string, Queue> queues_;
+  std::map<std::int64_t, std::pair<double, double>> executed_;
+  std::vector<FaultRecord> fault_records_;
+  std::optional<std::string> stopped_;
+  double delay_s_ = 0.0;
+  std::int64_t seq_ = 0;
+  long resent_ = 0;
+};
+
+}  // namespace ccbuild::dispatch

@@ -1,0 +1,584 @@
+#include "ccbuild/dispatch/dispatcher.hpp"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/timed_path.hpp"
+#include "ccbuild_lcm/ccbuild_command_t.hpp"
+
+namespace ccbuild::dispatch {
+namespace {
+using ccbuild_lcm::ccbuild_fault_t;
+using ccbuild_lcm::ccbuild_job_t;
+using ccbuild_lcm::ccbuild_path_chunk_t;
+
+/// A statement, its parameters bound by the caller; finalized when it goes.
+class Statement {
+ public:
+  Statement(sqlite3* db, const char* sql_text) {
+    CCBUILD_CHECK(sqlite3_prepare_v2(db, sql_text, -1, &stmt_, nullptr) == SQLITE_OK,
+                  "journal: " + std::string(sqlite3_errmsg(db)));
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  sqlite3_stmt* operator*() const { return stmt_; }
+
+ private:
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+std::string text(sqlite3_stmt* s, int column) {
+  const auto* t = sqlite3_column_text(s, column);
+  return t ? reinterpret_cast<const char*>(t) : "";
+}
+
+/// The path of `job` from waypoint `from` on, its times from there, in fresh chunks.
+std::vector<ccbuild_path_chunk_t> rest_of_path(const DispatchJob& job, int from, double& t0_s) {
+  const machine::TimedPath all = machine::path_of(job.chunks);
+  const int total = static_cast<int>(all.size());
+  from = std::clamp(from, 0, std::max(0, total - 1));
+  t0_s = total > 0 ? all.t_s[from] : 0.0;
+  machine::TimedPath rest;
+  for (int k = from; k < total; ++k)
+    rest.push_back(all.t_s[k] - t0_s, all.x_m[k], all.y_m[k], all.z_m[k], all.heading_rad[k],
+                   all.extruding[k], all.wall[k], all.piece[k]);
+  return machine::chunks_of(rest, job.job.machine_id);
+}
+}  // namespace
+
+std::string fault_name(std::int8_t kind) {
+  switch (kind) {
+    case ccbuild_fault_t::JOINT_LIMIT:
+      return "JOINT_LIMIT";
+    case ccbuild_fault_t::VELOCITY_LIMIT:
+      return "VELOCITY_LIMIT";
+    case ccbuild_fault_t::PATH_MISMATCH:
+      return "PATH_MISMATCH";
+    case ccbuild_fault_t::OUT_OF_ORDER:
+      return "OUT_OF_ORDER";
+    case ccbuild_fault_t::COLD_JOINT:
+      return "COLD_JOINT";
+    case ccbuild_fault_t::TOO_EARLY:
+      return "TOO_EARLY";
+    case ccbuild_fault_t::ANCHOR_TOO_YOUNG:
+      return "ANCHOR_TOO_YOUNG";
+    case ccbuild_fault_t::PIN_MISSED:
+      return "PIN_MISSED";
+    case ccbuild_fault_t::PUMP_CLOG:
+      return "PUMP_CLOG";
+    case ccbuild_fault_t::AXIS_STALLED:
+      return "AXIS_STALLED";
+    case ccbuild_fault_t::MALFORMED:
+      return "MALFORMED";
+    default:
+      return "STOP";
+  }
+}
+
+std::string policy_of(std::int8_t kind) {
+  switch (kind) {
+    case ccbuild_fault_t::PIN_MISSED:
+      return "retry";
+    case ccbuild_fault_t::PUMP_CLOG:
+      return "re-plan the rest of the layer";
+    case ccbuild_fault_t::MALFORMED:
+      return "ignore";
+    default:
+      return "stop";
+  }
+}
+
+Journal::Journal(const std::filesystem::path& path, const std::string& schedule_sha256)
+    : path_(path.string()) {
+  if (sqlite3_open(path_.c_str(), &db_) != SQLITE_OK) {
+    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(path_, 0, "--journal", "SQLite cannot open it: " + why);
+  }
+  // Written before acted on: the write-ahead log, synced at every commit.
+  const char* setup =
+      "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL;"
+      "CREATE TABLE IF NOT EXISTS job_state (job_id INTEGER PRIMARY KEY, machine_id TEXT NOT "
+      "NULL, state TEXT NOT NULL, started_s REAL NOT NULL, finished_s REAL NOT NULL, "
+      "stopped_at INTEGER NOT NULL, utime INTEGER NOT NULL);"
+      "CREATE TABLE IF NOT EXISTS fault (id INTEGER PRIMARY KEY AUTOINCREMENT, machine_id TEXT "
+      "NOT NULL, job_id INTEGER NOT NULL, kind INTEGER NOT NULL, message TEXT NOT NULL, policy "
+      "TEXT NOT NULL, utime INTEGER NOT NULL);"
+      "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+      "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state LIMIT 0;";
+  char* error = nullptr;
+  if (sqlite3_exec(db_, setup, nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string why = error ? error : "unknown";
+    sqlite3_free(error);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(path_, 0, "--journal", "not a ccbuild dispatch journal: " + why);
+  }
+  if (schedule_sha256.empty()) return;
+  // Which schedule it belongs to: a journal resumes that schedule only.
+  std::string recorded;
+  long rows = 0;
+  {
+    Statement s(db_, "SELECT value FROM meta WHERE key = 'schedule_sha256'");
+    if (sqlite3_step(*s) == SQLITE_ROW) recorded = text(*s, 0);
+    Statement count(db_, "SELECT (SELECT COUNT(*) FROM job_state) + (SELECT COUNT(*) FROM fault)");
+    if (sqlite3_step(*count) == SQLITE_ROW) rows = sqlite3_column_int64(*count, 0);
+  }
+  const auto refuse = [&](const std::string& why) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw InputError(path_, 0, "--journal",
+                     why +
+                         "; a journal resumes only the schedule it was written for: give a new "
+                         "--journal file (or remove this one to start over)");
+  };
+  if (!recorded.empty() && recorded != schedule_sha256)
+    refuse("belongs to another schedule (SHA-256 " + recorded.substr(0, 12) +
+           "...), not to this one (" + schedule_sha256.substr(0, 12) + "...)");
+  if (recorded.empty() && rows > 0)
+    refuse("holds " + std::to_string(rows) +
+           " records but names no schedule (an older ccbuild wrote it)");
+  if (recorded.empty()) {
+    Statement s(db_, "INSERT INTO meta (key, value) VALUES ('schedule_sha256', ?1)");
+    sqlite3_bind_text(*s, 1, schedule_sha256.c_str(), -1, SQLITE_TRANSIENT);
+    CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  }
+}
+
+Journal::~Journal() {
+  sqlite3_close(db_);
+}
+
+void Journal::record(std::int64_t job_id, const JournalRow& row) {
+  const auto started = std::chrono::steady_clock::now();
+  Statement s(db_,
+              "INSERT INTO job_state (job_id, machine_id, state, started_s, finished_s, "
+              "stopped_at, utime) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(job_id) DO "
+              "UPDATE SET state = excluded.state, started_s = excluded.started_s, finished_s = "
+              "excluded.finished_s, stopped_at = excluded.stopped_at, utime = excluded.utime");
+  sqlite3_bind_int64(*s, 1, job_id);
+  sqlite3_bind_text(*s, 2, row.machine_id.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(*s, 3, row.state.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_double(*s, 4, row.started_s);
+  sqlite3_bind_double(*s, 5, row.finished_s);
+  sqlite3_bind_int(*s, 6, row.stopped_at);
+  sqlite3_bind_int64(*s, 7, machine::utime_now());
+  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  ++writes_;
+  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+void Journal::record_fault(const FaultRecord& f) {
+  const auto started = std::chrono::steady_clock::now();
+  Statement s(db_,
+              "INSERT INTO fault (machine_id, job_id, kind, message, policy, utime) VALUES (?1, "
+              "?2, ?3, ?4, ?5, ?6)");
+  sqlite3_bind_text(*s, 1, f.machine_id.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(*s, 2, f.job_id);
+  sqlite3_bind_int(*s, 3, f.kind);
+  sqlite3_bind_text(*s, 4, f.message.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(*s, 5, f.policy.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(*s, 6, machine::utime_now());
+  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  ++writes_;
+  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+std::map<std::int64_t, JournalRow> Journal::rows() const {
+  std::map<std::int64_t, JournalRow> out;
+  Statement s(db_,
+              "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state");
+  while (sqlite3_step(*s) == SQLITE_ROW)
+    out[sqlite3_column_int64(*s, 0)] = {text(*s, 1), text(*s, 2), sqlite3_column_double(*s, 3),
+                                        sqlite3_column_double(*s, 4), sqlite3_column_int(*s, 5)};
+  return out;
+}
+
+std::map<std::int64_t, std::string> Journal::states() const {
+  std::map<std::int64_t, std::string> out;
+  for (const auto& [id, row] : rows()) out[id] = row.state;
+  return out;
+}
+
+std::vector<FaultRecord> Journal::faults() const {
+  std::vector<FaultRecord> out;
+  Statement s(db_, "SELECT machine_id, job_id, kind, message, policy FROM fault ORDER BY id");
+  while (sqlite3_step(*s) == SQLITE_ROW)
+    out.push_back({text(*s, 0), sqlite3_column_int64(*s, 1),
+                   static_cast<std::int8_t>(sqlite3_column_int(*s, 2)), text(*s, 3), text(*s, 4)});
+  return out;
+}
+
+Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal& journal,
+                       DispatchOptions options)
+    : bus_(bus), jobs_(std::move(jobs)), journal_(journal), options_(options) {
+  schedule_jobs_ = jobs_.size();
+  for (std::size_t k = 0; k < jobs_.size(); ++k) {
+    CCBUILD_CHECK(k == 0 || jobs_[k - 1].job.start_s <= jobs_[k].job.start_s,
+                  "dispatcher: jobs out of schedule order");
+    origin_.push_back(k);
+    index_of_[jobs_[k].job.job_id] = k;
+    queues_[jobs_[k].job.machine_id].jobs.push_back(k);
+  }
+  ended_.assign(jobs_.size(), false);
+  after_layer_.assign(jobs_.size(), false);
+  // Back where the journal left off: the jobs ended, and the recovery jobs they made (in
+  // order, so that the same ones are made again).
+  const auto rows = journal_.rows();
+  for (std::size_t k = 0; k < jobs_.size(); ++k) {  // jobs_ grows as recoveries are made
+    const auto it = rows.find(jobs_[k].job.job_id);
+    if (it == rows.end()) continue;
+    const JournalRow& row = it->second;
+    if (row.state == "done") {
+      ended_[k] = true;
+      executed_[jobs_[k].job.job_id] = {row.started_s, row.finished_s};
+      const DispatchJob& o = jobs_[origin_[k]];
+      delay_s_ = std::max(delay_s_, row.finished_s - (o.job.start_s + o.job.duration_s));
+    } else if (row.state == "clogged" || row.state == "pin-missed") {
+      ended_[k] = true;
+      executed_[jobs_[k].job.job_id] = {row.started_s, row.finished_s};
+      if (!recover(k, row)) stopped_ = "the journal ends on a fault with no recovery left";
+    }
+  }
+  for (auto& [machine, q] : queues_)
+    while (q.next < q.jobs.size() && ended_[q.jobs[q.next]]) ++q.next;
+  for (const auto& f : journal_.faults()) fault_records_.push_back(f);
+  for (const auto& [machine, q] : queues_) {
+    bus_.subscribe<ccbuild_lcm::ccbuild_ack_t>(
+        machine::channel("ACK", machine),
+        [this](const ccbuild_lcm::ccbuild_ack_t& a) { on_ack(a); });
+    bus_.subscribe<ccbuild_lcm::ccbuild_done_t>(
+        machine::channel("DONE", machine),
+        [this](const ccbuild_lcm::ccbuild_done_t& d) { on_done(d); });
+    bus_.subscribe<ccbuild_lcm::ccbuild_fault_t>(
+        machine::channel("FAULT", machine),
+        [this](const ccbuild_lcm::ccbuild_fault_t& f) { on_fault(f); });
+    bus_.subscribe<ccbuild_lcm::ccbuild_status_t>(machine::channel("STATUS", machine),
+                                                  [this](const ccbuild_lcm::ccbuild_status_t& s) {
+                                                    const auto it = queues_.find(s.machine_id);
+                                                    if (it == queues_.end()) return;
+                                                    it->second.heard = true;
+                                                    it->second.silent_s = 0.0;
+                                                  });
+  }
+}
+
+std::vector<std::pair<std::string, double>> Dispatcher::silent(double silence_s) const {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [machine, q] : queues_)
+    if (!q.heard || q.silent_s > silence_s) out.emplace_back(machine, q.silent_s);
+  return out;
+}
+
+bool Dispatcher::finished() const {
+  if (stopped_) return true;
+  for (const auto& [machine, q] : queues_)
+    if (q.next < q.jobs.size()) return false;
+  return true;
+}
+
+void Dispatcher::stop(const std::string& reason) {
+  if (stopped_) return;
+  journal_.record_fault({"", 0, 0, reason, "stop"});
+  stopped_ = reason;
+  for (const auto& [machine, q] : queues_) {
+    ccbuild_lcm::ccbuild_command_t c;
+    c.utime = machine::utime_now();
+    c.machine_id = machine;
+    c.seq = ++seq_;
+    c.command = ccbuild_lcm::ccbuild_command_t::PAUSE;
+    c.reason = reason;
+    bus_.publish(machine::channel("COMMAND", machine), c);
+  }
+}
+
+namespace {
+/// The rail coordinate of waypoint k of a job's path.
+double rail_at(const DispatchJob& d, char axis, bool last) {
+  const auto& c = last ? d.chunks.back() : d.chunks.front();
+  const int k = last ? c.n - 1 : 0;
+  return axis == 'y' ? c.y_m[k] : c.x_m[k];
+}
+/// "gantry-3" -> 3 (0 for another name).
+int gantry_number(const std::string& machine_id) {
+  return machine_id.rfind("gantry-", 0) == 0 ? std::atoi(machine_id.c_str() + 7) : 0;
+}
+}  // namespace
+
+bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob job,
+                              bool after_layer) {
+  // Recovery jobs take the ids after their origin's (ids go in tens).
+  std::int64_t id = jobs_[origin].job.job_id;
+  for (const auto& [other, k] : index_of_)
+    if (origin_[k] == origin) id = std::max(id, other);
+  if (++id >= jobs_[origin].job.job_id + 10) return false;
+  job.job.job_id = id;
+  for (auto& c : job.chunks) c.job_id = id;
+  Queue& q = queues_[job.job.machine_id];
+  const auto at = std::find(q.jobs.begin(), q.jobs.end(), after);
+  // After `after` and after what was inserted after it already.
+  auto to = at + 1;
+  while (to != q.jobs.end() && origin_[*to] == origin && *to != origin) ++to;
+  const std::size_t offset = static_cast<std::size_t>(to - q.jobs.begin());
+  jobs_.push_back(std::move(job));
+  origin_.push_back(origin);
+  ended_.push_back(false);
+  after_layer_.push_back(after_layer);
+  index_of_[id] = jobs_.size() - 1;
+  q.jobs.insert(q.jobs.begin() + static_cast<std::ptrdiff_t>(offset), jobs_.size() - 1);
+  return true;
+}
+
+bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
+                                std::vector<std::pair<std::size_t, DispatchJob>>& moves) const {
+  if (options_.gantry_width_m <= 0.0 || rest.chunks.empty()) return true;
+  const char axis = options_.rail_axis;
+  double lo = 1e300, hi = -1e300;
+  for (const auto& c : rest.chunks)
+    for (int k = 0; k < c.n; ++k) {
+      const double r = axis == 'y' ? c.y_m[k] : c.x_m[k];
+      lo = std::min(lo, r);
+      hi = std::max(hi, r);
+    }
+  // Where the layer's other gantries stand once their jobs of this layer are done.
+  const double layer_start_s = jobs_[origin_[index]].job.start_s;
+  const int mine = gantry_number(jobs_[index].job.machine_id);
+  std::map<int, std::size_t> others;  // gantry number -> its job of this layer
+  for (std::size_t k = 0; k < jobs_.size(); ++k)
+    if (origin_[k] == k && k != origin_[index] && jobs_[k].job.start_s == layer_start_s &&
+        !jobs_[k].chunks.empty())
+      others[gantry_number(jobs_[k].job.machine_id)] = k;
+  auto move = [&](std::size_t k, double to_rail_m) {
+    const DispatchJob& d = jobs_[k];
+    const auto& c = d.chunks.back();
+    const int last = c.n - 1;
+    DispatchJob m;
+    m.job = d.job;
+    m.job.kind = ccbuild_job_t::TRAVEL;
+    m.job.plan = "";
+    m.job.start_s = start_s;
+    const double from_m = axis == 'y' ? c.y_m[last] : c.x_m[last];
+    m.job.duration_s = std::abs(to_rail_m - from_m) / options_.travel_speed_m_s;
+    m.job.detail = printf_string("%s moves clear along the rails to %.3f m (the rest of job %lld)",
+                                 d.job.machine_id.c_str(), to_rail_m,
+                                 static_cast<long long>(jobs_[index].job.job_id));
+    const double to_x_m = axis == 'y' ? c.x_m[last] : to_rail_m;
+    const double to_y_m = axis == 'y' ? to_rail_m : c.y_m[last];
+    machine::TimedPath p;
+    p.push_back(0.0, c.x_m[last], c.y_m[last], c.z_m[last], c.heading_rad[last], false, 0, 0);
+    p.push_back(m.job.duration_s, to_x_m, to_y_m, c.z_m[last], c.heading_rad[last], false, 0, 0);
+    m.chunks = machine::chunks_of(p, d.job.machine_id);
+    m.job.chunk_count = 1;
+    m.job.point_count = 2;
+    moves.emplace_back(k, std::move(m));
+  };
+  // Up the rails from this gantry: each at least a gantry width past the one before.
+  double need_m = hi + options_.gantry_width_m;
+  for (auto it = others.upper_bound(mine); it != others.end(); ++it) {
+    const double at_m = rail_at(jobs_[it->second], axis, true);
+    if (at_m >= need_m) break;
+    if (need_m > options_.rail_max_m) return false;
+    move(it->second, need_m);
+    need_m += options_.gantry_width_m;
+  }
+  need_m = lo - options_.gantry_width_m;
+  for (auto it = std::make_reverse_iterator(others.lower_bound(mine)); it != others.rend(); ++it) {
+    const double at_m = rail_at(jobs_[it->second], axis, true);
+    if (at_m <= need_m) break;
+    if (need_m < options_.rail_min_m) return false;
+    move(it->second, need_m);
+    need_m -= options_.gantry_width_m;
+  }
+  return true;
+}
+
+bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
+  const std::size_t origin = origin_[index];
+  const DispatchJob ended = jobs_[index];
+  if (row.state == "clogged") {
+    DispatchJob purge;
+    purge.job = ended.job;
+    purge.job.kind = ccbuild_job_t::PURGE;
+    purge.job.start_s = row.finished_s;
+    purge.job.duration_s = options_.purge_s;
+    purge.job.plan = "";
+    purge.job.detail = "purge after the clog in job " + std::to_string(ended.job.job_id);
+    purge.job.chunk_count = purge.job.point_count = 0;
+    DispatchJob rest;
+    rest.job = ended.job;
+    double t0_s = 0.0;
+    rest.chunks = rest_of_path(ended, row.stopped_at, t0_s);
+    rest.job.start_s = row.finished_s + options_.purge_s;
+    rest.job.duration_s = ended.job.duration_s - t0_s;
+    rest.job.detail = ended.job.detail + ", the rest from waypoint " +
+                      std::to_string(row.stopped_at) + " (after a clog)";
+    rest.job.chunk_count = static_cast<std::int32_t>(rest.chunks.size());
+    rest.job.point_count = 0;
+    for (const auto& c : rest.chunks) rest.job.point_count += c.n;
+    std::vector<std::pair<std::size_t, DispatchJob>> moves;
+    if (!clearing_moves(index, rest, row.finished_s, moves)) return false;
+    // The rest waits for the layer's other jobs and the moves: it runs alone.
+    if (!insert_after(index, origin, purge, false) || !insert_after(index, origin, rest, true))
+      return false;
+    for (auto& [k, m] : moves)
+      if (!insert_after(k, k, std::move(m), false)) return false;
+    return true;
+  }
+  if (row.state == "pin-missed") {
+    int attempts = 1;
+    for (std::size_t k = 0; k < jobs_.size(); ++k) attempts += k != origin && origin_[k] == origin;
+    if (attempts >= options_.pin_attempts) return false;
+    DispatchJob again = ended;
+    again.job.detail = jobs_[origin].job.detail + ", attempt " + std::to_string(attempts + 1);
+    return insert_after(index, origin, std::move(again), false);
+  }
+  return false;
+}
+
+bool Dispatcher::released(std::size_t index) const {
+  // Every job planned to start before this one's (its origin's) has ended, and so have
+  // the jobs recovering from them: a layer's jobs go out together. A job that runs alone
+  // also waits for every other job of its layer.
+  const double start_s = jobs_[origin_[index]].job.start_s;
+  const auto blocks = [&](std::size_t k) {
+    if (ended_[k] || k == index) return false;
+    const double other_s = jobs_[origin_[k]].job.start_s;
+    return other_s < start_s || (after_layer_[index] && other_s == start_s);
+  };
+  // The schedule's jobs are in order of planned start: only those from the first one
+  // still open up to this start can hold it; then the few recovery jobs.
+  while (first_open_ < schedule_jobs_ && ended_[first_open_]) ++first_open_;
+  for (std::size_t k = first_open_; k < schedule_jobs_ && jobs_[k].job.start_s <= start_s; ++k)
+    if (blocks(k)) return false;
+  for (std::size_t k = schedule_jobs_; k < jobs_.size(); ++k)
+    if (blocks(k)) return false;
+  return true;
+}
+
+void Dispatcher::send(std::size_t index) {
+  DispatchJob d = jobs_[index];
+  // A common start for the jobs released together: planned, plus the delay so far
+  // (recovery jobs carry their own starts).
+  if (origin_[index] == index) d.job.start_s += delay_s_;
+  // A job that runs alone starts when the last of its layer's other jobs ended (each
+  // machine keeps its own clock).
+  if (after_layer_[index]) {
+    const double layer_s = jobs_[origin_[index]].job.start_s;
+    for (std::size_t k = 0; k < jobs_.size(); ++k) {
+      const auto it = executed_.find(jobs_[k].job.job_id);
+      if (k != index && jobs_[origin_[k]].job.start_s == layer_s && it != executed_.end())
+        d.job.start_s = std::max(d.job.start_s, it->second.second);
+    }
+  }
+  d.job.utime = machine::utime_now();
+  d.job.seq = ++seq_;
+  bus_.publish(machine::channel("JOB", d.job.machine_id), d.job);
+  for (auto& c : d.chunks) {
+    c.utime = d.job.utime;
+    c.seq = ++seq_;
+    bus_.publish(machine::channel("PATH", d.job.machine_id), c);
+  }
+}
+
+Dispatcher::Queue* Dispatcher::queue_of(const std::string& machine_id, std::int64_t job_id) {
+  const auto it = queues_.find(machine_id);
+  if (it == queues_.end()) return nullptr;
+  Queue& q = it->second;
+  // Only the job in flight counts: a repeat about an earlier one is harmless and ignored.
+  if (q.next >= q.jobs.size() || jobs_[q.jobs[q.next]].job.job_id != job_id) return nullptr;
+  return &q;
+}
+
+void Dispatcher::on_ack(const ccbuild_lcm::ccbuild_ack_t& ack) {
+  Queue* q = queue_of(ack.machine_id, ack.job_id);
+  if (!q || q->wait != Queue::Wait::kAck || stopped_) return;
+  if (!ack.accepted) {
+    journal_.record(ack.job_id, ack.machine_id, "refused");
+    q->wait = Queue::Wait::kSend;  // sent again after the timeout; its fault's policy rules
+    return;
+  }
+  journal_.record(ack.job_id, ack.machine_id, "acked");
+  q->wait = Queue::Wait::kDone;
+  q->waited_s = 0.0;
+}
+
+void Dispatcher::on_fault(const ccbuild_lcm::ccbuild_fault_t& f) {
+  const FaultRecord record{f.machine_id, f.job_id, f.kind, f.message, policy_of(f.kind)};
+  // Once per fault: a machine repeats a job's fault only with a new message.
+  for (const auto& seen : fault_records_)
+    if (seen.machine_id == record.machine_id && seen.job_id == record.job_id &&
+        seen.kind == record.kind && seen.message == record.message)
+      return;
+  journal_.record_fault(record);
+  fault_records_.push_back(record);
+  if (record.policy == "stop") stop(f.machine_id + ": " + fault_name(f.kind) + ": " + f.message);
+}
+
+void Dispatcher::advance(Queue& q, std::size_t index, const JournalRow& row) {
+  ended_[index] = true;
+  executed_[jobs_[index].job.job_id] = {row.started_s, row.finished_s};
+  ++q.next;
+  q.wait = Queue::Wait::kSend;
+  q.waited_s = 0.0;
+}
+
+void Dispatcher::on_done(const ccbuild_lcm::ccbuild_done_t& done) {
+  Queue* q = queue_of(done.machine_id, done.job_id);
+  if (!q) return;
+  const std::size_t index = q->jobs[q->next];
+  JournalRow row{done.machine_id, "done", done.started_s, done.finished_s, done.stopped_at};
+  if (done.ok) {
+    journal_.record(done.job_id, row);
+    const DispatchJob& o = jobs_[origin_[index]];
+    delay_s_ = std::max(delay_s_, done.finished_s - (o.job.start_s + o.job.duration_s));
+    advance(*q, index, row);
+    return;
+  }
+  row.state = done.detail == "clog" ? "clogged" : done.detail == "pin-missed" ? "pin-missed" : "";
+  if (row.state.empty()) {
+    journal_.record(done.job_id, JournalRow{done.machine_id, "failed", done.started_s,
+                                            done.finished_s, done.stopped_at});
+    advance(*q, index, row);
+    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " ended: " + done.detail);
+    return;
+  }
+  journal_.record(done.job_id, row);  // before the recovery jobs are made
+  if (!recover(index, row)) {
+    advance(*queue_of(done.machine_id, done.job_id), index, row);
+    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " (" + row.state +
+         "): no recovery left");
+    return;
+  }
+  advance(*queue_of(done.machine_id, done.job_id), index, row);
+}
+
+void Dispatcher::step(double real_dt_s) {
+  if (stopped_) return;
+  for (auto& [machine, q] : queues_) {
+    q.silent_s += real_dt_s;
+    if (q.next >= q.jobs.size() || !q.heard) continue;  // nothing to a machine not heard
+    const std::size_t index = q.jobs[q.next];
+    const auto& job = jobs_[index].job;
+    q.waited_s += real_dt_s;
+    if (q.wait == Queue::Wait::kSend && !released(index)) {
+      q.waited_s = 0.0;
+      continue;
+    }
+    const double done_within_s = job.duration_s / options_.speed + options_.done_slack_s;
+    const bool due = q.wait == Queue::Wait::kSend ||
+                     (q.wait == Queue::Wait::kAck && q.waited_s > options_.ack_timeout_s) ||
+                     (q.wait == Queue::Wait::kDone && q.waited_s > done_within_s);
+    if (!due) continue;
+    if (q.wait != Queue::Wait::kSend || q.waited_s > real_dt_s) ++resent_;
+    journal_.record(job.job_id, job.machine_id, "sent");  // before it goes out
+    send(index);
+    q.wait = q.wait == Queue::Wait::kDone ? Queue::Wait::kDone : Queue::Wait::kAck;
+    q.waited_s = 0.0;
+  }
+}
+
+}  // namespace ccbuild::dispatch

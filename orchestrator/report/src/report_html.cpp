@@ -1,0 +1,84 @@
+#include "ccbuild/report/report.hpp"
+
+#include <fstream>
+#include <iterator>
+
+#include "ccbuild/common/input_error.hpp"
+#include "report_assets.hpp"
+#include "svg.hpp"
+
+namespace ccbuild::report {
+namespace {
+
+std::string read_script(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw InputError(path.string(), 0, "three.js",
+                     "cannot be read; the report inlines three.js from Debian's libjs-three "
+                     "(scripts/install-deps.sh installs it)");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text;
+}
+
+/// Text safe inside an inline <script>: "</" cannot end it early.
+std::string script_safe(std::string text) {
+  for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3)
+    text.replace(at, 2, "<\\/");
+  return text;
+}
+
+}  // namespace
+
+std::string schedule_report_html(const schedule::ScheduleDocument& document,
+                                 const ReportOptions& options) {
+  const std::string three = read_script(
+      options.three_js.empty() ? std::filesystem::path(CCBUILD_THREE_JS) : options.three_js);
+  const std::string orbit = read_script(options.orbit_controls_js.empty()
+                                            ? std::filesystem::path(CCBUILD_ORBIT_CONTROLS_JS)
+                                            : options.orbit_controls_js);
+  const schedule::RecordedInputs& inputs = document.inputs;
+  const std::string name = inputs.name.empty() ? inputs.building : inputs.name;
+  nlohmann::ordered_json schedule = schedule::schedule_json(inputs, document.schedule);
+  for (const auto& note : options.notes) schedule["warnings"].push_back(note);
+  const std::string data = script_safe(schedule.dump());
+  schedule = nlohmann::ordered_json();  // only its text is needed from here on
+  std::string html;
+  html.reserve(data.size() + three.size() + 200'000);
+  html += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>";
+  html += svg::escape("ccbuild schedule: " + name);
+  html += "</title>\n<style>\n";
+  html += detail::kReportCss;
+  html += "</style>\n</head>\n<body>\n<header><h1>" + svg::escape(name) +
+          "</h1><div class=\"sub\">schedule of " + svg::escape(inputs.building) + ", seed " +
+          std::to_string(inputs.seed) + ", ccbuild " + svg::escape(inputs.ccbuild_version) +
+          "</div></header>\n<main>\n";
+  html += R"(<div id="verdict"></div>
+<section id="summary"><h2>Summary</h2></section>
+<section id="gantt"><h2>The build over time</h2></section>
+<section id="intervals"><h2>Intervals between layers</h2></section>
+<section id="heatmap"><h2>Local intervals of one layer, on its plan</h2></section>
+<section id="strength"><h2>Strength</h2></section>
+<section id="toolpaths"><h2>Tool paths</h2></section>
+<section id="playback"><h2>3-D playback</h2>
+<div class="controls"><button id="playback-play">Play</button>
+<label>speed <select id="playback-speed"><option value="60">1 min/s</option><option value="600">10 min/s</option>
+<option value="2000" selected>2000x</option><option value="7200">2 h/s</option><option value="86400">1 day/s</option></select></label>
+<input type="range" id="playback-slider" min="0" step="1" style="flex:1"><span id="playback-time"></span></div>
+<canvas id="playback-canvas"></canvas>
+<p class="hint">Drag to turn, wheel to zoom, right-drag to pan. Fresh concrete is orange.</p></section>
+<pre id="console-errors" data-count="0"></pre>
+</main>
+<div id="tooltip" class="tooltip"></div>
+<script id="schedule-data" type="application/json">)";
+  html += data;
+  html += "</script>\n<script>\n";
+  html += script_safe(three);
+  html += "\n</script>\n<script>\n";
+  html += script_safe(orbit);
+  html += "\n</script>\n<script>\n";
+  html += script_safe(detail::kReportJs);
+  html += "\n</script>\n</body>\n</html>\n";
+  return html;
+}
+
+}  // namespace ccbuild::report

@@ -1,0 +1,180 @@
+#pragma once
+// The whole-building schedule (paper 000 §3.3 and §7): every layer of every floor
+// planned and timed, bottom to top, with
+//   - the fewest nozzles (1 up to the machine's) whose plan keeps every wall piece's
+//     interval to the layer below at or under the material's maximum;
+//   - the interval checked per wall piece, at both of its ends: the time between
+//     depositing a point of layer k and depositing over it in layer k + 1;
+//   - waits before a layer when an interval would fall under the minimum, when the layers
+//     below could not yet carry it (their strength at their age against the weight above
+//     them, times the material's safety factor), or when a climb's anchors are too young;
+//     each wait with its reasons and the numbers, and a purge when it outlasts the nozzle
+//     idle limit;
+//   - on a climbing machine: pipe placements between the layers climb/ chose, climbs
+//     (stages break at floor tops where the reach allows), each planned by climb/;
+//   - the slab stage between floors (the next floor starts on its slab: no interval to
+//     the floor below, whose walls carry the new ones).
+// Each distinct layer geometry is planned once per nozzle count (in parallel, `jobs`);
+// the result does not depend on `jobs` or on the order plans finish in.
+// SI units: m, s.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccbuild/climb/climb.hpp"
+#include "ccbuild/planner/timeline.hpp"
+#include "ccbuild/schedule/setup.hpp"
+
+namespace ccbuild::schedule {
+
+struct ScheduleOptions {
+  std::uint64_t seed = 1;
+  /// Threads planning distinct layers and climbs; 0: every core.
+  int jobs = 0;
+  /// Per plan (one geometry at one nozzle count). Plans end on their kick budget well
+  /// before it on ordinary layers; a plan stopped by it is named in the warnings, since
+  /// its result then depends on the machine's speed.
+  double layer_time_limit_s = 60.0;
+  /// Kicks of each single-nozzle search (unset: chosen from the layer's size).
+  std::optional<long> max_kicks;
+  /// Per climb's planning.
+  double climb_time_limit_s = 20.0;
+  /// Progress lines ("planned 12 of 30 layer plans"), called from the calling thread.
+  std::function<void(const std::string&)> progress;
+};
+
+/// Why a layer (or a climb) waited: one constraint and its numbers.
+struct WaitReason {
+  /// "min-interval": a wall piece would be covered too soon;
+  /// "strength": a layer below could not yet carry the walls above it;
+  /// "anchor-strength": a climb's anchor is younger than its strength requires;
+  /// "slab": the slab stage between floors.
+  std::string kind;
+  double required_s = 0.0;  ///< the wait this reason alone requires
+  std::string detail;       ///< the numbers, in words
+};
+
+/// One wall piece's end, where the local interval is extreme.
+struct PieceEnd {
+  std::int64_t wall = 0;
+  int piece = 0;  ///< 1-based within its layer
+  double x_m = 0.0, y_m = 0.0;
+};
+
+struct ScheduledLayer {
+  int floor = 0;
+  int layer = 0;
+  double z_bottom_m = 0.0, z_top_m = 0.0;
+  int geometry = 0;  ///< the distinct geometry's label (1-based)
+  std::string plan;  ///< key into Schedule::plans
+  int nozzles = 1;
+  std::string method;  ///< "cc-tsp" for one nozzle, else the multi-nozzle method
+  double start_s = 0.0, end_s = 0.0;
+  double deposition_s = 0.0;    ///< per nozzle, summed
+  double airtime_s = 0.0;       ///< per nozzle, summed
+  double max_idle_s = 0.0;      ///< the longest air move
+  double move_before_s = 0.0;   ///< lift and travel from the previous layer's end
+  double pipes_before_s = 0.0;  ///< pipes cast between the previous layer and this one
+  double wait_before_s = 0.0;
+  std::vector<WaitReason> wait_reasons;
+  bool purge_before = false;
+  /// Start to start from the layer below on the same floor; unset on a floor's first.
+  std::optional<double> interval_s;
+  /// Over every wall piece end of this layer above a wall of the layer below.
+  std::optional<double> local_interval_min_s, local_interval_max_s;
+  PieceEnd local_min_at, local_max_at;
+  int piece_ends_checked = 0;
+};
+
+/// A planned layer geometry at one nozzle count, as it is deposited.
+struct SchedulePlan {
+  std::string key;  ///< "g3n2": geometry 3, 2 nozzles; "g3n2m1": relabelled for other walls
+  int geometry = 0;
+  int nozzles = 1;
+  std::string method;
+  double z_top_m = 0.0;       ///< the layer the waypoints are drawn at
+  double layer_time_s = 0.0;  ///< from the common start to the last nozzle's finish
+  double min_gap_m = 0.0;     ///< nearest approach of two gantries (several nozzles)
+  /// One per nozzle, in rail order; time from the layer's start; `piece` numbers the
+  /// pieces of `layer` (a wall cut at a section border keeps its layer piece number).
+  std::vector<std::vector<planner::Waypoint>> waypoints;
+  floors::Layer layer;  ///< the wall pieces the waypoints deposit
+};
+
+struct ClimbEvent {
+  int from_stage = 0, to_stage = 0;
+  double start_s = 0.0, end_s = 0.0;
+  double wait_before_s = 0.0;
+  std::vector<WaitReason> wait_reasons;
+  struct AnchorLoad {
+    std::string id;
+    std::string unit;
+    double age_s = 0.0;
+    double strength_mpa = 0.0;
+    double required_mpa = 0.0;
+  };
+  std::vector<AnchorLoad> anchors;  ///< the pins of the stage climbed to
+  climb::ClimbPlan plan;
+};
+
+struct Event {
+  enum class Kind { kPipe, kClimb, kSlab, kPurge };
+  Kind kind = Kind::kPipe;
+  double start_s = 0.0, end_s = 0.0;
+  int floor = 0, layer = 0;  ///< pipes: cast after this layer; slab: over this floor
+  std::string detail;
+  std::optional<climb::Anchor> anchor;  ///< pipes
+  std::optional<ClimbEvent> climb;      ///< climbs
+};
+std::string to_string(Event::Kind kind);
+
+struct Infeasibility {
+  std::string kind;  ///< "max-interval", "climb", "strength"
+  int floor = 0, layer = 0;
+  std::string message;  ///< where, by how much
+  double required_s = 0.0, achieved_s = 0.0;
+  /// Computed fixes, each on its own: nozzles needed, deposition speed needed, maximum
+  /// interval needed; unset when none of that kind would do.
+  std::optional<int> nozzles_needed;
+  std::optional<double> deposition_speed_needed_m_s;
+  std::optional<double> max_interval_needed_s;
+  std::string fix;  ///< the fixes in words
+};
+
+struct ScheduleTotals {
+  double makespan_s = 0.0;
+  double deposition_s = 0.0, airtime_s = 0.0;  ///< nozzle time
+  double waits_s = 0.0, climbs_s = 0.0, slabs_s = 0.0, pipes_s = 0.0, purges_s = 0.0, moves_s = 0.0;
+  double machine_s = 0.0;  ///< the machine busy: layers, moves, pipes, purges, climbs
+};
+
+struct Schedule {
+  bool feasible = true;
+  std::optional<Infeasibility> infeasibility;
+  std::vector<ScheduledLayer> layers;  ///< bottom to top, as built
+  std::map<std::string, SchedulePlan> plans;
+  std::vector<Event> events;              ///< by start time
+  std::vector<climb::ClimbStage> stages;  ///< climbing machine only
+  ScheduleTotals totals;
+  std::vector<std::string> warnings;
+  /// Wall-clock seconds spent planning layers, planning climbs, and on the rest (not in
+  /// the JSON, which stays byte-identical).
+  double layer_planning_s = 0.0, climb_planning_s = 0.0, bookkeeping_s = 0.0;
+  int plans_computed = 0;
+};
+
+/// The totals as `layers` and `events` add them up (the machine busy: layers, moves,
+/// pipes, purges, climbs; waits include the climbs' waits).
+ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
+                         const std::vector<Event>& events);
+
+/// Schedules the whole building. Throws InputError for a project that cannot be
+/// scheduled at all (a fixed gantry's building taller than its reach is caught by
+/// orchestrator::open_project already); an infeasible building is an answer (feasible false).
+Schedule build_schedule(const Setup& setup, const ScheduleOptions& options = {});
+
+}  // namespace ccbuild::schedule

@@ -1,0 +1,123 @@
+#pragma once
+// The schedule as JSON (docs/schedule.md, `schema_version` 1), both ways: the inputs
+// (every file read with its SHA-256, the seed, the machine's limits, the material), the
+// layers, the plans with every nozzle's timed path, the stages, the events, the totals and
+// whether it is feasible. The same inputs and seed give the same bytes: no wall-clock
+// times, numbers rounded. read_schedule() reads such a document back into the same model
+// and re-validates it, so that writing it again gives the same bytes.
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccbuild/floors/material.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+#include "ccbuild/schedule/setup.hpp"
+
+namespace ccbuild::schedule {
+
+inline constexpr int kScheduleSchemaVersion = 1;
+inline constexpr const char* kCcbuildVersion = "0.1.0";
+/// The largest schedule file read back, bytes. Reading one takes about 6 times its size
+/// in memory at the peak (docs/schedule.md); the ten-storey tower's is 2.1 MB.
+inline constexpr std::uintmax_t kMaxScheduleBytes = 256ull * 1024 * 1024;
+
+/// An input file as the schedule recorded it.
+struct RecordedFile {
+  std::string path;    ///< as the run named it (relative to where it ran)
+  std::string sha256;  ///< 64 lowercase hex digits
+};
+
+/// The machine as the schedule recorded it: its name and the limits an independent check
+/// (and the dry-run) needs. SI units.
+struct RecordedMachine {
+  std::string name;
+  double deposition_speed_m_s = 0.0, travel_speed_m_s = 0.0;
+  double x_speed_m_s = 0.0, y_speed_m_s = 0.0, z_speed_m_s = 0.0, rotation_speed_rad_s = 0.0;
+  bool rotate_while_moving = true;
+  double accel_delay_s = 0.0, lift_height_m = 0.0, lift_time_s = 0.0, lower_time_s = 0.0;
+  std::optional<double> stopper_min_rad, stopper_max_rad;  ///< unset: no stopper
+  double nozzle_idle_limit_s = 0.0, nozzle_width_m = 0.0;
+  double x_min_m = 0.0, x_max_m = 0.0, y_min_m = 0.0, y_max_m = 0.0, z_min_m = 0.0, z_max_m = 0.0;
+  std::string origin;  ///< where the profile came from, in words
+  int nozzles = 1;
+  double gantry_width_m = 0.0;
+  char rail_axis = 'x';
+  double purge_s = 0.0;
+  bool climbing = false;
+  /// Climbing machines only.
+  double anchor_strength_mpa = 0.0, pipe_embed_s = 0.0;
+  /// The speed of the rail axis, m/s.
+  double rail_speed_m_s() const { return rail_axis == 'y' ? y_speed_m_s : x_speed_m_s; }
+};
+
+/// What a schedule records about the run that made it.
+struct RecordedInputs {
+  std::string ccbuild_version = kCcbuildVersion;
+  std::string building;  ///< the file, as the run named it
+  std::string name;
+  std::string units;  ///< "m" or "ft": the building's own unit
+  double layer_height_m = 0.0, slab_stage_s = 0.0;
+  std::uint64_t seed = 1;
+  std::vector<RecordedFile> files;
+  RecordedMachine machine;
+  floors::MaterialProfile material;
+  std::string material_origin;
+  /// The climbing units' names: anchors and climb phases name their unit by index here.
+  std::vector<std::string> unit_names;
+};
+
+/// A schedule with what it was made from, as its JSON holds it.
+struct ScheduleDocument {
+  RecordedInputs inputs;
+  Schedule schedule;
+};
+
+/// The inputs of a run on `setup`. Throws InputError when an input file cannot be read
+/// back for its checksum.
+RecordedInputs recorded_inputs(const Setup& setup, const ScheduleOptions& options);
+
+/// The schedule's JSON document.
+nlohmann::ordered_json schedule_json(const RecordedInputs& inputs, const Schedule& schedule);
+/// The same, with the inputs of `setup`. Throws as recorded_inputs does.
+nlohmann::ordered_json schedule_json(const Setup& setup, const ScheduleOptions& options,
+                                     const Schedule& schedule);
+
+/// What read_schedule does with an input file the schedule recorded that is no longer
+/// what it was.
+enum class RecordedInputCheck {
+  kNote,                   ///< changed or missing: named in ReadSchedule::notes
+  kRefuseChanged,          ///< changed: refused; missing: named in the notes
+  kRefuseChangedOrMissing  ///< either refused (the dry-run, which runs the machine from them)
+};
+
+struct ReadScheduleOptions {
+  RecordedInputCheck inputs = RecordedInputCheck::kRefuseChanged;
+};
+
+struct ReadSchedule {
+  ScheduleDocument document;
+  /// Recorded inputs that changed or are missing, when allowed, in words.
+  std::vector<std::string> notes;
+};
+
+/// Reads a schedule JSON file back into the model and re-validates it: its size (at most
+/// kMaxScheduleBytes), nesting (limits::kMaxNestingDepth), every key and type with a
+/// plausible range for every number, then the rules every schedule keeps (each layer's
+/// plan and nozzle count, every wall piece deposited once, speeds within the machine's
+/// limits, gantries a gantry width apart, one layer at a time and in building order, the
+/// interval and the local intervals recomputed from the paths, waits as long as their
+/// reasons, events between layers, totals), then the recorded input files by path and
+/// SHA-256. Throws InputError naming the file, the line and the JSON pointer (e.g.
+/// `/layers/12/start_s`) and what was expected or which rule is broken.
+ReadSchedule read_schedule(const std::filesystem::path& path,
+                           const ReadScheduleOptions& options = {});
+
+/// Parses schedule JSON text (named `file` in messages) as read_schedule does, without
+/// the size check and without looking at the recorded input files.
+ScheduleDocument parse_schedule(const std::string& text, const std::string& file);
+
+}  // namespace ccbuild::schedule

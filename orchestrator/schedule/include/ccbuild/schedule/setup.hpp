@@ -1,0 +1,39 @@
+#pragma once
+// What a schedule is made for: the building, the machine that prints it (and climbs it,
+// on a climbing machine), the material, and the files they came from. The building-level
+// API (orchestrator/project.hpp) opens a user's FILE into one; the scheduler, the
+// schedule's JSON and the reports read it. SI units.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/material.hpp"
+#include "ccbuild/machine/climbing_machine.hpp"
+#include "ccbuild/machine/machine_model.hpp"
+
+namespace ccbuild::schedule {
+
+struct Setup {
+  std::filesystem::path file;  ///< as the user named it
+  floors::Building building;   ///< a lone plan is a one-floor building named after its file
+  std::shared_ptr<const machine::MachineModel> machine;  ///< the printing gantry
+  /// The climbing machine, when the profile has a `climbing:` section; null for a fixed
+  /// gantry. Its gantry is `machine`.
+  std::shared_ptr<const machine::ClimbingMachine> climber;
+  std::string machine_origin;  ///< "config/machines/cc-gantry.yaml (the building's)", ...
+  floors::MaterialProfile material;
+  std::string material_origin;
+
+  const machine::MachineModel& machine_model() const { return *machine; }
+  /// Every file read: the FILE, its plans, the profiles, the URDF.
+  std::vector<std::filesystem::path> files_read() const;
+  /// A length in the building's own unit, for messages: "3.000 m", "9.843 ft".
+  std::string length(double value_m, int decimals = 3) const;
+  /// The climbing units' names, by index (empty on a fixed gantry).
+  std::vector<std::string> unit_names() const;
+};
+
+}  // namespace ccbuild::schedule

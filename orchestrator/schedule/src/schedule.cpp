@@ -1,0 +1,651 @@
+#include "ccbuild/schedule/schedule.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+#include <unordered_map>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "scheduler.hpp"
+
+namespace ccbuild::schedule {
+namespace detail {
+
+double Scheduler::move_s(const std::vector<std::vector<planner::Waypoint>>& from,
+                         const std::vector<std::vector<planner::Waypoint>>& to) const {
+  double longest = 0.0;
+  for (std::size_t n = 0; n < to.size() && n < from.size(); ++n) {
+    if (from[n].empty() || to[n].empty()) continue;
+    const auto& a = from[n].back();
+    const auto& b = to[n].front();
+    const double travel_s = (b.position_m - a.position_m).norm() / machine_.travel_speed_m_s;
+    const double turn_s = std::abs(b.heading_rad - a.heading_rad) / machine_.rotation_speed_rad_s;
+    const double move_s =
+        machine_.rotate_while_moving ? std::max(travel_s, turn_s) : travel_s + turn_s;
+    longest = std::max(longest, move_s + machine_.accel_delay_s);
+  }
+  // The nozzle rises by one layer height.
+  return longest + project_.building.layer_height_m / machine_.z.speed_m_s;
+}
+
+double Scheduler::move_between(const std::string& from_key, const std::string& to_key) const {
+  return move_s(schedule_.plans.at(from_key).waypoints, schedule_.plans.at(to_key).waypoints);
+}
+
+const IntervalOffsets& Scheduler::offsets(const Slice& upper, const std::string& upper_key,
+                                          const std::string& lower_key) {
+  const auto key = std::make_pair(upper_key, lower_key);
+  auto it = offsets_.find(key);
+  if (it == offsets_.end())
+    it = offsets_
+             .emplace(key,
+                      interval_offsets(upper.layer, indexes_.at(upper_key), indexes_.at(lower_key)))
+             .first;
+  return it->second;
+}
+
+double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, WaitReason& reason,
+                                   bool& impossible) const {
+  // The weight of the walls from layer j's bottom up to the new layer's top, times the
+  // safety factor, must not exceed layer j's strength at its age (from its end).
+  const double top_m = slices_[i].layer.z_top_m;
+  const double worst_age_s = material_.age_for_strength_s(required_strength_mpa(top_m));
+  double ready_s = -kInf;
+  for (int j = first_checked - 1; j >= 0; --j) {
+    // Older layers carry at most the whole height; once that is within their age, stop.
+    if (std::isfinite(worst_age_s) && layer_end_s_[j] + worst_age_s <= earliest_s) break;
+    const double required_mpa = required_strength_mpa(top_m - slices_[j].layer.z_bottom_m);
+    const double age_s = material_.age_for_strength_s(required_mpa);
+    if (!std::isfinite(age_s)) {
+      impossible = true;
+      reason.kind = "strength";
+      reason.detail = printf_string(
+          "%s would carry %.3f m of wall: %.4f MPa with the safety factor %.2f, more than the "
+          "material ever reaches (%.4f MPa)",
+          where_text(slices_[j].floor, slices_[j].layer.index).c_str(),
+          top_m - slices_[j].layer.z_bottom_m, required_mpa, material_.safety_factor,
+          material_.strength_curve.back().strength_mpa);
+      return kInf;
+    }
+    if (layer_end_s_[j] + age_s > ready_s) {
+      ready_s = layer_end_s_[j] + age_s;
+      reason.kind = "strength";
+      reason.detail = printf_string(
+          "%s carries %.3f m of wall above its bottom: %.4f MPa with the safety factor %.2f; "
+          "its concrete reaches that %.1f s after it was deposited",
+          where_text(slices_[j].floor, slices_[j].layer.index).c_str(),
+          top_m - slices_[j].layer.z_bottom_m, required_mpa, material_.safety_factor, age_s);
+    }
+  }
+  return ready_s;
+}
+
+void Scheduler::fail(Infeasibility infeasibility) {
+  // The first is the one reported in full (with its computed fix); a few more are named.
+  constexpr int kNamed = 5;
+  if (schedule_.feasible) {
+    schedule_.feasible = false;
+    schedule_.infeasibility = std::move(infeasibility);
+  } else if (++further_failures_ <= kNamed) {
+    schedule_.warnings.push_back("also infeasible: " + infeasibility.message);
+  } else if (further_failures_ == kNamed + 1) {
+    schedule_.warnings.push_back(
+        "also infeasible: more layers (each is listed in the JSON by its "
+        "local_interval_max_s)");
+  }
+}
+
+void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
+                            double deposition_s) {
+  const double required_s = inf.required_s, achieved_s = inf.achieved_s;
+  const double excess_s = achieved_s - required_s;
+  inf.max_interval_needed_s = std::ceil(achieved_s);
+  // Faster deposition shortens the deposition share of the interval; airtime stays.
+  if (deposition_s > excess_s)
+    inf.deposition_speed_needed_m_s =
+        machine_.deposition_speed_m_s * deposition_s / (deposition_s - excess_s);
+  // More nozzles than the machine has: plan them, up to 16, until one count is fast enough
+  // on its own (the layer's time plus the move to it must fit the maximum).
+  for (int n = machine_.nozzles + 1; n <= std::min(16, machine_.nozzles + 4); ++n) {
+    const Planned& p = planned(slice.geometry, n);
+    if (p.usable && achieved_s - layer_time_s + p.layer_time_s <= required_s) {
+      inf.nozzles_needed = n;
+      break;
+    }
+  }
+  std::string fix =
+      printf_string("a maximum layer interval of at least %.0f s", *inf.max_interval_needed_s);
+  if (inf.deposition_speed_needed_m_s)
+    fix += printf_string("; or a deposition speed of at least %.3f m/s (now %.3f)",
+                         *inf.deposition_speed_needed_m_s, machine_.deposition_speed_m_s);
+  if (inf.nozzles_needed)
+    fix += printf_string("; or %d nozzles (the machine has %d)", *inf.nozzles_needed,
+                         machine_.nozzles);
+  inf.fix = fix;
+}
+
+void Scheduler::prepare() {
+  const floors::Building& b = project_.building;
+  // Every layer with walls, bottom to top; geometries by first appearance.
+  std::map<floors::GeometryKey, int> geometry_of;
+  for (const auto& f : b.floors)
+    for (auto& l : floors::slice_floor(f, b.layer_height_m)) {
+      if (l.segments.empty()) continue;
+      floors::GeometryKey key(l);
+      auto [it, fresh] = geometry_of.try_emplace(std::move(key), static_cast<int>(reps_.size()));
+      if (fresh) reps_.push_back(l);
+      slices_.push_back({f.index, std::move(l), it->second});
+    }
+  if (slices_.empty())
+    throw InputError(project_.file.string(), 0, "",
+                     "nothing to print: no layer of any floor has a wall outside its openings");
+  const int count = static_cast<int>(slices_.size());
+  layer_end_s_.assign(count, 0.0);
+
+  // Climbing machine: stages (breaking at floor tops where the reach allows) and their
+  // climbs, planned in parallel with the first layer plans.
+  std::vector<double> climb_planning_s;
+  if (project_.climber) {
+    climb::StageOptions stage_options;
+    stage_options.at_floor_tops = true;
+    const climb::StagePlan stages = climb::climb_stages(b, *project_.climber, stage_options);
+    schedule_.stages = stages.stages;
+    if (!stages.status) {
+      Infeasibility inf;
+      inf.kind = "climb";
+      inf.message = "the climbing machine's stages: " + stages.status.to_string();
+      inf.fix = "anchor points the units can reach (see `ccbuild climb`)";
+      fail(inf);
+    }
+  }
+  const int climb_count = std::max(0, static_cast<int>(schedule_.stages.size()) - 1);
+  climbs_.resize(climb_count);
+  climb_planning_s.assign(climb_count, 0.0);
+  {
+    std::vector<std::function<void()>> tasks;
+    std::vector<std::pair<int, int>> first;
+    for (int g = 0; g < static_cast<int>(reps_.size()); ++g) first.push_back({g, 1});
+    std::vector<Planned> results(first.size());
+    for (std::size_t k = 0; k < first.size(); ++k)
+      tasks.push_back([&, k] { results[k] = plan(first[k].first, 1); });
+    for (int c = 0; c < climb_count; ++c)
+      tasks.push_back([&, c] {
+        const auto t0 = Clock::now();
+        climb::ClimbOptions o;
+        o.seed = options_.seed;
+        o.time_limit_s = options_.climb_time_limit_s;
+        climbs_[c] = climb::plan_climb(*project_.climber, b, schedule_.stages[c],
+                                       schedule_.stages[c + 1], o);
+        climb_planning_s[c] = seconds_since(t0);
+      });
+    const auto t0 = Clock::now();
+    run_parallel(tasks, jobs_, [&](int done, int total) {
+      progress(printf_string("planning %zu layer geometries and %d climbs: %d of %d done (%.1f s)",
+                             reps_.size(), climb_count, done, total, seconds_since(t0)));
+    });
+    for (std::size_t k = 0; k < first.size(); ++k) planned_[first[k]] = std::move(results[k]);
+    schedule_.plans_computed += static_cast<int>(first.size());
+    double climb_s = 0.0;
+    for (double s : climb_planning_s) climb_s += s;
+    // Wall-clock shares: the climbs' part of the batch by their summed time.
+    const double batch_s = seconds_since(t0);
+    double layer_sum_s = 0.0;
+    for (const auto& r : planned_) layer_sum_s += r.second.planning_s;
+    const double share = climb_s + layer_sum_s > 0 ? climb_s / (climb_s + layer_sum_s) : 0.0;
+    schedule_.climb_planning_s += batch_s * share;
+    schedule_.layer_planning_s += batch_s * (1.0 - share);
+  }
+  // Geometries too slow for one nozzle: every count up to the machine's, in parallel.
+  {
+    std::vector<std::pair<int, int>> more;
+    for (int g = 0; g < static_cast<int>(reps_.size()); ++g) {
+      const Planned& p = planned_.at({g, 1});
+      if (!p.usable || p.layer_time_s > kTryMoreNozzlesShare * material_.max_layer_interval_s)
+        for (int n = 2; n <= machine_.nozzles; ++n) more.push_back({g, n});
+    }
+    plan_batch(more, "layer geometries too slow for one nozzle");
+  }
+  for (const auto& [key, p] : planned_)
+    if (p.stopped_by_time)
+      schedule_.warnings.push_back(printf_string(
+          "the plan of geometry G%d with %d nozzles stopped at its time limit of %.0f s: "
+          "schedules may differ between machines of different speed",
+          key.first + 1, key.second, options_.layer_time_limit_s));
+
+  // Pipes cast after each layer, and the climb after each stage's last layer.
+  for (std::size_t s = 0; s < schedule_.stages.size(); ++s) {
+    const auto& st = schedule_.stages[s];
+    for (const auto& a : st.anchors)
+      if (a.floor >= 0) pipes_after_[{a.floor, a.layer}].push_back(a);
+    if (static_cast<int>(s) < climb_count)
+      climb_after_[{st.last.floor, st.last.layer}] = static_cast<int>(s);
+  }
+
+  // Per layer: the most pipe time between two layers of its run (consecutive layers of
+  // one floor and geometry), so that the run gets nozzles enough for it.
+  run_between_s_.assign(count, 0.0);
+  for (int first = 0; first < count;) {
+    int last = first;
+    while (last + 1 < count && slices_[last + 1].floor == slices_[first].floor &&
+           slices_[last + 1].geometry == slices_[first].geometry)
+      ++last;
+    double most_s = 0.0;
+    for (int k = first; k <= last; ++k)
+      if (auto it = pipes_after_.find({slices_[k].floor, slices_[k].layer.index});
+          it != pipes_after_.end())
+        most_s = std::max(most_s, it->second.size() * project_.climber->pipe_embed_s);
+    std::fill(run_between_s_.begin() + first, run_between_s_.begin() + last + 1, most_s);
+    first = last + 1;
+  }
+}
+
+bool Scheduler::schedule_layer(int i) {
+  const Slice& slice = slices_[i];
+  ScheduledLayer out;
+  out.floor = slice.floor;
+  out.layer = slice.layer.index;
+  out.z_bottom_m = slice.layer.z_bottom_m;
+  out.z_top_m = slice.layer.z_top_m;
+  out.geometry = slice.geometry + 1;
+  const bool same_floor = i > 0 && slices_[i - 1].floor == slice.floor;
+  const ScheduledLayer* below = same_floor ? &schedule_.layers.back() : nullptr;
+
+  // The layers further below: each must carry the walls up to this layer's top, at its
+  // age from its end (the one just below is checked piece by piece, with each plan).
+  WaitReason strength;
+  bool impossible = false;
+  const double strong_s =
+      strength_ready_s(i, below ? i - 1 : i, previous_end_s_, strength, impossible);
+  if (impossible) {
+    Infeasibility inf;
+    inf.kind = "strength";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.message = where_text(slice.floor, slice.layer.index) + ": " + strength.detail;
+    inf.fix = "a stronger material, or lower floors";
+    fail(inf);
+  }
+  // The stress on the layer just below, from its bottom to this layer's top, and the age
+  // its concrete needs for it.
+  const double below_age_s = below ? material_.age_for_strength_s(required_strength_mpa(
+                                         slice.layer.z_top_m - below->z_bottom_m))
+                                   : 0.0;
+  if (below && !std::isfinite(below_age_s) && !impossible) {
+    Infeasibility inf;
+    inf.kind = "strength";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.message = printf_string(
+        "%s: floor %d layer %d would carry %.3f m of wall, more than the material ever "
+        "carries with the safety factor %.2f",
+        where_text(slice.floor, slice.layer.index).c_str(), below->floor, below->layer,
+        slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor);
+    inf.fix = "a stronger material, or thinner layers";
+    fail(inf);
+  }
+
+  // Try the fewest nozzles fast enough up to the machine's count: the first plan that
+  // keeps every interval (at one nozzle, where the geometry changes, also the plan that
+  // follows the order of the layer below).
+  struct Choice {
+    int nozzles = 0;
+    std::string key;
+    const Planned* planned = nullptr;
+    double start_s = 0.0, move_s = 0.0, wait_s = 0.0;
+    std::vector<WaitReason> reasons;
+    bool purge = false;
+    IntervalOffsets offsets;
+    double local_max_s = -kInf;
+    bool ok = false;
+  };
+  std::optional<Choice> best;
+  std::vector<std::string> refusals;
+  auto consider = [&](int n, const std::string& key, const Planned& p) {
+    Choice c;
+    c.nozzles = n;
+    c.key = key;
+    c.planned = &p;
+    c.move_s = previous_key_.empty() ? 0.0 : move_between(previous_key_, c.key);
+    const double earliest_s = previous_end_s_ + ready_extra_s_ + c.move_s;
+    double start_s = earliest_s;
+    auto require = [&](double need_s, const char* kind, const std::string& detail) {
+      if (need_s <= earliest_s + 1e-9) return;
+      c.reasons.push_back({kind, need_s - earliest_s, detail});
+      start_s = std::max(start_s, need_s);
+    };
+    if (below) {
+      c.offsets = offsets(slice, c.key, below->plan);
+      if (c.offsets.ends > 0) {
+        const double earliest_local_s = earliest_s - below->start_s + c.offsets.min_offset_s;
+        require(below->start_s + material_.min_layer_interval_s - c.offsets.min_offset_s,
+                "min-interval",
+                printf_string("%s would be covered %.1f s after it was deposited, under the "
+                              "minimum interval of %.1f s",
+                              piece_text(c.offsets.min_at).c_str(), earliest_local_s,
+                              material_.min_layer_interval_s));
+        if (std::isfinite(below_age_s))
+          require(below->start_s + below_age_s - c.offsets.min_offset_s, "strength",
+                  printf_string("%s (floor %d layer %d) would carry %.3f m of wall %.1f s "
+                                "after it was deposited; with the safety factor %.2f its "
+                                "concrete needs %.1f s",
+                                piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
+                                slice.layer.z_top_m - below->z_bottom_m, earliest_local_s,
+                                material_.safety_factor, below_age_s));
+      }
+    }
+    if (!impossible && std::isfinite(strong_s)) {
+      strength.required_s = 0.0;
+      if (strong_s > earliest_s + 1e-9) require(strong_s, "strength", strength.detail);
+    }
+    c.wait_s = start_s - earliest_s;
+    // The nozzle idles from the previous layer's end: past the limit it is purged.
+    if (!previous_key_.empty() && start_s - previous_end_s_ > machine_.nozzle_idle_limit_s + 1e-9) {
+      c.purge = true;
+      start_s += machine_.purge_s;
+    }
+    c.start_s = start_s;
+    if (below && c.offsets.ends > 0) {
+      c.local_max_s = start_s - below->start_s + c.offsets.max_offset_s;
+      c.ok = c.local_max_s <= material_.max_layer_interval_s + 1e-9;
+      if (!c.ok)
+        refusals.push_back(printf_string(
+            "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
+            n == 1 ? "" : "s", p.method.c_str(), piece_text(c.offsets.max_at).c_str(),
+            c.local_max_s, material_.max_layer_interval_s));
+    } else {
+      c.ok = true;
+    }
+    const bool done = c.ok;
+    if (c.ok || !best || c.local_max_s < best->local_max_s) best = std::move(c);
+    return done;
+  };
+  // A layer like the one below first tries the same plan: every interval is then the
+  // same, start to start.
+  bool placed = false;
+  if (below && slices_[i - 1].geometry == slice.geometry)
+    placed = consider(below->nozzles, below->plan, *registered_.at(below->plan));
+  for (int n = fewest_nozzles(slice.geometry, run_between_s_[i]); !placed && n <= machine_.nozzles;
+       ++n) {
+    const Planned& p = planned(slice.geometry, n);
+    if (p.usable && consider(n, plan_key(slice, n), p)) break;
+    if (!p.usable)
+      refusals.push_back(printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
+    if (below && n == below->nozzles) {
+      const Planned& f = follow_plan(slice, below->plan, false);
+      if (f.usable &&
+          consider(n, register_plan(follow_key(slice, below->plan, false), slice, n, f), f))
+        break;
+      if (!f.usable)
+        refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
+                                         n == 1 ? "" : "s", f.why_not.c_str()));
+      // At the machine's last count, the gantries in each other's way held back.
+      if (!f.usable && n > 1 && n == machine_.nozzles) {
+        const Planned& h = follow_plan(slice, below->plan, true);
+        if (h.usable &&
+            consider(n, register_plan(follow_key(slice, below->plan, true), slice, n, h), h))
+          break;
+        if (!h.usable)
+          refusals.push_back(printf_string("%d nozzles following the layer below, held back: %s", n,
+                                           h.why_not.c_str()));
+      }
+    }
+  }
+  if (!best) {
+    // No nozzle count has a plan at all.
+    Infeasibility inf;
+    inf.kind = "no-plan";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    std::string why;
+    for (const auto& r : refusals) why += (why.empty() ? "" : "; ") + r;
+    inf.message = where_text(slice.floor, slice.layer.index) + ": no usable plan: " + why;
+    inf.fix = "see `ccbuild plan-layer` on this layer";
+    fail(inf);
+    return false;
+  }
+  if (!best->ok) {
+    Infeasibility inf;
+    inf.kind = "max-interval";
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.required_s = material_.max_layer_interval_s;
+    inf.achieved_s = best->local_max_s;
+    inf.message = printf_string(
+        "%s: %s is covered %.1f s after it was deposited with %d nozzle%s (the best of the "
+        "counts the machine allows), over the material's maximum interval of %.1f s by %.1f s",
+        where_text(slice.floor, slice.layer.index).c_str(),
+        piece_text(best->offsets.max_at).c_str(), best->local_max_s, best->nozzles,
+        best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
+        best->local_max_s - material_.max_layer_interval_s);
+    if (schedule_.feasible) {  // the first one: compute its fixes
+      const Planned& p = *best->planned;
+      compute_fix(inf, slice, p.layer_time_s, p.deposition_s / best->nozzles);
+      inf.message += "; fix: " + inf.fix;
+    }
+    fail(inf);
+  }
+  const Planned& p = *best->planned;
+  out.plan = best->key;
+  out.nozzles = best->nozzles;
+  out.method = p.method;
+  out.start_s = best->start_s;
+  out.end_s = best->start_s + p.layer_time_s;
+  out.deposition_s = p.deposition_s;
+  out.airtime_s = p.airtime_s;
+  out.max_idle_s = p.max_idle_s;
+  out.move_before_s = best->move_s;
+  out.pipes_before_s = pipes_before_s_;
+  out.wait_before_s = best->wait_s;
+  out.wait_reasons = best->reasons;
+  out.purge_before = best->purge;
+  if (below) {
+    out.interval_s = out.start_s - below->start_s;
+    if (best->offsets.ends > 0) {
+      out.local_interval_min_s = out.start_s - below->start_s + best->offsets.min_offset_s;
+      out.local_interval_max_s = out.start_s - below->start_s + best->offsets.max_offset_s;
+      out.local_min_at = best->offsets.min_at;
+      out.local_max_at = best->offsets.max_at;
+      out.piece_ends_checked = best->offsets.ends;
+    }
+  }
+  if (best->purge) {
+    Event e;
+    e.kind = Event::Kind::kPurge;
+    e.start_s = out.start_s - machine_.purge_s;
+    e.end_s = out.start_s;
+    // Like every event, named after the layer it follows.
+    e.floor = schedule_.layers.back().floor;
+    e.layer = schedule_.layers.back().layer;
+    e.detail = printf_string(
+        "the nozzle idled %.1f s, over its limit of %.1f s, before floor %d layer %d",
+        e.start_s - previous_end_s_, machine_.nozzle_idle_limit_s, out.floor, out.layer);
+    schedule_.events.push_back(e);
+  }
+  layer_end_s_[i] = out.end_s;
+  previous_end_s_ = out.end_s;
+  previous_key_ = out.plan;
+  schedule_.layers.push_back(out);
+  ready_extra_s_ = 0.0;
+
+  return true;
+}
+
+bool Scheduler::after_layer(int i) {
+  const floors::Building& b = project_.building;
+  const int count = static_cast<int>(slices_.size());
+  const ScheduledLayer& out = schedule_.layers.back();
+  // After the layer: its pipes, then (at a floor's top) the slab, then a climb.
+  double t = out.end_s;
+  pipes_before_s_ = 0.0;
+  if (auto it = pipes_after_.find({out.floor, out.layer}); it != pipes_after_.end())
+    for (const auto& a : it->second) {
+      Event e;
+      e.kind = Event::Kind::kPipe;
+      e.start_s = t;
+      e.end_s = t += project_.climber->pipe_embed_s;
+      pipes_before_s_ += project_.climber->pipe_embed_s;
+      e.floor = out.floor;
+      e.layer = out.layer;
+      e.anchor = a;
+      e.detail = "pipe " + a.id + " for unit " + project_.climber->units[a.unit].name;
+      pipe_done_s_[a.id + "@" + std::to_string(a.floor)] = e.end_s;
+      schedule_.events.push_back(e);
+    }
+  const bool floor_top = i + 1 == count || slices_[i + 1].floor != out.floor;
+  if (floor_top && i + 1 < count) {
+    Event e;
+    e.kind = Event::Kind::kSlab;
+    e.start_s = t;
+    e.end_s = t += b.slab_stage_s;
+    e.floor = out.floor;
+    e.layer = out.layer;
+    e.detail = "slab over floor " + std::to_string(out.floor);
+    schedule_.events.push_back(e);
+  }
+  if (auto it = climb_after_.find({out.floor, out.layer}); it != climb_after_.end()) {
+    const int c = it->second;
+    const climb::ClimbStage& to = schedule_.stages[c + 1];
+    Event e;
+    e.kind = Event::Kind::kClimb;
+    ClimbEvent ce;
+    ce.from_stage = c;
+    ce.to_stage = c + 1;
+    ce.plan = climbs_[c];
+    double ready_s = t;
+    const double strength_mpa = project_.climber->anchor_strength_mpa;
+    const double age_needed_s = material_.age_for_strength_s(strength_mpa);
+    for (const auto& a : to.anchors) {
+      const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
+      const double cast_s = cast == pipe_done_s_.end() ? 0.0 : cast->second;
+      if (cast_s + age_needed_s > ready_s + 1e-9) {
+        ce.wait_reasons.push_back(
+            {"anchor-strength", cast_s + age_needed_s - t,
+             printf_string("anchor %s (unit %s, cast %s) reaches %.1f MPa %.1f h after it "
+                           "was cast",
+                           a.id.c_str(), project_.climber->units[a.unit].name.c_str(),
+                           where_text(a.floor, a.layer).c_str(), strength_mpa,
+                           age_needed_s / 3600.0)});
+        ready_s = cast_s + age_needed_s;
+      }
+    }
+    if (!std::isfinite(age_needed_s)) {
+      Infeasibility inf;
+      inf.kind = "climb";
+      inf.floor = out.floor;
+      inf.layer = out.layer;
+      inf.message = printf_string(
+          "climb %d -> %d: the material never reaches the anchors' strength of %.1f MPa", c, c + 1,
+          strength_mpa);
+      inf.fix = "a material that reaches the anchor strength, or a lower anchor_strength_mpa";
+      fail(inf);
+      return false;
+    }
+    ce.wait_before_s = ready_s - t;
+    ce.start_s = ready_s;
+    ce.end_s = ready_s + ce.plan.duration_s;
+    for (const auto& a : to.anchors) {
+      const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
+      const double age_s = ce.start_s - (cast == pipe_done_s_.end() ? 0.0 : cast->second);
+      ce.anchors.push_back({a.id, project_.climber->units[a.unit].name, age_s,
+                            material_.strength_at_mpa(age_s), strength_mpa});
+    }
+    if (!ce.plan.status) {
+      Infeasibility inf;
+      inf.kind = "climb";
+      inf.floor = out.floor;
+      inf.layer = out.layer;
+      inf.message = printf_string("climb %d -> %d: ", c, c + 1) + ce.plan.status.to_string();
+      inf.fix = "see `ccbuild climb` for this building and machine";
+      fail(inf);
+    }
+    e.start_s = ce.start_s;
+    e.end_s = ce.end_s;
+    e.floor = out.floor;
+    e.layer = out.layer;
+    e.detail = printf_string("climb from stage %d to %d", c, c + 1);
+    t = e.end_s;
+    e.climb = std::move(ce);
+    schedule_.events.push_back(std::move(e));
+  }
+  ready_extra_s_ = t - out.end_s;
+  return true;
+}
+
+Schedule Scheduler::run() {
+  const auto started = Clock::now();
+  prepare();
+  const int count = static_cast<int>(slices_.size());
+  for (int i = 0; i < count; ++i) {
+    if (!schedule_layer(i) || !after_layer(i)) break;
+    if (options_.progress && (i + 1) % 25 == 0)
+      progress(printf_string("scheduled %d of %d layers", i + 1, count));
+  }
+  std::stable_sort(schedule_.events.begin(), schedule_.events.end(),
+                   [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
+  schedule_.totals = totals_of(schedule_.layers, schedule_.events);
+  schedule_.bookkeeping_s =
+      seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
+  return std::move(schedule_);
+}
+
+}  // namespace detail
+
+std::string to_string(Event::Kind kind) {
+  switch (kind) {
+    case Event::Kind::kPipe:
+      return "pipe";
+    case Event::Kind::kClimb:
+      return "climb";
+    case Event::Kind::kSlab:
+      return "slab";
+    case Event::Kind::kPurge:
+      return "purge";
+  }
+  return "?";
+}
+
+ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
+                         const std::vector<Event>& events) {
+  ScheduleTotals tot;
+  for (const auto& l : layers) {
+    tot.makespan_s = std::max(tot.makespan_s, l.end_s);
+    tot.deposition_s += l.deposition_s;
+    tot.airtime_s += l.airtime_s;
+    tot.waits_s += l.wait_before_s;
+    tot.moves_s += l.move_before_s;
+    tot.machine_s += l.end_s - l.start_s + l.move_before_s;
+  }
+  for (const auto& e : events) {
+    tot.makespan_s = std::max(tot.makespan_s, e.end_s);
+    const double d = e.end_s - e.start_s;
+    switch (e.kind) {
+      case Event::Kind::kPipe:
+        tot.pipes_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kSlab:
+        tot.slabs_s += d;
+        break;
+      case Event::Kind::kPurge:
+        tot.purges_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kClimb:
+        tot.climbs_s += d;
+        tot.machine_s += d;
+        if (e.climb) tot.waits_s += e.climb->wait_before_s;
+        break;
+    }
+  }
+  return tot;
+}
+
+Schedule build_schedule(const Setup& project, const ScheduleOptions& options) {
+  detail::Scheduler scheduler(project, options);
+  return scheduler.run();
+}
+
+}  // namespace ccbuild::schedule

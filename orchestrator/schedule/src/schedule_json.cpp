@@ -1,0 +1,221 @@
+#include "ccbuild/schedule/schedule_json.hpp"
+
+#include <cmath>
+
+#include "ccbuild/common/sha256.hpp"
+#include "ccbuild/schedule/json_blocks.hpp"
+
+namespace ccbuild::schedule {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+json optional_number(const std::optional<double>& value) {
+  return value && std::isfinite(*value) ? json(rounded(*value)) : json(nullptr);
+}
+
+json piece_end_json(const PieceEnd& e) {
+  return {{"wall", e.wall}, {"piece", e.piece}, {"x_m", rounded(e.x_m)}, {"y_m", rounded(e.y_m)}};
+}
+
+json reasons_json(const std::vector<WaitReason>& reasons) {
+  json out = json::array();
+  for (const auto& r : reasons)
+    out.push_back({{"kind", r.kind}, {"required_s", rounded(r.required_s)}, {"detail", r.detail}});
+  return out;
+}
+
+json recorded_machine_json(const RecordedMachine& m) {
+  json out = machine_limits_json(m);
+  out["origin"] = m.origin;
+  out["nozzles"] = m.nozzles;
+  out["gantry_width_m"] = rounded(m.gantry_width_m);
+  out["rail_axis"] = std::string(1, m.rail_axis);
+  out["purge_s"] = rounded(m.purge_s);
+  out["kind"] = m.climbing ? "climbing" : "fixed gantry";
+  if (m.climbing) {
+    out["anchor_strength_mpa"] = rounded(m.anchor_strength_mpa);
+    out["pipe_embed_s"] = rounded(m.pipe_embed_s);
+  }
+  return out;
+}
+
+json material_json(const floors::MaterialProfile& m) {
+  json curve = json::array();
+  for (const auto& p : m.strength_curve)
+    curve.push_back({{"age_s", rounded(p.age_s)}, {"strength_mpa", rounded(p.strength_mpa)}});
+  return {{"name", m.name},
+          {"density_kg_m3", rounded(m.density_kg_m3)},
+          {"min_layer_interval_s", rounded(m.min_layer_interval_s)},
+          {"max_layer_interval_s", rounded(m.max_layer_interval_s)},
+          {"safety_factor", rounded(m.safety_factor)},
+          {"strength_curve", curve}};
+}
+
+}  // namespace
+
+RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& options) {
+  RecordedInputs in;
+  const floors::Building& b = project.building;
+  in.building = project.file.string();
+  in.name = b.name;
+  in.units = floors::to_string(b.units);
+  in.layer_height_m = b.layer_height_m;
+  in.slab_stage_s = b.slab_stage_s;
+  in.seed = options.seed;
+  for (const auto& path : project.files_read())
+    in.files.push_back({path.string(), sha256_file_hex(path)});
+  const machine::MachineModel& m = *project.machine;
+  RecordedMachine& r = in.machine;
+  r = machine_limits(m);
+  r.origin = project.machine_origin;
+  r.nozzles = m.nozzles;
+  r.gantry_width_m = m.gantry_width_m;
+  r.rail_axis = m.rail_axis;
+  r.purge_s = m.purge_s;
+  r.climbing = project.climber != nullptr;
+  if (project.climber) {
+    r.anchor_strength_mpa = project.climber->anchor_strength_mpa;
+    r.pipe_embed_s = project.climber->pipe_embed_s;
+  }
+  in.material = project.material;
+  in.material_origin = project.material_origin;
+  in.unit_names = project.unit_names();
+  return in;
+}
+
+nlohmann::ordered_json schedule_json(const Setup& project, const ScheduleOptions& options,
+                                     const Schedule& schedule) {
+  return schedule_json(recorded_inputs(project, options), schedule);
+}
+
+nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& schedule) {
+  json out;
+  out["format"] = "ccbuild-schedule";
+  out["schema_version"] = kScheduleSchemaVersion;
+  out["ccbuild_version"] = in.ccbuild_version;
+
+  json files = json::array();
+  for (const auto& f : in.files) files.push_back({{"path", f.path}, {"sha256", f.sha256}});
+  json material = material_json(in.material);
+  material["origin"] = in.material_origin;
+  out["inputs"] = {{"building", in.building},
+                   {"name", in.name},
+                   {"units", in.units},
+                   {"layer_height_m", rounded(in.layer_height_m)},
+                   {"slab_stage_s", rounded(in.slab_stage_s)},
+                   {"seed", in.seed},
+                   {"files", files},
+                   {"machine", recorded_machine_json(in.machine)},
+                   {"material", material}};
+
+  out["feasible"] = schedule.feasible;
+  if (schedule.infeasibility) {
+    const Infeasibility& inf = *schedule.infeasibility;
+    out["infeasibility"] = {
+        {"kind", inf.kind},
+        {"floor", inf.floor},
+        {"layer", inf.layer},
+        {"message", inf.message},
+        {"required_s", rounded(inf.required_s)},
+        {"achieved_s", rounded(inf.achieved_s)},
+        {"fix",
+         {{"text", inf.fix},
+          {"nozzles_needed", inf.nozzles_needed ? json(*inf.nozzles_needed) : json(nullptr)},
+          {"deposition_speed_needed_m_s", optional_number(inf.deposition_speed_needed_m_s)},
+          {"max_interval_needed_s", optional_number(inf.max_interval_needed_s)}}}};
+  } else {
+    out["infeasibility"] = nullptr;
+  }
+
+  const ScheduleTotals& t = schedule.totals;
+  out["totals"] = {{"makespan_s", rounded(t.makespan_s)},     {"layers", schedule.layers.size()},
+                   {"deposition_s", rounded(t.deposition_s)}, {"airtime_s", rounded(t.airtime_s)},
+                   {"moves_s", rounded(t.moves_s)},           {"waits_s", rounded(t.waits_s)},
+                   {"pipes_s", rounded(t.pipes_s)},           {"purges_s", rounded(t.purges_s)},
+                   {"climbs_s", rounded(t.climbs_s)},         {"slabs_s", rounded(t.slabs_s)},
+                   {"machine_s", rounded(t.machine_s)}};
+
+  json layers = json::array();
+  for (const auto& l : schedule.layers) {
+    json j;
+    j["floor"] = l.floor;
+    j["layer"] = l.layer;
+    j["z_m"] = rounded(l.z_top_m);
+    j["z_bottom_m"] = rounded(l.z_bottom_m);
+    j["geometry"] = l.geometry;
+    j["plan"] = l.plan;
+    j["nozzles"] = l.nozzles;
+    j["method"] = l.method;
+    j["start_s"] = rounded(l.start_s);
+    j["end_s"] = rounded(l.end_s);
+    j["deposition_s"] = rounded(l.deposition_s);
+    j["airtime_s"] = rounded(l.airtime_s);
+    j["max_idle_s"] = rounded(l.max_idle_s);
+    j["move_before_s"] = rounded(l.move_before_s);
+    j["pipes_before_s"] = rounded(l.pipes_before_s);
+    j["wait_before_s"] = rounded(l.wait_before_s);
+    j["wait_reasons"] = reasons_json(l.wait_reasons);
+    j["purge_before"] = l.purge_before;
+    j["interval_s"] = optional_number(l.interval_s);
+    j["local_interval_min_s"] = optional_number(l.local_interval_min_s);
+    j["local_interval_max_s"] = optional_number(l.local_interval_max_s);
+    j["local_interval_min_at"] =
+        l.local_interval_min_s ? piece_end_json(l.local_min_at) : json(nullptr);
+    j["local_interval_max_at"] =
+        l.local_interval_max_s ? piece_end_json(l.local_max_at) : json(nullptr);
+    j["piece_ends_checked"] = l.piece_ends_checked;
+    layers.push_back(j);
+  }
+  out["layers"] = layers;
+
+  json plans = json::object();
+  for (const auto& [key, p] : schedule.plans) {
+    json nozzles = json::array();
+    for (std::size_t n = 0; n < p.waypoints.size(); ++n)
+      nozzles.push_back({{"nozzle", n}, {"waypoints", waypoints_json(p.waypoints[n])}});
+    plans[key] = {{"geometry", p.geometry},
+                  {"nozzles_used", p.nozzles},
+                  {"method", p.method},
+                  {"z_top_m", rounded(p.z_top_m)},
+                  {"layer_time_s", rounded(p.layer_time_s)},
+                  {"min_gap_m", p.nozzles > 1 ? json(rounded(p.min_gap_m)) : json(nullptr)},
+                  {"pieces", pieces_json(p.layer)},
+                  {"nozzles", nozzles}};
+  }
+  out["plans"] = plans;
+
+  json stages = json::array();
+  for (const auto& s : schedule.stages) stages.push_back(stage_json(in.unit_names, s));
+  out["stages"] = stages;
+
+  json events = json::array();
+  for (const auto& e : schedule.events) {
+    json j = {{"kind", to_string(e.kind)}, {"start_s", rounded(e.start_s)},
+              {"end_s", rounded(e.end_s)}, {"floor", e.floor},
+              {"after_layer", e.layer},    {"detail", e.detail}};
+    if (e.anchor) j["anchor"] = anchor_json(in.unit_names, *e.anchor);
+    if (e.climb) {
+      const ClimbEvent& c = *e.climb;
+      json anchors = json::array();
+      for (const auto& a : c.anchors)
+        anchors.push_back({{"id", a.id},
+                           {"unit", a.unit},
+                           {"age_s", rounded(a.age_s)},
+                           {"strength_mpa", rounded(a.strength_mpa)},
+                           {"required_mpa", rounded(a.required_mpa)}});
+      j["from_stage"] = c.from_stage;
+      j["to_stage"] = c.to_stage;
+      j["wait_before_s"] = rounded(c.wait_before_s);
+      j["wait_reasons"] = reasons_json(c.wait_reasons);
+      j["anchors"] = anchors;
+      j["climb"] = climb_plan_json(in.unit_names, c.plan, false);
+    }
+    events.push_back(j);
+  }
+  out["events"] = events;
+  out["warnings"] = schedule.warnings;
+  return out;
+}
+
+}  // namespace ccbuild::schedule

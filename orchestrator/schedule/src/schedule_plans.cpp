@@ -1,0 +1,325 @@
+// The scheduler's plans: each distinct geometry at each nozzle count (in parallel), the
+// plans that follow the order of the layer below, and their registration under the
+// schedule's plan keys, labelled with each layer's own walls.
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/planner/plan_nozzles.hpp"
+#include "scheduler.hpp"
+
+namespace ccbuild::schedule::detail {
+
+/// Runs `tasks` on `jobs` threads; the calling thread reports progress as they finish.
+void run_parallel(std::vector<std::function<void()>>& tasks, int jobs,
+                  const std::function<void(int done, int total)>& on_done) {
+  if (tasks.empty()) return;
+  const int total = static_cast<int>(tasks.size());
+  std::atomic<int> next{0};
+  std::mutex mutex;
+  std::condition_variable finished;
+  int done = 0;
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (int k; (k = next.fetch_add(1)) < total;) {
+      try {
+        tasks[k]();
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!failure) failure = std::current_exception();
+      }
+      {
+        std::lock_guard lock(mutex);
+        ++done;
+      }
+      finished.notify_one();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < std::max(1, std::min(jobs, total)); ++t) threads.emplace_back(worker);
+  {
+    std::unique_lock lock(mutex);
+    int reported = 0;
+    while (reported < total) {
+      finished.wait(lock, [&] { return done > reported; });
+      reported = done;
+      lock.unlock();
+      if (on_done) on_done(reported, total);
+      lock.lock();
+    }
+  }
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+}
+
+Planned Scheduler::plan(int geometry, int nozzles) const {
+  const auto started = Clock::now();
+  Planned out;
+  const floors::Layer& layer = reps_[geometry];
+  planner::LayerPlanRequest request;
+  request.nozzles = nozzles;
+  request.planning.objective = planner::Objective::kTime;
+  request.planning.seed = options_.seed;
+  request.planning.time_limit_s = options_.layer_time_limit_s;
+  request.planning.max_kicks = options_.max_kicks;
+  request.multi.gantry_width_m = machine_.gantry_width_m;
+  request.multi.rail_axis =
+      machine_.rail_axis == 'y' ? planner::RailAxis::kY : planner::RailAxis::kX;
+  request.multi.planning = request.planning;
+  request.multi.message_unit = project_.building.units;
+  try {
+    const planner::LayerPlanResult result = planner::plan_layer_nozzles(layer, machine_, request);
+    if (!result.status) {
+      out.why_not = result.status.to_string();
+    } else if (result.single) {
+      const auto& p = *result.single;
+      out.method = "cc-tsp";
+      out.layer_time_s = p.evaluation.layer_time_s;
+      out.deposition_s = p.evaluation.deposition_s;
+      out.airtime_s = p.evaluation.airtime_s;
+      out.max_idle_s = p.evaluation.max_idle_s;
+      out.stopped_by_time = p.stop == planner::StopReason::kTimeLimit;
+      out.waypoints.push_back(p.waypoints);
+    } else {
+      const auto& m = *result.multi;
+      out.method = m.stages.empty() ? "" : planner::to_string(m.stages.front().method);
+      out.layer_time_s = m.layer_time_s;
+      out.min_gap_m = m.min_gap_m;
+      out.waypoints.assign(nozzles, {});
+      for (const auto& stage : m.stages)
+        for (const auto& n : stage.nozzles) {
+          out.deposition_s += n.evaluation.deposition_s;
+          out.airtime_s += n.evaluation.airtime_s;
+          auto& path = out.waypoints[n.nozzle];
+          path.insert(path.end(), n.waypoints.begin(), n.waypoints.end());
+        }
+    }
+    if (result.status) {
+      out.max_idle_s = result.max_idle_s();
+      if (result.idle_limit_violations() > 0)
+        out.why_not = printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s",
+                                    out.max_idle_s, machine_.nozzle_idle_limit_s);
+      else
+        out.usable = true;
+    }
+  } catch (const InputError& error) {
+    // A nozzle count the rails cannot take: an answer for this count, not an input error.
+    out.why_not = error.diagnostics().empty() ? error.what() : error.diagnostics()[0].message;
+  }
+  for (auto& path : out.waypoints) label_pieces(path, layer);
+  out.planning_s = seconds_since(started);
+  return out;
+}
+
+void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
+                           const std::string& what) {
+  std::vector<std::pair<int, int>> todo;
+  for (const auto& w : wanted)
+    if (!planned_.count(w) && std::find(todo.begin(), todo.end(), w) == todo.end())
+      todo.push_back(w);
+  if (todo.empty()) return;
+  std::vector<Planned> results(todo.size());
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    tasks.push_back([&, k] { results[k] = plan(todo[k].first, todo[k].second); });
+  const auto started = Clock::now();
+  run_parallel(tasks, jobs_, [&](int done, int total) {
+    progress(printf_string("%s: %d of %d planned (%.1f s)", what.c_str(), done, total,
+                           seconds_since(started)));
+  });
+  for (std::size_t k = 0; k < todo.size(); ++k) planned_[todo[k]] = std::move(results[k]);
+  schedule_.layer_planning_s += seconds_since(started);
+  schedule_.plans_computed += static_cast<int>(todo.size());
+}
+
+const Planned& Scheduler::planned(int geometry, int nozzles) {
+  const auto key = std::make_pair(geometry, nozzles);
+  if (!planned_.count(key))
+    plan_batch({key}, printf_string("geometry G%d with %d nozzles", geometry + 1, nozzles));
+  return planned_.at(key);
+}
+
+int Scheduler::fewest_nozzles(int geometry, double between_s) {
+  int fastest = 1;
+  double fastest_s = kInf;
+  for (int n = 1; n <= machine_.nozzles; ++n) {
+    const Planned& p = planned(geometry, n);
+    if (!p.usable) continue;
+    // The next layer like it starts after this one, its pipes and the move up.
+    if (p.layer_time_s + between_s + move_s(p.waypoints, p.waypoints) <=
+        material_.max_layer_interval_s)
+      return n;
+    if (p.layer_time_s < fastest_s) {
+      fastest_s = p.layer_time_s;
+      fastest = n;
+    }
+  }
+  return fastest;  // none is fast enough: the fastest comes closest
+}
+
+std::string Scheduler::register_plan(const std::string& base, const Slice& slice, int nozzles,
+                                     const Planned& p) {
+  // Labelled with this layer's walls: layers of one geometry may name their walls
+  // differently (different plans drawn alike); such a layer gets its own entry.
+  std::vector<std::vector<planner::Waypoint>> paths = p.waypoints;
+  for (auto& path : paths) label_pieces(path, slice.layer);
+  auto same_labels = [&](const SchedulePlan& plan) {
+    for (std::size_t n = 0; n < paths.size(); ++n)
+      for (std::size_t k = 0; k < paths[n].size(); ++k)
+        if (paths[n][k].wall != plan.waypoints[n][k].wall ||
+            paths[n][k].piece != plan.waypoints[n][k].piece)
+          return false;
+    return true;
+  };
+  auto& variants = variants_[base];
+  for (const auto& key : variants)
+    if (same_labels(schedule_.plans.at(key))) return key;
+  const std::string key = variants.empty() ? base : base + "m" + std::to_string(variants.size());
+  SchedulePlan plan;
+  plan.key = key;
+  plan.geometry = slice.geometry + 1;
+  plan.nozzles = nozzles;
+  plan.method = p.method;
+  plan.z_top_m = slice.layer.z_top_m;
+  plan.layer_time_s = p.layer_time_s;
+  plan.min_gap_m = p.min_gap_m;
+  plan.waypoints = std::move(paths);
+  plan.layer = slice.layer;
+  for (auto& path : plan.waypoints)  // drawn at this layer's height
+    for (auto& w : path) w.z_m += slice.layer.z_top_m - reps_[slice.geometry].z_top_m;
+  indexes_[key] = index_of(plan.waypoints);
+  schedule_.plans[key] = std::move(plan);
+  registered_[key] = &p;
+  variants.push_back(key);
+  return key;
+}
+
+std::string Scheduler::plan_key(const Slice& slice, int nozzles) {
+  return register_plan(printf_string("g%dn%d", slice.geometry + 1, nozzles), slice, nozzles,
+                       planned(slice.geometry, nozzles));
+}
+
+const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& below_key,
+                                      bool hold_back) {
+  const std::string base = follow_key(slice, below_key, hold_back);
+  auto it = follow_.find(base);
+  if (it != follow_.end()) return it->second;
+  const auto started = Clock::now();
+  // Each piece goes to the nozzle that deposited the wall under it, in the order and the
+  // direction that nozzle did, so that every piece is covered about one layer time after
+  // the one under it.
+  const SchedulePlan& under = schedule_.plans.at(below_key);
+  const int nozzles = static_cast<int>(under.waypoints.size());
+  std::vector<DepositIndex> by_nozzle;
+  for (const auto& path : under.waypoints) by_nozzle.push_back(index_of({path}));
+  const floors::Layer& layer = slice.layer;
+  struct Keyed {
+    double t_s;
+    int segment;
+    bool reversed;
+  };
+  std::vector<std::vector<Keyed>> keyed(nozzles);
+  for (int k = 0; k < static_cast<int>(layer.segments.size()); ++k) {
+    const auto& seg = layer.segments[k];
+    // The nozzle that passed either end first; a piece over an opening goes last.
+    Keyed best{kInf, k, false};
+    int owner = 0;
+    for (int n = 0; n < nozzles; ++n) {
+      double a_lo = kInf, a_hi = kInf, b_lo = kInf, b_hi = kInf;
+      const bool at_a = by_nozzle[n].times_at(seg.wall_id, layer.start_m(seg), a_lo, a_hi);
+      const bool at_b = by_nozzle[n].times_at(seg.wall_id, layer.end_m(seg), b_lo, b_hi);
+      if (!at_a && !at_b) continue;
+      const double t = std::min(at_a ? a_lo : kInf, at_b ? b_lo : kInf);
+      if (t < best.t_s) {
+        best = {t, k, at_a && at_b ? b_lo < a_lo : !at_a};
+        owner = n;
+      }
+    }
+    keyed[owner].push_back(best);
+  }
+  Planned out;
+  out.method = "follow-below";
+  planner::PlanOptions options;
+  options.objective = planner::Objective::kTime;
+  std::vector<planner::Timeline> rails;
+  const planner::RailAxis axis =
+      machine_.rail_axis == 'y' ? planner::RailAxis::kY : planner::RailAxis::kX;
+  for (int n = 0; n < nozzles; ++n) {
+    std::stable_sort(keyed[n].begin(), keyed[n].end(),
+                     [](const Keyed& x, const Keyed& y) { return x.t_s < y.t_s; });
+    std::vector<int> segments;
+    for (const auto& k : keyed[n]) segments.push_back(k.segment);
+    if (segments.empty()) {
+      out.waypoints.push_back({});
+      rails.push_back(planner::parked_at(under.waypoints[n].empty()
+                                             ? Eigen::Vector2d::Zero()
+                                             : under.waypoints[n].back().position_m));
+      continue;
+    }
+    // The nozzle's own pieces as a layer: sequence steps index into it.
+    const floors::Layer own = nozzles == 1 ? layer : floors::sub_layer(layer, segments);
+    planner::Sequence sequence;
+    for (std::size_t j = 0; j < keyed[n].size(); ++j)
+      sequence.push_back(
+          {nozzles == 1 ? keyed[n][j].segment : static_cast<int>(j), keyed[n][j].reversed});
+    const planner::LayerPlan plan = planner::time_sequence(own, machine_, sequence, options);
+    out.layer_time_s = std::max(out.layer_time_s, plan.evaluation.layer_time_s);
+    out.deposition_s += plan.evaluation.deposition_s;
+    out.airtime_s += plan.evaluation.airtime_s;
+    out.max_idle_s = std::max(out.max_idle_s, plan.evaluation.max_idle_s);
+    if (plan.evaluation.idle_limit_violations > 0 && out.why_not.empty())
+      out.why_not = printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s",
+                                  plan.evaluation.max_idle_s, machine_.nozzle_idle_limit_s);
+    planner::Timeline rail;
+    for (const auto& w : plan.waypoints) rail.append(w.t_s, w.position_m);
+    rails.push_back(rail);
+    out.waypoints.push_back(plan.waypoints);
+  }
+  // Held back: a nozzle that would come too close to the one before it starts later (by
+  // the first of 5 s steps that clears it), waiting parked where it starts.
+  if (hold_back && out.why_not.empty())
+    for (int n = 1; n < nozzles; ++n) {
+      if (out.waypoints[n].empty() || out.waypoints[n - 1].empty() ||
+          !planner::first_conflict(rails[n - 1], rails[n], axis, machine_.gantry_width_m))
+        continue;
+      for (double delay_s = 5.0; delay_s <= machine_.nozzle_idle_limit_s; delay_s += 5.0) {
+        planner::Timeline later;
+        later.append(0.0, out.waypoints[n].front().position_m);
+        for (const auto& w : out.waypoints[n]) later.append(w.t_s + delay_s, w.position_m);
+        if (planner::first_conflict(rails[n - 1], later, axis, machine_.gantry_width_m)) continue;
+        rails[n] = later;
+        planner::Waypoint parked = out.waypoints[n].front();
+        parked.extruding = false;
+        parked.wall = 0;
+        parked.piece = 0;
+        for (auto& w : out.waypoints[n]) w.t_s += delay_s;
+        out.waypoints[n].insert(out.waypoints[n].begin(), parked);
+        out.layer_time_s = std::max(out.layer_time_s, out.waypoints[n].back().t_s);
+        out.airtime_s += delay_s;
+        out.max_idle_s = std::max(out.max_idle_s, delay_s);
+        break;
+      }
+    }
+  // The gantries must keep their gap: checked exactly at every breakpoint of either.
+  out.min_gap_m = kInf;
+  for (int n = 0; n + 1 < nozzles && out.why_not.empty(); ++n) {
+    out.min_gap_m = std::min(out.min_gap_m, planner::min_gap_m(rails[n], rails[n + 1], axis));
+    if (auto conflict =
+            planner::first_conflict(rails[n], rails[n + 1], axis, machine_.gantry_width_m))
+      out.why_not = printf_string("gantries %d and %d come within %.3f m at %.1f s", n + 1, n + 2,
+                                  conflict->right_m - conflict->left_m, conflict->time_s);
+  }
+  if (nozzles == 1) out.min_gap_m = 0.0;
+  out.usable = out.why_not.empty();
+  // Drawn at the geometry's first layer, like every other plan.
+  for (auto& path : out.waypoints)
+    for (auto& w : path) w.z_m += reps_[slice.geometry].z_top_m - layer.z_top_m;
+  out.planning_s = seconds_since(started);
+  schedule_.layer_planning_s += out.planning_s;
+  return follow_.emplace(base, std::move(out)).first->second;
+}
+
+}  // namespace ccbuild::schedule::detail

@@ -1,0 +1,659 @@
+// read_schedule: a schedule's JSON back into the model (schedule_json.hpp), every key and
+// type checked with a plausible range for every number, then re-validated by the rules of
+// schedule_rules.cpp and its recorded inputs compared with the files on disk.
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/common/limits.hpp"
+#include "ccbuild/common/sha256.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
+#include "json_reader.hpp"
+#include "schedule_rules.hpp"
+
+namespace ccbuild::schedule {
+namespace {
+
+using detail::JsonAt;
+using json = nlohmann::json;
+
+// Plausible ranges. Far beyond any real schedule, near enough to refuse garbage before it
+// overflows a computation.
+const Range kTime_s = Range::closed(0.0, 1e10);  // 317 years
+const Range kDuration_s = Range::closed(0.0, 1e10);
+const Range kCoordinate_m = Range::closed(-1e5, 1e5);
+const Range kLength_m = Range::closed(0.0, 1e5);
+const Range kHeading_rad = Range::closed(-1e4, 1e4);
+const Range kSpeed = Range::above(0.0, 1e4);  // m/s, rad/s
+const Range kStrength_mpa = Range::closed(0.0, 1e4);
+const Range kPositive = Range::above(0.0, 1e7);
+constexpr std::int64_t kMaxFloor = 10'000, kMaxLayer = 1'000'000, kMaxNozzles = 64;
+constexpr std::int64_t kMaxGeometry = 10'000'000, kMaxPiece = 1'000'000;
+constexpr std::int64_t kMaxWallId = 9'000'000'000'000'000'000;
+constexpr std::size_t kMaxItems = 50'000'000;  // waypoints of one nozzle, the most of anything
+constexpr std::size_t kMaxLayers = 1'000'000, kMaxPlans = 100'000, kMaxEvents = 1'000'000;
+constexpr std::size_t kMaxSmall = 10'000;  // files, stages, anchors, phases, joints
+constexpr std::size_t kMaxText = 100'000;  // characters of a detail or warning
+
+const char* const kWaitKinds[] = {"min-interval", "strength", "anchor-strength", "slab"};
+
+/// Unit names met in the document, by index in order of first appearance.
+int unit_index(RecordedInputs& in, const JsonAt& at) {
+  const std::string name = at.string(200);
+  const auto it = std::find(in.unit_names.begin(), in.unit_names.end(), name);
+  if (it != in.unit_names.end()) return static_cast<int>(it - in.unit_names.begin());
+  if (in.unit_names.size() >= kMaxSmall) at.fail("too many distinct climbing units");
+  in.unit_names.push_back(name);
+  return static_cast<int>(in.unit_names.size()) - 1;
+}
+
+RecordedMachine read_machine(const JsonAt& m) {
+  m.only_keys({"name",
+               "deposition_speed_m_s",
+               "travel_speed_m_s",
+               "x_speed_m_s",
+               "y_speed_m_s",
+               "z_speed_m_s",
+               "rotation_speed_rad_s",
+               "rotate_while_moving",
+               "accel_delay_s",
+               "lift_height_m",
+               "lift_time_s",
+               "lower_time_s",
+               "stopper_min_rad",
+               "stopper_max_rad",
+               "nozzle_idle_limit_s",
+               "nozzle_width_m",
+               "x_range_m",
+               "y_range_m",
+               "z_range_m",
+               "origin",
+               "nozzles",
+               "gantry_width_m",
+               "rail_axis",
+               "purge_s",
+               "kind",
+               "anchor_strength_mpa",
+               "pipe_embed_s"});
+  RecordedMachine r;
+  r.name = m.at("name").string(1000);
+  r.deposition_speed_m_s = m.at("deposition_speed_m_s").number(kSpeed, "m/s");
+  r.travel_speed_m_s = m.at("travel_speed_m_s").number(kSpeed, "m/s");
+  r.x_speed_m_s = m.at("x_speed_m_s").number(kSpeed, "m/s");
+  r.y_speed_m_s = m.at("y_speed_m_s").number(kSpeed, "m/s");
+  r.z_speed_m_s = m.at("z_speed_m_s").number(kSpeed, "m/s");
+  r.rotation_speed_rad_s = m.at("rotation_speed_rad_s").number(kSpeed, "rad/s");
+  r.rotate_while_moving = m.at("rotate_while_moving").boolean();
+  r.accel_delay_s = m.at("accel_delay_s").number(Range::closed(0, 1e4), "s");
+  r.lift_height_m = m.at("lift_height_m").number(Range::closed(0, 100), "m");
+  r.lift_time_s = m.at("lift_time_s").number(Range::closed(0, 1e4), "s");
+  r.lower_time_s = m.at("lower_time_s").number(Range::closed(0, 1e4), "s");
+  r.stopper_min_rad = m.at("stopper_min_rad").number_or_null(kHeading_rad, "rad");
+  r.stopper_max_rad = m.at("stopper_max_rad").number_or_null(kHeading_rad, "rad");
+  if (r.stopper_min_rad.has_value() != r.stopper_max_rad.has_value() ||
+      (r.stopper_min_rad && *r.stopper_min_rad > *r.stopper_max_rad))
+    m.at("stopper_max_rad").fail("expected both stopper ends or neither, min at most max");
+  r.nozzle_idle_limit_s = m.at("nozzle_idle_limit_s").number(kPositive, "s");
+  r.nozzle_width_m = m.at("nozzle_width_m").number(Range::above(0, 100), "m");
+  auto range = [&](const char* key, double& lo, double& hi) {
+    const auto ends = m.at(key).items(2);
+    if (ends.size() != 2) m.at(key).fail("expected [min, max]");
+    lo = ends[0].number(kCoordinate_m, "m");
+    hi = ends[1].number(kCoordinate_m, "m");
+    if (lo > hi) m.at(key).fail("expected [min, max] with min at most max");
+  };
+  range("x_range_m", r.x_min_m, r.x_max_m);
+  range("y_range_m", r.y_min_m, r.y_max_m);
+  range("z_range_m", r.z_min_m, r.z_max_m);
+  r.origin = m.at("origin").string(10'000);
+  r.nozzles = static_cast<int>(m.at("nozzles").integer(1, kMaxNozzles));
+  r.gantry_width_m = m.at("gantry_width_m").number(Range::closed(0, 1000), "m");
+  const std::string axis = m.at("rail_axis").string(10);
+  if (axis != "x" && axis != "y")
+    m.at("rail_axis").fail("expected \"x\" or \"y\", got \"" + axis + "\"");
+  r.rail_axis = axis[0];
+  r.purge_s = m.at("purge_s").number(Range::closed(0, 1e6), "s");
+  const std::string kind = m.at("kind").string(100);
+  if (kind != "climbing" && kind != "fixed gantry")
+    m.at("kind").fail("expected \"climbing\" or \"fixed gantry\", got \"" + kind + "\"");
+  r.climbing = kind == "climbing";
+  if (r.climbing) {
+    r.anchor_strength_mpa = m.at("anchor_strength_mpa").number(kStrength_mpa, "MPa");
+    r.pipe_embed_s = m.at("pipe_embed_s").number(kDuration_s, "s");
+  } else if (m.maybe("anchor_strength_mpa") || m.maybe("pipe_embed_s")) {
+    m.fail("a fixed gantry has no anchor_strength_mpa or pipe_embed_s");
+  }
+  return r;
+}
+
+void read_material(const JsonAt& m, RecordedInputs& in) {
+  m.only_keys({"name", "density_kg_m3", "min_layer_interval_s", "max_layer_interval_s",
+               "safety_factor", "strength_curve", "origin"});
+  floors::MaterialProfile& p = in.material;
+  p.name = m.at("name").string(1000);
+  p.density_kg_m3 = m.at("density_kg_m3").number(Range::above(0, 1e5), "kg/m3");
+  p.min_layer_interval_s = m.at("min_layer_interval_s").number(kDuration_s, "s");
+  p.max_layer_interval_s = m.at("max_layer_interval_s").number(kDuration_s, "s");
+  if (p.min_layer_interval_s > p.max_layer_interval_s)
+    m.at("max_layer_interval_s").fail("must be at least min_layer_interval_s");
+  p.safety_factor = m.at("safety_factor").number(Range::above(0, 1e3), "");
+  const auto curve = m.at("strength_curve").items(kMaxSmall);
+  if (curve.empty()) m.at("strength_curve").fail("expected at least one point");
+  for (const auto& point : curve) {
+    point.only_keys({"age_s", "strength_mpa"});
+    const double age_s = point.at("age_s").number(kDuration_s, "s");
+    const double mpa = point.at("strength_mpa").number(kStrength_mpa, "MPa");
+    if (!p.strength_curve.empty() &&
+        (age_s <= p.strength_curve.back().age_s || mpa < p.strength_curve.back().strength_mpa))
+      point.fail("ages must increase and strengths not decrease along the curve");
+    p.strength_curve.push_back({age_s, mpa});
+  }
+  in.material_origin = m.at("origin").string(10'000);
+}
+
+RecordedInputs read_inputs(const JsonAt& root) {
+  RecordedInputs in;
+  in.ccbuild_version = root.at("ccbuild_version").string(100);
+  const JsonAt i = root.at("inputs");
+  i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "seed", "files",
+               "machine", "material"});
+  in.building = i.at("building").string(4096);
+  in.name = i.at("name").string(1000);
+  in.units = i.at("units").string(10);
+  if (in.units != "m" && in.units != "ft")
+    i.at("units").fail("expected \"m\" or \"ft\", got \"" + in.units + "\"");
+  in.layer_height_m = i.at("layer_height_m").number(Range::above(0, 100), "m");
+  in.slab_stage_s = i.at("slab_stage_s").number(kDuration_s, "s");
+  in.seed = i.at("seed").unsigned_integer();
+  for (const auto& f : i.at("files").items(kMaxSmall)) {
+    f.only_keys({"path", "sha256"});
+    RecordedFile file{f.at("path").string(4096), f.at("sha256").string(64)};
+    const bool hex =
+        file.sha256.size() == 64 && std::all_of(file.sha256.begin(), file.sha256.end(), [](char c) {
+          return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+        });
+    if (!hex) f.at("sha256").fail("expected 64 lowercase hex digits (a SHA-256)");
+    in.files.push_back(std::move(file));
+  }
+  in.machine = read_machine(i.at("machine"));
+  read_material(i.at("material"), in);
+  return in;
+}
+
+std::vector<WaitReason> read_reasons(const JsonAt& list) {
+  std::vector<WaitReason> out;
+  for (const auto& r : list.items(kMaxSmall)) {
+    r.only_keys({"kind", "required_s", "detail"});
+    WaitReason w;
+    w.kind = r.at("kind").string(100);
+    if (std::find(std::begin(kWaitKinds), std::end(kWaitKinds), w.kind) == std::end(kWaitKinds))
+      r.at("kind").fail("expected min-interval, strength, anchor-strength or slab, got \"" +
+                        w.kind + "\"");
+    w.required_s = r.at("required_s").number(kDuration_s, "s");
+    w.detail = r.at("detail").string(kMaxText);
+    out.push_back(std::move(w));
+  }
+  return out;
+}
+
+PieceEnd read_piece_end(const JsonAt& e) {
+  e.only_keys({"wall", "piece", "x_m", "y_m"});
+  PieceEnd p;
+  p.wall = e.at("wall").integer(1, kMaxWallId);
+  p.piece = static_cast<int>(e.at("piece").integer(1, kMaxPiece));
+  p.x_m = e.at("x_m").number(kCoordinate_m, "m");
+  p.y_m = e.at("y_m").number(kCoordinate_m, "m");
+  return p;
+}
+
+ScheduledLayer read_layer(const JsonAt& j) {
+  j.only_keys({"floor",
+               "layer",
+               "z_m",
+               "z_bottom_m",
+               "geometry",
+               "plan",
+               "nozzles",
+               "method",
+               "start_s",
+               "end_s",
+               "deposition_s",
+               "airtime_s",
+               "max_idle_s",
+               "move_before_s",
+               "pipes_before_s",
+               "wait_before_s",
+               "wait_reasons",
+               "purge_before",
+               "interval_s",
+               "local_interval_min_s",
+               "local_interval_max_s",
+               "local_interval_min_at",
+               "local_interval_max_at",
+               "piece_ends_checked"});
+  ScheduledLayer l;
+  l.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
+  l.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
+  l.z_top_m = j.at("z_m").number(kCoordinate_m, "m");
+  l.z_bottom_m = j.at("z_bottom_m").number(kCoordinate_m, "m");
+  if (l.z_bottom_m >= l.z_top_m) j.at("z_m").fail("must be above z_bottom_m");
+  l.geometry = static_cast<int>(j.at("geometry").integer(1, kMaxGeometry));
+  l.plan = j.at("plan").string(200);
+  l.nozzles = static_cast<int>(j.at("nozzles").integer(1, kMaxNozzles));
+  l.method = j.at("method").string(200);
+  l.start_s = j.at("start_s").number(kTime_s, "s");
+  l.end_s = j.at("end_s").number(kTime_s, "s");
+  if (l.end_s < l.start_s) j.at("end_s").fail("must not be before start_s");
+  l.deposition_s = j.at("deposition_s").number(kDuration_s, "s");
+  l.airtime_s = j.at("airtime_s").number(kDuration_s, "s");
+  l.max_idle_s = j.at("max_idle_s").number(kDuration_s, "s");
+  l.move_before_s = j.at("move_before_s").number(kDuration_s, "s");
+  l.pipes_before_s = j.at("pipes_before_s").number(kDuration_s, "s");
+  l.wait_before_s = j.at("wait_before_s").number(kDuration_s, "s");
+  l.wait_reasons = read_reasons(j.at("wait_reasons"));
+  l.purge_before = j.at("purge_before").boolean();
+  l.interval_s = j.at("interval_s").number_or_null(kDuration_s, "s");
+  l.local_interval_min_s =
+      j.at("local_interval_min_s").number_or_null(Range::closed(-1e10, 1e10), "s");
+  l.local_interval_max_s =
+      j.at("local_interval_max_s").number_or_null(Range::closed(-1e10, 1e10), "s");
+  const JsonAt min_at = j.at("local_interval_min_at"), max_at = j.at("local_interval_max_at");
+  if (l.local_interval_min_s.has_value() != !min_at.is_null())
+    min_at.fail("expected a piece end exactly when local_interval_min_s is a number");
+  if (l.local_interval_max_s.has_value() != !max_at.is_null())
+    max_at.fail("expected a piece end exactly when local_interval_max_s is a number");
+  if (l.local_interval_min_s.has_value() != l.local_interval_max_s.has_value())
+    j.at("local_interval_max_s").fail("expected a number exactly when local_interval_min_s is one");
+  if (!min_at.is_null()) l.local_min_at = read_piece_end(min_at);
+  if (!max_at.is_null()) l.local_max_at = read_piece_end(max_at);
+  l.piece_ends_checked = static_cast<int>(j.at("piece_ends_checked").integer(0, 100'000'000));
+  return l;
+}
+
+/// A plan's pieces as a layer: points shared where pieces share an end.
+floors::Layer read_pieces(const JsonAt& list) {
+  floors::Layer layer;
+  auto point = [&](const JsonAt& at) {
+    const auto xy = at.items(2);
+    if (xy.size() != 2) at.fail("expected [x, y]");
+    const Eigen::Vector2d p(xy[0].number(kCoordinate_m, "m"), xy[1].number(kCoordinate_m, "m"));
+    for (std::size_t k = 0; k < layer.points.size(); ++k)
+      if (layer.points[k] == p) return static_cast<int>(k);
+    layer.points.push_back(p);
+    return static_cast<int>(layer.points.size()) - 1;
+  };
+  for (const auto& s : list.items(kMaxItems)) {
+    s.only_keys({"wall", "piece", "piece_count", "start_m", "end_m", "length_m"});
+    floors::LayerSegment seg;
+    seg.wall_id = s.at("wall").integer(1, kMaxWallId);
+    seg.piece = static_cast<int>(s.at("piece").integer(1, kMaxPiece)) - 1;
+    seg.piece_count = static_cast<int>(s.at("piece_count").integer(1, kMaxPiece));
+    if (seg.piece >= seg.piece_count) s.at("piece").fail("must be at most piece_count");
+    seg.start_point = point(s.at("start_m"));
+    seg.end_point = point(s.at("end_m"));
+    seg.length_m = s.at("length_m").number(kLength_m, "m");
+    layer.segments.push_back(seg);
+  }
+  return layer;
+}
+
+std::vector<planner::Waypoint> read_waypoints(const JsonAt& list) {
+  std::vector<planner::Waypoint> out;
+  const auto items = list.items(kMaxItems);
+  out.reserve(items.size());
+  for (const auto& w : items) {
+    w.only_keys({"t_s", "x_m", "y_m", "z_m", "heading_rad", "extruding", "wall", "piece"});
+    planner::Waypoint p;
+    p.t_s = w.at("t_s").number(kTime_s, "s");
+    p.position_m = {w.at("x_m").number(kCoordinate_m, "m"), w.at("y_m").number(kCoordinate_m, "m")};
+    p.z_m = w.at("z_m").number(kCoordinate_m, "m");
+    p.heading_rad = w.at("heading_rad").number(kHeading_rad, "rad");
+    p.extruding = w.at("extruding").boolean();
+    p.wall = w.at("wall").integer(p.extruding ? 1 : 0, kMaxWallId);
+    p.piece = static_cast<int>(w.at("piece").integer(p.extruding ? 1 : 0, kMaxPiece));
+    out.push_back(p);
+  }
+  return out;
+}
+
+SchedulePlan read_plan(const std::string& key, const JsonAt& j) {
+  j.only_keys({"geometry", "nozzles_used", "method", "z_top_m", "layer_time_s", "min_gap_m",
+               "pieces", "nozzles"});
+  SchedulePlan p;
+  p.key = key;
+  p.geometry = static_cast<int>(j.at("geometry").integer(1, kMaxGeometry));
+  p.nozzles = static_cast<int>(j.at("nozzles_used").integer(1, kMaxNozzles));
+  p.method = j.at("method").string(200);
+  p.z_top_m = j.at("z_top_m").number(kCoordinate_m, "m");
+  p.layer_time_s = j.at("layer_time_s").number(kDuration_s, "s");
+  if (p.nozzles > 1)
+    p.min_gap_m = j.at("min_gap_m").number(Range::closed(-1e5, 1e5), "m");
+  else if (!j.at("min_gap_m").is_null())
+    j.at("min_gap_m").fail("expected null for a plan of one nozzle");
+  p.layer = read_pieces(j.at("pieces"));
+  const auto nozzles = j.at("nozzles").items(kMaxNozzles);
+  for (std::size_t n = 0; n < nozzles.size(); ++n) {
+    nozzles[n].only_keys({"nozzle", "waypoints"});
+    if (nozzles[n].at("nozzle").integer(0, kMaxNozzles) != static_cast<std::int64_t>(n))
+      nozzles[n].at("nozzle").fail(
+          printf_string("expected %zu: nozzles are numbered in rail "
+                        "order from 0",
+                        n));
+    p.waypoints.push_back(read_waypoints(nozzles[n].at("waypoints")));
+  }
+  return p;
+}
+
+climb::Anchor read_anchor(const JsonAt& a, RecordedInputs& in) {
+  a.only_keys({"id", "unit", "floor", "wall", "after_layer", "x_m", "y_m", "z_m", "outward",
+               "by_default_rule"});
+  climb::Anchor out;
+  out.id = a.at("id").string(200);
+  out.unit = unit_index(in, a.at("unit"));
+  if (a.at("floor").is_null()) {
+    if (!a.at("wall").is_null() || !a.at("after_layer").is_null())
+      a.at("wall").fail("expected null in the foundation (floor null)");
+    out.floor = -1;
+    out.wall_id = 0;
+    out.layer = -1;
+  } else {
+    out.floor = static_cast<int>(a.at("floor").integer(0, kMaxFloor));
+    out.wall_id = a.at("wall").integer(1, kMaxWallId);
+    out.layer = static_cast<int>(a.at("after_layer").integer(0, kMaxLayer));
+  }
+  out.centre_m = {a.at("x_m").number(kCoordinate_m, "m"), a.at("y_m").number(kCoordinate_m, "m"),
+                  a.at("z_m").number(kCoordinate_m, "m")};
+  const auto outward = a.at("outward").items(2);
+  if (outward.size() != 2) a.at("outward").fail("expected [x, y]");
+  out.outward = {outward[0].number(Range::closed(-1, 1)), outward[1].number(Range::closed(-1, 1))};
+  out.by_default_rule = a.at("by_default_rule").boolean();
+  return out;
+}
+
+climb::ClimbStage read_stage(const JsonAt& s, RecordedInputs& in) {
+  s.only_keys({"stage", "platform_z_m", "first", "last", "top_m", "anchors"});
+  climb::ClimbStage out;
+  out.index = static_cast<int>(s.at("stage").integer(0, kMaxLayer));
+  out.platform_z_m = s.at("platform_z_m").number(kCoordinate_m, "m");
+  for (auto [key, ref] : {std::pair{"first", &out.first}, std::pair{"last", &out.last}}) {
+    const JsonAt r = s.at(key);
+    r.only_keys({"floor", "layer"});
+    ref->floor = static_cast<int>(r.at("floor").integer(0, kMaxFloor));
+    ref->layer = static_cast<int>(r.at("layer").integer(0, kMaxLayer));
+  }
+  out.top_m = s.at("top_m").number(kCoordinate_m, "m");
+  for (const auto& a : s.at("anchors").items(kMaxSmall)) out.anchors.push_back(read_anchor(a, in));
+  return out;
+}
+
+template <class Code>
+Code code_named(const JsonAt& at, const std::vector<Code>& codes, std::string (*name)(Code)) {
+  const std::string text = at.string(100);
+  std::string known;
+  for (Code c : codes) {
+    if (name(c) == text) return c;
+    known += (known.empty() ? "" : ", ") + name(c);
+  }
+  at.fail("expected one of " + known + ", got \"" + text + "\"");
+}
+
+climb::ClimbPlan read_climb_plan(const JsonAt& c, RecordedInputs& in) {
+  c.only_keys({"from_stage", "to_stage", "status", "status_reason", "duration_s", "min_clearance_m",
+               "phases"});
+  climb::ClimbPlan out;
+  out.from_stage = static_cast<int>(c.at("from_stage").integer(0, kMaxLayer));
+  out.to_stage = static_cast<int>(c.at("to_stage").integer(0, kMaxLayer));
+  using climb::ClimbCode;
+  const ClimbCode code =
+      code_named<ClimbCode>(c.at("status"),
+                            {ClimbCode::kFeasible, ClimbCode::kNoAnchor, ClimbCode::kBlocked,
+                             ClimbCode::kUnstable, ClimbCode::kTimeLimit},
+                            &climb::to_string);
+  out.status = climb::ClimbStatus(code, c.at("status_reason").string(kMaxText));
+  out.duration_s = c.at("duration_s").number(kDuration_s, "s");
+  out.min_clearance_m =
+      c.at("min_clearance_m").number_or_null(kCoordinate_m, "m").value_or(INFINITY);
+  using Kind = climb::ClimbPhase::Kind;
+  for (const auto& p : c.at("phases").items(kMaxSmall)) {
+    p.only_keys({"kind", "unit", "joints", "following_joints", "duration_s", "min_clearance_m",
+                 "strokes", "waypoints"});
+    climb::ClimbPhase phase;
+    phase.kind = code_named<Kind>(
+        p.at("kind"),
+        {Kind::kPark, Kind::kBalance, Kind::kRelease, Kind::kTransit, Kind::kInsert, Kind::kLift},
+        &climb::to_string);
+    phase.unit = p.at("unit").is_null() ? -1 : unit_index(in, p.at("unit"));
+    for (const auto& name : p.at("joints").items(kMaxSmall))
+      phase.joints.push_back(name.string(200));
+    for (const auto& name : p.at("following_joints").items(kMaxSmall))
+      phase.following_joints.push_back(name.string(200));
+    phase.duration_s = p.at("duration_s").number(kDuration_s, "s");
+    phase.min_clearance_m =
+        p.at("min_clearance_m").number_or_null(kCoordinate_m, "m").value_or(INFINITY);
+    phase.strokes = static_cast<int>(p.at("strokes").integer(0, 100'000));
+    bool following = true;
+    const auto points = p.at("waypoints").items(kMaxItems);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const JsonAt& w = points[k];
+      w.only_keys({"t_s", "values", "following"});
+      phase.t_s.push_back(w.at("t_s").number(kDuration_s, "s"));
+      std::vector<double> values;
+      for (const auto& v : w.at("values").items(kMaxSmall))
+        values.push_back(v.number(Range::closed(-1e5, 1e5)));
+      if (values.size() != phase.joints.size())
+        w.at("values").fail(
+            printf_string("expected %zu values, one per joint", phase.joints.size()));
+      phase.path.push_back(std::move(values));
+      if (const auto legs = w.maybe("following")) {
+        if (!following) legs->fail("following values after waypoints without them");
+        std::vector<double> values_following;
+        for (const auto& v : legs->items(kMaxSmall))
+          values_following.push_back(v.number(Range::closed(-1e5, 1e5)));
+        if (values_following.size() != phase.following_joints.size())
+          legs->fail(printf_string("expected %zu values, one per following joint",
+                                   phase.following_joints.size()));
+        phase.following.push_back(std::move(values_following));
+      } else {
+        following = false;
+      }
+    }
+    out.phases.push_back(std::move(phase));
+  }
+  return out;
+}
+
+Event read_event(const JsonAt& j, RecordedInputs& in) {
+  Event e;
+  const std::string kind = j.at("kind").string(20);
+  if (kind == "pipe") {
+    e.kind = Event::Kind::kPipe;
+    j.only_keys({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "anchor"});
+    e.anchor = read_anchor(j.at("anchor"), in);
+  } else if (kind == "slab" || kind == "purge") {
+    e.kind = kind == "slab" ? Event::Kind::kSlab : Event::Kind::kPurge;
+    j.only_keys({"kind", "start_s", "end_s", "floor", "after_layer", "detail"});
+  } else if (kind == "climb") {
+    e.kind = Event::Kind::kClimb;
+    j.only_keys({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "from_stage",
+                 "to_stage", "wait_before_s", "wait_reasons", "anchors", "climb"});
+    ClimbEvent c;
+    c.from_stage = static_cast<int>(j.at("from_stage").integer(0, kMaxLayer));
+    c.to_stage = static_cast<int>(j.at("to_stage").integer(0, kMaxLayer));
+    c.wait_before_s = j.at("wait_before_s").number(kDuration_s, "s");
+    c.wait_reasons = read_reasons(j.at("wait_reasons"));
+    for (const auto& a : j.at("anchors").items(kMaxSmall)) {
+      a.only_keys({"id", "unit", "age_s", "strength_mpa", "required_mpa"});
+      ClimbEvent::AnchorLoad load;
+      load.id = a.at("id").string(200);
+      load.unit = a.at("unit").string(200);
+      load.age_s = a.at("age_s").number(kDuration_s, "s");
+      load.strength_mpa = a.at("strength_mpa").number(kStrength_mpa, "MPa");
+      load.required_mpa = a.at("required_mpa").number(kStrength_mpa, "MPa");
+      c.anchors.push_back(std::move(load));
+    }
+    c.plan = read_climb_plan(j.at("climb"), in);
+    e.climb = std::move(c);
+  } else {
+    j.at("kind").fail("expected pipe, climb, slab or purge, got \"" + kind + "\"");
+  }
+  e.start_s = j.at("start_s").number(kTime_s, "s");
+  e.end_s = j.at("end_s").number(kTime_s, "s");
+  if (e.end_s < e.start_s) j.at("end_s").fail("must not be before start_s");
+  e.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
+  e.layer = static_cast<int>(j.at("after_layer").integer(0, kMaxLayer));
+  e.detail = j.at("detail").string(kMaxText);
+  if (e.climb) {
+    e.climb->start_s = e.start_s;
+    e.climb->end_s = e.end_s;
+  }
+  return e;
+}
+
+Infeasibility read_infeasibility(const JsonAt& j) {
+  j.only_keys({"kind", "floor", "layer", "message", "required_s", "achieved_s", "fix"});
+  Infeasibility inf;
+  inf.kind = j.at("kind").string(100);
+  inf.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
+  inf.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
+  inf.message = j.at("message").string(kMaxText);
+  inf.required_s = j.at("required_s").number(Range::closed(-1e10, 1e10), "s");
+  inf.achieved_s = j.at("achieved_s").number(Range::closed(-1e10, 1e10), "s");
+  const JsonAt fix = j.at("fix");
+  fix.only_keys({"text", "nozzles_needed", "deposition_speed_needed_m_s", "max_interval_needed_s"});
+  inf.fix = fix.at("text").string(kMaxText);
+  if (!fix.at("nozzles_needed").is_null())
+    inf.nozzles_needed = static_cast<int>(fix.at("nozzles_needed").integer(1, 1000));
+  inf.deposition_speed_needed_m_s =
+      fix.at("deposition_speed_needed_m_s").number_or_null(Range::above(0, 1e6), "m/s");
+  inf.max_interval_needed_s = fix.at("max_interval_needed_s").number_or_null(kDuration_s, "s");
+  return inf;
+}
+
+ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers) {
+  t.only_keys({"makespan_s", "layers", "deposition_s", "airtime_s", "moves_s", "waits_s", "pipes_s",
+               "purges_s", "climbs_s", "slabs_s", "machine_s"});
+  ScheduleTotals out;
+  out.makespan_s = t.at("makespan_s").number(kTime_s, "s");
+  layers = static_cast<std::size_t>(t.at("layers").integer(0, kMaxLayers));
+  out.deposition_s = t.at("deposition_s").number(kDuration_s, "s");
+  out.airtime_s = t.at("airtime_s").number(kDuration_s, "s");
+  out.moves_s = t.at("moves_s").number(kDuration_s, "s");
+  out.waits_s = t.at("waits_s").number(kDuration_s, "s");
+  out.pipes_s = t.at("pipes_s").number(kDuration_s, "s");
+  out.purges_s = t.at("purges_s").number(kDuration_s, "s");
+  out.climbs_s = t.at("climbs_s").number(kDuration_s, "s");
+  out.slabs_s = t.at("slabs_s").number(kDuration_s, "s");
+  out.machine_s = t.at("machine_s").number(kDuration_s, "s");
+  return out;
+}
+
+}  // namespace
+
+ScheduleDocument parse_schedule(const std::string& text, const std::string& file) {
+  detail::check_nesting(text, file, limits::kMaxNestingDepth);
+  ScheduleDocument doc;
+  detail::JsonText located(file, text);
+  {
+    // The DOM is the largest thing in memory; it goes once the model is read.
+    const json dom = detail::parse_located(text, file);
+    const JsonAt root(located, dom, "");
+    if (!dom.is_object() || !dom.contains("format") || dom["format"] != "ccbuild-schedule")
+      root.fail(
+          "expected a ccbuild schedule (\"format\": \"ccbuild-schedule\"), from `ccbuild "
+          "schedule -o`");
+    const json& version = dom.contains("schema_version") ? dom["schema_version"] : json();
+    if (version != kScheduleSchemaVersion)
+      root.at("schema_version")
+          .fail("expected schema_version " + std::to_string(kScheduleSchemaVersion) + ", got " +
+                version.dump());
+    root.only_keys({"format", "schema_version", "ccbuild_version", "inputs", "feasible",
+                    "infeasibility", "totals", "layers", "plans", "stages", "events", "warnings"});
+    RecordedInputs& in = doc.inputs;
+    in = read_inputs(root);
+    Schedule& s = doc.schedule;
+    s.feasible = root.at("feasible").boolean();
+    if (!root.at("infeasibility").is_null())
+      s.infeasibility = read_infeasibility(root.at("infeasibility"));
+    std::size_t layer_count = 0;
+    s.totals = read_totals(root.at("totals"), layer_count);
+    for (const auto& l : root.at("layers").items(kMaxLayers)) s.layers.push_back(read_layer(l));
+    if (layer_count != s.layers.size())
+      root.at("totals").at("layers").fail(
+          printf_string("says %zu layers; the schedule has %zu", layer_count, s.layers.size()));
+    for (const auto& [key, p] : root.at("plans").members(kMaxPlans)) {
+      if (key.empty() || key.size() > 200) p.fail("expected a plan key of 1 to 200 characters");
+      s.plans.emplace(key, read_plan(key, p));
+    }
+    for (const auto& st : root.at("stages").items(kMaxSmall))
+      s.stages.push_back(read_stage(st, in));
+    for (const auto& e : root.at("events").items(kMaxEvents)) s.events.push_back(read_event(e, in));
+    for (const auto& w : root.at("warnings").items(kMaxSmall))
+      s.warnings.push_back(w.string(kMaxText));
+  }
+  detail::check_schedule_rules(doc, located);
+  return doc;
+}
+
+ReadSchedule read_schedule(const std::filesystem::path& path, const ReadScheduleOptions& options) {
+  namespace fs = std::filesystem;
+  const std::string file = path.string();
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) throw InputError(file, 0, "", "cannot open file (does it exist?)");
+  if (!fs::is_regular_file(status))
+    throw InputError(file, 0, "",
+                     "is not a regular file (a folder, FIFO or device?); expected a schedule JSON");
+  const auto size = fs::file_size(path, ec);
+  if (!ec && size > kMaxScheduleBytes)
+    throw InputError(file, 0, "",
+                     printf_string("is %ju MiB; ccbuild reads schedules of at most %ju MiB",
+                                   size >> 20, kMaxScheduleBytes >> 20));
+  std::string text;
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(file, 0, "", "cannot open file (permissions?)");
+    text.reserve(static_cast<std::size_t>(size));
+    char chunk[64 * 1024];
+    while (in && text.size() <= kMaxScheduleBytes) {
+      in.read(chunk, sizeof chunk);
+      text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    }
+    if (in.bad()) throw InputError(file, 0, "", "cannot read file");
+    if (text.size() > kMaxScheduleBytes)
+      throw InputError(file, 0, "", "grew past the size limit while it was read");
+  }
+  ReadSchedule out;
+  out.document = parse_schedule(text, file);
+  text = std::string();
+  // The recorded inputs, by path (as recorded, from here) and SHA-256.
+  const auto& files = out.document.inputs.files;
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const std::string field = "/inputs/files/" + std::to_string(k);
+    const fs::path recorded = files[k].path;
+    if (!fs::is_regular_file(recorded, ec)) {
+      const std::string said = "the input " + files[k].path +
+                               " this schedule was made from is not found here (relative "
+                               "paths are from where `ccbuild schedule` ran)";
+      if (options.inputs == RecordedInputCheck::kRefuseChangedOrMissing)
+        throw InputError(file, 0, field + "/path", said);
+      out.notes.push_back(said);
+      continue;
+    }
+    const std::string now = sha256_file_hex(recorded);
+    if (now == files[k].sha256) continue;
+    const std::string said =
+        "the input " + files[k].path + " changed since this schedule was made (SHA-256 " +
+        files[k].sha256.substr(0, 12) + " recorded, " + now.substr(0, 12) + " now)";
+    if (options.inputs == RecordedInputCheck::kNote)
+      out.notes.push_back(said);
+    else
+      throw InputError(file, 0, field + "/sha256", said + "; schedule it again");
+  }
+  return out;
+}
+
+}  // namespace ccbuild::schedule

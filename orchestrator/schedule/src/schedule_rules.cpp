@@ -1,0 +1,564 @@
+#include "schedule_rules.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "schedule_deposits.hpp"
+
+namespace ccbuild::schedule::detail {
+namespace {
+
+// The document rounds lengths to micrometres, times to microseconds and angles to
+// microradians: two rounded values differ from the exact ones by up to these.
+constexpr double kRoundLength_m = 2e-6, kRoundTime_s = 2e-6, kRoundAngle_rad = 2e-6;
+/// A time the document states against the one recomputed from rounded paths.
+constexpr double kStated_s = 1e-5;
+/// A deposited span against its piece's length.
+constexpr double kCover_m = 1e-3;
+constexpr std::size_t kMostReported = 20;
+
+class Rules {
+ public:
+  Rules(const ScheduleDocument& doc, const JsonText& text) : doc_(doc), text_(text) {}
+
+  void check() {
+    const auto& events = doc_.schedule.events;
+    events_sorted_ =
+        std::is_sorted(events.begin(), events.end(),
+                       [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
+    for (const auto& [key, plan] : doc_.schedule.plans) check_plan(key, plan);
+    check_layers();
+    check_events();
+    check_stages();
+    check_totals();
+    if (found_.empty()) return;
+    if (count_ > found_.size())
+      found_.push_back({text_.file(), 0, "", printf_string("... %zu broken rules in all", count_)});
+    throw InputError(found_);
+  }
+
+ private:
+  void broken(const std::string& pointer, const std::string& rule, const std::string& message) {
+    if (++count_ <= kMostReported)
+      found_.push_back({text_.file(), text_.line_of(pointer), pointer, rule + ": " + message});
+  }
+  static std::string plan_pointer(const std::string& key) { return pointer_to("/plans", key); }
+
+  // ---------------------------------------------------------------- plans
+  void check_plan(const std::string& key, const SchedulePlan& plan) {
+    const std::string at = plan_pointer(key);
+    if (static_cast<int>(plan.waypoints.size()) != plan.nozzles) {
+      broken(at + "/nozzles", "nozzles",
+             printf_string("holds %zu nozzle paths; nozzles_used says %d", plan.waypoints.size(),
+                           plan.nozzles));
+      return;
+    }
+    for (std::size_t n = 0; n < plan.waypoints.size(); ++n)
+      if (plan.waypoints[n].size() < 2)
+        return broken(pointer_to(at + "/nozzles", n) + "/waypoints", "paths",
+                      "a nozzle's path needs at least two waypoints");
+    check_coverage(at, plan);
+    double end_s = 0.0;
+    for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
+      check_motion(pointer_to(at + "/nozzles", n) + "/waypoints", plan.waypoints[n]);
+      end_s = std::max(end_s, plan.waypoints[n].back().t_s);
+    }
+    if (std::abs(end_s - plan.layer_time_s) > kStated_s)
+      broken(at + "/layer_time_s", "layer time",
+             printf_string("%.6f s, but its paths end at %.6f s", plan.layer_time_s, end_s));
+    if (plan.nozzles > 1) check_gaps(at, plan);
+  }
+
+  void check_coverage(const std::string& at, const SchedulePlan& plan) {
+    const floors::Layer& layer = plan.layer;
+    std::map<std::pair<std::int64_t, int>, int> piece_of;  // (wall, piece 1-based) -> segment
+    for (std::size_t s = 0; s < layer.segments.size(); ++s) {
+      const auto& seg = layer.segments[s];
+      const std::string where = pointer_to(at + "/pieces", s);
+      if (!piece_of.emplace(std::make_pair(seg.wall_id, seg.piece + 1), static_cast<int>(s)).second)
+        broken(where, "pieces",
+               printf_string("wall %lld piece %d is listed twice",
+                             static_cast<long long>(seg.wall_id), seg.piece + 1));
+      const double length_m = (layer.end_m(seg) - layer.start_m(seg)).norm();
+      if (std::abs(length_m - seg.length_m) > 2 * kRoundLength_m)
+        broken(where + "/length_m", "pieces",
+               printf_string("%.6f m, but its ends are %.6f m apart", seg.length_m, length_m));
+    }
+    // Each piece: the stretches along it that the nozzles deposit (from, to, length).
+    std::vector<std::vector<std::array<double, 3>>> spans(layer.segments.size());
+    for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
+      const auto& path = plan.waypoints[n];
+      for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+        if (!path[k].extruding) continue;
+        const std::string where = pointer_to(pointer_to(at + "/nozzles", n) + "/waypoints", k);
+        const auto it = piece_of.find({path[k].wall, path[k].piece});
+        if (it == piece_of.end()) {
+          broken(where, "coverage",
+                 printf_string("deposits wall %lld piece %d, not a piece of this plan",
+                               static_cast<long long>(path[k].wall), path[k].piece));
+          continue;
+        }
+        const auto& seg = layer.segments[it->second];
+        const Eigen::Vector2d a = layer.start_m(seg), d = layer.end_m(seg) - a;
+        const double length_m = d.norm();
+        const Eigen::Vector2d u =
+            length_m > 0 ? Eigen::Vector2d(d / length_m) : Eigen::Vector2d(1, 0);
+        double along[2];
+        bool on = true;
+        for (int e = 0; e < 2 && on; ++e) {
+          const Eigen::Vector2d p = path[k + e].position_m - a;
+          along[e] = p.dot(u);
+          const double off = std::abs(p.x() * u.y() - p.y() * u.x());
+          if (off > kOnSpan_m || along[e] < -kOnSpan_m || along[e] > length_m + kOnSpan_m) {
+            broken(where, "coverage",
+                   printf_string("the span on wall %lld piece %d leaves the piece: (%.4f, %.4f) "
+                                 "m is %.4f m off it",
+                                 static_cast<long long>(seg.wall_id), seg.piece + 1,
+                                 path[k + e].position_m.x(), path[k + e].position_m.y(),
+                                 std::max({off, -along[e], along[e] - length_m})));
+            on = false;
+          }
+        }
+        if (on)
+          spans[it->second].push_back({std::min(along[0], along[1]), std::max(along[0], along[1]),
+                                       (path[k + 1].position_m - path[k].position_m).norm()});
+      }
+    }
+    for (std::size_t s = 0; s < layer.segments.size(); ++s) {
+      const auto& seg = layer.segments[s];
+      const std::string where = pointer_to(at + "/pieces", s);
+      const std::string name =
+          printf_string("wall %lld piece %d", static_cast<long long>(seg.wall_id), seg.piece + 1);
+      auto& got = spans[s];
+      if (got.empty()) {
+        broken(where, "coverage", name + " is never deposited");
+        continue;
+      }
+      std::sort(got.begin(), got.end());
+      double total_m = 0.0, covered_m = 0.0;
+      for (const auto& [from_m, to_m, length_m] : got) {
+        total_m += length_m;
+        if (from_m > covered_m + kOnSpan_m)
+          broken(where, "coverage",
+                 printf_string("%s: %.4f m to %.4f m along it are never deposited", name.c_str(),
+                               covered_m, from_m));
+        else if (from_m < covered_m - kOnSpan_m)
+          broken(where, "coverage",
+                 printf_string("%s: %.4f m to %.4f m along it are deposited twice", name.c_str(),
+                               from_m, std::min(covered_m, to_m)));
+        covered_m = std::max(covered_m, to_m);
+      }
+      if (covered_m < seg.length_m - kOnSpan_m)
+        broken(where, "coverage",
+               printf_string("%s: %.4f m to its end (%.4f m) are never deposited", name.c_str(),
+                             covered_m, seg.length_m));
+      if (std::abs(total_m - seg.length_m) > kCover_m + 1e-6 * seg.length_m)
+        broken(where, "coverage",
+               printf_string("%s: its spans add up to %.6f m, the piece is %.6f m", name.c_str(),
+                             total_m, seg.length_m));
+    }
+  }
+
+  void check_motion(const std::string& at, const std::vector<planner::Waypoint>& path) {
+    const RecordedMachine& m = doc_.inputs.machine;
+    if (path.front().t_s < -kRoundTime_s)
+      broken(pointer_to(at, 0) + "/t_s", "timing", "the path starts before the layer does");
+    if (path.back().extruding)
+      broken(pointer_to(at, path.size() - 1) + "/extruding", "timing",
+             "the last waypoint still extrudes");
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      const double h = path[k].heading_rad;
+      if (m.stopper_min_rad &&
+          (h < *m.stopper_min_rad - kRoundAngle_rad || h > *m.stopper_max_rad + kRoundAngle_rad))
+        broken(pointer_to(at, k) + "/heading_rad", "stopper",
+               printf_string("heading %.6f rad, past the stopper [%g, %g] rad", h,
+                             *m.stopper_min_rad, *m.stopper_max_rad));
+    }
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+      const auto &a = path[k], &b = path[k + 1];
+      const std::string where = pointer_to(at, k + 1);
+      const double dt = b.t_s - a.t_s;
+      if (dt < -1e-9) {
+        broken(where + "/t_s", "timing",
+               printf_string("time runs backwards (%.6f s -> %.6f s)", a.t_s, b.t_s));
+        continue;
+      }
+      const double dx = std::abs(b.position_m.x() - a.position_m.x());
+      const double dy = std::abs(b.position_m.y() - a.position_m.y());
+      const double dz = std::abs(b.z_m - a.z_m), d = std::hypot(dx, dy);
+      if (dz > m.z_speed_m_s * (dt + kRoundTime_s) + kRoundLength_m)
+        broken(where, "speed",
+               printf_string("z changes %.6f m in %.6f s, faster than the z speed %g m/s", dz, dt,
+                             m.z_speed_m_s));
+      const double turn = std::abs(b.heading_rad - a.heading_rad);
+      if (turn > m.rotation_speed_rad_s * (dt + kRoundTime_s) + kRoundAngle_rad)
+        broken(where, "speed",
+               printf_string("turns %.6f rad in %.6f s, faster than the rotation speed %g rad/s",
+                             turn, dt, m.rotation_speed_rad_s));
+      if (a.extruding) {
+        const double v = m.deposition_speed_m_s;
+        if (std::abs(d - v * dt) > 1e-3 * v * dt + kRoundLength_m + v * kRoundTime_s)
+          broken(where, "speed",
+                 printf_string("wall %lld piece %d deposited at %.4f m/s, not the deposition "
+                               "speed %g m/s",
+                               static_cast<long long>(a.wall), a.piece, dt > 0 ? d / dt : INFINITY,
+                               v));
+      } else {
+        const auto fast = [&](double dist_m, double v) {
+          return dist_m > v * dt * (1 + 1e-6) + kRoundLength_m + v * kRoundTime_s;
+        };
+        if (fast(dx, m.x_speed_m_s) || fast(dy, m.y_speed_m_s) || fast(d, m.travel_speed_m_s))
+          broken(where, "speed",
+                 printf_string("an air move of %.6f m (x %.6f, y %.6f) in %.6f s, faster than "
+                               "the machine's axes or travel speed",
+                               d, dx, dy, dt));
+      }
+    }
+  }
+
+  /// A rail coordinate at `t_s`, held before the path's first time and after its last.
+  static double rail_at(const std::vector<planner::Waypoint>& path, char axis, double t_s) {
+    const auto rail = [axis](const planner::Waypoint& w) {
+      return axis == 'y' ? w.position_m.y() : w.position_m.x();
+    };
+    const auto it =
+        std::upper_bound(path.begin(), path.end(), t_s,
+                         [](double t, const planner::Waypoint& w) { return t < w.t_s; });
+    if (it == path.begin()) return rail(path.front());
+    if (it == path.end()) return rail(path.back());
+    const auto& a = *(it - 1);
+    const auto& b = *it;
+    return b.t_s <= a.t_s ? rail(a)
+                          : rail(a) + (t_s - a.t_s) / (b.t_s - a.t_s) * (rail(b) - rail(a));
+  }
+
+  void check_gaps(const std::string& at, const SchedulePlan& plan) {
+    const RecordedMachine& m = doc_.inputs.machine;
+    const char axis = m.rail_axis;
+    double smallest_m = INFINITY, worst_t_s = 0.0;
+    std::size_t worst_pair = 0;
+    for (std::size_t n = 0; n + 1 < plan.waypoints.size(); ++n) {
+      const auto &left = plan.waypoints[n], &right = plan.waypoints[n + 1];
+      // The gap is piecewise linear between the breakpoints of both paths: exact there.
+      for (const auto& w : left) {
+        const double gap =
+            rail_at(right, axis, w.t_s) - (axis == 'y' ? w.position_m.y() : w.position_m.x());
+        if (gap < smallest_m) smallest_m = gap, worst_t_s = w.t_s, worst_pair = n;
+      }
+      for (const auto& w : right) {
+        const double gap =
+            (axis == 'y' ? w.position_m.y() : w.position_m.x()) - rail_at(left, axis, w.t_s);
+        if (gap < smallest_m) smallest_m = gap, worst_t_s = w.t_s, worst_pair = n;
+      }
+    }
+    if (smallest_m < m.gantry_width_m - 1e-6)
+      broken(
+          at + "/nozzles", "gantry gap",
+          printf_string("nozzles %zu and %zu come %.6f m apart along %c at t = %.6f s, under "
+                        "the gantry width %.6f m",
+                        worst_pair, worst_pair + 1, smallest_m, axis, worst_t_s, m.gantry_width_m));
+    if (std::abs(plan.min_gap_m - smallest_m) > 1e-5)
+      broken(
+          at + "/min_gap_m", "gantry gap",
+          printf_string("%.6f m, but the gantries come %.6f m apart", plan.min_gap_m, smallest_m));
+  }
+
+  /// A wait is as long as its longest reason (none: no wait).
+  void check_wait(const std::string& at, double wait_s, const std::vector<WaitReason>& reasons) {
+    double longest_s = 0.0;
+    for (const auto& r : reasons) longest_s = std::max(longest_s, r.required_s);
+    if (std::abs(wait_s - longest_s) > kStated_s)
+      broken(at + "/wait_before_s", "waits",
+             printf_string("%.6f s, but its longest reason needs %.6f s", wait_s, longest_s));
+  }
+
+  // ---------------------------------------------------------------- layers
+  const DepositIndex& index(const std::string& key) {
+    auto it = indexes_.find(key);
+    if (it == indexes_.end())
+      it = indexes_.emplace(key, index_of(doc_.schedule.plans.at(key).waypoints)).first;
+    return it->second;
+  }
+
+  /// The layer's interval offsets at one piece end: (smallest, largest) over the times the
+  /// two plans pass it; unset when either does not.
+  std::optional<std::pair<double, double>> offsets_at(const PieceEnd& end, const DepositIndex& up,
+                                                      const DepositIndex& low) {
+    double up_lo = 0, up_hi = 0, low_lo = 0, low_hi = 0;
+    const Eigen::Vector2d p(end.x_m, end.y_m);
+    if (!up.times_at(end.wall, p, up_lo, up_hi) || !low.times_at(end.wall, p, low_lo, low_hi))
+      return std::nullopt;
+    return std::make_pair(up_lo - low_hi, up_hi - low_lo);
+  }
+
+  void check_layers() {
+    const Schedule& s = doc_.schedule;
+    const floors::MaterialProfile& material = doc_.inputs.material;
+    for (std::size_t i = 0; i < s.layers.size(); ++i) {
+      const ScheduledLayer& l = s.layers[i];
+      const std::string at = pointer_to("/layers", i);
+      const ScheduledLayer* previous = i > 0 ? &s.layers[i - 1] : nullptr;
+      const bool first_of_floor = !previous || previous->floor != l.floor;
+      // Building order: floor by floor, layer by layer.
+      const bool in_order = previous
+                                ? (l.floor == previous->floor && l.layer == previous->layer + 1) ||
+                                      (l.floor == previous->floor + 1 && l.layer == 0)
+                                : l.layer == 0;
+      if (!in_order)
+        broken(
+            at + "/layer", "building order",
+            printf_string(
+                "floor %d layer %d follows %s; layers go floor by floor, bottom to "
+                "top",
+                l.floor, l.layer,
+                previous
+                    ? printf_string("floor %d layer %d", previous->floor, previous->layer).c_str()
+                    : "nothing"));
+      const auto plan_it = s.plans.find(l.plan);
+      if (plan_it == s.plans.end()) {
+        broken(at + "/plan", "plans", "\"" + l.plan + "\" is not among the plans");
+        continue;
+      }
+      const SchedulePlan& plan = plan_it->second;
+      if (l.nozzles != plan.nozzles || static_cast<int>(plan.waypoints.size()) != l.nozzles)
+        broken(at + "/nozzles", "nozzles",
+               printf_string("%d, but its plan %s deposits with %d (%zu paths)", l.nozzles,
+                             l.plan.c_str(), plan.nozzles, plan.waypoints.size()));
+      if (l.geometry != plan.geometry)
+        broken(at + "/geometry", "plans",
+               printf_string("%d, but its plan %s is of geometry %d", l.geometry, l.plan.c_str(),
+                             plan.geometry));
+      if (l.method != plan.method)
+        broken(at + "/method", "plans",
+               "\"" + l.method + "\", but its plan was made by \"" + plan.method + "\"");
+      if (std::abs(l.end_s - l.start_s - plan.layer_time_s) > kStated_s)
+        broken(at + "/end_s", "layer time",
+               printf_string("the layer lasts %.6f s, its plan %s %.6f s", l.end_s - l.start_s,
+                             l.plan.c_str(), plan.layer_time_s));
+      check_wait(at, l.wait_before_s, l.wait_reasons);
+      if (previous) {
+        // One layer at a time: after the one before, the events between, the move, the
+        // wait and the purge.
+        if (l.start_s < previous->end_s - kRoundTime_s)
+          broken(at + "/start_s", "one layer at a time",
+                 printf_string("floor %d layer %d starts at %.6f s, before floor %d layer %d "
+                               "ends at %.6f s",
+                               l.floor, l.layer, l.start_s, previous->floor, previous->layer,
+                               previous->end_s));
+        double ready_s = previous->end_s;
+        if (events_sorted_)
+          for (auto e =
+                   std::lower_bound(s.events.begin(), s.events.end(), previous->end_s - kStated_s,
+                                    [](const Event&x, double t) { return x.start_s < t; });
+               e != s.events.end() && e->start_s <= l.start_s + kStated_s; ++e)
+            if (e->kind != Event::Kind::kPurge && e->end_s <= l.start_s + kStated_s)
+              ready_s = std::max(ready_s, e->end_s);
+        const double expected_s = ready_s + l.move_before_s + l.wait_before_s +
+                                  (l.purge_before ? doc_.inputs.machine.purge_s : 0.0);
+        if (std::abs(l.start_s - expected_s) > kStated_s)
+          broken(at + "/start_s", "one layer at a time",
+                 printf_string("%.6f s; after the layer below (and the events between) at "
+                               "%.6f s, the move %.6f s, the wait %.6f s%s it starts at %.6f s",
+                               l.start_s, ready_s, l.move_before_s, l.wait_before_s,
+                               l.purge_before ? " and the purge" : "", expected_s));
+      }
+      // The interval and the local intervals, recomputed from the paths.
+      if (first_of_floor) {
+        if (l.interval_s || l.local_interval_min_s || l.piece_ends_checked != 0)
+          broken(at + "/interval_s", "intervals",
+                 "the first layer of a floor stands on the slab: no interval (null) and no piece "
+                 "ends checked");
+        continue;
+      }
+      if (!l.interval_s || std::abs(*l.interval_s - (l.start_s - previous->start_s)) > kStated_s)
+        broken(at + "/interval_s", "intervals",
+               printf_string("expected %.6f s, start to start from the layer below",
+                             l.start_s - previous->start_s));
+      if (!s.plans.count(previous->plan)) continue;
+      const DepositIndex& up = index(l.plan);
+      const DepositIndex& low = index(previous->plan);
+      const IntervalOffsets offsets = interval_offsets(plan.layer, up, low);
+      if (offsets.ends != l.piece_ends_checked)
+        broken(at + "/piece_ends_checked", "local intervals",
+               printf_string("%d, but %d piece ends lie on walls of the layer below",
+                             l.piece_ends_checked, offsets.ends));
+      if (offsets.ends == 0) {
+        if (l.local_interval_min_s)
+          broken(at + "/local_interval_min_s", "local intervals",
+                 "no piece end lies on a wall of the layer below: expected null");
+        continue;
+      }
+      const double shift_s = l.start_s - previous->start_s;
+      const double min_s = shift_s + offsets.min_offset_s, max_s = shift_s + offsets.max_offset_s;
+      if (!l.local_interval_min_s || std::abs(*l.local_interval_min_s - min_s) > kStated_s)
+        broken(at + "/local_interval_min_s", "local intervals",
+               printf_string("expected %.6f s, recomputed from the two layers' paths", min_s));
+      if (!l.local_interval_max_s || std::abs(*l.local_interval_max_s - max_s) > kStated_s)
+        broken(at + "/local_interval_max_s", "local intervals",
+               printf_string("expected %.6f s, recomputed from the two layers' paths", max_s));
+      // Where the extremes are: the piece end named must have the extreme interval (ties
+      // are equal within the rounding).
+      for (const bool is_min : {true, false}) {
+        const PieceEnd& named = is_min ? l.local_min_at : l.local_max_at;
+        const auto there = offsets_at(named, up, low);
+        const double extreme_s = is_min ? min_s : max_s;
+        const double there_s = there ? shift_s + (is_min ? there->first : there->second) : NAN;
+        if (!there || std::abs(there_s - extreme_s) > kStated_s)
+          broken(at + (is_min ? "/local_interval_min_at" : "/local_interval_max_at"),
+                 "local intervals",
+                 there
+                     ? printf_string("wall %lld piece %d at (%.6f, %.6f) m has %.6f s, not the "
+                                     "%s %.6f s",
+                                     static_cast<long long>(named.wall), named.piece, named.x_m,
+                                     named.y_m, there_s, is_min ? "smallest" : "largest", extreme_s)
+                     : printf_string("wall %lld piece %d at (%.6f, %.6f) m is not a piece end "
+                                     "deposited in both layers",
+                                     static_cast<long long>(named.wall), named.piece, named.x_m,
+                                     named.y_m));
+      }
+      if (s.feasible && min_s < material.min_layer_interval_s - kStated_s)
+        broken(at + "/local_interval_min_s", "interval window",
+               printf_string("a piece is covered %.6f s after it was deposited, under the "
+                             "material's minimum %.6f s",
+                             min_s, material.min_layer_interval_s));
+      if (s.feasible && max_s > material.max_layer_interval_s + kStated_s)
+        broken(at + "/local_interval_max_s", "interval window",
+               printf_string("a piece is covered %.6f s after it was deposited, over the "
+                             "material's maximum %.6f s, in a schedule marked feasible",
+                             max_s, material.max_layer_interval_s));
+    }
+  }
+
+  // ---------------------------------------------------------------- events, stages, totals
+  void check_events() {
+    const Schedule& s = doc_.schedule;
+    std::map<std::pair<int, int>, const ScheduledLayer*> layer_of;
+    for (const auto& l : s.layers) layer_of[{l.floor, l.layer}] = &l;
+    for (std::size_t k = 0; k < s.events.size(); ++k) {
+      const Event& e = s.events[k];
+      const std::string at = pointer_to("/events", k);
+      if (k > 0 && e.start_s < s.events[k - 1].start_s)
+        broken(at + "/start_s", "events", "events are listed by start time");
+      const auto it = layer_of.find({e.floor, e.layer});
+      if (it == layer_of.end()) {
+        broken(at + "/after_layer", "events",
+               printf_string("names floor %d layer %d, which the schedule does not have", e.floor,
+                             e.layer));
+      } else if (e.start_s < it->second->end_s - kStated_s) {
+        broken(at + "/start_s", "events",
+               printf_string("%.6f s, before floor %d layer %d, which it follows, ends (%.6f s)",
+                             e.start_s, e.floor, e.layer, it->second->end_s));
+      }
+      // The first layer ending after the event starts must start after it ends (layers in
+      // order: checked above).
+      const auto later =
+          std::upper_bound(s.layers.begin(), s.layers.end(), e.start_s + kStated_s,
+                           [](double t, const ScheduledLayer& l) { return t < l.end_s; });
+      if (later != s.layers.end()) {
+        const ScheduledLayer& l = *later;
+        if (e.end_s > l.start_s + kStated_s) {
+          broken(at + "/start_s", "one layer at a time",
+                 printf_string("the %s from %.6f s to %.6f s overlaps floor %d layer %d (%.6f s "
+                               "to %.6f s)",
+                               to_string(e.kind).c_str(), e.start_s, e.end_s, l.floor, l.layer,
+                               l.start_s, l.end_s));
+        }
+      }
+      if (e.kind == Event::Kind::kPipe && !e.anchor)
+        broken(at, "events", "a pipe names its anchor");
+      if (e.kind == Event::Kind::kClimb && e.climb) {
+        const ClimbEvent& c = *e.climb;
+        double phases_s = 0.0;
+        for (const auto& p : c.plan.phases) phases_s += p.duration_s;
+        const double slack_s = kStated_s * static_cast<double>(c.plan.phases.size() + 1);
+        if (std::abs(phases_s - c.plan.duration_s) > slack_s)
+          broken(at + "/climb/duration_s", "climbs",
+                 printf_string("%.6f s, but its phases add up to %.6f s", c.plan.duration_s,
+                               phases_s));
+        if (std::abs(e.end_s - e.start_s - c.plan.duration_s) > kStated_s)
+          broken(at + "/end_s", "climbs",
+                 printf_string("the climb lasts %.6f s here, its phases %.6f s",
+                               e.end_s - e.start_s, c.plan.duration_s));
+        const int stages = static_cast<int>(s.stages.size());
+        if (c.from_stage >= stages || c.to_stage >= stages || c.to_stage != c.from_stage + 1 ||
+            c.plan.from_stage != c.from_stage || c.plan.to_stage != c.to_stage)
+          broken(at + "/to_stage", "climbs",
+                 printf_string("climbs from stage %d to %d; expected consecutive stages among "
+                               "the %d",
+                               c.from_stage, c.to_stage, stages));
+        check_wait(at, c.wait_before_s, c.wait_reasons);
+      }
+    }
+    // A purge before every layer that says so, ending where it starts.
+    std::vector<double> purge_ends_s;
+    for (const auto& e : s.events)
+      if (e.kind == Event::Kind::kPurge) purge_ends_s.push_back(e.end_s);
+    std::sort(purge_ends_s.begin(), purge_ends_s.end());
+    for (std::size_t i = 0; i < s.layers.size(); ++i) {
+      const ScheduledLayer& l = s.layers[i];
+      const auto near =
+          std::lower_bound(purge_ends_s.begin(), purge_ends_s.end(), l.start_s - kStated_s);
+      const bool purged = near != purge_ends_s.end() && *near <= l.start_s + kStated_s;
+      if (l.purge_before != purged)
+        broken(pointer_to("/layers", i) + "/purge_before", "purges",
+               l.purge_before ? "true, but no purge event ends where the layer starts"
+                              : "false, but a purge event ends where the layer starts");
+    }
+  }
+
+  void check_stages() {
+    const auto& stages = doc_.schedule.stages;
+    for (std::size_t k = 0; k < stages.size(); ++k)
+      if (stages[k].index != static_cast<int>(k))
+        broken(pointer_to("/stages", k) + "/stage", "stages",
+               printf_string("%d; stages are numbered in order from 0", stages[k].index));
+    if (!stages.empty() && !doc_.inputs.machine.climbing)
+      broken("/stages", "stages", "a fixed gantry has no stages");
+  }
+
+  void check_totals() {
+    const Schedule& s = doc_.schedule;
+    if (s.feasible == s.infeasibility.has_value())
+      broken("/feasible", "feasibility",
+             s.feasible ? "true, but the schedule states an infeasibility"
+                        : "false, but the schedule states no infeasibility (null)");
+    const ScheduleTotals want = totals_of(s.layers, s.events);
+    const double slack_s = 1e-6 * static_cast<double>(s.layers.size() + s.events.size() + 2);
+    const ScheduleTotals& got = s.totals;
+    const std::pair<const char*, std::pair<double, double>> totals[] = {
+        {"makespan_s", {got.makespan_s, want.makespan_s}},
+        {"deposition_s", {got.deposition_s, want.deposition_s}},
+        {"airtime_s", {got.airtime_s, want.airtime_s}},
+        {"moves_s", {got.moves_s, want.moves_s}},
+        {"waits_s", {got.waits_s, want.waits_s}},
+        {"pipes_s", {got.pipes_s, want.pipes_s}},
+        {"purges_s", {got.purges_s, want.purges_s}},
+        {"climbs_s", {got.climbs_s, want.climbs_s}},
+        {"slabs_s", {got.slabs_s, want.slabs_s}},
+        {"machine_s", {got.machine_s, want.machine_s}}};
+    for (const auto& [key, values] : totals)
+      if (std::abs(values.first - values.second) > slack_s + 1e-9 * std::abs(values.second))
+        broken(pointer_to("/totals", key), "totals",
+               printf_string("%.6f s, but the layers and events add up to %.6f s", values.first,
+                             values.second));
+  }
+
+  const ScheduleDocument& doc_;
+  const JsonText& text_;
+  std::vector<Diagnostic> found_;
+  std::size_t count_ = 0;
+  bool events_sorted_ = true;
+  std::map<std::string, DepositIndex> indexes_;
+};
+
+}  // namespace
+
+void check_schedule_rules(const ScheduleDocument& document, const JsonText& text) {
+  Rules(document, text).check();
+}
+
+}  // namespace ccbuild::schedule::detail

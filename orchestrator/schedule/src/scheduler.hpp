@@ -1,0 +1,169 @@
+#pragma once
+// The scheduler behind build_schedule (schedule.hpp), internal to the orchestrator: its
+// plans (schedule_plans.cpp: each geometry at each nozzle count, the plans that follow
+// the layer below, their registration under plan keys) and its walk up the building
+// (schedule.cpp: nozzles, intervals, waits, pipes, slabs, climbs, totals).
+
+#include <chrono>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+#include "schedule_deposits.hpp"
+
+namespace ccbuild::schedule::detail {
+
+using Clock = std::chrono::steady_clock;
+inline constexpr double kGravity_m_s2 = 9.80665;
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+/// A geometry whose one-nozzle layer takes more than this share of the maximum interval
+/// is planned at every nozzle count too: the move and the waits still have to fit.
+inline constexpr double kTryMoreNozzlesShare = 0.9;
+
+inline double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Runs `tasks` on `jobs` threads; the calling thread reports progress as they finish.
+/// Rethrows the first exception a task threw, once every task has ended.
+void run_parallel(std::vector<std::function<void()>>& tasks, int jobs,
+                  const std::function<void(int done, int total)>& on_done);
+
+/// One geometry planned at one nozzle count.
+struct Planned {
+  bool usable = false;
+  std::string why_not;  ///< when not usable
+  std::string method;
+  double layer_time_s = 0.0, deposition_s = 0.0, airtime_s = 0.0, max_idle_s = 0.0;
+  double min_gap_m = 0.0;
+  bool stopped_by_time = false;
+  std::vector<std::vector<planner::Waypoint>> waypoints;  ///< per nozzle, layer time
+  double planning_s = 0.0;
+};
+
+inline std::string where_text(int floor, int layer) {
+  return "floor " + std::to_string(floor) + " layer " + std::to_string(layer);
+}
+
+inline std::string piece_text(const PieceEnd& e) {
+  return printf_string("wall %lld piece %d at (%.3f, %.3f) m", static_cast<long long>(e.wall),
+                       e.piece, e.x_m, e.y_m);
+}
+
+class Scheduler {
+ public:
+  Scheduler(const Setup& project, const ScheduleOptions& options)
+      : project_(project),
+        options_(options),
+        machine_(*project.machine),
+        material_(project.material),
+        stress_per_m_mpa_(project.material.density_kg_m3 * kGravity_m_s2 * 1e-6),
+        jobs_(options.jobs > 0
+                  ? options.jobs
+                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {}
+
+  Schedule run();
+
+ private:
+  struct Slice {
+    int floor = 0;
+    floors::Layer layer;
+    int geometry = 0;  ///< 0-based index into reps_
+  };
+
+  void progress(const std::string& line) const {
+    if (options_.progress) options_.progress(line);
+  }
+  Planned plan(int geometry, int nozzles) const;
+  const Planned& planned(int geometry, int nozzles);
+  /// The fewest nozzles whose plan of `geometry` is usable and, with the move up to its
+  /// own start, no longer than the maximum interval: below that, the next layer of the
+  /// same geometry cannot keep its intervals, and a layer deposited slowly makes the one
+  /// above it late at the pieces it did first. `between_s`: the most time spent between
+  /// two layers of the run (pipes). When no count is fast enough, the fastest.
+  int fewest_nozzles(int geometry, double between_s);
+  void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
+  /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
+  /// variant "<base>m1", ... when another layer of its geometry names them differently);
+  /// returns its key.
+  std::string register_plan(const std::string& base, const Slice& slice, int nozzles,
+                            const Planned& p);
+  /// The key of `slice`'s optimised plan at `nozzles`.
+  std::string plan_key(const Slice& slice, int nozzles);
+  /// The nozzles depositing `slice` in the order the plan `below_key` deposited the layer
+  /// below: where the geometry changes (openings begin or end), an optimised plan may
+  /// cover first what the layer below did last, and break the maximum interval there.
+  /// With `hold_back`, a gantry that would come too close to its neighbour starts later.
+  const Planned& follow_plan(const Slice& slice, const std::string& below_key, bool hold_back);
+  static std::string follow_key(const Slice& slice, const std::string& below_key, bool hold_back) {
+    return printf_string("g%d~%s%s", slice.geometry + 1, below_key.c_str(), hold_back ? "h" : "");
+  }
+  /// From the end of the nozzles' paths `from` to the start of `to`, one layer up, s.
+  double move_s(const std::vector<std::vector<planner::Waypoint>>& from,
+                const std::vector<std::vector<planner::Waypoint>>& to) const;
+  double move_between(const std::string& from_key, const std::string& to_key) const;
+  const IntervalOffsets& offsets(const Slice& upper, const std::string& upper_key,
+                                 const std::string& lower_key);
+  /// The earliest start of global layer `i` that the layers below `first_checked` can
+  /// carry (each at its age from its end), and why; `impossible` when one never can.
+  double strength_ready_s(int i, int first_checked, double earliest_s, WaitReason& reason,
+                          bool& impossible) const;
+  /// Slices the building, places the climbing stages, plans every geometry with one
+  /// nozzle and every climb (in parallel), then the slow geometries with more nozzles.
+  void prepare();
+  /// Plans and times global layer i (false: no plan at all, the schedule stops there).
+  bool schedule_layer(int i);
+  /// What follows layer i: its pipes, the slab at a floor's top, a climb (false: the
+  /// climb can never start, the schedule stops there).
+  bool after_layer(int i);
+  void fail(Infeasibility infeasibility);
+  /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's.
+  void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
+                   double deposition_s);
+
+  const Setup& project_;
+  const ScheduleOptions& options_;
+  const machine::MachineModel& machine_;
+  const floors::MaterialProfile& material_;
+  /// The stress of a metre of wall on what carries it, MPa.
+  const double stress_per_m_mpa_;
+  /// The strength a layer needs to carry `height_m` of wall above its bottom, with the
+  /// material's safety factor, MPa: the one statement of the buildability rule.
+  double required_strength_mpa(double height_m) const {
+    return material_.safety_factor * stress_per_m_mpa_ * height_m;
+  }
+  int jobs_;
+
+  std::vector<Slice> slices_;
+  std::vector<floors::Layer> reps_;  ///< each geometry's first layer
+  std::map<std::pair<int, int>, Planned> planned_;
+  std::map<std::string, DepositIndex> indexes_;
+  std::map<std::pair<std::string, std::string>, IntervalOffsets> offsets_;
+  std::map<std::string, std::vector<std::string>> variants_;
+  std::map<std::string, Planned> follow_;
+  /// Every registered plan key's plan (in planned_ or follow_, whose nodes stay put).
+  std::map<std::string, const Planned*> registered_;
+  Schedule schedule_;
+  std::vector<double> layer_end_s_;  ///< per global layer, once scheduled
+  int further_failures_ = 0;
+
+  // Prepared once.
+  std::vector<climb::ClimbPlan> climbs_;  ///< climb c goes from stage c to c + 1
+  std::map<std::pair<int, int>, std::vector<climb::Anchor>> pipes_after_;  ///< (floor, layer)
+  std::map<std::pair<int, int>, int> climb_after_;  ///< (floor, layer) -> climb index
+  std::vector<double> run_between_s_;  ///< per global layer: the most pipe time in its run
+  // The state between layers.
+  std::map<std::string, double> pipe_done_s_;  ///< anchor id @ floor -> when it was cast
+  double previous_end_s_ = 0.0;                ///< the machine is free from here
+  double ready_extra_s_ = 0.0;                 ///< pipes, slab and climb after the previous layer
+  double pipes_before_s_ = 0.0;                ///< cast after the previous layer
+  std::string previous_key_;
+};
+
+}  // namespace ccbuild::schedule::detail

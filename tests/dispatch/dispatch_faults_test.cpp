@@ -1,0 +1,618 @@
+// What the simulated machine refuses and what the dispatcher does about faults: the
+// machine's limits from its URDF (the examples' paths keep them; a path just over one
+// does not), the material's interval window at its boundary (from when a late layer
+// really starts), where the machine is between waypoints, the site watchdog at the
+// gantry width plus its margin (positions interpolated from the right end, within its
+// span), a pin that misses (tried again, then a safe stop) and a clog (purged, the rest
+// of the layer re-planned, the same recovery after a restart; a gantry moved clear only
+// when closer than its width).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "ccbuild/dispatch/dispatch_jobs.hpp"
+#include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/site_watchdog.hpp"
+#include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/machine/sim_machine.hpp"
+#include "ccbuild/orchestrator/project.hpp"
+#include "test_support.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include "ccbuild_lcm/ccbuild_fault_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
+#pragma GCC diagnostic pop
+
+namespace ccbuild::dispatch {
+namespace {
+using schedule::parse_schedule;
+using schedule::ScheduleDocument;
+
+using ccbuild_lcm::ccbuild_fault_t;
+using ccbuild_lcm::ccbuild_job_t;
+using ccbuild_lcm::ccbuild_path_chunk_t;
+using testing::contains;
+
+machine::TimedPath path_of(const DispatchJob& d) {
+  return machine::path_of(d.chunks);
+}
+
+ScheduleDocument golden(const std::string& name) {
+  const auto path = testing::source_path("tests/regression/" + name + ".schedule.json");
+  return parse_schedule(testing::slurp(path), path.string());
+}
+
+TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {
+  const struct {
+    const char* building;
+    const char* machine;
+    bool check_z;
+  } cases[] = {{"house", "cc-gantry", true},
+               {"apartment", "cc-gantry", true},
+               {"tower", "cc-climber", false}};
+  for (const auto& c : cases) {
+    const auto model = machine::load_machine(
+        testing::source_path(std::string("config/machines/") + c.machine + ".yaml"));
+    int checked = 0;
+    for (const auto& job : jobs_of_schedule(golden(c.building))) {
+      if (job.chunks.empty()) continue;
+      const auto breach = machine::limit_breach(model, path_of(job), c.check_z);
+      EXPECT_FALSE(breach) << c.building << " job " << job.job.job_id << ": " << breach->second;
+      ++checked;
+    }
+    EXPECT_GT(checked, 10) << c.building;
+  }
+}
+
+machine::TimedPath two_points(double t_s, double x0, double x1) {
+  machine::TimedPath p;
+  p.push_back(0.0, x0, 1.0, 1.0, 0.0, true, 1, 1);
+  p.push_back(t_s, x1, 1.0, 1.0, 0.0, false, 0, 0);
+  return p;
+}
+
+TEST(SimMachine, LimitsHoldAtTheirBoundary) {
+  const auto m = machine::MachineModel::defaults();  // x 0..50 m at 0.5 m/s
+  ASSERT_DOUBLE_EQ(m.x.speed_m_s, 0.5);
+  ASSERT_DOUBLE_EQ(m.x.max_m, 50.0);
+  EXPECT_FALSE(machine::limit_breach(m, two_points(10.0, 0.0, 5.0), true));  // exactly 0.5 m/s
+  const auto fast = machine::limit_breach(m, two_points(10.0, 0.0, 5.01), true);
+  ASSERT_TRUE(fast);
+  EXPECT_EQ(fast->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  EXPECT_FALSE(machine::limit_breach(m, two_points(100.0, 0.0, 50.0), true));  // at its end
+  const auto beyond = machine::limit_breach(m, two_points(100.0, 0.0, 50.01), true);
+  ASSERT_TRUE(beyond);
+  EXPECT_EQ(beyond->first, +ccbuild_fault_t::JOINT_LIMIT);
+  // Both ends of a move count: it may not start outside either.
+  const auto start_outside = machine::limit_breach(m, two_points(200.0, -0.01, 10.0), true);
+  ASSERT_TRUE(start_outside);
+  EXPECT_EQ(start_outside->first, +ccbuild_fault_t::JOINT_LIMIT);
+  // The stopper, and a turn faster than the nozzle's rotation.
+  auto turn = two_points(4.0, 1.0, 1.0);
+  turn.heading_rad = {0.0, m.stopper_max_rad};
+  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  turn.heading_rad = {0.0, m.stopper_max_rad + 0.01};
+  ASSERT_TRUE(machine::limit_breach(m, turn, true));
+  turn.t_s = {0.0, 3.9};
+  turn.heading_rad = {0.0, m.stopper_max_rad};
+  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  // A turn planned at exactly the rotation limit reaches the machine rounded to µs and
+  // µrad: within that rounding it holds, 3 µrad past the limit's reach it does not.
+  const double at_limit_rad = m.rotation_speed_rad_s * 0.3338;
+  turn.t_s = {0.0, 0.3338};
+  turn.heading_rad = {0.0, at_limit_rad + 0.9e-6};
+  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  turn.heading_rad = {0.0, at_limit_rad + 3e-6};
+  ASSERT_TRUE(machine::limit_breach(m, turn, true));
+  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  // Heights: outside z range is refused, unless the machine climbs.
+  auto high = two_points(10.0, 1.0, 1.0);
+  high.z_m = {m.z.max_m + 0.5, m.z.max_m + 0.5};
+  EXPECT_TRUE(machine::limit_breach(m, high, true));
+  EXPECT_FALSE(machine::limit_breach(m, high, false));
+}
+
+/// A deposit job of one wall piece from (0, 0) to (1, 0) in 5 s, for `layer` of floor 0.
+DispatchJob piece_job(std::int64_t id, int layer, double start_s) {
+  DispatchJob d;
+  d.job.utime = 0;
+  d.job.machine_id = "gantry-1";
+  d.job.job_id = id;
+  d.job.seq = 0;
+  d.job.kind = ccbuild_job_t::DEPOSIT;
+  d.job.floor = 0;
+  d.job.layer = layer;
+  d.job.nozzle = 0;
+  d.job.start_s = start_s;
+  d.job.duration_s = 5.0;
+  d.job.plan = "g1n1";
+  d.job.detail = "test";
+  ccbuild_path_chunk_t c;
+  c.utime = 0;
+  c.machine_id = "gantry-1";
+  c.job_id = id;
+  c.seq = 0;
+  c.chunk_index = 0;
+  c.chunk_count = 1;
+  c.n = 2;
+  c.t_s = {0.0, 5.0};
+  c.x_m = {0.0, 1.0};
+  c.y_m = {0.0, 0.0};
+  c.z_m = {0.1 * (layer + 1), 0.1 * (layer + 1)};
+  c.heading_rad = {0.0, 0.0};
+  c.extruding = {true, false};
+  c.wall = {1, 0};
+  c.piece = {1, 0};
+  d.chunks = {c};
+  d.job.chunk_count = 1;
+  d.job.point_count = 2;
+  return d;
+}
+
+/// Runs `jobs` through a dispatcher and a machine on one memq:// bus until done.
+struct Rig {
+  explicit Rig(machine::SimOptions so, std::vector<DispatchJob> jobs,
+               std::filesystem::path journal_path = ":memory:", DispatchOptions o = {})
+      : bus("memq://"), journal(journal_path), sim(bus, so) {
+    o.speed = so.speed;
+    o.ack_timeout_s = 0.05;
+    o.done_slack_s = 0.05;
+    dispatcher = std::make_unique<Dispatcher>(bus, std::move(jobs), journal, o);
+  }
+  void run(int steps = 200'000) {
+    for (int k = 0; k < steps && !dispatcher->finished(); ++k) {
+      dispatcher->step(1e-3);
+      bus.handle(0);
+      sim.step(1e-3);
+      bus.handle(0);
+    }
+  }
+  std::set<std::int8_t> fault_kinds() const {
+    std::set<std::int8_t> out;
+    for (const auto& f : dispatcher->fault_records()) out.insert(f.kind);
+    return out;
+  }
+  machine::Bus bus;
+  Journal journal;
+  machine::SimMachine sim;
+  std::unique_ptr<Dispatcher> dispatcher;
+};
+
+machine::SimOptions window(double min_s, double max_s) {
+  machine::SimOptions so;
+  so.speed = 1e4;
+  so.min_interval_s = min_s;
+  so.max_interval_s = max_s;
+  return so;
+}
+
+TEST(SimMachine, TheIntervalWindowHoldsAtItsBoundary) {
+  // Layer 1 covers the piece exactly as long after layer 0 as the start times differ.
+  const struct {
+    double interval_s;
+    std::int8_t fault;  // 0: accepted
+  } cases[] = {{500.0, 0},
+               {500.01, ccbuild_fault_t::COLD_JOINT},
+               {60.0, 0},
+               {59.99, ccbuild_fault_t::TOO_EARLY}};
+  for (const auto& c : cases) {
+    Rig rig(window(60.0, 500.0), {piece_job(10, 0, 0.0), piece_job(20, 1, c.interval_s)});
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished()) << c.interval_s;
+    if (c.fault == 0) {
+      EXPECT_FALSE(rig.dispatcher->stopped()) << c.interval_s;
+      EXPECT_EQ(rig.sim.executed().size(), 2u) << c.interval_s;
+    } else {
+      ASSERT_TRUE(rig.dispatcher->stopped()) << c.interval_s;
+      EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{c.fault}) << c.interval_s;
+      EXPECT_EQ(rig.sim.executed().size(), 1u) << "the refused layer ran: " << c.interval_s;
+    }
+  }
+}
+
+DispatchJob climb_phase(std::int64_t id, const std::string& what, double start_s,
+                        double duration_s) {
+  DispatchJob d = piece_job(id, -1, start_s);
+  d.job.kind = ccbuild_job_t::CLIMB_PHASE;
+  d.job.floor = 0;
+  d.job.layer = -1;
+  d.job.nozzle = -1;
+  d.job.duration_s = duration_s;
+  d.job.plan = "";
+  d.job.detail = "climb from stage 0 to 1: " + what;
+  d.chunks.clear();
+  d.job.chunk_count = d.job.point_count = 0;
+  return d;
+}
+
+TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
+  const std::vector<DispatchJob> climb = {climb_phase(10, "insert U1", 0.0, 60.0),
+                                          climb_phase(20, "lift", 60.0, 100.0)};
+  {
+    machine::SimOptions so = window(0.0, 1e9);
+    so.pin_failures = 2;  // the third attempt finds its pipe
+    Rig rig(so, climb);
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    EXPECT_FALSE(rig.dispatcher->stopped());
+    EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 11, 12, 20}));
+    EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{ccbuild_fault_t::PIN_MISSED});
+    EXPECT_DOUBLE_EQ(rig.dispatcher->delay_s(), 120.0);  // two insertions more
+    EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(20).first, 180.0);
+    const auto states = rig.journal.states();
+    EXPECT_EQ(states.at(10), "pin-missed");
+    EXPECT_EQ(states.at(11), "pin-missed");
+    EXPECT_EQ(states.at(12), "done");
+    EXPECT_EQ(states.at(20), "done");
+  }
+  {
+    machine::SimOptions so = window(0.0, 1e9);
+    so.pin_failures = 3;  // never: stop after the third
+    Rig rig(so, climb);
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->stopped());
+    EXPECT_NE(rig.dispatcher->stopped()->find("no recovery left"), std::string::npos);
+    EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 11, 12}));
+    const auto states = rig.journal.states();
+    EXPECT_EQ(states.count(20), 0u) << "the lift was sent after a pin that never held";
+    const auto faults = rig.journal.faults();
+    ASSERT_EQ(faults.size(), 4u);  // three misses, then the stop
+    EXPECT_EQ(faults.back().policy, "stop");
+  }
+}
+
+TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
+  DispatchJob pipe = climb_phase(10, "", 0.0, 120.0);
+  pipe.job.kind = ccbuild_job_t::PIPE;
+  pipe.job.detail = "pipe A1 for unit U1";
+  for (const double age_s : {3600.0, 3599.99}) {
+    machine::SimOptions so = window(0.0, 1e9);
+    so.anchor_min_age_s = 3600.0;
+    Rig rig(so, {pipe, climb_phase(20, "insert U2", 120.0, 60.0),
+                 climb_phase(30, "insert U1", 120.0 + age_s, 60.0)});
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    if (age_s >= 3600.0) {
+      EXPECT_FALSE(rig.dispatcher->stopped());
+      EXPECT_EQ(rig.sim.executed().size(), 3u);
+    } else {
+      ASSERT_TRUE(rig.dispatcher->stopped());
+      EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{ccbuild_fault_t::ANCHOR_TOO_YOUNG});
+      EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 20}));  // U2 has no pipe yet
+    }
+  }
+}
+
+TEST(SimMachine, FollowsItsPathBetweenWaypointsOnItsClock) {
+  // At machine speed 1, a quarter of the way into the 5 s piece from (0, 0) to (1, 0):
+  // at 0.25 m, and so says its status.
+  machine::SimOptions so = window(0.0, 1e9);
+  so.speed = 1.0;
+  Rig rig(so, {piece_job(10, 0, 0.0)});
+  std::vector<double> reported_x_m;
+  rig.bus.subscribe<ccbuild_lcm::ccbuild_status_t>(
+      machine::channel("STATUS", "gantry-1"),
+      [&](const ccbuild_lcm::ccbuild_status_t& s) { reported_x_m.push_back(s.x_m); });
+  // Until the machine has started the job (on its arrival or at the end of a step).
+  for (int k = 0; k < 5'000 && !rig.sim.busy(); ++k) {
+    rig.dispatcher->step(1e-3);
+    rig.bus.handle(0);
+    if (!rig.sim.busy()) rig.sim.step(1e-3);
+    rig.bus.handle(0);
+  }
+  ASSERT_TRUE(rig.sim.busy());
+  const double started_s = rig.sim.clock_s();
+  EXPECT_DOUBLE_EQ(started_s, 0.0);
+  rig.sim.step(1.25);
+  rig.bus.handle(0);
+  EXPECT_DOUBLE_EQ(rig.sim.clock_s(), 1.25);
+  EXPECT_NEAR(rig.sim.position()[0], 0.25, 1e-12);
+  EXPECT_NEAR(rig.sim.position()[1], 0.0, 1e-12);
+  ASSERT_FALSE(reported_x_m.empty());
+  EXPECT_NEAR(reported_x_m.back(), 0.25, 1e-12);
+  rig.run();
+  EXPECT_EQ(rig.sim.executed(), std::vector<std::int64_t>{10});
+  EXPECT_DOUBLE_EQ(rig.sim.position()[0], 1.0);
+}
+
+TEST(SimMachine, ALayerStartedLateIsCheckedFromWhenItStarts) {
+  // Layer 1 is planned 3 s after layer 0, which takes 5 s: the machine starts it when it
+  // is free, at 5 s, and its piece is covered 5 s after it was deposited: a cold joint
+  // over a 4.5 s maximum, and no longer too early for a 4 s minimum.
+  const struct {
+    double min_s, max_s;
+    std::int8_t fault;  // 0: accepted
+  } cases[] = {{0.0, 4.5, ccbuild_fault_t::COLD_JOINT}, {4.0, 1e9, 0}};
+  for (const auto& c : cases) {
+    Rig rig(window(c.min_s, c.max_s), {piece_job(10, 0, 0.0), piece_job(20, 1, 3.0)});
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    if (c.fault == 0) {
+      ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+      EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(20).first, 5.0);
+    } else {
+      ASSERT_TRUE(rig.dispatcher->stopped());
+      EXPECT_EQ(rig.fault_kinds(), std::set<std::int8_t>{c.fault});
+      EXPECT_TRUE(contains(*rig.dispatcher->stopped(), "covered 5.0 s after it was deposited"))
+          << *rig.dispatcher->stopped();
+    }
+  }
+}
+
+TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_clog_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto jobs = jobs_of_schedule(golden("house"));
+  machine::SimOptions so = window(0.0, 1e9);
+  so.speed = 1e6;
+  so.clog_floor = 0;
+  so.clog_layer = 2;
+  so.state_file = dir / "gantry-1.state";
+  std::vector<DispatchJob> made_first;
+  {
+    Rig rig(so, jobs, dir / "journal.sqlite");
+    // Until the recovery jobs exist, then "killed".
+    for (int k = 0; k < 200'000 && rig.dispatcher->jobs().size() == jobs.size(); ++k) rig.run(1);
+    ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2);
+    made_first.assign(rig.dispatcher->jobs().begin() + jobs.size(), rig.dispatcher->jobs().end());
+  }
+  machine::SimOptions again = so;
+  again.clog_floor = -1;
+  Rig rig(again, jobs, dir / "journal.sqlite");
+  ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2) << "the recovery was not made again";
+  const auto& purge = rig.dispatcher->jobs()[jobs.size()];
+  const auto& rest = rig.dispatcher->jobs()[jobs.size() + 1];
+  EXPECT_EQ(purge.job.job_id, made_first[0].job.job_id);
+  EXPECT_EQ(rest.job.job_id, made_first[1].job.job_id);
+  EXPECT_EQ(purge.job.kind, +ccbuild_job_t::PURGE);
+  EXPECT_DOUBLE_EQ(purge.job.duration_s, 120.0);
+  // The rest is the clogged path from where it stopped, its times from there.
+  const auto rows = rig.journal.rows();
+  const std::int64_t clogged = purge.job.job_id - 1;
+  ASSERT_EQ(rows.at(clogged).state, "clogged");
+  const int stopped_at = rows.at(clogged).stopped_at;
+  const DispatchJob* original = nullptr;
+  for (const auto& j : jobs)
+    if (j.job.job_id == clogged) original = &j;
+  ASSERT_NE(original, nullptr);
+  const auto whole = path_of(*original), tail = path_of(rest);
+  ASSERT_EQ(tail.size(), whole.size() - stopped_at);
+  EXPECT_DOUBLE_EQ(tail.t_s.front(), 0.0);
+  EXPECT_DOUBLE_EQ(tail.x_m.front(), whole.x_m[stopped_at]);
+  EXPECT_DOUBLE_EQ(tail.x_m.back(), whole.x_m.back());
+  EXPECT_NEAR(rest.job.duration_s + whole.t_s[stopped_at], original->job.duration_s, 1e-9);
+  EXPECT_NEAR(rest.job.start_s, rows.at(clogged).finished_s + 120.0, 1e-9);
+  rig.run();
+  ASSERT_TRUE(rig.dispatcher->finished());
+  EXPECT_FALSE(rig.dispatcher->stopped());
+  const auto& ran = rig.sim.executed();
+  EXPECT_EQ(std::set<std::int64_t>(ran.begin(), ran.end()).size(), ran.size()) << "a job ran twice";
+  EXPECT_EQ(ran.size(), jobs.size() + 2);
+  // The schedule JSON keeps times to the microsecond: moves may start 10 us late.
+  EXPECT_NEAR(rig.dispatcher->delay_s(), 120.0, 1e-3);
+  std::filesystem::remove_all(dir);
+}
+
+/// A deposit job of one straight wall piece along x, from `x0` to `x1` at 0.2 m/s.
+DispatchJob along_x(const std::string& machine, std::int64_t id, double x0, double x1) {
+  DispatchJob d = piece_job(id, 0, 0.0);
+  d.job.machine_id = machine;
+  auto& c = d.chunks[0];
+  c.machine_id = machine;
+  c.n = 11;
+  c.t_s.clear();
+  c.x_m.clear();
+  for (int k = 0; k <= 10; ++k) {
+    c.t_s.push_back(k * std::abs(x1 - x0) / 10.0 / 0.2);
+    c.x_m.push_back(x0 + (x1 - x0) * k / 10.0);
+  }
+  c.y_m.assign(11, 1.0);
+  c.z_m.assign(11, 0.1);
+  c.heading_rad.assign(11, 0.0);
+  c.extruding.assign(11, true);
+  c.extruding.back() = false;
+  c.wall.assign(11, 1);
+  c.wall.back() = 0;
+  c.piece.assign(11, 1);
+  c.piece.back() = 0;
+  d.job.duration_s = c.t_s.back();
+  d.job.point_count = 11;
+  return d;
+}
+
+TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
+  // gantry-1 lays x 0 -> 6 while gantry-2 lays x 13 -> 7.6; gantry-1 clogs at 40% and
+  // gantry-2 parks at 7.6, too close (2 m apart) for the rest of gantry-1's wall up to 6.
+  const std::vector<DispatchJob> layer = {along_x("gantry-1", 10, 0.0, 6.0),
+                                          along_x("gantry-2", 20, 13.0, 7.6)};
+  machine::Bus bus("memq://");
+  Journal journal(":memory:");
+  machine::SimOptions one = window(0.0, 1e9);
+  one.clog_floor = 0;
+  one.clog_layer = 0;
+  machine::SimOptions two = window(0.0, 1e9);
+  two.machine_id = "gantry-2";
+  machine::SimMachine sim1(bus, one), sim2(bus, two);
+  DispatchOptions o;
+  o.speed = one.speed;
+  o.gantry_width_m = 2.0;
+  o.purge_s = 1.0;  // over before gantry-2's wall is: the rest must still wait for it
+  o.rail_axis = 'x';
+  o.rail_min_m = -2.0;
+  o.rail_max_m = 20.0;
+  Dispatcher d(bus, layer, journal, o);
+  for (int k = 0; k < 100'000 && !d.finished(); ++k) {
+    d.step(1e-3);
+    bus.handle(0);
+    sim1.step(1e-3);
+    sim2.step(1e-3);
+    bus.handle(0);
+  }
+  ASSERT_TRUE(d.finished());
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  EXPECT_EQ(sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(sim2.executed(), (std::vector<std::int64_t>{20, 21}));      // its wall, the move
+  const auto& move = d.jobs().at(4);
+  EXPECT_EQ(move.job.kind, +ccbuild_job_t::TRAVEL);
+  EXPECT_DOUBLE_EQ(move.chunks[0].x_m.back(), 8.0);  // the rest reaches 6: 6 + 2
+  EXPECT_DOUBLE_EQ(sim2.position()[0], 8.0);
+  // The rest started only once gantry-2 had moved clear.
+  EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);
+}
+
+TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
+  // As above, but gantry-2's wall ends at 8 m: exactly the gantry width past the rest of
+  // gantry-1's wall (up to 6 m). Nothing to move clear; the rest runs as soon as gantry-2
+  // is done.
+  const std::vector<DispatchJob> layer = {along_x("gantry-1", 10, 0.0, 6.0),
+                                          along_x("gantry-2", 20, 13.0, 8.0)};
+  machine::Bus bus("memq://");
+  Journal journal(":memory:");
+  machine::SimOptions one = window(0.0, 1e9);
+  one.clog_floor = 0;
+  one.clog_layer = 0;
+  machine::SimOptions two = window(0.0, 1e9);
+  two.machine_id = "gantry-2";
+  machine::SimMachine sim1(bus, one), sim2(bus, two);
+  DispatchOptions o;
+  o.speed = one.speed;
+  o.gantry_width_m = 2.0;
+  o.purge_s = 1.0;
+  o.rail_axis = 'x';
+  o.rail_min_m = -2.0;
+  o.rail_max_m = 20.0;
+  Dispatcher d(bus, layer, journal, o);
+  for (int k = 0; k < 100'000 && !d.finished(); ++k) {
+    d.step(1e-3);
+    bus.handle(0);
+    sim1.step(1e-3);
+    sim2.step(1e-3);
+    bus.handle(0);
+  }
+  ASSERT_TRUE(d.finished());
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  EXPECT_EQ(sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(sim2.executed(), (std::vector<std::int64_t>{20}));          // no move
+  EXPECT_EQ(d.jobs().size(), 4u);
+  EXPECT_DOUBLE_EQ(sim2.position()[0], 8.0);
+  EXPECT_DOUBLE_EQ(d.executed().at(12).first, d.executed().at(20).second);
+}
+
+/// A status of machine `id` at machine time `t_s`, on `channel_of`'s status channel (by
+/// default its own).
+void status(machine::Bus& bus, const std::string& id, double t_s, double x_m,
+            const std::string& channel_of = "") {
+  static std::int64_t seq = 0;
+  ccbuild_lcm::ccbuild_status_t s{};
+  s.utime = machine::utime_now();
+  s.machine_id = id;
+  s.seq = ++seq;
+  s.state = ccbuild_lcm::ccbuild_status_t::BUSY;
+  s.sim_time_s = t_s;
+  s.x_m = x_m;
+  bus.publish(machine::channel("STATUS", channel_of.empty() ? id : channel_of), s);
+  bus.handle(0);
+}
+
+TEST(SiteWatchdog, PausesBelowTheGantryWidthPlusItsMarginNotAtIt) {
+  machine::Bus bus("memq://");
+  WatchdogOptions w;
+  w.machines = {"gantry-1", "gantry-2"};
+  w.gantry_width_m = 1.5;
+  w.margin_m = 0.5;
+  SiteWatchdog dog(bus, w);
+  status(bus, "gantry-1", 0.0, 0.0);
+  status(bus, "gantry-2", 0.0, 2.0);  // exactly width plus margin
+  EXPECT_FALSE(dog.check(0.01));
+  EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+  // gantry-1 moves up at 0.1 m/s; gantry-2 reports at 5 s: gantry-1 is at 0.5 m then.
+  status(bus, "gantry-1", 10.0, 1.0);
+  status(bus, "gantry-2", 5.0, 2.501);
+  EXPECT_FALSE(dog.check(0.01));
+  EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
+  // Another machine's status on gantry-2's channel is not believed: "gantry-3" at 1.2 m,
+  // 0.2 m from gantry-1, is neither gantry-2's position nor its heartbeat.
+  EXPECT_FALSE(dog.check(1.5));
+  status(bus, "gantry-1", 10.0, 1.0);
+  status(bus, "gantry-3", 10.0, 1.2, "gantry-2");
+  EXPECT_FALSE(dog.check(1.0));
+  EXPECT_NEAR(dog.smallest_gap_m(), 2.0, 1e-9);
+  EXPECT_EQ(dog.silent(), std::vector<std::string>{"gantry-2"});  // 2.5 s since its last
+  status(bus, "gantry-2", 10.0, 2.999);                           // 1.999 m: under by a millimetre
+  EXPECT_TRUE(dog.silent().empty());
+  const auto why = dog.check(0.01);
+  ASSERT_TRUE(why);
+  EXPECT_NE(why->find("every machine paused"), std::string::npos);
+  EXPECT_FALSE(dog.check(0.01)) << "said twice";
+  EXPECT_EQ(dog.check(5.0), std::nullopt);
+  EXPECT_EQ(dog.silent(), (std::vector<std::string>{"gantry-1", "gantry-2"}));
+}
+
+TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) {
+  // Gaps are taken at the latest instant both machines have reported; the one that
+  // reported later is placed between its two statuses, in proportion to the time from the
+  // earlier one. Off the middle of the span, so that the wrong end shows.
+  WatchdogOptions w;
+  w.machines = {"gantry-1", "gantry-2"};
+  w.gantry_width_m = 1.5;
+  w.margin_m = 0.5;  // acted on under 2 m
+  for (const double span_s : {8.0, 8.5}) {
+    // gantry-1 moves up at 0.125 m/s and has reported at 0 s and `span_s`; gantry-2 has
+    // reported 2 s: gantry-1 was at 0.25 m then, exactly 2 m from gantry-2 (at 0.75 m from
+    // the wrong end). Statuses at most 8 s apart are interpolated: 8 s is, 8.5 s is not.
+    machine::Bus bus("memq://");
+    WatchdogOptions spanned = w;
+    spanned.max_span_s = 8.0;
+    SiteWatchdog dog(bus, spanned);
+    status(bus, "gantry-1", 0.0, 0.0);
+    status(bus, "gantry-2", 0.0, 3.0);
+    EXPECT_FALSE(dog.check(0.01));
+    EXPECT_EQ(dog.gaps_measured(), 1);
+    status(bus, "gantry-1", span_s, 0.125 * span_s);
+    status(bus, "gantry-2", 2.0, 2.25);
+    EXPECT_FALSE(dog.check(0.01));
+    if (span_s > spanned.max_span_s) {
+      EXPECT_EQ(dog.gaps_measured(), 1) << "a position guessed over " << span_s << " s";
+      EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 3.0);
+      continue;
+    }
+    EXPECT_EQ(dog.gaps_measured(), 2);
+    EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+    // At 3 s: gantry-1 at 0.375 m, gantry-2 at 2.374 m: a millimetre under.
+    status(bus, "gantry-2", 3.0, 2.374);
+    const auto why = dog.check(0.01);
+    ASSERT_TRUE(why);
+    EXPECT_TRUE(contains(*why,
+                         "at 3.0 s of machine time gantry-1 at 0.375 m and "
+                         "gantry-2 at 2.374 m on the rails are 1.999 m apart"))
+        << *why;
+  }
+  {
+    // Now gantry-2 reported later: it moves down from 4 m at 0.2 m/s; at 7.5 s (gantry-1's
+    // last status, at 0.5 m) it was at 2.5 m, 2 m from gantry-1; at 8 s, 1.95 m.
+    machine::Bus bus("memq://");
+    SiteWatchdog dog(bus, w);
+    status(bus, "gantry-1", 0.0, 0.0);
+    status(bus, "gantry-2", 0.0, 4.0);
+    status(bus, "gantry-2", 10.0, 2.0);
+    status(bus, "gantry-1", 7.5, 0.5);
+    EXPECT_FALSE(dog.check(0.01));
+    EXPECT_DOUBLE_EQ(dog.smallest_gap_m(), 2.0);
+    status(bus, "gantry-1", 8.0, 0.45);
+    const auto why = dog.check(0.01);
+    ASSERT_TRUE(why);
+    EXPECT_TRUE(contains(*why, "gantry-2 at 2.400 m")) << *why;
+    EXPECT_NEAR(dog.smallest_gap_m(), 1.95, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace ccbuild::dispatch
