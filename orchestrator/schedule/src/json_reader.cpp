@@ -227,7 +227,7 @@ int JsonText::line_of(const std::string& pointer) const {
   return line_at_byte(*text_, w.i);
 }
 
-void JsonText::fail(const std::string& pointer, const std::string& message) const {
+void JsonText::refuse(const std::string& pointer, const std::string& message) const {
   throw InputError(file_, line_of(pointer), pointer, message);
 }
 
@@ -290,7 +290,7 @@ std::string pointer_to(const std::string& parent, std::size_t index) {
   return parent + "/" + std::to_string(index);
 }
 
-std::string JsonAt::describe() const {
+std::string JsonAt::shown() const {
   const json& v = *value_;
   if (v.is_null()) return "null";
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
@@ -305,34 +305,34 @@ std::string JsonAt::describe() const {
 }
 
 JsonAt JsonAt::at(const std::string& key) const {
-  if (!value_->is_object()) fail("expected an object with \"" + key + "\", got " + describe());
+  if (!value_->is_object()) refuse("expected an object with \"" + key + "\", got " + shown());
   const auto it = value_->find(key);
-  if (it == value_->end()) fail("\"" + key + "\" is missing");
+  if (it == value_->end()) refuse("\"" + key + "\" is missing");
   return JsonAt(*text_, *it, pointer_to(pointer_, key));
 }
 
 std::optional<JsonAt> JsonAt::maybe(const std::string& key) const {
-  if (!value_->is_object()) fail("expected an object, got " + describe());
+  if (!value_->is_object()) refuse("expected an object, got " + shown());
   const auto it = value_->find(key);
   if (it == value_->end() || it->is_null()) return std::nullopt;
   return JsonAt(*text_, *it, pointer_to(pointer_, key));
 }
 
 void JsonAt::only_keys(const std::vector<std::string>& allowed) const {
-  if (!value_->is_object()) fail("expected an object, got " + describe());
+  if (!value_->is_object()) refuse("expected an object, got " + shown());
   for (auto it = value_->begin(); it != value_->end(); ++it)
     if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end()) {
       const std::string near = nearest_word(it.key(), allowed, 3);
-      text_->fail(pointer_to(pointer_, it.key()),
-                  "unknown key \"" + it.key() + "\"" +
-                      (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
+      text_->refuse(pointer_to(pointer_, it.key()),
+                    "unknown key \"" + it.key() + "\"" +
+                        (near.empty() ? "" : "; did you mean \"" + near + "\"?"));
     }
 }
 
-std::vector<JsonAt> JsonAt::items(std::size_t max_items) const {
-  if (!value_->is_array()) fail("expected an array, got " + describe());
+std::vector<JsonAt> JsonAt::elements(std::size_t max_items) const {
+  if (!value_->is_array()) refuse("expected an array, got " + shown());
   if (value_->size() > max_items)
-    fail(printf_string("holds %zu items; at most %zu are accepted", value_->size(), max_items));
+    refuse(printf_string("holds %zu items; at most %zu are accepted", value_->size(), max_items));
   std::vector<JsonAt> out;
   out.reserve(value_->size());
   for (std::size_t k = 0; k < value_->size(); ++k)
@@ -341,9 +341,9 @@ std::vector<JsonAt> JsonAt::items(std::size_t max_items) const {
 }
 
 std::vector<std::pair<std::string, JsonAt>> JsonAt::members(std::size_t max_items) const {
-  if (!value_->is_object()) fail("expected an object, got " + describe());
+  if (!value_->is_object()) refuse("expected an object, got " + shown());
   if (value_->size() > max_items)
-    fail(printf_string("holds %zu members; at most %zu are accepted", value_->size(), max_items));
+    refuse(printf_string("holds %zu members; at most %zu are accepted", value_->size(), max_items));
   std::vector<std::pair<std::string, JsonAt>> out;
   for (auto it = value_->begin(); it != value_->end(); ++it)
     out.emplace_back(it.key(), JsonAt(*text_, *it, pointer_to(pointer_, it.key())));
@@ -351,50 +351,49 @@ std::vector<std::pair<std::string, JsonAt>> JsonAt::members(std::size_t max_item
 }
 
 double JsonAt::number(const Range& range, const std::string& unit) const {
-  if (!value_->is_number()) fail("expected a number, got " + describe());
+  if (!value_->is_number()) refuse("expected a number, got " + shown());
   const double v = value_->get<double>();
-  if (!std::isfinite(v)) fail("expected a finite number, got " + describe());
+  if (!std::isfinite(v)) refuse("expected a finite number, got " + shown());
   const std::string wrong = range.violation(v, value_->dump(), unit);
-  if (!wrong.empty()) fail(wrong);
+  if (!wrong.empty()) refuse(wrong);
   return v;
 }
 
 std::optional<double> JsonAt::number_or_null(const Range& range, const std::string& unit) const {
   if (value_->is_null()) return std::nullopt;
-  if (!value_->is_number()) fail("expected a number or null, got " + describe());
+  if (!value_->is_number()) refuse("expected a number or null, got " + shown());
   return number(range, unit);
 }
 
 std::int64_t JsonAt::integer(std::int64_t min, std::int64_t max) const {
   const std::string range = "from " + std::to_string(min) + " to " + std::to_string(max);
-  if (!value_->is_number_integer())
-    fail("expected a whole number " + range + ", got " + describe());
+  if (!value_->is_number_integer()) refuse("expected a whole number " + range + ", got " + shown());
   if (value_->is_number_unsigned() &&
       value_->get<std::uint64_t>() > static_cast<std::uint64_t>(max))
-    fail("must be " + range + ", got " + describe());
+    refuse("must be " + range + ", got " + shown());
   const std::int64_t v = value_->get<std::int64_t>();
-  if (v < min || v > max) fail("must be " + range + ", got " + describe());
+  if (v < min || v > max) refuse("must be " + range + ", got " + shown());
   return v;
 }
 
 std::uint64_t JsonAt::unsigned_integer() const {
   if (!value_->is_number_integer() ||
       (!value_->is_number_unsigned() && value_->get<std::int64_t>() < 0))
-    fail("expected a whole number from 0 to 18446744073709551615, got " + describe());
+    refuse("expected a whole number from 0 to 18446744073709551615, got " + shown());
   return value_->get<std::uint64_t>();
 }
 
 std::string JsonAt::string(std::size_t max_length) const {
-  if (!value_->is_string()) fail("expected a string, got " + describe());
+  if (!value_->is_string()) refuse("expected a string, got " + shown());
   const std::string& s = value_->get_ref<const std::string&>();
   if (s.size() > max_length)
-    fail(printf_string("a string of %zu characters; at most %zu are accepted", s.size(),
-                       max_length));
+    refuse(printf_string("a string of %zu characters; at most %zu are accepted", s.size(),
+                         max_length));
   return s;
 }
 
 bool JsonAt::boolean() const {
-  if (!value_->is_boolean()) fail("expected true or false, got " + describe());
+  if (!value_->is_boolean()) refuse("expected true or false, got " + shown());
   return value_->get<bool>();
 }
 

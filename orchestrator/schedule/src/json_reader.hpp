@@ -23,7 +23,7 @@ class JsonText {
   /// The 1-based line where the value at `pointer` starts (0 when it is not found).
   int line_of(const std::string& pointer) const;
   /// InputError at `pointer`: "file:line: pointer: message".
-  [[noreturn]] void fail(const std::string& pointer, const std::string& message) const;
+  [[noreturn]] void refuse(const std::string& pointer, const std::string& message) const;
 
  private:
   std::string file_;
@@ -47,7 +47,7 @@ class JsonAt {
   const nlohmann::json& value() const { return *value_; }
   const std::string& pointer() const { return pointer_; }
   bool is_null() const { return value_->is_null(); }
-  [[noreturn]] void fail(const std::string& message) const { text_->fail(pointer_, message); }
+  [[noreturn]] void refuse(const std::string& message) const { text_->refuse(pointer_, message); }
 
   /// The member `key` of an object (required: a missing key is an error).
   JsonAt at(const std::string& key) const;
@@ -56,7 +56,7 @@ class JsonAt {
   /// Throws when this object has a key not in `allowed`, or is not an object.
   void only_keys(const std::vector<std::string>& allowed) const;
   /// The items of an array (at most `max_items`).
-  std::vector<JsonAt> items(std::size_t max_items) const;
+  std::vector<JsonAt> elements(std::size_t max_items) const;
   /// The members of an object, in the document's order (at most `max_items`).
   std::vector<std::pair<std::string, JsonAt>> members(std::size_t max_items) const;
 
@@ -71,7 +71,7 @@ class JsonAt {
   bool boolean() const;
 
  private:
-  std::string describe() const;
+  std::string shown() const;
   const JsonText* text_;
   const nlohmann::json* value_;
   std::string pointer_;

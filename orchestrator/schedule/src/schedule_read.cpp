@@ -46,7 +46,7 @@ int unit_index(RecordedInputs& in, const JsonAt& at) {
   const std::string name = at.string(200);
   const auto it = std::find(in.unit_names.begin(), in.unit_names.end(), name);
   if (it != in.unit_names.end()) return static_cast<int>(it - in.unit_names.begin());
-  if (in.unit_names.size() >= kMaxSmall) at.fail("too many distinct climbing units");
+  if (in.unit_names.size() >= kMaxSmall) at.refuse("too many distinct climbing units");
   in.unit_names.push_back(name);
   return static_cast<int>(in.unit_names.size()) - 1;
 }
@@ -96,15 +96,15 @@ RecordedMachine read_machine(const JsonAt& m) {
   r.stopper_max_rad = m.at("stopper_max_rad").number_or_null(kHeading_rad, "rad");
   if (r.stopper_min_rad.has_value() != r.stopper_max_rad.has_value() ||
       (r.stopper_min_rad && *r.stopper_min_rad > *r.stopper_max_rad))
-    m.at("stopper_max_rad").fail("expected both stopper ends or neither, min at most max");
+    m.at("stopper_max_rad").refuse("expected both stopper ends or neither, min at most max");
   r.nozzle_idle_limit_s = m.at("nozzle_idle_limit_s").number(kPositive, "s");
   r.nozzle_width_m = m.at("nozzle_width_m").number(Range::above(0, 100), "m");
   auto range = [&](const char* key, double& lo, double& hi) {
-    const auto ends = m.at(key).items(2);
-    if (ends.size() != 2) m.at(key).fail("expected [min, max]");
+    const auto ends = m.at(key).elements(2);
+    if (ends.size() != 2) m.at(key).refuse("expected [min, max]");
     lo = ends[0].number(kCoordinate_m, "m");
     hi = ends[1].number(kCoordinate_m, "m");
-    if (lo > hi) m.at(key).fail("expected [min, max] with min at most max");
+    if (lo > hi) m.at(key).refuse("expected [min, max] with min at most max");
   };
   range("x_range_m", r.x_min_m, r.x_max_m);
   range("y_range_m", r.y_min_m, r.y_max_m);
@@ -114,18 +114,18 @@ RecordedMachine read_machine(const JsonAt& m) {
   r.gantry_width_m = m.at("gantry_width_m").number(Range::closed(0, 1000), "m");
   const std::string axis = m.at("rail_axis").string(10);
   if (axis != "x" && axis != "y")
-    m.at("rail_axis").fail("expected \"x\" or \"y\", got \"" + axis + "\"");
+    m.at("rail_axis").refuse("expected \"x\" or \"y\", got \"" + axis + "\"");
   r.rail_axis = axis[0];
   r.purge_s = m.at("purge_s").number(Range::closed(0, 1e6), "s");
   const std::string kind = m.at("kind").string(100);
   if (kind != "climbing" && kind != "fixed gantry")
-    m.at("kind").fail("expected \"climbing\" or \"fixed gantry\", got \"" + kind + "\"");
+    m.at("kind").refuse("expected \"climbing\" or \"fixed gantry\", got \"" + kind + "\"");
   r.climbing = kind == "climbing";
   if (r.climbing) {
     r.anchor_strength_mpa = m.at("anchor_strength_mpa").number(kStrength_mpa, "MPa");
     r.pipe_embed_s = m.at("pipe_embed_s").number(kDuration_s, "s");
   } else if (m.maybe("anchor_strength_mpa") || m.maybe("pipe_embed_s")) {
-    m.fail("a fixed gantry has no anchor_strength_mpa or pipe_embed_s");
+    m.refuse("a fixed gantry has no anchor_strength_mpa or pipe_embed_s");
   }
   return r;
 }
@@ -139,17 +139,17 @@ void read_material(const JsonAt& m, RecordedInputs& in) {
   p.min_layer_interval_s = m.at("min_layer_interval_s").number(kDuration_s, "s");
   p.max_layer_interval_s = m.at("max_layer_interval_s").number(kDuration_s, "s");
   if (p.min_layer_interval_s > p.max_layer_interval_s)
-    m.at("max_layer_interval_s").fail("must be at least min_layer_interval_s");
+    m.at("max_layer_interval_s").refuse("must be at least min_layer_interval_s");
   p.safety_factor = m.at("safety_factor").number(Range::above(0, 1e3), "");
-  const auto curve = m.at("strength_curve").items(kMaxSmall);
-  if (curve.empty()) m.at("strength_curve").fail("expected at least one point");
+  const auto curve = m.at("strength_curve").elements(kMaxSmall);
+  if (curve.empty()) m.at("strength_curve").refuse("expected at least one point");
   for (const auto& point : curve) {
     point.only_keys({"age_s", "strength_mpa"});
     const double age_s = point.at("age_s").number(kDuration_s, "s");
     const double mpa = point.at("strength_mpa").number(kStrength_mpa, "MPa");
     if (!p.strength_curve.empty() &&
         (age_s <= p.strength_curve.back().age_s || mpa < p.strength_curve.back().strength_mpa))
-      point.fail("ages must increase and strengths not decrease along the curve");
+      point.refuse("ages must increase and strengths not decrease along the curve");
     p.strength_curve.push_back({age_s, mpa});
   }
   in.material_origin = m.at("origin").string(10'000);
@@ -165,18 +165,18 @@ RecordedInputs read_inputs(const JsonAt& root) {
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
   if (in.units != "m" && in.units != "ft")
-    i.at("units").fail("expected \"m\" or \"ft\", got \"" + in.units + "\"");
+    i.at("units").refuse("expected \"m\" or \"ft\", got \"" + in.units + "\"");
   in.layer_height_m = i.at("layer_height_m").number(Range::above(0, 100), "m");
   in.slab_stage_s = i.at("slab_stage_s").number(kDuration_s, "s");
   in.seed = i.at("seed").unsigned_integer();
-  for (const auto& f : i.at("files").items(kMaxSmall)) {
+  for (const auto& f : i.at("files").elements(kMaxSmall)) {
     f.only_keys({"path", "sha256"});
     RecordedFile file{f.at("path").string(4096), f.at("sha256").string(64)};
     const bool hex =
         file.sha256.size() == 64 && std::all_of(file.sha256.begin(), file.sha256.end(), [](char c) {
           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
         });
-    if (!hex) f.at("sha256").fail("expected 64 lowercase hex digits (a SHA-256)");
+    if (!hex) f.at("sha256").refuse("expected 64 lowercase hex digits (a SHA-256)");
     in.files.push_back(std::move(file));
   }
   in.machine = read_machine(i.at("machine"));
@@ -186,13 +186,13 @@ RecordedInputs read_inputs(const JsonAt& root) {
 
 std::vector<WaitReason> read_reasons(const JsonAt& list) {
   std::vector<WaitReason> out;
-  for (const auto& r : list.items(kMaxSmall)) {
+  for (const auto& r : list.elements(kMaxSmall)) {
     r.only_keys({"kind", "required_s", "detail"});
     WaitReason w;
     w.kind = r.at("kind").string(100);
     if (std::find(std::begin(kWaitKinds), std::end(kWaitKinds), w.kind) == std::end(kWaitKinds))
-      r.at("kind").fail("expected min-interval, strength, anchor-strength or slab, got \"" +
-                        w.kind + "\"");
+      r.at("kind").refuse("expected min-interval, strength, anchor-strength or slab, got \"" +
+                          w.kind + "\"");
     w.required_s = r.at("required_s").number(kDuration_s, "s");
     w.detail = r.at("detail").string(kMaxText);
     out.push_back(std::move(w));
@@ -240,14 +240,14 @@ ScheduledLayer read_layer(const JsonAt& j) {
   l.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
   l.z_top_m = j.at("z_m").number(kCoordinate_m, "m");
   l.z_bottom_m = j.at("z_bottom_m").number(kCoordinate_m, "m");
-  if (l.z_bottom_m >= l.z_top_m) j.at("z_m").fail("must be above z_bottom_m");
+  if (l.z_bottom_m >= l.z_top_m) j.at("z_m").refuse("must be above z_bottom_m");
   l.geometry = static_cast<int>(j.at("geometry").integer(1, kMaxGeometry));
   l.plan = j.at("plan").string(200);
   l.nozzles = static_cast<int>(j.at("nozzles").integer(1, kMaxNozzles));
   l.method = j.at("method").string(200);
   l.start_s = j.at("start_s").number(kTime_s, "s");
   l.end_s = j.at("end_s").number(kTime_s, "s");
-  if (l.end_s < l.start_s) j.at("end_s").fail("must not be before start_s");
+  if (l.end_s < l.start_s) j.at("end_s").refuse("must not be before start_s");
   l.deposition_s = j.at("deposition_s").number(kDuration_s, "s");
   l.airtime_s = j.at("airtime_s").number(kDuration_s, "s");
   l.max_idle_s = j.at("max_idle_s").number(kDuration_s, "s");
@@ -263,11 +263,12 @@ ScheduledLayer read_layer(const JsonAt& j) {
       j.at("local_interval_max_s").number_or_null(Range::closed(-1e10, 1e10), "s");
   const JsonAt min_at = j.at("local_interval_min_at"), max_at = j.at("local_interval_max_at");
   if (l.local_interval_min_s.has_value() != !min_at.is_null())
-    min_at.fail("expected a piece end exactly when local_interval_min_s is a number");
+    min_at.refuse("expected a piece end exactly when local_interval_min_s is a number");
   if (l.local_interval_max_s.has_value() != !max_at.is_null())
-    max_at.fail("expected a piece end exactly when local_interval_max_s is a number");
+    max_at.refuse("expected a piece end exactly when local_interval_max_s is a number");
   if (l.local_interval_min_s.has_value() != l.local_interval_max_s.has_value())
-    j.at("local_interval_max_s").fail("expected a number exactly when local_interval_min_s is one");
+    j.at("local_interval_max_s")
+        .refuse("expected a number exactly when local_interval_min_s is one");
   if (!min_at.is_null()) l.local_min_at = read_piece_end(min_at);
   if (!max_at.is_null()) l.local_max_at = read_piece_end(max_at);
   l.piece_ends_checked = static_cast<int>(j.at("piece_ends_checked").integer(0, 100'000'000));
@@ -278,21 +279,21 @@ ScheduledLayer read_layer(const JsonAt& j) {
 floors::Layer read_pieces(const JsonAt& list) {
   floors::Layer layer;
   auto point = [&](const JsonAt& at) {
-    const auto xy = at.items(2);
-    if (xy.size() != 2) at.fail("expected [x, y]");
+    const auto xy = at.elements(2);
+    if (xy.size() != 2) at.refuse("expected [x, y]");
     const Eigen::Vector2d p(xy[0].number(kCoordinate_m, "m"), xy[1].number(kCoordinate_m, "m"));
     for (std::size_t k = 0; k < layer.points.size(); ++k)
       if (layer.points[k] == p) return static_cast<int>(k);
     layer.points.push_back(p);
     return static_cast<int>(layer.points.size()) - 1;
   };
-  for (const auto& s : list.items(kMaxItems)) {
+  for (const auto& s : list.elements(kMaxItems)) {
     s.only_keys({"wall", "piece", "piece_count", "start_m", "end_m", "length_m"});
     floors::LayerSegment seg;
     seg.wall_id = s.at("wall").integer(1, kMaxWallId);
     seg.piece = static_cast<int>(s.at("piece").integer(1, kMaxPiece)) - 1;
     seg.piece_count = static_cast<int>(s.at("piece_count").integer(1, kMaxPiece));
-    if (seg.piece >= seg.piece_count) s.at("piece").fail("must be at most piece_count");
+    if (seg.piece >= seg.piece_count) s.at("piece").refuse("must be at most piece_count");
     seg.start_point = point(s.at("start_m"));
     seg.end_point = point(s.at("end_m"));
     seg.length_m = s.at("length_m").number(kLength_m, "m");
@@ -303,7 +304,7 @@ floors::Layer read_pieces(const JsonAt& list) {
 
 std::vector<planner::Waypoint> read_waypoints(const JsonAt& list) {
   std::vector<planner::Waypoint> out;
-  const auto items = list.items(kMaxItems);
+  const auto items = list.elements(kMaxItems);
   out.reserve(items.size());
   for (const auto& w : items) {
     w.only_keys({"t_s", "x_m", "y_m", "z_m", "heading_rad", "extruding", "wall", "piece"});
@@ -333,13 +334,13 @@ SchedulePlan read_plan(const std::string& key, const JsonAt& j) {
   if (p.nozzles > 1)
     p.min_gap_m = j.at("min_gap_m").number(Range::closed(-1e5, 1e5), "m");
   else if (!j.at("min_gap_m").is_null())
-    j.at("min_gap_m").fail("expected null for a plan of one nozzle");
+    j.at("min_gap_m").refuse("expected null for a plan of one nozzle");
   p.layer = read_pieces(j.at("pieces"));
-  const auto nozzles = j.at("nozzles").items(kMaxNozzles);
+  const auto nozzles = j.at("nozzles").elements(kMaxNozzles);
   for (std::size_t n = 0; n < nozzles.size(); ++n) {
     nozzles[n].only_keys({"nozzle", "waypoints"});
     if (nozzles[n].at("nozzle").integer(0, kMaxNozzles) != static_cast<std::int64_t>(n))
-      nozzles[n].at("nozzle").fail(
+      nozzles[n].at("nozzle").refuse(
           printf_string("expected %zu: nozzles are numbered in rail "
                         "order from 0",
                         n));
@@ -356,7 +357,7 @@ climb::Anchor read_anchor(const JsonAt& a, RecordedInputs& in) {
   out.unit = unit_index(in, a.at("unit"));
   if (a.at("floor").is_null()) {
     if (!a.at("wall").is_null() || !a.at("after_layer").is_null())
-      a.at("wall").fail("expected null in the foundation (floor null)");
+      a.at("wall").refuse("expected null in the foundation (floor null)");
     out.floor = -1;
     out.wall_id = 0;
     out.layer = -1;
@@ -367,8 +368,8 @@ climb::Anchor read_anchor(const JsonAt& a, RecordedInputs& in) {
   }
   out.centre_m = {a.at("x_m").number(kCoordinate_m, "m"), a.at("y_m").number(kCoordinate_m, "m"),
                   a.at("z_m").number(kCoordinate_m, "m")};
-  const auto outward = a.at("outward").items(2);
-  if (outward.size() != 2) a.at("outward").fail("expected [x, y]");
+  const auto outward = a.at("outward").elements(2);
+  if (outward.size() != 2) a.at("outward").refuse("expected [x, y]");
   out.outward = {outward[0].number(Range::closed(-1, 1)), outward[1].number(Range::closed(-1, 1))};
   out.by_default_rule = a.at("by_default_rule").boolean();
   return out;
@@ -386,7 +387,8 @@ climb::ClimbStage read_stage(const JsonAt& s, RecordedInputs& in) {
     ref->layer = static_cast<int>(r.at("layer").integer(0, kMaxLayer));
   }
   out.top_m = s.at("top_m").number(kCoordinate_m, "m");
-  for (const auto& a : s.at("anchors").items(kMaxSmall)) out.anchors.push_back(read_anchor(a, in));
+  for (const auto& a : s.at("anchors").elements(kMaxSmall))
+    out.anchors.push_back(read_anchor(a, in));
   return out;
 }
 
@@ -398,7 +400,7 @@ Code code_named(const JsonAt& at, const std::vector<Code>& codes, std::string (*
     if (name(c) == text) return c;
     known += (known.empty() ? "" : ", ") + name(c);
   }
-  at.fail("expected one of " + known + ", got \"" + text + "\"");
+  at.refuse("expected one of " + known + ", got \"" + text + "\"");
 }
 
 climb::ClimbPlan read_climb_plan(const JsonAt& c, RecordedInputs& in) {
@@ -418,7 +420,7 @@ climb::ClimbPlan read_climb_plan(const JsonAt& c, RecordedInputs& in) {
   out.min_clearance_m =
       c.at("min_clearance_m").number_or_null(kCoordinate_m, "m").value_or(INFINITY);
   using Kind = climb::ClimbPhase::Kind;
-  for (const auto& p : c.at("phases").items(kMaxSmall)) {
+  for (const auto& p : c.at("phases").elements(kMaxSmall)) {
     p.only_keys({"kind", "unit", "joints", "following_joints", "duration_s", "min_clearance_m",
                  "strokes", "waypoints"});
     climb::ClimbPhase phase;
@@ -427,35 +429,35 @@ climb::ClimbPlan read_climb_plan(const JsonAt& c, RecordedInputs& in) {
         {Kind::kPark, Kind::kBalance, Kind::kRelease, Kind::kTransit, Kind::kInsert, Kind::kLift},
         &climb::to_string);
     phase.unit = p.at("unit").is_null() ? -1 : unit_index(in, p.at("unit"));
-    for (const auto& name : p.at("joints").items(kMaxSmall))
+    for (const auto& name : p.at("joints").elements(kMaxSmall))
       phase.joints.push_back(name.string(200));
-    for (const auto& name : p.at("following_joints").items(kMaxSmall))
+    for (const auto& name : p.at("following_joints").elements(kMaxSmall))
       phase.following_joints.push_back(name.string(200));
     phase.duration_s = p.at("duration_s").number(kDuration_s, "s");
     phase.min_clearance_m =
         p.at("min_clearance_m").number_or_null(kCoordinate_m, "m").value_or(INFINITY);
     phase.strokes = static_cast<int>(p.at("strokes").integer(0, 100'000));
     bool following = true;
-    const auto points = p.at("waypoints").items(kMaxItems);
+    const auto points = p.at("waypoints").elements(kMaxItems);
     for (std::size_t k = 0; k < points.size(); ++k) {
       const JsonAt& w = points[k];
       w.only_keys({"t_s", "values", "following"});
       phase.t_s.push_back(w.at("t_s").number(kDuration_s, "s"));
       std::vector<double> values;
-      for (const auto& v : w.at("values").items(kMaxSmall))
+      for (const auto& v : w.at("values").elements(kMaxSmall))
         values.push_back(v.number(Range::closed(-1e5, 1e5)));
       if (values.size() != phase.joints.size())
-        w.at("values").fail(
+        w.at("values").refuse(
             printf_string("expected %zu values, one per joint", phase.joints.size()));
       phase.path.push_back(std::move(values));
       if (const auto legs = w.maybe("following")) {
-        if (!following) legs->fail("following values after waypoints without them");
+        if (!following) legs->refuse("following values after waypoints without them");
         std::vector<double> values_following;
-        for (const auto& v : legs->items(kMaxSmall))
+        for (const auto& v : legs->elements(kMaxSmall))
           values_following.push_back(v.number(Range::closed(-1e5, 1e5)));
         if (values_following.size() != phase.following_joints.size())
-          legs->fail(printf_string("expected %zu values, one per following joint",
-                                   phase.following_joints.size()));
+          legs->refuse(printf_string("expected %zu values, one per following joint",
+                                     phase.following_joints.size()));
         phase.following.push_back(std::move(values_following));
       } else {
         following = false;
@@ -485,7 +487,7 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     c.to_stage = static_cast<int>(j.at("to_stage").integer(0, kMaxLayer));
     c.wait_before_s = j.at("wait_before_s").number(kDuration_s, "s");
     c.wait_reasons = read_reasons(j.at("wait_reasons"));
-    for (const auto& a : j.at("anchors").items(kMaxSmall)) {
+    for (const auto& a : j.at("anchors").elements(kMaxSmall)) {
       a.only_keys({"id", "unit", "age_s", "strength_mpa", "required_mpa"});
       ClimbEvent::AnchorLoad load;
       load.id = a.at("id").string(200);
@@ -498,11 +500,11 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     c.plan = read_climb_plan(j.at("climb"), in);
     e.climb = std::move(c);
   } else {
-    j.at("kind").fail("expected pipe, climb, slab or purge, got \"" + kind + "\"");
+    j.at("kind").refuse("expected pipe, climb, slab or purge, got \"" + kind + "\"");
   }
   e.start_s = j.at("start_s").number(kTime_s, "s");
   e.end_s = j.at("end_s").number(kTime_s, "s");
-  if (e.end_s < e.start_s) j.at("end_s").fail("must not be before start_s");
+  if (e.end_s < e.start_s) j.at("end_s").refuse("must not be before start_s");
   e.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   e.layer = static_cast<int>(j.at("after_layer").integer(0, kMaxLayer));
   e.detail = j.at("detail").string(kMaxText);
@@ -562,14 +564,14 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
     const json dom = detail::parse_located(text, file);
     const JsonAt root(located, dom, "");
     if (!dom.is_object() || !dom.contains("format") || dom["format"] != "ccbuild-schedule")
-      root.fail(
+      root.refuse(
           "expected a ccbuild schedule (\"format\": \"ccbuild-schedule\"), from `ccbuild "
           "schedule -o`");
     const json& version = dom.contains("schema_version") ? dom["schema_version"] : json();
     if (version != kScheduleSchemaVersion)
       root.at("schema_version")
-          .fail("expected schema_version " + std::to_string(kScheduleSchemaVersion) + ", got " +
-                version.dump());
+          .refuse("expected schema_version " + std::to_string(kScheduleSchemaVersion) + ", got " +
+                  version.dump());
     root.only_keys({"format", "schema_version", "ccbuild_version", "inputs", "feasible",
                     "infeasibility", "totals", "layers", "plans", "stages", "events", "warnings"});
     RecordedInputs& in = doc.inputs;
@@ -580,18 +582,19 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
       s.infeasibility = read_infeasibility(root.at("infeasibility"));
     std::size_t layer_count = 0;
     s.totals = read_totals(root.at("totals"), layer_count);
-    for (const auto& l : root.at("layers").items(kMaxLayers)) s.layers.push_back(read_layer(l));
+    for (const auto& l : root.at("layers").elements(kMaxLayers)) s.layers.push_back(read_layer(l));
     if (layer_count != s.layers.size())
-      root.at("totals").at("layers").fail(
+      root.at("totals").at("layers").refuse(
           printf_string("says %zu layers; the schedule has %zu", layer_count, s.layers.size()));
     for (const auto& [key, p] : root.at("plans").members(kMaxPlans)) {
-      if (key.empty() || key.size() > 200) p.fail("expected a plan key of 1 to 200 characters");
+      if (key.empty() || key.size() > 200) p.refuse("expected a plan key of 1 to 200 characters");
       s.plans.emplace(key, read_plan(key, p));
     }
-    for (const auto& st : root.at("stages").items(kMaxSmall))
+    for (const auto& st : root.at("stages").elements(kMaxSmall))
       s.stages.push_back(read_stage(st, in));
-    for (const auto& e : root.at("events").items(kMaxEvents)) s.events.push_back(read_event(e, in));
-    for (const auto& w : root.at("warnings").items(kMaxSmall))
+    for (const auto& e : root.at("events").elements(kMaxEvents))
+      s.events.push_back(read_event(e, in));
+    for (const auto& w : root.at("warnings").elements(kMaxSmall))
       s.warnings.push_back(w.string(kMaxText));
   }
   detail::check_schedule_rules(doc, located);
