@@ -2,7 +2,6 @@
 // answering the jobs for --machine-id (docs/dispatch.md). Runs until SIGTERM or SIGINT.
 
 #include <CLI/CLI.hpp>
-#include <charconv>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -104,21 +103,10 @@ int main(int argc, char** argv) {
   options.check_z_range = !climbing;
   if (home.size() == 4) options.home = {home[0], home[1], home[2], home[3]};
   try {
-    if (!clog_at.empty()) {
-      const auto colon = clog_at.find(':');
-      const std::string floor = clog_at.substr(0, colon);
-      const std::string layer = colon == std::string::npos ? "" : clog_at.substr(colon + 1);
-      const auto whole = [](const std::string& text, int max, int& value) {
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-        return !text.empty() && ec == std::errc() && end == text.data() + text.size() &&
-               value >= 0 && value <= max;
-      };
-      if (!whole(floor, sim_limits::kMaxClogFloor, options.clog_floor) ||
-          !whole(layer, sim_limits::kMaxClogLayer, options.clog_layer))
-        throw ccbuild::InputError(
-            "", 0, "--clog-at",
-            "expected FLOOR:LAYER (whole numbers from 0), got '" + clog_at + "'");
-    }
+    if (!clog_at.empty() &&
+        !sim_limits::parse_floor_layer(clog_at, options.clog_floor, options.clog_layer))
+      throw ccbuild::InputError(
+          "", 0, "--clog-at", "expected FLOOR:LAYER (whole numbers from 0), got '" + clog_at + "'");
     if (!profile.empty())
       options.model = std::make_shared<const ccbuild::machine::MachineModel>(
           ccbuild::machine::load_machine(profile));

@@ -100,8 +100,7 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
     if (result.status) {
       out.max_idle_s = result.max_idle_s();
       if (result.idle_limit_violations() > 0)
-        out.why_not = printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s",
-                                    out.max_idle_s, machine_.nozzle_idle_limit_s);
+        out.why_not = idle_limit_broken(out.max_idle_s);
       else
         out.usable = true;
     }
@@ -271,8 +270,7 @@ const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& bel
     out.airtime_s += plan.evaluation.airtime_s;
     out.max_idle_s = std::max(out.max_idle_s, plan.evaluation.max_idle_s);
     if (plan.evaluation.idle_limit_violations > 0 && out.why_not.empty())
-      out.why_not = printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s",
-                                  plan.evaluation.max_idle_s, machine_.nozzle_idle_limit_s);
+      out.why_not = idle_limit_broken(plan.evaluation.max_idle_s);
     planner::Timeline rail;
     for (const auto& w : plan.waypoints) rail.append(w.t_s, w.position_m);
     rails.push_back(rail);

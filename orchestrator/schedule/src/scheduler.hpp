@@ -138,6 +138,12 @@ class Scheduler {
   double required_strength_mpa(double height_m) const {
     return material_.safety_factor * stress_per_m_mpa_ * height_m;
   }
+  /// Why a plan whose longest air move is `max_idle_s` is not used (a plan with an air
+  /// move over the nozzle idle limit clogs).
+  std::string idle_limit_broken(double max_idle_s) const {
+    return printf_string("an air move of %.1f s breaks the nozzle idle limit of %.1f s", max_idle_s,
+                         machine_.nozzle_idle_limit_s);
+  }
   int jobs_;
 
   std::vector<Slice> slices_;

@@ -136,10 +136,7 @@ Injected injected(const std::string& text) {
       value = value.substr(amp + 1);
     }
     if (name == "clog") {
-      const std::size_t colon = value.find(':');
-      if (colon == std::string::npos || !parse_whole(value.substr(0, colon), f.floor) ||
-          !parse_whole(value.substr(colon + 1), f.layer) || f.floor < 0 || f.layer < 0 ||
-          f.floor > lim::kMaxClogFloor || f.layer > lim::kMaxClogLayer)
+      if (!lim::parse_floor_layer(value, f.floor, f.layer))
         throw bad_inject(item, "FLOOR:LAYER expected (whole numbers from 0)");
     } else if (name == "pin" || name == "crash") {
       const long most = name == "pin" ? lim::kMaxPinFailures : lim::kMaxCrashAfterJobs;

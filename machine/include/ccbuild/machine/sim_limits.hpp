@@ -4,7 +4,9 @@
 // refuse is an input error up front (exit 2), never a machine that fails to start and is
 // started again and again.
 
+#include <charconv>
 #include <cstdint>
+#include <string>
 
 #include "ccbuild/common/format.hpp"
 
@@ -31,5 +33,19 @@ inline const Range kStallAt_s = Range::closed(0.0, 1e9);
 /// Floors and layers a clog may name (FLOOR:LAYER).
 inline constexpr int kMaxClogFloor = 10'000;
 inline constexpr int kMaxClogLayer = 1'000'000;
+
+/// FLOOR:LAYER, whole numbers from 0 up to kMaxClogFloor and kMaxClogLayer, as
+/// `ccbuild-sim --clog-at` and `ccbuild dry-run --inject clog=` take it. False for
+/// anything else (then `floor` and `layer` are unspecified).
+inline bool parse_floor_layer(const std::string& text, int& floor, int& layer) {
+  const auto whole = [](const std::string& part, int max, int& value) {
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+    return !part.empty() && ec == std::errc() && end == part.data() + part.size() && value >= 0 &&
+           value <= max;
+  };
+  const std::size_t colon = text.find(':');
+  return colon != std::string::npos && whole(text.substr(0, colon), kMaxClogFloor, floor) &&
+         whole(text.substr(colon + 1), kMaxClogLayer, layer);
+}
 
 }  // namespace ccbuild::machine::sim_limits
