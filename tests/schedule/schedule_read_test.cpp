@@ -49,16 +49,42 @@ int line_holding(const std::string& text, const std::string& part, int from = 0)
 }
 
 TEST(ReadSchedule, WritingWhatWasReadGivesTheSameBytes) {
+  // The house's golden keeps its paths; the others their digests (--path-digests).
   for (const char* name : {"house", "apartment", "tower"}) {
     const std::string text = golden_text(name);
-    const ScheduleDocument doc = parse_schedule(text, name);
+    const ScheduleDocument doc = parse_schedule(text, name, true);
     EXPECT_EQ(schedule_json(doc.inputs, doc.schedule).dump(1) + "\n", text) << name;
-    EXPECT_FALSE(diff_schedules(doc, parse_schedule(text, name), {}).differs()) << name;
+    EXPECT_FALSE(diff_schedules(doc, parse_schedule(text, name, true), {}).differs()) << name;
   }
 }
 
+TEST(ReadSchedule, PathDigestsStandForThePathsInDiffOnly) {
+  const std::string text = golden_text("house");
+  const ScheduleDocument full = parse_schedule(text, "house");
+  ScheduleJsonOptions digests;
+  digests.path_digests = true;
+  const std::string small = schedule_json(full.inputs, full.schedule, digests).dump(1) + "\n";
+  EXPECT_LT(small.size(), text.size() / 2);
+  // Read back and written again: the same bytes; compared with the full one: the same.
+  const ScheduleDocument golden = parse_schedule(small, "small.json", true);
+  EXPECT_EQ(schedule_json(golden.inputs, golden.schedule).dump(1) + "\n", small);
+  EXPECT_FALSE(diff_schedules(golden, full, {}).differs());
+  EXPECT_FALSE(diff_schedules(full, golden, {}).differs());
+  // One waypoint a micrometre off: its plan's digest no longer matches.
+  ScheduleDocument moved = full;
+  auto& plan = moved.schedule.plans.begin()->second;
+  plan.waypoints[0][3].position_m.x() += 1e-6;
+  const ScheduleDiff d = diff_schedules(golden, moved, {});
+  EXPECT_EQ(d.differing_plans, 1);
+  EXPECT_TRUE(testing::contains(d.changes.back(), "plan " + plan.key + ": its timed paths differ"));
+  // Commands that need the paths refuse it, naming where.
+  const InputError e = testing::expect_input_error([&] { parse_schedule(small, "small.json"); });
+  EXPECT_EQ(e.first().field, "/plans/" + plan.key + "/nozzles/0/waypoints_digest");
+  EXPECT_TRUE(testing::contains(e.what(), "keeps its paths' digests only"));
+}
+
 TEST(ReadSchedule, TheModelIsTyped) {
-  const ScheduleDocument doc = parse_schedule(golden_text("tower"), "tower");
+  const ScheduleDocument doc = parse_schedule(golden_text("tower"), "tower", true);
   EXPECT_TRUE(doc.schedule.feasible);
   EXPECT_EQ(doc.schedule.layers.size(), 250u);
   EXPECT_TRUE(doc.inputs.machine.climbing);

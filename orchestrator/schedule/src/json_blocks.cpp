@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "ccbuild/common/sha256.hpp"
+
 namespace ccbuild::schedule {
 namespace {
 using json = nlohmann::ordered_json;
@@ -46,6 +48,10 @@ json waypoints_json(const std::vector<planner::Waypoint>& waypoints) {
                    {"piece", w.piece}});
   }
   return out;
+}
+
+PathDigest path_digest(const std::vector<planner::Waypoint>& waypoints) {
+  return {waypoints.size(), sha256_hex(waypoints_json(waypoints).dump())};
 }
 
 RecordedMachine machine_limits(const machine::MachineModel& m) {

@@ -89,7 +89,8 @@ nlohmann::ordered_json schedule_json(const Setup& project, const ScheduleOptions
   return schedule_json(recorded_inputs(project, options), schedule);
 }
 
-nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& schedule) {
+nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& schedule,
+                                     const ScheduleJsonOptions& options) {
   json out;
   out["format"] = "ccbuild-schedule";
   out["schema_version"] = kScheduleSchemaVersion;
@@ -172,8 +173,19 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   json plans = json::object();
   for (const auto& [key, p] : schedule.plans) {
     json nozzles = json::array();
-    for (std::size_t n = 0; n < p.waypoints.size(); ++n)
-      nozzles.push_back({{"nozzle", n}, {"waypoints", waypoints_json(p.waypoints[n])}});
+    const auto digest_json = [](const PathDigest& d) {
+      return json{{"waypoints", d.waypoints}, {"sha256", d.sha256}};
+    };
+    for (std::size_t n = 0; n < p.digests.size(); ++n)
+      nozzles.push_back({{"nozzle", n}, {"waypoints_digest", digest_json(p.digests[n])}});
+    for (std::size_t n = 0; n < p.waypoints.size(); ++n) {
+      json nozzle = {{"nozzle", n}};
+      if (options.path_digests)
+        nozzle["waypoints_digest"] = digest_json(path_digest(p.waypoints[n]));
+      else
+        nozzle["waypoints"] = waypoints_json(p.waypoints[n]);
+      nozzles.push_back(nozzle);
+    }
     plans[key] = {{"geometry", p.geometry},
                   {"nozzles_used", p.nozzles},
                   {"method", p.method},

@@ -321,7 +321,7 @@ std::vector<planner::Waypoint> read_waypoints(const JsonAt& list) {
   return out;
 }
 
-SchedulePlan read_plan(const std::string& key, const JsonAt& j) {
+SchedulePlan read_plan(const std::string& key, const JsonAt& j, bool allow_digests) {
   j.only_keys({"geometry", "nozzles_used", "method", "z_top_m", "layer_time_s", "min_gap_m",
                "pieces", "nozzles"});
   SchedulePlan p;
@@ -338,12 +338,32 @@ SchedulePlan read_plan(const std::string& key, const JsonAt& j) {
   p.layer = read_pieces(j.at("pieces"));
   const auto nozzles = j.at("nozzles").elements(kMaxNozzles);
   for (std::size_t n = 0; n < nozzles.size(); ++n) {
-    nozzles[n].only_keys({"nozzle", "waypoints"});
+    nozzles[n].only_keys({"nozzle", "waypoints", "waypoints_digest"});
     if (nozzles[n].at("nozzle").integer(0, kMaxNozzles) != static_cast<std::int64_t>(n))
       nozzles[n].at("nozzle").refuse(
           printf_string("expected %zu: nozzles are numbered in rail "
                         "order from 0",
                         n));
+    if (const auto digest = nozzles[n].maybe("waypoints_digest")) {
+      if (!allow_digests)
+        digest->refuse(
+            "this schedule keeps its paths' digests only (a regression golden, written with "
+            "--path-digests); this command needs the paths: schedule it again without it");
+      if (!p.waypoints.empty() || nozzles[n].maybe("waypoints"))
+        digest->refuse("expected the waypoints or their digest for every nozzle, not both");
+      digest->only_keys({"waypoints", "sha256"});
+      PathDigest d;
+      d.waypoints = static_cast<std::size_t>(
+          digest->at("waypoints").integer(2, static_cast<std::int64_t>(kMaxItems)));
+      d.sha256 = digest->at("sha256").string(64);
+      if (d.sha256.size() != 64 ||
+          d.sha256.find_first_not_of("0123456789abcdef") != std::string::npos)
+        digest->at("sha256").refuse("expected 64 lowercase hex digits (a SHA-256)");
+      p.digests.push_back(std::move(d));
+      continue;
+    }
+    if (!p.digests.empty())
+      nozzles[n].refuse("expected the digest of every nozzle's path, as for nozzle 0");
     p.waypoints.push_back(read_waypoints(nozzles[n].at("waypoints")));
   }
   return p;
@@ -555,7 +575,8 @@ ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers) {
 
 }  // namespace
 
-ScheduleDocument parse_schedule(const std::string& text, const std::string& file) {
+ScheduleDocument parse_schedule(const std::string& text, const std::string& file,
+                                bool allow_path_digests) {
   detail::check_nesting(text, file, limits::kMaxNestingDepth);
   ScheduleDocument doc;
   detail::JsonText located(file, text);
@@ -588,7 +609,7 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
           printf_string("says %zu layers; the schedule has %zu", layer_count, s.layers.size()));
     for (const auto& [key, p] : root.at("plans").members(kMaxPlans)) {
       if (key.empty() || key.size() > 200) p.refuse("expected a plan key of 1 to 200 characters");
-      s.plans.emplace(key, read_plan(key, p));
+      s.plans.emplace(key, read_plan(key, p, allow_path_digests));
     }
     for (const auto& st : root.at("stages").elements(kMaxSmall))
       s.stages.push_back(read_stage(st, in));
@@ -630,7 +651,7 @@ ReadSchedule read_schedule(const std::filesystem::path& path, const ReadSchedule
       throw InputError(file, 0, "", "grew past the size limit while it was read");
   }
   ReadSchedule out;
-  out.document = parse_schedule(text, file);
+  out.document = parse_schedule(text, file, options.allow_path_digests);
   text = std::string();
   // The recorded inputs, by path (as recorded, from here) and SHA-256.
   const auto& files = out.document.inputs.files;

@@ -49,14 +49,20 @@ class Rules {
   static std::string plan_pointer(const std::string& key) { return pointer_to("/plans", key); }
 
   // ---------------------------------------------------------------- plans
+  /// How many nozzle paths a plan holds, whole or as digests.
+  static std::size_t paths_of(const SchedulePlan& plan) {
+    return plan.digests.empty() ? plan.waypoints.size() : plan.digests.size();
+  }
+
   void check_plan(const std::string& key, const SchedulePlan& plan) {
     const std::string at = plan_pointer(key);
-    if (static_cast<int>(plan.waypoints.size()) != plan.nozzles) {
+    if (static_cast<int>(paths_of(plan)) != plan.nozzles) {
       broken(at + "/nozzles", "nozzles",
-             printf_string("holds %zu nozzle paths; nozzles_used says %d", plan.waypoints.size(),
+             printf_string("holds %zu nozzle paths; nozzles_used says %d", paths_of(plan),
                            plan.nozzles));
       return;
     }
+    if (!plan.digests.empty()) return;  // only their digests: nothing to walk
     for (std::size_t n = 0; n < plan.waypoints.size(); ++n)
       if (plan.waypoints[n].size() < 2)
         return broken(pointer_to(at + "/nozzles", n) + "/waypoints", "paths",
@@ -324,10 +330,10 @@ class Rules {
         continue;
       }
       const SchedulePlan& plan = plan_it->second;
-      if (l.nozzles != plan.nozzles || static_cast<int>(plan.waypoints.size()) != l.nozzles)
+      if (l.nozzles != plan.nozzles || static_cast<int>(paths_of(plan)) != l.nozzles)
         broken(at + "/nozzles", "nozzles",
                printf_string("%d, but its plan %s deposits with %d (%zu paths)", l.nozzles,
-                             l.plan.c_str(), plan.nozzles, plan.waypoints.size()));
+                             l.plan.c_str(), plan.nozzles, paths_of(plan)));
       if (l.geometry != plan.geometry)
         broken(at + "/geometry", "plans",
                printf_string("%d, but its plan %s is of geometry %d", l.geometry, l.plan.c_str(),
@@ -378,7 +384,10 @@ class Rules {
         broken(at + "/interval_s", "intervals",
                printf_string("expected %.6f s, start to start from the layer below",
                              l.start_s - previous->start_s));
-      if (!s.plans.count(previous->plan)) continue;
+      // Recomputed from the paths when both are known whole.
+      if (!s.plans.count(previous->plan) || !plan.digests.empty() ||
+          !s.plans.at(previous->plan).digests.empty())
+        continue;
       const DepositIndex& up = index(l.plan);
       const DepositIndex& low = index(previous->plan);
       const IntervalOffsets offsets = interval_offsets(plan.layer, up, low);

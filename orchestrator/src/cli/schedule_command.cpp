@@ -26,6 +26,7 @@ struct ScheduleCommandOptions {
   int jobs = 0;
   double layer_time_limit_s = 60.0;
   bool quiet = false;
+  bool path_digests = false;
 };
 
 std::string duration(double s) {
@@ -50,7 +51,8 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   if (!o.output.empty() || !o.report.empty()) {
     const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options), s};
     if (!o.output.empty())
-      write_file_atomically(o.output, schedule::schedule_json(doc.inputs, s).dump(1) + "\n",
+      write_file_atomically(o.output,
+                            schedule::schedule_json(doc.inputs, s, {o.path_digests}).dump(1) + "\n",
                             o.force, inputs);
     if (!o.report.empty())
       write_file_atomically(o.report, report::schedule_report_html(doc), o.force, inputs);
@@ -165,6 +167,11 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();
   command->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  command->add_flag("--path-digests", o->path_digests,
+                    "In -o, each nozzle's timed path as its digest (waypoint count and SHA-256) "
+                    "instead of its waypoints: a schedule a fraction of the size that `diff` "
+                    "compares exactly (the regression goldens); report and dry-run need the "
+                    "paths and refuse it");
   add_input_options(*command, o->input);
   command->callback([o, &exit_code] { run_schedule(*o, exit_code); });
 }

@@ -23,6 +23,8 @@ nlohmann::ordered_json point_json(const Eigen::Vector2d& p);
 nlohmann::ordered_json pieces_json(const floors::Layer& layer);
 /// [{t_s, x_m, y_m, z_m, heading_rad, extruding, wall, piece}].
 nlohmann::ordered_json waypoints_json(const std::vector<planner::Waypoint>& waypoints);
+/// A timed path's digest: its waypoint count and the SHA-256 of waypoints_json's compact text.
+PathDigest path_digest(const std::vector<planner::Waypoint>& waypoints);
 /// The machine's limits an independent check needs (RecordedMachine's first fields).
 RecordedMachine machine_limits(const machine::MachineModel& machine);
 nlohmann::ordered_json machine_limits_json(const RecordedMachine& machine);

@@ -90,6 +90,14 @@ struct ScheduledLayer {
   int piece_ends_checked = 0;
 };
 
+/// A nozzle's timed path known by its digest only: how many waypoints, and the SHA-256 of
+/// their JSON (compact, as schedule_json writes them). Regression goldens keep these.
+struct PathDigest {
+  std::size_t waypoints = 0;
+  std::string sha256;
+  bool operator==(const PathDigest&) const = default;
+};
+
 /// A planned layer geometry at one nozzle count, as it is deposited.
 struct SchedulePlan {
   std::string key;  ///< "g3n2": geometry 3, 2 nozzles; "g3n2m1": relabelled for other walls
@@ -103,6 +111,9 @@ struct SchedulePlan {
   /// pieces of `layer` (a wall cut at a section border keeps its layer piece number).
   std::vector<std::vector<planner::Waypoint>> waypoints;
   floors::Layer layer;  ///< the wall pieces the waypoints deposit
+  /// One per nozzle when the paths are known by their digests only (read from a schedule
+  /// written with path digests); then `waypoints` is empty.
+  std::vector<PathDigest> digests;
 };
 
 struct ClimbEvent {

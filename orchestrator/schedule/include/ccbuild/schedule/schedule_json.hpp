@@ -80,8 +80,16 @@ struct ScheduleDocument {
 /// back for its checksum.
 RecordedInputs recorded_inputs(const Setup& setup, const ScheduleOptions& options);
 
+struct ScheduleJsonOptions {
+  /// Each nozzle's timed path as its digest (PathDigest) instead of its waypoints: a
+  /// schedule a fraction of the size, which `diff` compares exactly (regression goldens),
+  /// but which report and dry-run, needing the paths, refuse.
+  bool path_digests = false;
+};
+
 /// The schedule's JSON document.
-nlohmann::ordered_json schedule_json(const RecordedInputs& inputs, const Schedule& schedule);
+nlohmann::ordered_json schedule_json(const RecordedInputs& inputs, const Schedule& schedule,
+                                     const ScheduleJsonOptions& options = {});
 /// The same, with the inputs of `setup`. Throws as recorded_inputs does.
 nlohmann::ordered_json schedule_json(const Setup& setup, const ScheduleOptions& options,
                                      const Schedule& schedule);
@@ -96,6 +104,8 @@ enum class RecordedInputCheck {
 
 struct ReadScheduleOptions {
   RecordedInputCheck inputs = RecordedInputCheck::kRefuseChanged;
+  /// Whether paths known by their digests only are read (diff); else refused.
+  bool allow_path_digests = false;
 };
 
 struct ReadSchedule {
@@ -118,6 +128,7 @@ ReadSchedule read_schedule(const std::filesystem::path& path,
 
 /// Parses schedule JSON text (named `file` in messages) as read_schedule does, without
 /// the size check and without looking at the recorded input files.
-ScheduleDocument parse_schedule(const std::string& text, const std::string& file);
+ScheduleDocument parse_schedule(const std::string& text, const std::string& file,
+                                bool allow_path_digests = false);
 
 }  // namespace ccbuild::schedule
