@@ -89,7 +89,7 @@ double stress_mpa(double height_m, double safety_factor) {
   return safety_factor * 2200.0 * kGravity_m_s2 * 1e-6 * height_m;
 }
 
-const WaitReason* reason_of(const ScheduledLayer& l, const std::string& kind) {
+const WaitReason* reason_of(const ScheduledLayer& l, WaitKind kind) {
   for (const auto& r : l.wait_reasons)
     if (r.kind == kind) return &r;
   return nullptr;
@@ -121,7 +121,7 @@ TEST(ScheduleBoundaries, AnOlderLayerCarriesTheWallsAboveWithTheSafetyFactor) {
   ASSERT_LT(l1.end_s + l2.move_before_s, l0.end_s + age_s) << "the building is too slow to wait";
   EXPECT_FALSE(l2.purge_before);
   EXPECT_NEAR(l2.start_s, l0.end_s + age_s, 1e-6);
-  const WaitReason* why = reason_of(l2, "strength");
+  const WaitReason* why = reason_of(l2, WaitKind::kStrength);
   ASSERT_NE(why, nullptr);
   EXPECT_NEAR(why->required_s, l2.wait_before_s, 1e-6);
   EXPECT_NEAR(l2.wait_before_s, l0.end_s + age_s - (l1.end_s + l2.move_before_s), 1e-6);
@@ -152,7 +152,7 @@ TEST(ScheduleBoundaries, AFloorsFirstLayerLoadsTheLayersOfTheFloorBelow) {
   ASSERT_LT(top.end_s + above.move_before_s, top.end_s + top_age_s) << "no wait to measure";
   EXPECT_FALSE(above.purge_before);
   EXPECT_NEAR(above.start_s, top.end_s + top_age_s, 1e-6);
-  const WaitReason* why = reason_of(above, "strength");
+  const WaitReason* why = reason_of(above, WaitKind::kStrength);
   ASSERT_NE(why, nullptr);
   EXPECT_NEAR(why->required_s, above.wait_before_s, 1e-6);
   EXPECT_TRUE(contains(why->detail, "floor 0 layer 1 carries 0.500 m"));

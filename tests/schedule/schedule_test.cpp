@@ -106,7 +106,7 @@ void expect_schedule_rules(const Project& project, const Schedule& s) {
     // the tightest piece reaches it, not later.
     bool only_min_interval = !l.wait_reasons.empty() && !l.purge_before;
     for (const auto& r : l.wait_reasons)
-      only_min_interval = only_min_interval && r.kind == "min-interval";
+      only_min_interval = only_min_interval && r.kind == WaitKind::kMinInterval;
     if (only_min_interval) {
       EXPECT_NEAR(*l.local_interval_min_s, m.min_layer_interval_s, 1e-6);
     }
@@ -233,7 +233,7 @@ TEST(Schedule, AMaximumNoNozzleCountMeetsIsInfeasibleWithItsFix) {
   EXPECT_FALSE(s.feasible);
   ASSERT_TRUE(s.infeasibility);
   const Infeasibility& inf = *s.infeasibility;
-  EXPECT_EQ(inf.kind, "max-interval");
+  EXPECT_EQ(inf.kind, InfeasibilityKind::kMaxInterval);
   EXPECT_EQ(inf.floor, 0);
   EXPECT_EQ(inf.layer, 1);  // the first layer with a layer below
   EXPECT_NEAR(inf.required_s, 60.0, kTol_s);

@@ -61,7 +61,7 @@ double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, 
     const double age_s = material_.age_for_strength_s(required_mpa);
     if (!std::isfinite(age_s)) {
       impossible = true;
-      reason.kind = "strength";
+      reason.kind = WaitKind::kStrength;
       reason.detail = printf_string(
           "%s would carry %.3f m of wall: %.4f MPa with the safety factor %.2f, more than the "
           "material ever reaches (%.4f MPa)",
@@ -72,7 +72,7 @@ double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, 
     }
     if (layer_end_s_[j] + age_s > ready_s) {
       ready_s = layer_end_s_[j] + age_s;
-      reason.kind = "strength";
+      reason.kind = WaitKind::kStrength;
       reason.detail = printf_string(
           "%s carries %.3f m of wall above its bottom: %.4f MPa with the safety factor %.2f; "
           "its concrete reaches that %.1f s after it was deposited",
@@ -155,7 +155,7 @@ void Scheduler::prepare() {
     schedule_.stages = stages.stages;
     if (!stages.status) {
       Infeasibility inf;
-      inf.kind = "climb";
+      inf.kind = InfeasibilityKind::kClimb;
       inf.message = "the climbing machine's stages: " + stages.status.to_string();
       inf.fix = "anchor points the units can reach (see `ccbuild climb`)";
       fail(inf);
@@ -261,7 +261,7 @@ bool Scheduler::schedule_layer(int i) {
       strength_ready_s(i, below ? i - 1 : i, previous_end_s_, strength, impossible);
   if (impossible) {
     Infeasibility inf;
-    inf.kind = "strength";
+    inf.kind = InfeasibilityKind::kStrength;
     inf.floor = slice.floor;
     inf.layer = slice.layer.index;
     inf.message = where_text(slice.floor, slice.layer.index) + ": " + strength.detail;
@@ -275,7 +275,7 @@ bool Scheduler::schedule_layer(int i) {
                                    : 0.0;
   if (below && !std::isfinite(below_age_s) && !impossible) {
     Infeasibility inf;
-    inf.kind = "strength";
+    inf.kind = InfeasibilityKind::kStrength;
     inf.floor = slice.floor;
     inf.layer = slice.layer.index;
     inf.message = printf_string(
@@ -311,7 +311,7 @@ bool Scheduler::schedule_layer(int i) {
     c.move_s = previous_key_.empty() ? 0.0 : move_between(previous_key_, c.key);
     const double earliest_s = previous_end_s_ + ready_extra_s_ + c.move_s;
     double start_s = earliest_s;
-    auto require = [&](double need_s, const char* kind, const std::string& detail) {
+    auto require = [&](double need_s, WaitKind kind, const std::string& detail) {
       if (need_s <= earliest_s + 1e-9) return;
       c.reasons.push_back({kind, need_s - earliest_s, detail});
       start_s = std::max(start_s, need_s);
@@ -321,13 +321,13 @@ bool Scheduler::schedule_layer(int i) {
       if (c.offsets.ends > 0) {
         const double earliest_local_s = earliest_s - below->start_s + c.offsets.min_offset_s;
         require(below->start_s + material_.min_layer_interval_s - c.offsets.min_offset_s,
-                "min-interval",
+                WaitKind::kMinInterval,
                 printf_string("%s would be covered %.1f s after it was deposited, under the "
                               "minimum interval of %.1f s",
                               piece_text(c.offsets.min_at).c_str(), earliest_local_s,
                               material_.min_layer_interval_s));
         if (std::isfinite(below_age_s))
-          require(below->start_s + below_age_s - c.offsets.min_offset_s, "strength",
+          require(below->start_s + below_age_s - c.offsets.min_offset_s, WaitKind::kStrength,
                   printf_string("%s (floor %d layer %d) would carry %.3f m of wall %.1f s "
                                 "after it was deposited; with the safety factor %.2f its "
                                 "concrete needs %.1f s",
@@ -338,7 +338,7 @@ bool Scheduler::schedule_layer(int i) {
     }
     if (!impossible && std::isfinite(strong_s)) {
       strength.required_s = 0.0;
-      if (strong_s > earliest_s + 1e-9) require(strong_s, "strength", strength.detail);
+      if (strong_s > earliest_s + 1e-9) require(strong_s, WaitKind::kStrength, strength.detail);
     }
     c.wait_s = start_s - earliest_s;
     // The nozzle idles from the previous layer's end: past the limit it is purged.
@@ -396,7 +396,7 @@ bool Scheduler::schedule_layer(int i) {
   if (!best) {
     // No nozzle count has a plan at all.
     Infeasibility inf;
-    inf.kind = "no-plan";
+    inf.kind = InfeasibilityKind::kNoPlan;
     inf.floor = slice.floor;
     inf.layer = slice.layer.index;
     std::string why;
@@ -408,7 +408,7 @@ bool Scheduler::schedule_layer(int i) {
   }
   if (!best->ok) {
     Infeasibility inf;
-    inf.kind = "max-interval";
+    inf.kind = InfeasibilityKind::kMaxInterval;
     inf.floor = slice.floor;
     inf.layer = slice.layer.index;
     inf.required_s = material_.max_layer_interval_s;
@@ -522,7 +522,7 @@ bool Scheduler::after_layer(int i) {
       const double cast_s = cast == pipe_done_s_.end() ? 0.0 : cast->second;
       if (cast_s + age_needed_s > ready_s + 1e-9) {
         ce.wait_reasons.push_back(
-            {"anchor-strength", cast_s + age_needed_s - t,
+            {WaitKind::kAnchorStrength, cast_s + age_needed_s - t,
              printf_string("anchor %s (unit %s, cast %s) reaches %.1f MPa %.1f h after it "
                            "was cast",
                            a.id.c_str(), project_.climber->units[a.unit].name.c_str(),
@@ -533,7 +533,7 @@ bool Scheduler::after_layer(int i) {
     }
     if (!std::isfinite(age_needed_s)) {
       Infeasibility inf;
-      inf.kind = "climb";
+      inf.kind = InfeasibilityKind::kClimb;
       inf.floor = out.floor;
       inf.layer = out.layer;
       inf.message = printf_string(
@@ -554,7 +554,7 @@ bool Scheduler::after_layer(int i) {
     }
     if (!ce.plan.status) {
       Infeasibility inf;
-      inf.kind = "climb";
+      inf.kind = InfeasibilityKind::kClimb;
       inf.floor = out.floor;
       inf.layer = out.layer;
       inf.message = printf_string("climb %d -> %d: ", c, c + 1) + ce.plan.status.to_string();
@@ -592,6 +592,55 @@ Schedule Scheduler::run() {
 }
 
 }  // namespace detail
+
+std::string to_string(WaitKind kind) {
+  switch (kind) {
+    case WaitKind::kMinInterval:
+      return "min-interval";
+    case WaitKind::kStrength:
+      return "strength";
+    case WaitKind::kAnchorStrength:
+      return "anchor-strength";
+    case WaitKind::kSlab:
+      return "slab";
+  }
+  return "?";
+}
+
+std::optional<WaitKind> wait_kind_named(const std::string& name) {
+  for (WaitKind k :
+       {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab})
+    if (to_string(k) == name) return k;
+  return std::nullopt;
+}
+
+std::string to_string(InfeasibilityKind kind) {
+  switch (kind) {
+    case InfeasibilityKind::kMaxInterval:
+      return "max-interval";
+    case InfeasibilityKind::kNoPlan:
+      return "no-plan";
+    case InfeasibilityKind::kStrength:
+      return "strength";
+    case InfeasibilityKind::kClimb:
+      return "climb";
+  }
+  return "?";
+}
+
+std::optional<InfeasibilityKind> infeasibility_kind_named(const std::string& name) {
+  for (InfeasibilityKind k : {InfeasibilityKind::kMaxInterval, InfeasibilityKind::kNoPlan,
+                              InfeasibilityKind::kStrength, InfeasibilityKind::kClimb})
+    if (to_string(k) == name) return k;
+  return std::nullopt;
+}
+
+std::string PlanKey::to_string() const {
+  std::string key =
+      follows.empty() ? printf_string("g%dn%d", geometry, nozzles)
+                      : printf_string("g%d~%s%s", geometry, follows.c_str(), held_back ? "h" : "");
+  return relabelled > 0 ? key + "m" + std::to_string(relabelled) : key;
+}
 
 std::string to_string(Event::Kind kind) {
   switch (kind) {

@@ -21,7 +21,8 @@ json piece_end_json(const PieceEnd& e) {
 json reasons_json(const std::vector<WaitReason>& reasons) {
   json out = json::array();
   for (const auto& r : reasons)
-    out.push_back({{"kind", r.kind}, {"required_s", rounded(r.required_s)}, {"detail", r.detail}});
+    out.push_back(
+        {{"kind", to_string(r.kind)}, {"required_s", rounded(r.required_s)}, {"detail", r.detail}});
   return out;
 }
 
@@ -114,7 +115,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   if (schedule.infeasibility) {
     const Infeasibility& inf = *schedule.infeasibility;
     out["infeasibility"] = {
-        {"kind", inf.kind},
+        {"kind", to_string(inf.kind)},
         {"floor", inf.floor},
         {"layer", inf.layer},
         {"message", inf.message},

@@ -159,8 +159,9 @@ int Scheduler::fewest_nozzles(int geometry, double between_s) {
   return fastest;  // none is fast enough: the fastest comes closest
 }
 
-std::string Scheduler::register_plan(const std::string& base, const Slice& slice, int nozzles,
+std::string Scheduler::register_plan(const PlanKey& base_key, const Slice& slice, int nozzles,
                                      const Planned& p) {
+  const std::string base = base_key.to_string();
   // Labelled with this layer's walls: layers of one geometry may name their walls
   // differently (different plans drawn alike); such a layer gets its own entry.
   std::vector<std::vector<planner::Waypoint>> paths = p.waypoints;
@@ -176,7 +177,9 @@ std::string Scheduler::register_plan(const std::string& base, const Slice& slice
   auto& variants = variants_[base];
   for (const auto& key : variants)
     if (same_labels(schedule_.plans.at(key))) return key;
-  const std::string key = variants.empty() ? base : base + "m" + std::to_string(variants.size());
+  PlanKey variant = base_key;
+  variant.relabelled = static_cast<int>(variants.size());
+  const std::string key = variant.to_string();
   SchedulePlan plan;
   plan.key = key;
   plan.geometry = slice.geometry + 1;
@@ -197,13 +200,15 @@ std::string Scheduler::register_plan(const std::string& base, const Slice& slice
 }
 
 std::string Scheduler::plan_key(const Slice& slice, int nozzles) {
-  return register_plan(printf_string("g%dn%d", slice.geometry + 1, nozzles), slice, nozzles,
-                       planned(slice.geometry, nozzles));
+  PlanKey key;
+  key.geometry = slice.geometry + 1;
+  key.nozzles = nozzles;
+  return register_plan(key, slice, nozzles, planned(slice.geometry, nozzles));
 }
 
 const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& below_key,
                                       bool hold_back) {
-  const std::string base = follow_key(slice, below_key, hold_back);
+  const std::string base = follow_key(slice, below_key, hold_back).to_string();
   auto it = follow_.find(base);
   if (it != follow_.end()) return it->second;
   const auto started = Clock::now();

@@ -39,8 +39,6 @@ constexpr std::size_t kMaxLayers = 1'000'000, kMaxPlans = 100'000, kMaxEvents = 
 constexpr std::size_t kMaxSmall = 10'000;  // files, stages, anchors, phases, joints
 constexpr std::size_t kMaxText = 100'000;  // characters of a detail or warning
 
-const char* const kWaitKinds[] = {"min-interval", "strength", "anchor-strength", "slab"};
-
 /// Unit names met in the document, by index in order of first appearance.
 int unit_index(RecordedInputs& in, const JsonAt& at) {
   const std::string name = at.string(200);
@@ -189,10 +187,12 @@ std::vector<WaitReason> read_reasons(const JsonAt& list) {
   for (const auto& r : list.elements(kMaxSmall)) {
     r.only_keys({"kind", "required_s", "detail"});
     WaitReason w;
-    w.kind = r.at("kind").string(100);
-    if (std::find(std::begin(kWaitKinds), std::end(kWaitKinds), w.kind) == std::end(kWaitKinds))
+    const std::string kind = r.at("kind").string(100);
+    const auto named = wait_kind_named(kind);
+    if (!named)
       r.at("kind").refuse("expected min-interval, strength, anchor-strength or slab, got \"" +
-                          w.kind + "\"");
+                          kind + "\"");
+    w.kind = *named;
     w.required_s = r.at("required_s").number(kDuration_s, "s");
     w.detail = r.at("detail").string(kMaxText);
     out.push_back(std::move(w));
@@ -538,7 +538,11 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
 Infeasibility read_infeasibility(const JsonAt& j) {
   j.only_keys({"kind", "floor", "layer", "message", "required_s", "achieved_s", "fix"});
   Infeasibility inf;
-  inf.kind = j.at("kind").string(100);
+  const std::string kind = j.at("kind").string(100);
+  const auto named = infeasibility_kind_named(kind);
+  if (!named)
+    j.at("kind").refuse("expected max-interval, no-plan, strength or climb, got \"" + kind + "\"");
+  inf.kind = *named;
   inf.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   inf.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
   inf.message = j.at("message").string(kMaxText);

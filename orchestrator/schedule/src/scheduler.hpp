@@ -92,8 +92,7 @@ class Scheduler {
   /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
   /// variant "<base>m1", ... when another layer of its geometry names them differently);
   /// returns its key.
-  std::string register_plan(const std::string& base, const Slice& slice, int nozzles,
-                            const Planned& p);
+  std::string register_plan(const PlanKey& base, const Slice& slice, int nozzles, const Planned& p);
   /// The key of `slice`'s optimised plan at `nozzles`.
   std::string plan_key(const Slice& slice, int nozzles);
   /// The nozzles depositing `slice` in the order the plan `below_key` deposited the layer
@@ -101,8 +100,12 @@ class Scheduler {
   /// cover first what the layer below did last, and break the maximum interval there.
   /// With `hold_back`, a gantry that would come too close to its neighbour starts later.
   const Planned& follow_plan(const Slice& slice, const std::string& below_key, bool hold_back);
-  static std::string follow_key(const Slice& slice, const std::string& below_key, bool hold_back) {
-    return printf_string("g%d~%s%s", slice.geometry + 1, below_key.c_str(), hold_back ? "h" : "");
+  static PlanKey follow_key(const Slice& slice, const std::string& below_key, bool hold_back) {
+    PlanKey key;
+    key.geometry = slice.geometry + 1;
+    key.follows = below_key;
+    key.held_back = hold_back;
+    return key;
   }
   /// From the end of the nozzles' paths `from` to the start of `to`, one layer up, s.
   double move_s(const std::vector<std::vector<planner::Waypoint>>& from,

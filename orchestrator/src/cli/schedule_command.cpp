@@ -78,7 +78,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     if (l.wait_before_s > 0) {
       f.waits += 1;
       f.wait_s += l.wait_before_s;
-      for (const auto& r : l.wait_reasons) f.reasons[r.kind] += 1;
+      for (const auto& r : l.wait_reasons) f.reasons[schedule::to_string(r.kind)] += 1;
     }
   }
   std::cout << "floor  layers  nozzles  start       end         waits\n";

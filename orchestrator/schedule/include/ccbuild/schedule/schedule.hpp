@@ -47,13 +47,21 @@ struct ScheduleOptions {
   std::function<void(const std::string&)> progress;
 };
 
+/// Which constraint made a layer (or a climb) wait.
+enum class WaitKind {
+  kMinInterval,     ///< "min-interval": a wall piece would be covered too soon
+  kStrength,        ///< "strength": a layer below could not yet carry the walls above it
+  kAnchorStrength,  ///< "anchor-strength": a climb's anchor is younger than it must be
+  kSlab,            ///< "slab": the slab stage between floors
+};
+/// The name the JSON and the messages use ("min-interval", ...).
+std::string to_string(WaitKind kind);
+/// The kind of that name, if it is one.
+std::optional<WaitKind> wait_kind_named(const std::string& name);
+
 /// Why a layer (or a climb) waited: one constraint and its numbers.
 struct WaitReason {
-  /// "min-interval": a wall piece would be covered too soon;
-  /// "strength": a layer below could not yet carry the walls above it;
-  /// "anchor-strength": a climb's anchor is younger than its strength requires;
-  /// "slab": the slab stage between floors.
-  std::string kind;
+  WaitKind kind = WaitKind::kMinInterval;
   double required_s = 0.0;  ///< the wait this reason alone requires
   std::string detail;       ///< the numbers, in words
 };
@@ -96,6 +104,19 @@ struct PathDigest {
   std::size_t waypoints = 0;
   std::string sha256;
   bool operator==(const PathDigest&) const = default;
+};
+
+/// A plan's key (SchedulePlan::key, the `plans` keys of the JSON), written in one place:
+/// "g3n2" is geometry 3 planned for 2 nozzles; "g4~g3n2" geometry 4 following the order of
+/// plan g3n2 (the layer below's), with "h" after it when a gantry is held back; "m1",
+/// "m2", ... after either when relabelled for another layer's walls.
+struct PlanKey {
+  int geometry = 1;        ///< 1-based
+  int nozzles = 1;         ///< the count it was planned for (unless it follows a plan)
+  std::string follows;     ///< the key of the plan whose order it follows, if any
+  bool held_back = false;  ///< following, with a gantry held back
+  int relabelled = 0;      ///< 0, or the variant's number
+  std::string to_string() const;
 };
 
 /// A planned layer geometry at one nozzle count, as it is deposited.
@@ -143,8 +164,18 @@ struct Event {
 };
 std::string to_string(Event::Kind kind);
 
+/// Why a building cannot be built within its constraints.
+enum class InfeasibilityKind {
+  kMaxInterval,  ///< "max-interval": no plan keeps a piece within the maximum interval
+  kNoPlan,       ///< "no-plan": no nozzle count has a usable plan
+  kStrength,     ///< "strength": the material never gets strong enough to carry the walls
+  kClimb,        ///< "climb": a climb cannot be planned, or its anchors never get strong
+};
+std::string to_string(InfeasibilityKind kind);
+std::optional<InfeasibilityKind> infeasibility_kind_named(const std::string& name);
+
 struct Infeasibility {
-  std::string kind;  ///< "max-interval", "climb", "strength"
+  InfeasibilityKind kind = InfeasibilityKind::kMaxInterval;
   int floor = 0, layer = 0;
   std::string message;  ///< where, by how much
   double required_s = 0.0, achieved_s = 0.0;
