@@ -11,6 +11,16 @@
 #include "climbing_internal.hpp"
 
 namespace ccbuild::machine {
+
+std::string to_string(RailAxis axis) {
+  return axis == RailAxis::kX ? "x" : "y";
+}
+
+std::optional<RailAxis> rail_axis_named(const std::string& name) {
+  if (name == "x") return RailAxis::kX;
+  if (name == "y") return RailAxis::kY;
+  return std::nullopt;
+}
 namespace fs = std::filesystem;
 
 MachineModel MachineModel::defaults() {
@@ -161,8 +171,9 @@ MachineProfile load_machine_profile(const fs::path& profile_path) {
     m.gantry_width_m = width->as_number_in(kGantryWidth_m, "m");
   if (auto axis = map.optional("rail_axis")) {
     const std::string text = axis->as_string();
-    if (text != "x" && text != "y") axis->fail("must be x or y, got '" + text + "'");
-    m.rail_axis = text[0];
+    const auto named = rail_axis_named(text);
+    if (!named) axis->fail("must be x or y, got '" + text + "'");
+    m.rail_axis = *named;
   }
   if (auto purge = map.optional("purge_s")) m.purge_s = purge->as_number_in(kPurge_s, "s");
 

@@ -431,7 +431,7 @@ void SimMachine::follow(double elapsed_s) {
     at = {lerp(p.x_m), lerp(p.y_m), lerp(p.z_m), lerp(p.heading_rad)};
   }
   // A stalled rail axis stays where it stopped; the others follow the path.
-  const int rail = options_.model && options_.model->rail_axis == 'y' ? 1 : 0;
+  const int rail = options_.model && options_.model->rail_axis == RailAxis::kY ? 1 : 0;
   if (stalled_rail_m_) at[rail] = *stalled_rail_m_;
   position_ = at;
 }
@@ -450,7 +450,7 @@ void SimMachine::step(double real_dt_s) {
     for (auto& handle : due) handle();
   }
   if (options_.stall_at_s >= 0.0 && !stalled_rail_m_ && clock_s_ >= options_.stall_at_s) {
-    const int rail = options_.model && options_.model->rail_axis == 'y' ? 1 : 0;
+    const int rail = options_.model && options_.model->rail_axis == RailAxis::kY ? 1 : 0;
     stalled_rail_m_ = position_[rail];
     say(printf_string("ccbuild-sim %s: (injected) the rail axis stalled at %.3f m\n",
                       options_.machine_id.c_str(), *stalled_rail_m_));

@@ -9,10 +9,6 @@
 
 namespace ccbuild::planner {
 
-std::string to_string(RailAxis axis) {
-  return axis == RailAxis::kX ? "x" : "y";
-}
-
 void Timeline::append(double time_s, const Eigen::Vector2d& position_m) {
   CCBUILD_CHECK(time_s_.empty() || time_s >= time_s_.back() - 1e-12,
                 "timeline times do not decrease");

@@ -459,7 +459,7 @@ TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
   o.speed = one.speed;
   o.gantry_width_m = 2.0;
   o.purge_s = 1.0;  // over before gantry-2's wall is: the rest must still wait for it
-  o.rail_axis = 'x';
+  o.rail_axis = machine::RailAxis::kX;
   o.rail_min_m = -2.0;
   o.rail_max_m = 20.0;
   Dispatcher d(bus, layer, journal, o);
@@ -500,7 +500,7 @@ TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
   o.speed = one.speed;
   o.gantry_width_m = 2.0;
   o.purge_s = 1.0;
-  o.rail_axis = 'x';
+  o.rail_axis = machine::RailAxis::kX;
   o.rail_min_m = -2.0;
   o.rail_max_m = 20.0;
   Dispatcher d(bus, layer, journal, o);

@@ -94,12 +94,12 @@ std::string gantry_with(const std::string& extra) {
 TEST(MachineModel, GantriesOnTheRailsAtTheirBoundaries) {
   const MachineModel defaults = load_machine(gantry_with(""));
   EXPECT_EQ(defaults.nozzles, 1);
-  EXPECT_EQ(defaults.rail_axis, 'x');
+  EXPECT_EQ(defaults.rail_axis, RailAxis::kX);
   EXPECT_DOUBLE_EQ(defaults.gantry_width_m, 1.5);
   EXPECT_DOUBLE_EQ(defaults.purge_s, 120.0);
   const MachineModel most = load_machine(gantry_with("nozzles: 16\nrail_axis: y\npurge_s: 3600\n"));
   EXPECT_EQ(most.nozzles, 16);
-  EXPECT_EQ(most.rail_axis, 'y');
+  EXPECT_EQ(most.rail_axis, RailAxis::kY);
   EXPECT_DOUBLE_EQ(most.purge_s, 3600.0);
   EXPECT_EQ(load_machine(gantry_with("nozzles: 1\n")).nozzles, 1);
   const InputError none = expect_input_error([] { load_machine(gantry_with("nozzles: 0\n")); });

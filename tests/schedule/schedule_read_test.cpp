@@ -88,7 +88,7 @@ TEST(ReadSchedule, TheModelIsTyped) {
   EXPECT_TRUE(doc.schedule.feasible);
   EXPECT_EQ(doc.schedule.layers.size(), 250u);
   EXPECT_TRUE(doc.inputs.machine.climbing);
-  EXPECT_EQ(doc.inputs.machine.rail_axis, 'x');
+  EXPECT_EQ(doc.inputs.machine.rail_axis, machine::RailAxis::kX);
   EXPECT_EQ(doc.inputs.unit_names.size(), 4u);
   EXPECT_FALSE(doc.schedule.stages.empty());
   int climbs = 0;

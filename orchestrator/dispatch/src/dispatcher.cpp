@@ -298,10 +298,10 @@ void Dispatcher::stop(const std::string& reason) {
 
 namespace {
 /// The rail coordinate of waypoint k of a job's path.
-double rail_at(const DispatchJob& d, char axis, bool last) {
+double rail_at(const DispatchJob& d, machine::RailAxis axis, bool last) {
   const auto& c = last ? d.chunks.back() : d.chunks.front();
   const int k = last ? c.n - 1 : 0;
-  return axis == 'y' ? c.y_m[k] : c.x_m[k];
+  return machine::rail_coordinate(c.x_m[k], c.y_m[k], axis);
 }
 /// "gantry-3" -> 3 (0 for another name).
 int gantry_number(const std::string& machine_id) {
@@ -336,11 +336,11 @@ bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob
 bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
                                 std::vector<std::pair<std::size_t, DispatchJob>>& moves) const {
   if (options_.gantry_width_m <= 0.0 || rest.chunks.empty()) return true;
-  const char axis = options_.rail_axis;
+  const machine::RailAxis axis = options_.rail_axis;
   double lo = 1e300, hi = -1e300;
   for (const auto& c : rest.chunks)
     for (int k = 0; k < c.n; ++k) {
-      const double r = axis == 'y' ? c.y_m[k] : c.x_m[k];
+      const double r = machine::rail_coordinate(c.x_m[k], c.y_m[k], axis);
       lo = std::min(lo, r);
       hi = std::max(hi, r);
     }
@@ -361,13 +361,14 @@ bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, doub
     m.job.kind = ccbuild_job_t::TRAVEL;
     m.job.plan = "";
     m.job.start_s = start_s;
-    const double from_m = axis == 'y' ? c.y_m[last] : c.x_m[last];
+    const double from_m = machine::rail_coordinate(c.x_m[last], c.y_m[last], axis);
     m.job.duration_s = std::abs(to_rail_m - from_m) / options_.travel_speed_m_s;
     m.job.detail = printf_string("%s moves clear along the rails to %.3f m (the rest of job %lld)",
                                  d.job.machine_id.c_str(), to_rail_m,
                                  static_cast<long long>(jobs_[index].job.job_id));
-    const double to_x_m = axis == 'y' ? c.x_m[last] : to_rail_m;
-    const double to_y_m = axis == 'y' ? to_rail_m : c.y_m[last];
+    const bool along_y = axis == machine::RailAxis::kY;
+    const double to_x_m = along_y ? c.x_m[last] : to_rail_m;
+    const double to_y_m = along_y ? to_rail_m : c.y_m[last];
     machine::TimedPath p;
     p.push_back(0.0, c.x_m[last], c.y_m[last], c.z_m[last], c.heading_rad[last], false, 0, 0);
     p.push_back(m.job.duration_s, to_x_m, to_y_m, c.z_m[last], c.heading_rad[last], false, 0, 0);

@@ -24,7 +24,7 @@ void SiteWatchdog::on_status(const ccbuild_lcm::ccbuild_status_t& s) {
   seen.since_s = 0.0;
   // A status older than the last one (reordered, or repeated) adds nothing.
   if (!seen.track.empty() && s.sim_time_s < seen.track.back().first) return;
-  seen.track.emplace_back(s.sim_time_s, options_.rail_axis == 'y' ? s.y_m : s.x_m);
+  seen.track.emplace_back(s.sim_time_s, machine::rail_coordinate(s.x_m, s.y_m, options_.rail_axis));
   if (seen.track.size() > 256) seen.track.pop_front();
 }
 

@@ -31,7 +31,7 @@ json recorded_machine_json(const RecordedMachine& m) {
   out["origin"] = m.origin;
   out["nozzles"] = m.nozzles;
   out["gantry_width_m"] = rounded(m.gantry_width_m);
-  out["rail_axis"] = std::string(1, m.rail_axis);
+  out["rail_axis"] = machine::to_string(m.rail_axis);
   out["purge_s"] = rounded(m.purge_s);
   out["kind"] = m.climbing ? "climbing" : "fixed gantry";
   if (m.climbing) {

@@ -66,8 +66,7 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
   request.planning.time_limit_s = options_.layer_time_limit_s;
   request.planning.max_kicks = options_.max_kicks;
   request.multi.gantry_width_m = machine_.gantry_width_m;
-  request.multi.rail_axis =
-      machine_.rail_axis == 'y' ? planner::RailAxis::kY : planner::RailAxis::kX;
+  request.multi.rail_axis = machine_.rail_axis;
   request.multi.planning = request.planning;
   request.multi.message_unit = project_.building.units;
   try {
@@ -249,8 +248,7 @@ const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& bel
   planner::PlanOptions options;
   options.objective = planner::Objective::kTime;
   std::vector<planner::Timeline> rails;
-  const planner::RailAxis axis =
-      machine_.rail_axis == 'y' ? planner::RailAxis::kY : planner::RailAxis::kX;
+  const planner::RailAxis axis = machine_.rail_axis;
   for (int n = 0; n < nozzles; ++n) {
     std::stable_sort(keyed[n].begin(), keyed[n].end(),
                      [](const Keyed& x, const Keyed& y) { return x.t_s < y.t_s; });

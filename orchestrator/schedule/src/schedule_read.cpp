@@ -111,9 +111,9 @@ RecordedMachine read_machine(const JsonAt& m) {
   r.nozzles = static_cast<int>(m.at("nozzles").integer(1, kMaxNozzles));
   r.gantry_width_m = m.at("gantry_width_m").number(Range::closed(0, 1000), "m");
   const std::string axis = m.at("rail_axis").string(10);
-  if (axis != "x" && axis != "y")
-    m.at("rail_axis").refuse("expected \"x\" or \"y\", got \"" + axis + "\"");
-  r.rail_axis = axis[0];
+  const auto named = machine::rail_axis_named(axis);
+  if (!named) m.at("rail_axis").refuse("expected \"x\" or \"y\", got \"" + axis + "\"");
+  r.rail_axis = *named;
   r.purge_s = m.at("purge_s").number(Range::closed(0, 1e6), "s");
   const std::string kind = m.at("kind").string(100);
   if (kind != "climbing" && kind != "fixed gantry")

@@ -7,6 +7,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/planner/timeline.hpp"
 #include "schedule_deposits.hpp"
 
 namespace ccbuild::schedule::detail {
@@ -227,9 +228,10 @@ class Rules {
   }
 
   /// A rail coordinate at `t_s`, held before the path's first time and after its last.
-  static double rail_at(const std::vector<planner::Waypoint>& path, char axis, double t_s) {
+  static double rail_at(const std::vector<planner::Waypoint>& path, machine::RailAxis axis,
+                        double t_s) {
     const auto rail = [axis](const planner::Waypoint& w) {
-      return axis == 'y' ? w.position_m.y() : w.position_m.x();
+      return planner::rail_coordinate(w.position_m, axis);
     };
     const auto it =
         std::upper_bound(path.begin(), path.end(), t_s,
@@ -244,7 +246,7 @@ class Rules {
 
   void check_gaps(const std::string& at, const SchedulePlan& plan) {
     const RecordedMachine& m = doc_.inputs.machine;
-    const char axis = m.rail_axis;
+    const machine::RailAxis axis = m.rail_axis;
     double smallest_m = INFINITY, worst_t_s = 0.0;
     std::size_t worst_pair = 0;
     for (std::size_t n = 0; n + 1 < plan.waypoints.size(); ++n) {
@@ -252,21 +254,21 @@ class Rules {
       // The gap is piecewise linear between the breakpoints of both paths: exact there.
       for (const auto& w : left) {
         const double gap =
-            rail_at(right, axis, w.t_s) - (axis == 'y' ? w.position_m.y() : w.position_m.x());
+            rail_at(right, axis, w.t_s) - planner::rail_coordinate(w.position_m, axis);
         if (gap < smallest_m) smallest_m = gap, worst_t_s = w.t_s, worst_pair = n;
       }
       for (const auto& w : right) {
         const double gap =
-            (axis == 'y' ? w.position_m.y() : w.position_m.x()) - rail_at(left, axis, w.t_s);
+            planner::rail_coordinate(w.position_m, axis) - rail_at(left, axis, w.t_s);
         if (gap < smallest_m) smallest_m = gap, worst_t_s = w.t_s, worst_pair = n;
       }
     }
     if (smallest_m < m.gantry_width_m - 1e-6)
-      broken(
-          at + "/nozzles", "gantry gap",
-          printf_string("nozzles %zu and %zu come %.6f m apart along %c at t = %.6f s, under "
-                        "the gantry width %.6f m",
-                        worst_pair, worst_pair + 1, smallest_m, axis, worst_t_s, m.gantry_width_m));
+      broken(at + "/nozzles", "gantry gap",
+             printf_string("nozzles %zu and %zu come %.6f m apart along %s at t = %.6f s, under "
+                           "the gantry width %.6f m",
+                           worst_pair, worst_pair + 1, smallest_m, machine::to_string(axis).c_str(),
+                           worst_t_s, m.gantry_width_m));
     if (std::abs(plan.min_gap_m - smallest_m) > 1e-5)
       broken(
           at + "/min_gap_m", "gantry gap",

@@ -323,10 +323,10 @@ std::string machine_profile(const schedule::ScheduleDocument& schedule, const Dr
 std::map<std::string, std::array<double, 4>> homes_of(
     const std::vector<dispatch::DispatchJob>& jobs, const std::vector<std::string>& ids,
     const schedule::RecordedMachine& machine) {
-  const char rail_axis = machine.rail_axis;
+  const machine::RailAxis rail_axis = machine.rail_axis;
   const double gantry_width_m = machine.gantry_width_m;
-  const int rail = rail_axis == 'y' ? 1 : 0;
-  const double rail_max_m = rail_axis == 'y' ? machine.y_max_m : machine.x_max_m;
+  const int rail = rail_axis == machine::RailAxis::kY ? 1 : 0;
+  const double rail_max_m = machine::rail_coordinate(machine.x_max_m, machine.y_max_m, rail_axis);
   double first_s = std::numeric_limits<double>::infinity();
   for (const auto& j : jobs)
     if (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT)
@@ -433,7 +433,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   check_injected(inject, schedule, jobs, ids);
   const std::string profile = machine_profile(schedule, o, project);
-  const char rail_axis = machine_rec.rail_axis;
+  const machine::RailAxis rail_axis = machine_rec.rail_axis;
   const double gantry_width_m = machine_rec.gantry_width_m;
   const double rail_speed_m_s = machine_rec.rail_speed_m_s();
   const bool climbing = machine_rec.climbing;
@@ -558,8 +558,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     d.gantry_width_m = gantry_width_m;
     d.rail_axis = rail_axis;
     d.travel_speed_m_s = machine_rec.travel_speed_m_s;
-    d.rail_min_m = rail_axis == 'y' ? machine_rec.y_min_m : machine_rec.x_min_m;
-    d.rail_max_m = rail_axis == 'y' ? machine_rec.y_max_m : machine_rec.x_max_m;
+    d.rail_min_m = machine::rail_coordinate(machine_rec.x_min_m, machine_rec.y_min_m, rail_axis);
+    d.rail_max_m = machine::rail_coordinate(machine_rec.x_max_m, machine_rec.y_max_m, rail_axis);
   }
   dispatch::Dispatcher dispatcher(bus, jobs, journal, d);
   std::optional<dispatch::SiteWatchdog> watchdog;

@@ -344,7 +344,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     multi.nozzles = o.nozzles;
     multi.message_unit = b.units;
     multi.gantry_width_m = length_flag(o.gantry_width, "--gantry-width", b.units);
-    multi.rail_axis = o.rail_axis == "y" ? planner::RailAxis::kY : planner::RailAxis::kX;
+    multi.rail_axis = *machine::rail_axis_named(o.rail_axis);  // CLI11 checked it
     multi.method = *planner::parse_multi_method(o.method);
     if (!o.platform_width.empty())
       multi.platform_width_m = length_flag(o.platform_width, "--platform-width", b.units);

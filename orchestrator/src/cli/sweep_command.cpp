@@ -143,7 +143,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
           request.nozzles = n;
           planner::MultiNozzleOptions& m = request.multi;
           m.gantry_width_m = gantry;
-          m.rail_axis = axis == "y" ? planner::RailAxis::kY : planner::RailAxis::kX;
+          m.rail_axis = *machine::rail_axis_named(axis);  // checked when parsed
           m.message_unit = unit;
           m.platform_width_m = platform;
           m.planning = planning;

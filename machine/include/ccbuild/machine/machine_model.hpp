@@ -5,10 +5,23 @@
 // idle limit) from the machine profile. All SI: m, s, rad.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace ccbuild::machine {
+
+/// The layout axis a machine's gantries ride along (its common rails): the one type every
+/// library uses for it.
+enum class RailAxis { kX, kY };
+/// "x" or "y", as profiles, flags and the JSON say it.
+std::string to_string(RailAxis axis);
+/// The axis of that name ("x", "y"), if it is one.
+std::optional<RailAxis> rail_axis_named(const std::string& name);
+/// The coordinate of (x, y) along the rails, m.
+inline double rail_coordinate(double x_m, double y_m, RailAxis axis) {
+  return axis == RailAxis::kY ? y_m : x_m;
+}
 
 struct AxisLimits {
   double min_m = 0.0;
@@ -43,8 +56,8 @@ struct MachineModel {
   double nozzle_width_m = 0.15;        ///< default wall thickness
   /// Gantries (one nozzle each) on the common rails; the scheduler uses 1 up to this.
   int nozzles = 1;
-  double gantry_width_m = 1.5;  ///< two gantries' rail positions stay at least this apart
-  char rail_axis = 'x';         ///< 'x' or 'y': the layout axis the rails run along
+  double gantry_width_m = 1.5;        ///< two gantries' rail positions stay at least this apart
+  RailAxis rail_axis = RailAxis::kX;  ///< the layout axis the rails run along
   /// Clearing the nozzle after an idle spell longer than nozzle_idle_limit_s.
   double purge_s = 120.0;
 

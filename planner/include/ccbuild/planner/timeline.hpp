@@ -27,8 +27,8 @@
 
 namespace ccbuild::planner {
 
-enum class RailAxis { kX, kY };
-std::string to_string(RailAxis axis);
+using machine::RailAxis;
+using machine::to_string;
 
 /// A point's coordinate along the rails, m: the one place that says which axis it is.
 inline double rail_coordinate(const Eigen::Vector2d& p, RailAxis axis) {

@@ -22,6 +22,7 @@
 
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 #include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild_lcm/ccbuild_ack_t.hpp"
 #include "ccbuild_lcm/ccbuild_done_t.hpp"
 #include "ccbuild_lcm/ccbuild_fault_t.hpp"
@@ -103,7 +104,7 @@ struct DispatchOptions {
   /// For the rest of a clogged layer on shared rails: gantries in the way are moved clear
   /// first (0: not checked).
   double gantry_width_m = 0.0;
-  char rail_axis = 'x';
+  machine::RailAxis rail_axis = machine::RailAxis::kX;
   double rail_min_m = -1e9, rail_max_m = 1e9;  ///< the rail axis's range
   double travel_speed_m_s = 0.5;
 };

@@ -15,13 +15,14 @@
 #include <vector>
 
 #include "ccbuild/machine/bus.hpp"
+#include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::dispatch {
 
 struct WatchdogOptions {
   std::vector<std::string> machines;  ///< the gantries in rail order
-  char rail_axis = 'x';
+  machine::RailAxis rail_axis = machine::RailAxis::kX;
   double gantry_width_m = 1.5;
   double margin_m = 1.0;             ///< acted on below gantry_width_m + margin_m
   double heartbeat_timeout_s = 2.0;  ///< real seconds without a status: silent

@@ -45,13 +45,15 @@ struct RecordedMachine {
   std::string origin;  ///< where the profile came from, in words
   int nozzles = 1;
   double gantry_width_m = 0.0;
-  char rail_axis = 'x';
+  machine::RailAxis rail_axis = machine::RailAxis::kX;
   double purge_s = 0.0;
   bool climbing = false;
   /// Climbing machines only.
   double anchor_strength_mpa = 0.0, pipe_embed_s = 0.0;
   /// The speed of the rail axis, m/s.
-  double rail_speed_m_s() const { return rail_axis == 'y' ? y_speed_m_s : x_speed_m_s; }
+  double rail_speed_m_s() const {
+    return machine::rail_coordinate(x_speed_m_s, y_speed_m_s, rail_axis);
+  }
 };
 
 /// What a schedule records about the run that made it.
