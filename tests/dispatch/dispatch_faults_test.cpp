@@ -442,81 +442,69 @@ DispatchJob along_x(const std::string& machine, std::int64_t id, double x0, doub
   return d;
 }
 
-TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
-  // gantry-1 lays x 0 -> 6 while gantry-2 lays x 13 -> 7.6; gantry-1 clogs at 40% and
-  // gantry-2 parks at 7.6, too close (2 m apart) for the rest of gantry-1's wall up to 6.
-  const std::vector<DispatchJob> layer = {along_x("gantry-1", 10, 0.0, 6.0),
-                                          along_x("gantry-2", 20, 13.0, 7.6)};
-  machine::Bus bus("memq://");
-  Journal journal(":memory:");
-  machine::SimOptions one = window(0.0, 1e9);
-  one.clog_floor = 0;
-  one.clog_layer = 0;
-  machine::SimOptions two = window(0.0, 1e9);
-  two.machine_id = "gantry-2";
-  machine::SimMachine sim1(bus, one), sim2(bus, two);
-  DispatchOptions o;
-  o.speed = one.speed;
-  o.gantry_width_m = 2.0;
-  o.purge_s = 1.0;  // over before gantry-2's wall is: the rest must still wait for it
-  o.rail_axis = machine::RailAxis::kX;
-  o.rail_min_m = -2.0;
-  o.rail_max_m = 20.0;
-  Dispatcher d(bus, layer, journal, o);
-  for (int k = 0; k < 100'000 && !d.finished(); ++k) {
-    d.step(1e-3);
-    bus.handle(0);
-    sim1.step(1e-3);
-    sim2.step(1e-3);
-    bus.handle(0);
+/// gantry-1 lays x 0 -> 6 while gantry-2 lays x 13 -> `gantry2_to_m`; gantry-1 clogs at
+/// 40%, and the rest of its wall (up to 6 m) needs gantry-2 a gantry width (2 m) clear.
+struct ClogBesideANeighbour {
+  explicit ClogBesideANeighbour(double gantry2_to_m)
+      : bus("memq://"), journal(":memory:"), sim1(bus, gantry(1)), sim2(bus, gantry(2)) {
+    DispatchOptions o;
+    o.speed = window(0.0, 1e9).speed;
+    o.gantry_width_m = 2.0;
+    o.purge_s = 1.0;  // over before gantry-2's wall is: the rest must still wait for it
+    o.rail_axis = machine::RailAxis::kX;
+    o.rail_min_m = -2.0;
+    o.rail_max_m = 20.0;
+    dispatcher.emplace(bus,
+                       std::vector<DispatchJob>{along_x("gantry-1", 10, 0.0, 6.0),
+                                                along_x("gantry-2", 20, 13.0, gantry2_to_m)},
+                       journal, o);
+    for (int k = 0; k < 100'000 && !dispatcher->finished(); ++k) {
+      dispatcher->step(1e-3);
+      bus.handle(0);
+      sim1.step(1e-3);
+      sim2.step(1e-3);
+      bus.handle(0);
+    }
   }
+  static machine::SimOptions gantry(int k) {
+    machine::SimOptions o = window(0.0, 1e9);
+    o.machine_id = "gantry-" + std::to_string(k);
+    if (k == 1) o.clog_floor = o.clog_layer = 0;
+    return o;
+  }
+  machine::Bus bus;
+  Journal journal;
+  machine::SimMachine sim1, sim2;
+  std::optional<Dispatcher> dispatcher;
+};
+
+TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
+  // gantry-2 parks at 7.6, too close (2 m apart) for the rest of gantry-1's wall up to 6.
+  ClogBesideANeighbour run(7.6);
+  const Dispatcher& d = *run.dispatcher;
   ASSERT_TRUE(d.finished());
   ASSERT_FALSE(d.stopped()) << *d.stopped();
-  EXPECT_EQ(sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
-  EXPECT_EQ(sim2.executed(), (std::vector<std::int64_t>{20, 21}));      // its wall, the move
+  EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(run.sim2.executed(), (std::vector<std::int64_t>{20, 21}));      // its wall, the move
   const auto& move = d.jobs().at(4);
   EXPECT_EQ(move.job.kind, +ccbuild_job_t::TRAVEL);
   EXPECT_DOUBLE_EQ(move.chunks[0].x_m.back(), 8.0);  // the rest reaches 6: 6 + 2
-  EXPECT_DOUBLE_EQ(sim2.position()[0], 8.0);
+  EXPECT_DOUBLE_EQ(run.sim2.position()[0], 8.0);
   // The rest started only once gantry-2 had moved clear.
   EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);
 }
 
 TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
-  // As above, but gantry-2's wall ends at 8 m: exactly the gantry width past the rest of
-  // gantry-1's wall (up to 6 m). Nothing to move clear; the rest runs as soon as gantry-2
-  // is done.
-  const std::vector<DispatchJob> layer = {along_x("gantry-1", 10, 0.0, 6.0),
-                                          along_x("gantry-2", 20, 13.0, 8.0)};
-  machine::Bus bus("memq://");
-  Journal journal(":memory:");
-  machine::SimOptions one = window(0.0, 1e9);
-  one.clog_floor = 0;
-  one.clog_layer = 0;
-  machine::SimOptions two = window(0.0, 1e9);
-  two.machine_id = "gantry-2";
-  machine::SimMachine sim1(bus, one), sim2(bus, two);
-  DispatchOptions o;
-  o.speed = one.speed;
-  o.gantry_width_m = 2.0;
-  o.purge_s = 1.0;
-  o.rail_axis = machine::RailAxis::kX;
-  o.rail_min_m = -2.0;
-  o.rail_max_m = 20.0;
-  Dispatcher d(bus, layer, journal, o);
-  for (int k = 0; k < 100'000 && !d.finished(); ++k) {
-    d.step(1e-3);
-    bus.handle(0);
-    sim1.step(1e-3);
-    sim2.step(1e-3);
-    bus.handle(0);
-  }
+  // gantry-2's wall ends at 8 m: exactly the gantry width past the rest of gantry-1's wall
+  // (up to 6 m). Nothing to move clear; the rest runs as soon as gantry-2 is done.
+  ClogBesideANeighbour run(8.0);
+  const Dispatcher& d = *run.dispatcher;
   ASSERT_TRUE(d.finished());
   ASSERT_FALSE(d.stopped()) << *d.stopped();
-  EXPECT_EQ(sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
-  EXPECT_EQ(sim2.executed(), (std::vector<std::int64_t>{20}));          // no move
+  EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(run.sim2.executed(), (std::vector<std::int64_t>{20}));          // no move
   EXPECT_EQ(d.jobs().size(), 4u);
-  EXPECT_DOUBLE_EQ(sim2.position()[0], 8.0);
+  EXPECT_DOUBLE_EQ(run.sim2.position()[0], 8.0);
   EXPECT_DOUBLE_EQ(d.executed().at(12).first, d.executed().at(20).second);
 }
 
