@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/planner/follow_below.hpp"
 #include "ccbuild/planner/plan_nozzles.hpp"
 #include "scheduler.hpp"
 
@@ -243,78 +244,28 @@ const Planned& Scheduler::follow_plan(const Slice& slice, const std::string& bel
     }
     keyed[owner].push_back(best);
   }
-  Planned out;
-  out.method = "follow-below";
-  planner::PlanOptions options;
-  options.objective = planner::Objective::kTime;
-  std::vector<planner::Timeline> rails;
-  const planner::RailAxis axis = machine_.rail_axis;
+  planner::FollowRequest request;
+  request.hold_back = hold_back;
   for (int n = 0; n < nozzles; ++n) {
     std::stable_sort(keyed[n].begin(), keyed[n].end(),
                      [](const Keyed& x, const Keyed& y) { return x.t_s < y.t_s; });
-    std::vector<int> segments;
-    for (const auto& k : keyed[n]) segments.push_back(k.segment);
-    if (segments.empty()) {
-      out.waypoints.push_back({});
-      rails.push_back(planner::parked_at(under.waypoints[n].empty()
-                                             ? Eigen::Vector2d::Zero()
-                                             : under.waypoints[n].back().position_m));
-      continue;
-    }
-    // The nozzle's own pieces as a layer: sequence steps index into it.
-    const floors::Layer own = nozzles == 1 ? layer : floors::sub_layer(layer, segments);
-    planner::Sequence sequence;
-    for (std::size_t j = 0; j < keyed[n].size(); ++j)
-      sequence.push_back(
-          {nozzles == 1 ? keyed[n][j].segment : static_cast<int>(j), keyed[n][j].reversed});
-    const planner::LayerPlan plan = planner::time_sequence(own, machine_, sequence, options);
-    out.layer_time_s = std::max(out.layer_time_s, plan.evaluation.layer_time_s);
-    out.deposition_s += plan.evaluation.deposition_s;
-    out.airtime_s += plan.evaluation.airtime_s;
-    out.max_idle_s = std::max(out.max_idle_s, plan.evaluation.max_idle_s);
-    if (plan.evaluation.idle_limit_violations > 0 && out.why_not.empty())
-      out.why_not = idle_limit_broken(plan.evaluation.max_idle_s);
-    planner::Timeline rail;
-    for (const auto& w : plan.waypoints) rail.append(w.t_s, w.position_m);
-    rails.push_back(rail);
-    out.waypoints.push_back(plan.waypoints);
+    std::vector<planner::FollowStep> steps;
+    for (const auto& k : keyed[n]) steps.push_back({k.segment, k.reversed});
+    request.order.push_back(std::move(steps));
+    request.parked_m.push_back(under.waypoints[n].empty() ? Eigen::Vector2d::Zero()
+                                                          : under.waypoints[n].back().position_m);
   }
-  // Held back: a nozzle that would come too close to the one before it starts later (by
-  // the first of 5 s steps that clears it), waiting parked where it starts.
-  if (hold_back && out.why_not.empty())
-    for (int n = 1; n < nozzles; ++n) {
-      if (out.waypoints[n].empty() || out.waypoints[n - 1].empty() ||
-          !planner::first_conflict(rails[n - 1], rails[n], axis, machine_.gantry_width_m))
-        continue;
-      for (double delay_s = 5.0; delay_s <= machine_.nozzle_idle_limit_s; delay_s += 5.0) {
-        planner::Timeline later;
-        later.append(0.0, out.waypoints[n].front().position_m);
-        for (const auto& w : out.waypoints[n]) later.append(w.t_s + delay_s, w.position_m);
-        if (planner::first_conflict(rails[n - 1], later, axis, machine_.gantry_width_m)) continue;
-        rails[n] = later;
-        planner::Waypoint parked = out.waypoints[n].front();
-        parked.extruding = false;
-        parked.wall = 0;
-        parked.piece = 0;
-        for (auto& w : out.waypoints[n]) w.t_s += delay_s;
-        out.waypoints[n].insert(out.waypoints[n].begin(), parked);
-        out.layer_time_s = std::max(out.layer_time_s, out.waypoints[n].back().t_s);
-        out.airtime_s += delay_s;
-        out.max_idle_s = std::max(out.max_idle_s, delay_s);
-        break;
-      }
-    }
-  // The gantries must keep their gap: checked exactly at every breakpoint of either.
-  out.min_gap_m = kInf;
-  for (int n = 0; n + 1 < nozzles && out.why_not.empty(); ++n) {
-    out.min_gap_m = std::min(out.min_gap_m, planner::min_gap_m(rails[n], rails[n + 1], axis));
-    if (auto conflict =
-            planner::first_conflict(rails[n], rails[n + 1], axis, machine_.gantry_width_m))
-      out.why_not = printf_string("gantries %d and %d come within %.3f m at %.1f s", n + 1, n + 2,
-                                  conflict->right_m - conflict->left_m, conflict->time_s);
-  }
-  if (nozzles == 1) out.min_gap_m = 0.0;
-  out.usable = out.why_not.empty();
+  planner::FollowPlan f = planner::plan_following(layer, machine_, request);
+  Planned out;
+  out.method = "follow-below";
+  out.layer_time_s = f.layer_time_s;
+  out.deposition_s = f.deposition_s;
+  out.airtime_s = f.airtime_s;
+  out.max_idle_s = f.max_idle_s;
+  out.min_gap_m = f.min_gap_m;
+  out.why_not = f.idle_limit_violations > 0 ? idle_limit_broken(f.violating_idle_s) : f.gap_broken;
+  out.usable = f.usable();
+  out.waypoints = std::move(f.waypoints);
   // Drawn at the geometry's first layer, like every other plan.
   for (auto& path : out.waypoints)
     for (auto& w : path) w.z_m += reps_[slice.geometry].z_top_m - layer.z_top_m;
