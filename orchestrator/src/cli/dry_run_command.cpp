@@ -34,6 +34,7 @@
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "dry_run_inputs.hpp"
 
 namespace ccbuild::cli {
 namespace {
@@ -57,148 +58,6 @@ struct DryRunOptions {
   bool force = false;
   bool allow_infeasible = false;
 };
-
-/// One machine fault --inject asks for.
-struct MachineFault {
-  std::string item;          ///< as the user wrote it, for messages
-  std::string name;          ///< clog, pin, crash, stall
-  std::string machine;       ///< gantry-1 unless MACHINE@ named another
-  int floor = 0, layer = 0;  ///< clog
-  long count = 0;            ///< pin, crash
-  double at_s = 0.0;         ///< stall
-};
-
-/// What --inject asks for: network faults with their probabilities, and machine faults
-/// with the machine they happen on.
-struct Injected {
-  std::vector<std::pair<std::string, double>> network;  ///< drop, duplicate, reorder, delay
-  std::vector<MachineFault> machine;
-  /// machine -> its ccbuild-sim flags ("--clog-at", "0:3"), ...
-  std::map<std::string, std::vector<std::string>> flags() const {
-    std::map<std::string, std::vector<std::string>> out;
-    for (const auto& f : machine) {
-      auto& args = out[f.machine];
-      if (f.name == "clog")
-        args.insert(args.end(), {"--clog-at", printf_string("%d:%d", f.floor, f.layer)});
-      if (f.name == "pin") args.insert(args.end(), {"--pin-failures", std::to_string(f.count)});
-      if (f.name == "crash") args.insert(args.end(), {"--crash-after", std::to_string(f.count)});
-      if (f.name == "stall")
-        args.insert(args.end(), {"--stall-at", printf_string("%.17g", f.at_s)});
-    }
-    return out;
-  }
-};
-
-const char* const kInjectGrammar =
-    "expected comma-separated drop=P, duplicate=P, reorder=P, delay=P (P from 0 to 0.9), "
-    "clog=[MACHINE@]FLOOR:LAYER, pin=[MACHINE@]N, crash=[MACHINE@]N or stall=[MACHINE@]SECONDS";
-
-InputError bad_inject(const std::string& item, const std::string& why) {
-  return InputError("", 0, "--inject", why + " in '" + item + "'; " + kInjectGrammar);
-}
-
-template <class Number>
-bool parse_whole(const std::string& text, Number& value) {
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return !text.empty() && ec == std::errc() && end == text.data() + text.size();
-}
-
-/// --inject "drop=0.1,duplicate=0.1,reorder=0.1,clog=0:3,pin=1,crash=5,stall=gantry-2@60":
-/// each fault and its value, within what ccbuild-sim accepts. Throws InputError (field
-/// --inject) for anything else. check_injected() then holds it against the schedule.
-Injected injected(const std::string& text) {
-  namespace lim = machine::sim_limits;
-  Injected out;
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t end = std::min(text.find(',', at), text.size());
-    const std::string item = text.substr(at, end - at);
-    at = end + 1;
-    const std::size_t eq = item.find('=');
-    if (eq == std::string::npos) throw bad_inject(item, "no '='");
-    const std::string name = item.substr(0, eq);
-    std::string value = item.substr(eq + 1);
-    if (name == "drop" || name == "duplicate" || name == "reorder" || name == "delay") {
-      double p = 0.0;
-      if (!parse_whole(value, p) || !(p >= 0.0 && p <= 0.9))
-        throw bad_inject(item, "a probability from 0 to 0.9 expected");
-      for (const auto& [seen, v] : out.network)
-        if (seen == name) throw bad_inject(item, name + " given twice");
-      out.network.emplace_back(name, p);
-      continue;
-    }
-    MachineFault f;
-    f.item = item;
-    f.name = name;
-    f.machine = dispatch::gantry_id(0);
-    if (const std::size_t amp = value.find('@'); amp != std::string::npos) {
-      f.machine = value.substr(0, amp);
-      value = value.substr(amp + 1);
-    }
-    if (name == "clog") {
-      if (!lim::parse_floor_layer(value, f.floor, f.layer))
-        throw bad_inject(item, "FLOOR:LAYER expected (whole numbers from 0)");
-    } else if (name == "pin" || name == "crash") {
-      const long most = name == "pin" ? lim::kMaxPinFailures : lim::kMaxCrashAfterJobs;
-      if (!parse_whole(value, f.count) || f.count < 1 || f.count > most)
-        throw bad_inject(item, printf_string("a count from 1 to %ld expected", most));
-    } else if (name == "stall") {
-      if (!parse_whole(value, f.at_s) || !lim::kStallAt_s.contains(f.at_s))
-        throw bad_inject(item, "a schedule time in seconds from 0 to 1e9 expected");
-    } else {
-      throw bad_inject(item, "unknown fault '" + name + "'");
-    }
-    for (const auto& seen : out.machine)
-      if (seen.name == f.name && seen.machine == f.machine)
-        throw bad_inject(item, name + " on " + f.machine + " given twice");
-    out.machine.push_back(std::move(f));
-  }
-  return out;
-}
-
-/// Refuses a machine fault that could never happen on this schedule: on a machine it does
-/// not have, a layer that machine does not deposit, a pin where nothing climbs, a crash
-/// after more jobs than the machine runs, a stall after the schedule ends.
-void check_injected(const Injected& inject, const schedule::ScheduleDocument& document,
-                    const std::vector<dispatch::DispatchJob>& jobs,
-                    const std::vector<std::string>& ids) {
-  std::string machines;
-  for (const auto& id : ids) machines += (machines.empty() ? "" : ", ") + id;
-  int inserts = 0;
-  for (const auto& e : document.schedule.events)
-    if (e.climb)
-      for (const auto& p : e.climb->plan.phases)
-        inserts += p.kind == climb::ClimbPhase::Kind::kInsert;
-  for (const auto& f : inject.machine) {
-    if (std::find(ids.begin(), ids.end(), f.machine) == ids.end())
-      throw bad_inject(f.item,
-                       "the schedule has no machine " + f.machine + " (it has " + machines + ")");
-    long runs = 0;
-    bool deposits = false;
-    for (const auto& j : jobs) {
-      if (j.job.machine_id != f.machine) continue;
-      ++runs;
-      deposits = deposits || (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT &&
-                              j.job.floor == f.floor && j.job.layer == f.layer);
-    }
-    if (f.name == "clog" && !deposits)
-      throw bad_inject(f.item, printf_string("%s deposits nothing on floor %d layer %d of this "
-                                             "schedule, so it cannot clog there",
-                                             f.machine.c_str(), f.floor, f.layer));
-    if (f.name == "pin" && inserts == 0)
-      throw bad_inject(f.item, "the schedule has no climbs, so no pin is ever inserted");
-    if (f.name == "pin" && f.machine != dispatch::gantry_id(0))
-      throw bad_inject(f.item, "climbs run as jobs of " + dispatch::gantry_id(0) +
-                                   "; a pin can only miss there");
-    if (f.name == "crash" && f.count > runs)
-      throw bad_inject(f.item, printf_string("%s runs %ld jobs in this schedule, so it never "
-                                             "reaches its %ld-th",
-                                             f.machine.c_str(), runs, f.count));
-    if (f.name == "stall" && f.at_s > document.schedule.totals.makespan_s)
-      throw bad_inject(f.item, printf_string("the schedule ends at %.1f s, before the stall",
-                                             document.schedule.totals.makespan_s));
-  }
-}
 
 /// The simulated machines, one process each; stopped (SIGTERM) when this goes. One that
 /// ends by itself (a crash) is started again on its own record, without the crash.
@@ -349,36 +208,6 @@ std::map<std::string, std::array<double, 4>> homes_of(
     if (homes.count(ids[k]) && homes.count(ids[k - 1]))
       homes[ids[k]][rail] = std::max(homes[ids[k]][rail], homes[ids[k - 1]][rail] + gantry_width_m);
   return homes;
-}
-
-/// The folder of machine records (--state-dir) belongs to one schedule, named in its
-/// `schedule.sha256`: records of another schedule would be taken as jobs done. Checks each
-/// machine's record, so that one a machine would refuse is refused here, before anything
-/// starts. Throws InputError naming the file.
-void check_state_dir(const fs::path& dir, const std::vector<std::string>& ids,
-                     const std::string& schedule_sha256) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return;  // made when the run starts
-  const fs::path marker = dir / "schedule.sha256";
-  bool records = false;
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    records = records || entry.path().extension() == ".state";
-  if (fs::exists(marker, ec)) {
-    const std::string recorded = read_text_file(marker);
-    if (recorded.substr(0, 64) != schedule_sha256)
-      throw InputError(dir.string(), 0, "--state-dir",
-                       "holds the machines' records of another schedule (SHA-256 " +
-                           recorded.substr(0, 12) + "..., this one is " +
-                           schedule_sha256.substr(0, 12) +
-                           "...); give a new folder (or empty this one to start over)");
-  } else if (records) {
-    throw InputError(dir.string(), 0, "--state-dir",
-                     "holds machine records (*.state) but names no schedule (schedule.sha256); "
-                     "they cannot be matched to this schedule: give a new folder");
-  }
-  for (const auto& id : ids)
-    if (const fs::path record = dir / (id + ".state"); fs::exists(record, ec))
-      machine::read_machine_record(record);
 }
 
 std::string duration(double s) {

@@ -1,0 +1,71 @@
+#pragma once
+// What `ccbuild dry-run` checks before anything starts, besides the schedule itself: the
+// faults --inject asks for (their grammar, within what ccbuild-sim accepts, and against the
+// schedule's machines, layers and climbs) and the folder of machine records (--state-dir)
+// belonging to this schedule. Internal to the CLI.
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/dispatch/dispatch_jobs.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
+
+namespace ccbuild::cli {
+
+/// One machine fault --inject asks for.
+struct MachineFault {
+  std::string item;          ///< as the user wrote it, for messages
+  std::string name;          ///< clog, pin, crash, stall
+  std::string machine;       ///< gantry-1 unless MACHINE@ named another
+  int floor = 0, layer = 0;  ///< clog
+  long count = 0;            ///< pin, crash
+  double at_s = 0.0;         ///< stall
+};
+
+/// What --inject asks for: network faults with their probabilities, and machine faults
+/// with the machine they happen on.
+struct Injected {
+  std::vector<std::pair<std::string, double>> network;  ///< drop, duplicate, reorder, delay
+  std::vector<MachineFault> machine;
+  /// machine -> its ccbuild-sim flags ("--clog-at", "0:3"), ...
+  std::map<std::string, std::vector<std::string>> flags() const {
+    std::map<std::string, std::vector<std::string>> out;
+    for (const auto& f : machine) {
+      auto& args = out[f.machine];
+      if (f.name == "clog")
+        args.insert(args.end(), {"--clog-at", printf_string("%d:%d", f.floor, f.layer)});
+      if (f.name == "pin") args.insert(args.end(), {"--pin-failures", std::to_string(f.count)});
+      if (f.name == "crash") args.insert(args.end(), {"--crash-after", std::to_string(f.count)});
+      if (f.name == "stall")
+        args.insert(args.end(), {"--stall-at", printf_string("%.17g", f.at_s)});
+    }
+    return out;
+  }
+};
+
+/// --inject "drop=0.1,duplicate=0.1,reorder=0.1,clog=0:3,pin=1,crash=5,stall=gantry-2@60":
+/// each fault and its value, within what ccbuild-sim accepts. Throws InputError (field
+/// --inject) for anything else; check_injected() then holds it against the schedule.
+Injected injected(const std::string& text);
+
+/// Refuses (InputError, field --inject) a machine fault that could never happen on this
+/// schedule: on a machine it does not have, a layer that machine does not deposit, a pin
+/// where nothing climbs, a crash after more jobs than the machine runs, a stall after the
+/// schedule ends.
+void check_injected(const Injected& inject, const schedule::ScheduleDocument& document,
+                    const std::vector<dispatch::DispatchJob>& jobs,
+                    const std::vector<std::string>& ids);
+
+/// The folder of machine records (--state-dir) belongs to one schedule, named in its
+/// `schedule.sha256`: records of another schedule would be taken as jobs done. Checks each
+/// machine's record, so that one a machine would refuse is refused here, before anything
+/// starts. Throws InputError naming the file.
+void check_state_dir(const std::filesystem::path& dir, const std::vector<std::string>& ids,
+                     const std::string& schedule_sha256);
+
+}  // namespace ccbuild::cli
