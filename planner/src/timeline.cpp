@@ -36,6 +36,23 @@ Eigen::Vector2d Timeline::at(double time_s) const {
   return position_m_[i - 1] + f * (position_m_[i] - position_m_[i - 1]);
 }
 
+double layer_change_s(const machine::MachineModel& machine,
+                      const std::vector<std::vector<Waypoint>>& from,
+                      const std::vector<std::vector<Waypoint>>& to, double layer_height_m) {
+  double longest_s = 0.0;
+  for (std::size_t n = 0; n < to.size() && n < from.size(); ++n) {
+    if (from[n].empty() || to[n].empty()) continue;
+    const Waypoint& a = from[n].back();
+    const Waypoint& b = to[n].front();
+    const double travel_s = (b.position_m - a.position_m).norm() / machine.travel_speed_m_s;
+    const double turn_s = std::abs(b.heading_rad - a.heading_rad) / machine.rotation_speed_rad_s;
+    const double move_s =
+        machine.rotate_while_moving ? std::max(travel_s, turn_s) : travel_s + turn_s;
+    longest_s = std::max(longest_s, move_s + machine.accel_delay_s);
+  }
+  return longest_s + layer_height_m / machine.z.speed_m_s;
+}
+
 Timeline parked_at(const Eigen::Vector2d& position_m) {
   Timeline t;
   t.append(0.0, position_m);

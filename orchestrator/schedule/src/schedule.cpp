@@ -14,25 +14,10 @@
 namespace ccbuild::schedule {
 namespace detail {
 
-double Scheduler::move_s(const std::vector<std::vector<planner::Waypoint>>& from,
-                         const std::vector<std::vector<planner::Waypoint>>& to) const {
-  double longest = 0.0;
-  for (std::size_t n = 0; n < to.size() && n < from.size(); ++n) {
-    if (from[n].empty() || to[n].empty()) continue;
-    const auto& a = from[n].back();
-    const auto& b = to[n].front();
-    const double travel_s = (b.position_m - a.position_m).norm() / machine_.travel_speed_m_s;
-    const double turn_s = std::abs(b.heading_rad - a.heading_rad) / machine_.rotation_speed_rad_s;
-    const double move_s =
-        machine_.rotate_while_moving ? std::max(travel_s, turn_s) : travel_s + turn_s;
-    longest = std::max(longest, move_s + machine_.accel_delay_s);
-  }
-  // The nozzle rises by one layer height.
-  return longest + project_.building.layer_height_m / machine_.z.speed_m_s;
-}
-
 double Scheduler::move_between(const std::string& from_key, const std::string& to_key) const {
-  return move_s(schedule_.plans.at(from_key).waypoints, schedule_.plans.at(to_key).waypoints);
+  return planner::layer_change_s(machine_, schedule_.plans.at(from_key).waypoints,
+                                 schedule_.plans.at(to_key).waypoints,
+                                 project_.building.layer_height_m);
 }
 
 const IntervalOffsets& Scheduler::offsets(const Slice& upper, const std::string& upper_key,

@@ -148,7 +148,9 @@ int Scheduler::fewest_nozzles(int geometry, double between_s) {
     const Planned& p = planned(geometry, n);
     if (!p.usable) continue;
     // The next layer like it starts after this one, its pipes and the move up.
-    if (p.layer_time_s + between_s + move_s(p.waypoints, p.waypoints) <=
+    if (p.layer_time_s + between_s +
+            planner::layer_change_s(machine_, p.waypoints, p.waypoints,
+                                    project_.building.layer_height_m) <=
         material_.max_layer_interval_s)
       return n;
     if (p.layer_time_s < fastest_s) {

@@ -107,9 +107,8 @@ class Scheduler {
     key.held_back = hold_back;
     return key;
   }
-  /// From the end of the nozzles' paths `from` to the start of `to`, one layer up, s.
-  double move_s(const std::vector<std::vector<planner::Waypoint>>& from,
-                const std::vector<std::vector<planner::Waypoint>>& to) const;
+  /// From the end of the nozzles' paths on plan `from_key` to the start of `to_key`'s, one
+  /// layer up (planner::layer_change_s), s.
   double move_between(const std::string& from_key, const std::string& to_key) const;
   const IntervalOffsets& offsets(const Slice& upper, const std::string& upper_key,
                                  const std::string& lower_key);

@@ -105,6 +105,18 @@ Timeline timeline_of(const CostModel& model, const Sequence& sequence, const Pat
 Timeline timeline_of(const CostModel& model, const Sequence& sequence, const PathSpec& path,
                      const Evaluation& evaluation, const std::vector<double>& wait_before_step_s);
 
+/// Time to bring every nozzle from where its path on one layer ends (`from[n].back()`) to
+/// where its path on the next layer starts (`to[n].front()`), one `layer_height_m` up, s:
+/// the slowest nozzle's move, then the rise at the z speed. Unlike an air move within a
+/// layer (CostModel::move_time_s), the nozzle has stopped at the layer's end: it goes in
+/// a straight line at the travel speed, turns through the whole change of its cumulative
+/// heading (the stopper counts turns, so none is taken the short way), overlapping or one
+/// after the other as the machine says, and the acceleration delay comes after that, even
+/// for a nozzle that only rises. Nozzles with no path on either layer are skipped.
+double layer_change_s(const machine::MachineModel& machine,
+                      const std::vector<std::vector<Waypoint>>& from,
+                      const std::vector<std::vector<Waypoint>>& to, double layer_height_m);
+
 /// A timeline that stays at one point from t = 0 (an idle or parked gantry).
 Timeline parked_at(const Eigen::Vector2d& position_m);
 
