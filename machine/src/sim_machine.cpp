@@ -12,6 +12,7 @@
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/path_chunks.hpp"
 #include "ccbuild_lcm/ccbuild_ack_t.hpp"
 #include "ccbuild_lcm/ccbuild_command_t.hpp"
 #include "ccbuild_lcm/ccbuild_done_t.hpp"
@@ -354,7 +355,7 @@ void SimMachine::try_start() {
     if (r.job.job_id == 0 || !r.complete()) continue;
     TimedPath path;
     for (const auto& [index, c] : r.chunks)
-      for (int k = 0; k < c.n; ++k) path.push_back(c, k);
+      for (int k = 0; k < c.n; ++k) append_waypoint(path, c, k);
     bool ordered = true;
     for (std::size_t k = 1; k < path.size(); ++k)
       ordered = ordered && path.t_s[k] >= path.t_s[k - 1] - 1e-9;

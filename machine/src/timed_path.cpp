@@ -1,5 +1,7 @@
 #include "ccbuild/machine/timed_path.hpp"
 
+#include "ccbuild/machine/path_chunks.hpp"
+
 #include <algorithm>
 
 namespace ccbuild::machine {
@@ -16,9 +18,9 @@ void TimedPath::push_back(double t, double x, double y, double z, double heading
   piece.push_back(piece_number);
 }
 
-void TimedPath::push_back(const ccbuild_lcm::ccbuild_path_chunk_t& c, int k) {
-  push_back(c.t_s[k], c.x_m[k], c.y_m[k], c.z_m[k], c.heading_rad[k], c.extruding[k], c.wall[k],
-            c.piece[k]);
+void append_waypoint(TimedPath& path, const ccbuild_lcm::ccbuild_path_chunk_t& c, int k) {
+  path.push_back(c.t_s[k], c.x_m[k], c.y_m[k], c.z_m[k], c.heading_rad[k], c.extruding[k],
+                 c.wall[k], c.piece[k]);
 }
 
 std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks_of(const TimedPath& path,
@@ -58,7 +60,7 @@ std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks_of(const TimedPath& path,
 TimedPath path_of(const std::vector<ccbuild_lcm::ccbuild_path_chunk_t>& chunks) {
   TimedPath path;
   for (const auto& c : chunks)
-    for (int k = 0; k < c.n; ++k) path.push_back(c, k);
+    for (int k = 0; k < c.n; ++k) append_waypoint(path, c, k);
   return path;
 }
 

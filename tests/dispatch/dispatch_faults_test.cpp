@@ -40,12 +40,10 @@ using schedule::ScheduleDocument;
 using schedule::ScheduleOptions;
 
 using ccbuild_lcm::ccbuild_fault_t;
-using ccbuild_lcm::ccbuild_job_t;
-using ccbuild_lcm::ccbuild_path_chunk_t;
 using testing::contains;
 
-machine::TimedPath path_of(const DispatchJob& d) {
-  return machine::path_of(d.chunks);
+const machine::TimedPath& path_of(const DispatchJob& d) {
+  return d.path;
 }
 
 ScheduleDocument golden(const std::string& name) {
@@ -75,9 +73,9 @@ TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {
         testing::source_path(std::string("config/machines/") + c.machine + ".yaml"));
     int checked = 0;
     for (const auto& job : jobs_of_schedule(example(c.building))) {
-      if (job.chunks.empty()) continue;
+      if (job.path.size() == 0) continue;
       const auto breach = machine::limit_breach(model, path_of(job), c.check_z);
-      EXPECT_FALSE(breach) << c.building << " job " << job.job.job_id << ": " << breach->second;
+      EXPECT_FALSE(breach) << c.building << " job " << job.job_id << ": " << breach->second;
       ++checked;
     }
     EXPECT_GT(checked, 10) << c.building;
@@ -135,37 +133,19 @@ TEST(SimMachine, LimitsHoldAtTheirBoundary) {
 /// A deposit job of one wall piece from (0, 0) to (1, 0) in 5 s, for `layer` of floor 0.
 DispatchJob piece_job(std::int64_t id, int layer, double start_s) {
   DispatchJob d;
-  d.job.utime = 0;
-  d.job.machine_id = "gantry-1";
-  d.job.job_id = id;
-  d.job.seq = 0;
-  d.job.kind = ccbuild_job_t::DEPOSIT;
-  d.job.floor = 0;
-  d.job.layer = layer;
-  d.job.nozzle = 0;
-  d.job.start_s = start_s;
-  d.job.duration_s = 5.0;
-  d.job.plan = "g1n1";
-  d.job.detail = "test";
-  ccbuild_path_chunk_t c;
-  c.utime = 0;
-  c.machine_id = "gantry-1";
-  c.job_id = id;
-  c.seq = 0;
-  c.chunk_index = 0;
-  c.chunk_count = 1;
-  c.n = 2;
-  c.t_s = {0.0, 5.0};
-  c.x_m = {0.0, 1.0};
-  c.y_m = {0.0, 0.0};
-  c.z_m = {0.1 * (layer + 1), 0.1 * (layer + 1)};
-  c.heading_rad = {0.0, 0.0};
-  c.extruding = {true, false};
-  c.wall = {1, 0};
-  c.piece = {1, 0};
-  d.chunks = {c};
-  d.job.chunk_count = 1;
-  d.job.point_count = 2;
+  d.machine_id = "gantry-1";
+  d.job_id = id;
+  d.kind = JobKind::kDeposit;
+  d.floor = 0;
+  d.layer = layer;
+  d.nozzle = 0;
+  d.start_s = start_s;
+  d.duration_s = 5.0;
+  d.plan = "g1n1";
+  d.detail = "test";
+  const double z_m = 0.1 * (layer + 1);
+  d.path.push_back(0.0, 0.0, 0.0, z_m, 0.0, true, 1, 1);
+  d.path.push_back(5.0, 1.0, 0.0, z_m, 0.0, false, 0, 0);
   return d;
 }
 
@@ -189,7 +169,7 @@ struct Rig {
   }
   std::set<std::int8_t> fault_kinds() const {
     std::set<std::int8_t> out;
-    for (const auto& f : dispatcher->fault_records()) out.insert(f.kind);
+    for (const auto& f : dispatcher->fault_records()) out.insert(static_cast<std::int8_t>(f.kind));
     return out;
   }
   machine::Bus bus;
@@ -233,15 +213,14 @@ TEST(SimMachine, TheIntervalWindowHoldsAtItsBoundary) {
 DispatchJob climb_phase(std::int64_t id, const std::string& what, double start_s,
                         double duration_s) {
   DispatchJob d = piece_job(id, -1, start_s);
-  d.job.kind = ccbuild_job_t::CLIMB_PHASE;
-  d.job.floor = 0;
-  d.job.layer = -1;
-  d.job.nozzle = -1;
-  d.job.duration_s = duration_s;
-  d.job.plan = "";
-  d.job.detail = "climb from stage 0 to 1: " + what;
-  d.chunks.clear();
-  d.job.chunk_count = d.job.point_count = 0;
+  d.kind = JobKind::kClimbPhase;
+  d.floor = 0;
+  d.layer = -1;
+  d.nozzle = -1;
+  d.duration_s = duration_s;
+  d.plan = "";
+  d.detail = "climb from stage 0 to 1: " + what;
+  d.path = {};
   return d;
 }
 
@@ -283,8 +262,8 @@ TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
 
 TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
   DispatchJob pipe = climb_phase(10, "", 0.0, 120.0);
-  pipe.job.kind = ccbuild_job_t::PIPE;
-  pipe.job.detail = "pipe A1 for unit U1";
+  pipe.kind = JobKind::kPipe;
+  pipe.detail = "pipe A1 for unit U1";
   for (const double age_s : {3600.0, 3599.99}) {
     machine::SimOptions so = window(0.0, 1e9);
     so.anchor_min_age_s = 3600.0;
@@ -384,26 +363,26 @@ TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
   ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2) << "the recovery was not made again";
   const auto& purge = rig.dispatcher->jobs()[jobs.size()];
   const auto& rest = rig.dispatcher->jobs()[jobs.size() + 1];
-  EXPECT_EQ(purge.job.job_id, made_first[0].job.job_id);
-  EXPECT_EQ(rest.job.job_id, made_first[1].job.job_id);
-  EXPECT_EQ(purge.job.kind, +ccbuild_job_t::PURGE);
-  EXPECT_DOUBLE_EQ(purge.job.duration_s, 120.0);
+  EXPECT_EQ(purge.job_id, made_first[0].job_id);
+  EXPECT_EQ(rest.job_id, made_first[1].job_id);
+  EXPECT_EQ(purge.kind, JobKind::kPurge);
+  EXPECT_DOUBLE_EQ(purge.duration_s, 120.0);
   // The rest is the clogged path from where it stopped, its times from there.
   const auto rows = rig.journal.rows();
-  const std::int64_t clogged = purge.job.job_id - 1;
+  const std::int64_t clogged = purge.job_id - 1;
   ASSERT_EQ(rows.at(clogged).state, "clogged");
   const int stopped_at = rows.at(clogged).stopped_at;
   const DispatchJob* original = nullptr;
   for (const auto& j : jobs)
-    if (j.job.job_id == clogged) original = &j;
+    if (j.job_id == clogged) original = &j;
   ASSERT_NE(original, nullptr);
   const auto whole = path_of(*original), tail = path_of(rest);
   ASSERT_EQ(tail.size(), whole.size() - stopped_at);
   EXPECT_DOUBLE_EQ(tail.t_s.front(), 0.0);
   EXPECT_DOUBLE_EQ(tail.x_m.front(), whole.x_m[stopped_at]);
   EXPECT_DOUBLE_EQ(tail.x_m.back(), whole.x_m.back());
-  EXPECT_NEAR(rest.job.duration_s + whole.t_s[stopped_at], original->job.duration_s, 1e-9);
-  EXPECT_NEAR(rest.job.start_s, rows.at(clogged).finished_s + 120.0, 1e-9);
+  EXPECT_NEAR(rest.duration_s + whole.t_s[stopped_at], original->duration_s, 1e-9);
+  EXPECT_NEAR(rest.start_s, rows.at(clogged).finished_s + 120.0, 1e-9);
   rig.run();
   ASSERT_TRUE(rig.dispatcher->finished());
   EXPECT_FALSE(rig.dispatcher->stopped());
@@ -418,27 +397,14 @@ TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
 /// A deposit job of one straight wall piece along x, from `x0` to `x1` at 0.2 m/s.
 DispatchJob along_x(const std::string& machine, std::int64_t id, double x0, double x1) {
   DispatchJob d = piece_job(id, 0, 0.0);
-  d.job.machine_id = machine;
-  auto& c = d.chunks[0];
-  c.machine_id = machine;
-  c.n = 11;
-  c.t_s.clear();
-  c.x_m.clear();
+  d.machine_id = machine;
+  d.path = {};
   for (int k = 0; k <= 10; ++k) {
-    c.t_s.push_back(k * std::abs(x1 - x0) / 10.0 / 0.2);
-    c.x_m.push_back(x0 + (x1 - x0) * k / 10.0);
+    const bool last = k == 10;
+    d.path.push_back(k * std::abs(x1 - x0) / 10.0 / 0.2, x0 + (x1 - x0) * k / 10.0, 1.0, 0.1, 0.0,
+                     !last, last ? 0 : 1, last ? 0 : 1);
   }
-  c.y_m.assign(11, 1.0);
-  c.z_m.assign(11, 0.1);
-  c.heading_rad.assign(11, 0.0);
-  c.extruding.assign(11, true);
-  c.extruding.back() = false;
-  c.wall.assign(11, 1);
-  c.wall.back() = 0;
-  c.piece.assign(11, 1);
-  c.piece.back() = 0;
-  d.job.duration_s = c.t_s.back();
-  d.job.point_count = 11;
+  d.duration_s = d.path.t_s.back();
   return d;
 }
 
@@ -487,8 +453,8 @@ TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
   EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
   EXPECT_EQ(run.sim2.executed(), (std::vector<std::int64_t>{20, 21}));      // its wall, the move
   const auto& move = d.jobs().at(4);
-  EXPECT_EQ(move.job.kind, +ccbuild_job_t::TRAVEL);
-  EXPECT_DOUBLE_EQ(move.chunks[0].x_m.back(), 8.0);  // the rest reaches 6: 6 + 2
+  EXPECT_EQ(move.kind, JobKind::kTravel);
+  EXPECT_DOUBLE_EQ(move.path.x_m.back(), 8.0);  // the rest reaches 6: 6 + 2
   EXPECT_DOUBLE_EQ(run.sim2.position()[0], 8.0);
   // The rest started only once gantry-2 had moved clear.
   EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);

@@ -14,6 +14,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/job_messages.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/sim_machine.hpp"
 #include "ccbuild/orchestrator/project.hpp"
@@ -51,12 +52,13 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
   const auto jobs = jobs_of_schedule(s);
   int deposits = 0, slabs = 0, purges = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
-    const auto& j = jobs[k].job;
+    const JobMessages sent = messages_of(jobs[k]);  // as they go on the wire
+    const auto& j = sent.job;
     EXPECT_EQ(j.job_id, static_cast<std::int64_t>(10 * (k + 1)));
     if (k > 0) {
-      EXPECT_LE(jobs[k - 1].job.start_s, j.start_s);  // schedule order
+      EXPECT_LE(jobs[k - 1].start_s, j.start_s);  // schedule order
     }
-    EXPECT_EQ(static_cast<int>(jobs[k].chunks.size()), j.chunk_count);
+    EXPECT_EQ(static_cast<int>(sent.chunks.size()), j.chunk_count);
     slabs += j.kind == ccbuild_job_t::SLAB;
     purges += j.kind == ccbuild_job_t::PURGE;
     if (j.kind != ccbuild_job_t::DEPOSIT) continue;
@@ -70,7 +72,7 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
     const auto& path = plan.waypoints.at(j.nozzle);
     ASSERT_EQ(j.point_count, static_cast<int>(path.size()));
     int at = 0;
-    for (const auto& c : jobs[k].chunks) {
+    for (const auto& c : sent.chunks) {
       EXPECT_EQ(c.job_id, j.job_id);
       EXPECT_LE(c.n, ccbuild_path_chunk_t::MAX_POINTS);
       EXPECT_LE(c.getEncodedSize(), 64'000);
@@ -115,9 +117,10 @@ TEST(DispatchJobs, PathsSplitIntoChunksAtTheirBoundary) {
     const auto jobs = jobs_of_schedule(s);
     ASSERT_EQ(jobs.size(), 1u);
     const int expected = points == most ? 1 : 2;
-    EXPECT_EQ(jobs[0].job.chunk_count, expected) << points;
-    EXPECT_EQ(jobs[0].chunks.back().n, expected == 1 ? points : 1);
-    EXPECT_EQ(jobs[0].chunks.back().chunk_index, expected - 1);
+    const JobMessages sent = messages_of(jobs[0]);
+    EXPECT_EQ(sent.job.chunk_count, expected) << points;
+    EXPECT_EQ(sent.chunks.back().n, expected == 1 ? points : 1);
+    EXPECT_EQ(sent.chunks.back().chunk_index, expected - 1);
   }
   // A layer whose plan is missing is an input error, not a crash.
   ScheduleDocument broken;
@@ -133,12 +136,12 @@ TEST(Bus, DeliversTypedMessagesAndCountsMalformedOnes) {
                                [&](const ccbuild_job_t& j) { received.push_back(j.job_id); });
   std::vector<std::string> malformed;
   bus.on_malformed([&](const std::string& ch, int) { malformed.push_back(ch); });
-  auto jobs = jobs_of_schedule(house_schedule());
-  bus.publish(machine::channel("JOB", "gantry-1"), jobs[0].job);
-  bus.publish(machine::channel("JOB", "gantry-1"), jobs[0].chunks[0]);  // the wrong type
+  const JobMessages first = messages_of(jobs_of_schedule(house_schedule())[0]);
+  bus.publish(machine::channel("JOB", "gantry-1"), first.job);
+  bus.publish(machine::channel("JOB", "gantry-1"), first.chunks[0]);  // the wrong type
   EXPECT_GE(bus.handle(500), 2);
   ASSERT_EQ(received.size(), 1u);
-  EXPECT_EQ(received[0], jobs[0].job.job_id);
+  EXPECT_EQ(received[0], first.job.job_id);
   EXPECT_EQ(bus.malformed_count(), 1);
   ASSERT_EQ(malformed.size(), 1u);
   EXPECT_EQ(malformed[0], "CCBUILD_JOB_gantry-1");
@@ -181,13 +184,13 @@ TEST(Dispatch, TheHouseRunsEveryJobExactlyOnceInOrder) {
   ASSERT_TRUE(d.finished());
   // The machine's own record: every job once, in schedule order.
   ASSERT_EQ(sim.executed().size(), jobs.size());
-  for (std::size_t k = 0; k < jobs.size(); ++k) EXPECT_EQ(sim.executed()[k], jobs[k].job.job_id);
+  for (std::size_t k = 0; k < jobs.size(); ++k) EXPECT_EQ(sim.executed()[k], jobs[k].job_id);
   for (const auto& [id, state] : journal.states()) EXPECT_EQ(state, "done") << id;
   // Each job started no earlier than planned and ran for its planned duration.
   for (const auto& j : jobs) {
-    const auto& [start_s, end_s] = d.executed().at(j.job.job_id);
-    EXPECT_GE(start_s, j.job.start_s - 1e-6);
-    EXPECT_NEAR(end_s - start_s, j.job.duration_s, 1e-6);
+    const auto& [start_s, end_s] = d.executed().at(j.job_id);
+    EXPECT_GE(start_s, j.start_s - 1e-6);
+    EXPECT_NEAR(end_s - start_s, j.duration_s, 1e-6);
   }
   EXPECT_EQ(sim.faults(), 0);
   std::filesystem::remove_all(dir);
@@ -267,7 +270,7 @@ TEST(Dispatch, AMachineRefusesJobsOutOfOrderAndPathsThatDoNotAddUp) {
       machine::channel("FAULT", "gantry-1"),
       [&](const ccbuild_lcm::ccbuild_fault_t& f) { faults.push_back(f.kind); });
   std::int64_t seq = 0;
-  auto send = [&](DispatchJob d) {
+  auto send = [&](JobMessages d) {
     d.job.utime = machine::utime_now();
     d.job.seq = ++seq;
     bus.publish(machine::channel("JOB", "gantry-1"), d.job);
@@ -282,19 +285,19 @@ TEST(Dispatch, AMachineRefusesJobsOutOfOrderAndPathsThatDoNotAddUp) {
       bus.handle(0);
     }
   };
-  send(jobs[2]);
+  send(messages_of(jobs[2]));
   ASSERT_EQ(sim.executed().size(), 1u);
-  send(jobs[1]);  // older than the one run: refused
+  send(messages_of(jobs[1]));  // older than the one run: refused
   EXPECT_EQ(sim.executed().size(), 1u);
   ASSERT_EQ(faults.size(), 1u);
   EXPECT_EQ(faults[0], +ccbuild_lcm::ccbuild_fault_t::OUT_OF_ORDER);
-  DispatchJob short_path = jobs[3];
+  JobMessages short_path = messages_of(jobs[3]);
   short_path.job.point_count += 1;  // one waypoint missing from its chunks
   send(short_path);
   EXPECT_EQ(sim.executed().size(), 1u);
   ASSERT_EQ(faults.size(), 2u);
   EXPECT_EQ(faults[1], +ccbuild_lcm::ccbuild_fault_t::PATH_MISMATCH);
-  send(jobs[2]);  // a repeat of one it ran: acknowledged, not run again
+  send(messages_of(jobs[2]));  // a repeat of one it ran: acknowledged, not run again
   EXPECT_EQ(sim.executed().size(), 1u);
   EXPECT_EQ(faults.size(), 2u);
 }

@@ -6,7 +6,6 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/machine/timed_path.hpp"
 
 namespace ccbuild::dispatch {
 namespace {
@@ -17,17 +16,11 @@ using schedule::ScheduledLayer;
 using schedule::ScheduleDocument;
 using schedule::SchedulePlan;
 
-using ccbuild_lcm::ccbuild_job_t;
-using ccbuild_lcm::ccbuild_path_chunk_t;
-
-ccbuild_job_t job_of(std::int8_t kind, const std::string& machine, double start_s,
-                     double duration_s, int floor, int layer, int nozzle, const std::string& plan,
-                     const std::string& detail) {
-  ccbuild_job_t j;
-  j.utime = 0;
+DispatchJob job_of(JobKind kind, const std::string& machine, double start_s, double duration_s,
+                   int floor, int layer, int nozzle, const std::string& plan,
+                   const std::string& detail, machine::TimedPath path = {}) {
+  DispatchJob j;
   j.machine_id = machine;
-  j.job_id = 0;
-  j.seq = 0;
   j.kind = kind;
   j.floor = floor;
   j.layer = layer;
@@ -36,8 +29,7 @@ ccbuild_job_t job_of(std::int8_t kind, const std::string& machine, double start_
   j.duration_s = duration_s;
   j.plan = plan;
   j.detail = detail;
-  j.chunk_count = 0;
-  j.point_count = 0;
+  j.path = std::move(path);
   return j;
 }
 
@@ -79,9 +71,8 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
       std::string why;
       for (const auto& r : l.wait_reasons) why += (why.empty() ? "" : "; ") + r.detail;
       jobs.push_back(
-          {job_of(ccbuild_job_t::WAIT, gantry_id(0), waited_from_s, wait_s, floor, layer, -1, "",
-                  printf_string("wait before floor %d layer %d: %s", floor, layer, why.c_str())),
-           {}});
+          job_of(JobKind::kWait, gantry_id(0), waited_from_s, wait_s, floor, layer, -1, "",
+                 printf_string("wait before floor %d layer %d: %s", floor, layer, why.c_str())));
     }
     for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
       const int nozzle = static_cast<int>(n);
@@ -96,27 +87,19 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
         move.push_back(0.0, x0, y0, z0, h0, false, 0, 0);
         move.push_back(move_s, path.x_m[0], path.y_m[0], path.z_m[0], path.heading_rad[0], false, 0,
                        0);
-        DispatchJob t;
-        t.job =
-            job_of(ccbuild_job_t::TRAVEL, gantry_id(nozzle), waited_from_s - move_s, move_s, floor,
+        jobs.push_back(
+            job_of(JobKind::kTravel, gantry_id(nozzle), waited_from_s - move_s, move_s, floor,
                    layer, nozzle, "",
-                   printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1));
-        t.chunks = machine::chunks_of(move, t.job.machine_id);
-        t.job.chunk_count = 1;
-        t.job.point_count = 2;
-        jobs.push_back(std::move(t));
+                   printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
+                   std::move(move)));
       }
       const std::size_t end = path.size() - 1;
       ending[nozzle] = {path.x_m[end], path.y_m[end], path.z_m[end], path.heading_rad[end]};
       const double duration_s = path.t_s.back();
-      DispatchJob d;
-      d.job = job_of(ccbuild_job_t::DEPOSIT, gantry_id(nozzle), start_s, duration_s, floor, layer,
-                     nozzle, l.plan,
-                     printf_string("floor %d layer %d, nozzle %d", floor, layer, nozzle + 1));
-      d.chunks = machine::chunks_of(path, d.job.machine_id);
-      d.job.chunk_count = static_cast<std::int32_t>(d.chunks.size());
-      d.job.point_count = static_cast<std::int32_t>(path.size());
-      jobs.push_back(std::move(d));
+      jobs.push_back(job_of(JobKind::kDeposit, gantry_id(nozzle), start_s, duration_s, floor, layer,
+                            nozzle, l.plan,
+                            printf_string("floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
+                            std::move(path)));
     }
     last.swap(ending);  // a nozzle idle for a layer moves without a job (as planned)
     ending.clear();
@@ -129,30 +112,26 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
             p.unit >= 0 && p.unit < static_cast<int>(document.inputs.unit_names.size())
                 ? " " + document.inputs.unit_names[p.unit]
                 : "";
-        jobs.push_back({job_of(ccbuild_job_t::CLIMB_PHASE, gantry_id(0), t, p.duration_s, e.floor,
-                               e.layer, -1, "", e.detail + ": " + climb::to_string(p.kind) + unit),
-                        {}});
+        jobs.push_back(job_of(JobKind::kClimbPhase, gantry_id(0), t, p.duration_s, e.floor, e.layer,
+                              -1, "", e.detail + ": " + climb::to_string(p.kind) + unit));
         t += p.duration_s;
       }
       continue;
     }
-    const std::int8_t code = e.kind == Event::Kind::kPipe    ? ccbuild_job_t::PIPE
-                             : e.kind == Event::Kind::kSlab  ? ccbuild_job_t::SLAB
-                             : e.kind == Event::Kind::kPurge ? ccbuild_job_t::PURGE
-                                                             : ccbuild_job_t::WAIT;
-    jobs.push_back({job_of(code, gantry_id(0), e.start_s, e.end_s - e.start_s, e.floor, e.layer, -1,
-                           "", e.detail),
-                    {}});
+    const JobKind kind = e.kind == Event::Kind::kPipe    ? JobKind::kPipe
+                         : e.kind == Event::Kind::kSlab  ? JobKind::kSlab
+                         : e.kind == Event::Kind::kPurge ? JobKind::kPurge
+                                                         : JobKind::kWait;
+    jobs.push_back(job_of(kind, gantry_id(0), e.start_s, e.end_s - e.start_s, e.floor, e.layer, -1,
+                          "", e.detail));
   }
   // Schedule order: by planned start, then gantry; stable for equal keys.
   std::stable_sort(jobs.begin(), jobs.end(), [](const DispatchJob& a, const DispatchJob& b) {
-    if (a.job.start_s != b.job.start_s) return a.job.start_s < b.job.start_s;
-    return a.job.machine_id < b.job.machine_id;
+    if (a.start_s != b.start_s) return a.start_s < b.start_s;
+    return a.machine_id < b.machine_id;
   });
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    jobs[k].job.job_id = static_cast<std::int64_t>(10 * (k + 1));
-    for (auto& c : jobs[k].chunks) c.job_id = jobs[k].job.job_id;
-  }
+  for (std::size_t k = 0; k < jobs.size(); ++k)
+    jobs[k].job_id = static_cast<std::int64_t>(10 * (k + 1));
   return jobs;
 }
 

@@ -7,14 +7,29 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/machine/timed_path.hpp"
+#include "ccbuild/dispatch/job_messages.hpp"
+#include "ccbuild_lcm/ccbuild_ack_t.hpp"
 #include "ccbuild_lcm/ccbuild_command_t.hpp"
+#include "ccbuild_lcm/ccbuild_done_t.hpp"
+#include "ccbuild_lcm/ccbuild_fault_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::dispatch {
 namespace {
 using ccbuild_lcm::ccbuild_fault_t;
-using ccbuild_lcm::ccbuild_job_t;
-using ccbuild_lcm::ccbuild_path_chunk_t;
+
+// The journal keeps the wire's fault codes.
+static_assert(static_cast<int>(FaultKind::kJointLimit) == ccbuild_fault_t::JOINT_LIMIT &&
+              static_cast<int>(FaultKind::kVelocityLimit) == ccbuild_fault_t::VELOCITY_LIMIT &&
+              static_cast<int>(FaultKind::kPathMismatch) == ccbuild_fault_t::PATH_MISMATCH &&
+              static_cast<int>(FaultKind::kOutOfOrder) == ccbuild_fault_t::OUT_OF_ORDER &&
+              static_cast<int>(FaultKind::kColdJoint) == ccbuild_fault_t::COLD_JOINT &&
+              static_cast<int>(FaultKind::kTooEarly) == ccbuild_fault_t::TOO_EARLY &&
+              static_cast<int>(FaultKind::kAnchorTooYoung) == ccbuild_fault_t::ANCHOR_TOO_YOUNG &&
+              static_cast<int>(FaultKind::kPinMissed) == ccbuild_fault_t::PIN_MISSED &&
+              static_cast<int>(FaultKind::kPumpClog) == ccbuild_fault_t::PUMP_CLOG &&
+              static_cast<int>(FaultKind::kAxisStalled) == ccbuild_fault_t::AXIS_STALLED &&
+              static_cast<int>(FaultKind::kMalformed) == ccbuild_fault_t::MALFORMED);
 
 /// A statement, its parameters bound by the caller; finalized when it goes.
 class Statement {
@@ -35,9 +50,9 @@ std::string text(sqlite3_stmt* s, int column) {
   return t ? reinterpret_cast<const char*>(t) : "";
 }
 
-/// The path of `job` from waypoint `from` on, its times from there, in fresh chunks.
-std::vector<ccbuild_path_chunk_t> rest_of_path(const DispatchJob& job, int from, double& t0_s) {
-  const machine::TimedPath all = machine::path_of(job.chunks);
+/// The path of `job` from waypoint `from` on, its times from there.
+machine::TimedPath rest_of_path(const DispatchJob& job, int from, double& t0_s) {
+  const machine::TimedPath& all = job.path;
   const int total = static_cast<int>(all.size());
   from = std::clamp(from, 0, std::max(0, total - 1));
   t0_s = total > 0 ? all.t_s[from] : 0.0;
@@ -45,12 +60,12 @@ std::vector<ccbuild_path_chunk_t> rest_of_path(const DispatchJob& job, int from,
   for (int k = from; k < total; ++k)
     rest.push_back(all.t_s[k] - t0_s, all.x_m[k], all.y_m[k], all.z_m[k], all.heading_rad[k],
                    all.extruding[k], all.wall[k], all.piece[k]);
-  return machine::chunks_of(rest, job.job.machine_id);
+  return rest;
 }
 }  // namespace
 
-std::string fault_name(std::int8_t kind) {
-  switch (kind) {
+std::string fault_name(FaultKind kind) {
+  switch (static_cast<int>(kind)) {
     case ccbuild_fault_t::JOINT_LIMIT:
       return "JOINT_LIMIT";
     case ccbuild_fault_t::VELOCITY_LIMIT:
@@ -78,8 +93,8 @@ std::string fault_name(std::int8_t kind) {
   }
 }
 
-std::string policy_of(std::int8_t kind) {
-  switch (kind) {
+std::string policy_of(FaultKind kind) {
+  switch (static_cast<int>(kind)) {
     case ccbuild_fault_t::PIN_MISSED:
       return "retry";
     case ccbuild_fault_t::PUMP_CLOG:
@@ -179,7 +194,7 @@ void Journal::record_fault(const FaultRecord& f) {
               "?2, ?3, ?4, ?5, ?6)");
   sqlite3_bind_text(*s, 1, f.machine_id.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_int64(*s, 2, f.job_id);
-  sqlite3_bind_int(*s, 3, f.kind);
+  sqlite3_bind_int(*s, 3, static_cast<int>(f.kind));
   sqlite3_bind_text(*s, 4, f.message.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(*s, 5, f.policy.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_int64(*s, 6, machine::utime_now());
@@ -209,7 +224,7 @@ std::vector<FaultRecord> Journal::faults() const {
   Statement s(db_, "SELECT machine_id, job_id, kind, message, policy FROM fault ORDER BY id");
   while (sqlite3_step(*s) == SQLITE_ROW)
     out.push_back({text(*s, 0), sqlite3_column_int64(*s, 1),
-                   static_cast<std::int8_t>(sqlite3_column_int(*s, 2)), text(*s, 3), text(*s, 4)});
+                   static_cast<FaultKind>(sqlite3_column_int(*s, 2)), text(*s, 3), text(*s, 4)});
   return out;
 }
 
@@ -218,11 +233,11 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
     : bus_(bus), jobs_(std::move(jobs)), journal_(journal), options_(options) {
   schedule_jobs_ = jobs_.size();
   for (std::size_t k = 0; k < jobs_.size(); ++k) {
-    CCBUILD_CHECK(k == 0 || jobs_[k - 1].job.start_s <= jobs_[k].job.start_s,
+    CCBUILD_CHECK(k == 0 || jobs_[k - 1].start_s <= jobs_[k].start_s,
                   "dispatcher: jobs out of schedule order");
     origin_.push_back(k);
-    index_of_[jobs_[k].job.job_id] = k;
-    queues_[jobs_[k].job.machine_id].jobs.push_back(k);
+    index_of_[jobs_[k].job_id] = k;
+    queues_[jobs_[k].machine_id].jobs.push_back(k);
   }
   ended_.assign(jobs_.size(), false);
   after_layer_.assign(jobs_.size(), false);
@@ -230,17 +245,17 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
   // order, so that the same ones are made again).
   const auto rows = journal_.rows();
   for (std::size_t k = 0; k < jobs_.size(); ++k) {  // jobs_ grows as recoveries are made
-    const auto it = rows.find(jobs_[k].job.job_id);
+    const auto it = rows.find(jobs_[k].job_id);
     if (it == rows.end()) continue;
     const JournalRow& row = it->second;
     if (row.state == "done") {
       ended_[k] = true;
-      executed_[jobs_[k].job.job_id] = {row.started_s, row.finished_s};
+      executed_[jobs_[k].job_id] = {row.started_s, row.finished_s};
       const DispatchJob& o = jobs_[origin_[k]];
-      delay_s_ = std::max(delay_s_, row.finished_s - (o.job.start_s + o.job.duration_s));
+      delay_s_ = std::max(delay_s_, row.finished_s - (o.start_s + o.duration_s));
     } else if (row.state == "clogged" || row.state == "pin-missed") {
       ended_[k] = true;
-      executed_[jobs_[k].job.job_id] = {row.started_s, row.finished_s};
+      executed_[jobs_[k].job_id] = {row.started_s, row.finished_s};
       if (!recover(k, row)) stopped_ = "the journal ends on a fault with no recovery left";
     }
   }
@@ -248,15 +263,21 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
     while (q.next < q.jobs.size() && ended_[q.jobs[q.next]]) ++q.next;
   for (const auto& f : journal_.faults()) fault_records_.push_back(f);
   for (const auto& [machine, q] : queues_) {
-    bus_.subscribe<ccbuild_lcm::ccbuild_ack_t>(
-        machine::channel("ACK", machine),
-        [this](const ccbuild_lcm::ccbuild_ack_t& a) { on_ack(a); });
+    // The edge: messages become the dispatcher's own terms here.
+    bus_.subscribe<ccbuild_lcm::ccbuild_ack_t>(machine::channel("ACK", machine),
+                                               [this](const ccbuild_lcm::ccbuild_ack_t& a) {
+                                                 on_ack(a.machine_id, a.job_id, a.accepted);
+                                               });
     bus_.subscribe<ccbuild_lcm::ccbuild_done_t>(
-        machine::channel("DONE", machine),
-        [this](const ccbuild_lcm::ccbuild_done_t& d) { on_done(d); });
+        machine::channel("DONE", machine), [this](const ccbuild_lcm::ccbuild_done_t& d) {
+          on_done({d.machine_id, d.job_id, d.ok != 0, d.started_s, d.finished_s, d.stopped_at,
+                   d.detail});
+        });
     bus_.subscribe<ccbuild_lcm::ccbuild_fault_t>(
-        machine::channel("FAULT", machine),
-        [this](const ccbuild_lcm::ccbuild_fault_t& f) { on_fault(f); });
+        machine::channel("FAULT", machine), [this](const ccbuild_lcm::ccbuild_fault_t& f) {
+          const auto kind = static_cast<FaultKind>(f.kind);
+          on_fault({f.machine_id, f.job_id, kind, f.message, policy_of(kind)});
+        });
     bus_.subscribe<ccbuild_lcm::ccbuild_status_t>(machine::channel("STATUS", machine),
                                                   [this](const ccbuild_lcm::ccbuild_status_t& s) {
                                                     const auto it = queues_.find(s.machine_id);
@@ -283,7 +304,7 @@ bool Dispatcher::finished() const {
 
 void Dispatcher::stop(const std::string& reason) {
   if (stopped_) return;
-  journal_.record_fault({"", 0, 0, reason, "stop"});
+  journal_.record_fault({"", 0, FaultKind::kNone, reason, "stop"});
   stopped_ = reason;
   for (const auto& [machine, q] : queues_) {
     ccbuild_lcm::ccbuild_command_t c;
@@ -299,9 +320,8 @@ void Dispatcher::stop(const std::string& reason) {
 namespace {
 /// The rail coordinate of waypoint k of a job's path.
 double rail_at(const DispatchJob& d, machine::RailAxis axis, bool last) {
-  const auto& c = last ? d.chunks.back() : d.chunks.front();
-  const int k = last ? c.n - 1 : 0;
-  return machine::rail_coordinate(c.x_m[k], c.y_m[k], axis);
+  const std::size_t k = last ? d.path.size() - 1 : 0;
+  return machine::rail_coordinate(d.path.x_m[k], d.path.y_m[k], axis);
 }
 /// "gantry-3" -> 3 (0 for another name).
 int gantry_number(const std::string& machine_id) {
@@ -312,13 +332,12 @@ int gantry_number(const std::string& machine_id) {
 bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob job,
                               bool after_layer) {
   // Recovery jobs take the ids after their origin's (ids go in tens).
-  std::int64_t id = jobs_[origin].job.job_id;
+  std::int64_t id = jobs_[origin].job_id;
   for (const auto& [other, k] : index_of_)
     if (origin_[k] == origin) id = std::max(id, other);
-  if (++id >= jobs_[origin].job.job_id + 10) return false;
-  job.job.job_id = id;
-  for (auto& c : job.chunks) c.job_id = id;
-  Queue& q = queues_[job.job.machine_id];
+  if (++id >= jobs_[origin].job_id + 10) return false;
+  job.job_id = id;
+  Queue& q = queues_[job.machine_id];
   const auto at = std::find(q.jobs.begin(), q.jobs.end(), after);
   // After `after` and after what was inserted after it already.
   auto to = at + 1;
@@ -335,46 +354,42 @@ bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob
 
 bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
                                 std::vector<std::pair<std::size_t, DispatchJob>>& moves) const {
-  if (options_.gantry_width_m <= 0.0 || rest.chunks.empty()) return true;
+  if (options_.gantry_width_m <= 0.0 || rest.path.size() == 0) return true;
   const machine::RailAxis axis = options_.rail_axis;
   double lo = 1e300, hi = -1e300;
-  for (const auto& c : rest.chunks)
-    for (int k = 0; k < c.n; ++k) {
-      const double r = machine::rail_coordinate(c.x_m[k], c.y_m[k], axis);
-      lo = std::min(lo, r);
-      hi = std::max(hi, r);
-    }
+  for (std::size_t k = 0; k < rest.path.size(); ++k) {
+    const double r = machine::rail_coordinate(rest.path.x_m[k], rest.path.y_m[k], axis);
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
   // Where the layer's other gantries stand once their jobs of this layer are done.
-  const double layer_start_s = jobs_[origin_[index]].job.start_s;
-  const int mine = gantry_number(jobs_[index].job.machine_id);
+  const double layer_start_s = jobs_[origin_[index]].start_s;
+  const int mine = gantry_number(jobs_[index].machine_id);
   std::map<int, std::size_t> others;  // gantry number -> its job of this layer
   for (std::size_t k = 0; k < jobs_.size(); ++k)
-    if (origin_[k] == k && k != origin_[index] && jobs_[k].job.start_s == layer_start_s &&
-        !jobs_[k].chunks.empty())
-      others[gantry_number(jobs_[k].job.machine_id)] = k;
+    if (origin_[k] == k && k != origin_[index] && jobs_[k].start_s == layer_start_s &&
+        jobs_[k].path.size() > 0)
+      others[gantry_number(jobs_[k].machine_id)] = k;
   auto move = [&](std::size_t k, double to_rail_m) {
     const DispatchJob& d = jobs_[k];
-    const auto& c = d.chunks.back();
-    const int last = c.n - 1;
-    DispatchJob m;
-    m.job = d.job;
-    m.job.kind = ccbuild_job_t::TRAVEL;
-    m.job.plan = "";
-    m.job.start_s = start_s;
+    const auto& c = d.path;
+    const std::size_t last = c.size() - 1;
+    DispatchJob m = d;
+    m.kind = JobKind::kTravel;
+    m.plan = "";
+    m.start_s = start_s;
     const double from_m = machine::rail_coordinate(c.x_m[last], c.y_m[last], axis);
-    m.job.duration_s = std::abs(to_rail_m - from_m) / options_.travel_speed_m_s;
-    m.job.detail = printf_string("%s moves clear along the rails to %.3f m (the rest of job %lld)",
-                                 d.job.machine_id.c_str(), to_rail_m,
-                                 static_cast<long long>(jobs_[index].job.job_id));
+    m.duration_s = std::abs(to_rail_m - from_m) / options_.travel_speed_m_s;
+    m.detail =
+        printf_string("%s moves clear along the rails to %.3f m (the rest of job %lld)",
+                      d.machine_id.c_str(), to_rail_m, static_cast<long long>(jobs_[index].job_id));
     const bool along_y = axis == machine::RailAxis::kY;
     const double to_x_m = along_y ? c.x_m[last] : to_rail_m;
     const double to_y_m = along_y ? to_rail_m : c.y_m[last];
     machine::TimedPath p;
     p.push_back(0.0, c.x_m[last], c.y_m[last], c.z_m[last], c.heading_rad[last], false, 0, 0);
-    p.push_back(m.job.duration_s, to_x_m, to_y_m, c.z_m[last], c.heading_rad[last], false, 0, 0);
-    m.chunks = machine::chunks_of(p, d.job.machine_id);
-    m.job.chunk_count = 1;
-    m.job.point_count = 2;
+    p.push_back(m.duration_s, to_x_m, to_y_m, c.z_m[last], c.heading_rad[last], false, 0, 0);
+    m.path = std::move(p);
     moves.emplace_back(k, std::move(m));
   };
   // Up the rails from this gantry: each at least a gantry width past the one before.
@@ -401,25 +416,20 @@ bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
   const std::size_t origin = origin_[index];
   const DispatchJob ended = jobs_[index];
   if (row.state == "clogged") {
-    DispatchJob purge;
-    purge.job = ended.job;
-    purge.job.kind = ccbuild_job_t::PURGE;
-    purge.job.start_s = row.finished_s;
-    purge.job.duration_s = options_.purge_s;
-    purge.job.plan = "";
-    purge.job.detail = "purge after the clog in job " + std::to_string(ended.job.job_id);
-    purge.job.chunk_count = purge.job.point_count = 0;
-    DispatchJob rest;
-    rest.job = ended.job;
+    DispatchJob purge = ended;
+    purge.kind = JobKind::kPurge;
+    purge.start_s = row.finished_s;
+    purge.duration_s = options_.purge_s;
+    purge.plan = "";
+    purge.detail = "purge after the clog in job " + std::to_string(ended.job_id);
+    purge.path = {};
+    DispatchJob rest = ended;
     double t0_s = 0.0;
-    rest.chunks = rest_of_path(ended, row.stopped_at, t0_s);
-    rest.job.start_s = row.finished_s + options_.purge_s;
-    rest.job.duration_s = ended.job.duration_s - t0_s;
-    rest.job.detail = ended.job.detail + ", the rest from waypoint " +
-                      std::to_string(row.stopped_at) + " (after a clog)";
-    rest.job.chunk_count = static_cast<std::int32_t>(rest.chunks.size());
-    rest.job.point_count = 0;
-    for (const auto& c : rest.chunks) rest.job.point_count += c.n;
+    rest.path = rest_of_path(ended, row.stopped_at, t0_s);
+    rest.start_s = row.finished_s + options_.purge_s;
+    rest.duration_s = ended.duration_s - t0_s;
+    rest.detail = ended.detail + ", the rest from waypoint " + std::to_string(row.stopped_at) +
+                  " (after a clog)";
     std::vector<std::pair<std::size_t, DispatchJob>> moves;
     if (!clearing_moves(index, rest, row.finished_s, moves)) return false;
     // The rest waits for the layer's other jobs and the moves: it runs alone.
@@ -434,7 +444,7 @@ bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
     for (std::size_t k = 0; k < jobs_.size(); ++k) attempts += k != origin && origin_[k] == origin;
     if (attempts >= options_.pin_attempts) return false;
     DispatchJob again = ended;
-    again.job.detail = jobs_[origin].job.detail + ", attempt " + std::to_string(attempts + 1);
+    again.detail = jobs_[origin].detail + ", attempt " + std::to_string(attempts + 1);
     return insert_after(index, origin, std::move(again), false);
   }
   return false;
@@ -444,16 +454,16 @@ bool Dispatcher::released(std::size_t index) const {
   // Every job planned to start before this one's (its origin's) has ended, and so have
   // the jobs recovering from them: a layer's jobs go out together. A job that runs alone
   // also waits for every other job of its layer.
-  const double start_s = jobs_[origin_[index]].job.start_s;
+  const double start_s = jobs_[origin_[index]].start_s;
   const auto blocks = [&](std::size_t k) {
     if (ended_[k] || k == index) return false;
-    const double other_s = jobs_[origin_[k]].job.start_s;
+    const double other_s = jobs_[origin_[k]].start_s;
     return other_s < start_s || (after_layer_[index] && other_s == start_s);
   };
   // The schedule's jobs are in order of planned start: only those from the first one
   // still open up to this start can hold it; then the few recovery jobs.
   while (first_open_ < schedule_jobs_ && ended_[first_open_]) ++first_open_;
-  for (std::size_t k = first_open_; k < schedule_jobs_ && jobs_[k].job.start_s <= start_s; ++k)
+  for (std::size_t k = first_open_; k < schedule_jobs_ && jobs_[k].start_s <= start_s; ++k)
     if (blocks(k)) return false;
   for (std::size_t k = schedule_jobs_; k < jobs_.size(); ++k)
     if (blocks(k)) return false;
@@ -464,24 +474,25 @@ void Dispatcher::send(std::size_t index) {
   DispatchJob d = jobs_[index];
   // A common start for the jobs released together: planned, plus the delay so far
   // (recovery jobs carry their own starts).
-  if (origin_[index] == index) d.job.start_s += delay_s_;
+  if (origin_[index] == index) d.start_s += delay_s_;
   // A job that runs alone starts when the last of its layer's other jobs ended (each
   // machine keeps its own clock).
   if (after_layer_[index]) {
-    const double layer_s = jobs_[origin_[index]].job.start_s;
+    const double layer_s = jobs_[origin_[index]].start_s;
     for (std::size_t k = 0; k < jobs_.size(); ++k) {
-      const auto it = executed_.find(jobs_[k].job.job_id);
-      if (k != index && jobs_[origin_[k]].job.start_s == layer_s && it != executed_.end())
-        d.job.start_s = std::max(d.job.start_s, it->second.second);
+      const auto it = executed_.find(jobs_[k].job_id);
+      if (k != index && jobs_[origin_[k]].start_s == layer_s && it != executed_.end())
+        d.start_s = std::max(d.start_s, it->second.second);
     }
   }
-  d.job.utime = machine::utime_now();
-  d.job.seq = ++seq_;
-  bus_.publish(machine::channel("JOB", d.job.machine_id), d.job);
-  for (auto& c : d.chunks) {
-    c.utime = d.job.utime;
+  JobMessages m = messages_of(d);
+  m.job.utime = machine::utime_now();
+  m.job.seq = ++seq_;
+  bus_.publish(machine::channel("JOB", d.machine_id), m.job);
+  for (auto& c : m.chunks) {
+    c.utime = m.job.utime;
     c.seq = ++seq_;
-    bus_.publish(machine::channel("PATH", d.job.machine_id), c);
+    bus_.publish(machine::channel("PATH", d.machine_id), c);
   }
 }
 
@@ -490,25 +501,24 @@ Dispatcher::Queue* Dispatcher::queue_of(const std::string& machine_id, std::int6
   if (it == queues_.end()) return nullptr;
   Queue& q = it->second;
   // Only the job in flight counts: a repeat about an earlier one is harmless and ignored.
-  if (q.next >= q.jobs.size() || jobs_[q.jobs[q.next]].job.job_id != job_id) return nullptr;
+  if (q.next >= q.jobs.size() || jobs_[q.jobs[q.next]].job_id != job_id) return nullptr;
   return &q;
 }
 
-void Dispatcher::on_ack(const ccbuild_lcm::ccbuild_ack_t& ack) {
-  Queue* q = queue_of(ack.machine_id, ack.job_id);
+void Dispatcher::on_ack(const std::string& machine_id, std::int64_t job_id, bool accepted) {
+  Queue* q = queue_of(machine_id, job_id);
   if (!q || q->wait != Queue::Wait::kAck || stopped_) return;
-  if (!ack.accepted) {
-    journal_.record(ack.job_id, ack.machine_id, "refused");
+  if (!accepted) {
+    journal_.record(job_id, machine_id, "refused");
     q->wait = Queue::Wait::kSend;  // sent again after the timeout; its fault's policy rules
     return;
   }
-  journal_.record(ack.job_id, ack.machine_id, "acked");
+  journal_.record(job_id, machine_id, "acked");
   q->wait = Queue::Wait::kDone;
   q->waited_s = 0.0;
 }
 
-void Dispatcher::on_fault(const ccbuild_lcm::ccbuild_fault_t& f) {
-  const FaultRecord record{f.machine_id, f.job_id, f.kind, f.message, policy_of(f.kind)};
+void Dispatcher::on_fault(const FaultRecord& record) {
   // Once per fault: a machine repeats a job's fault only with a new message.
   for (const auto& seen : fault_records_)
     if (seen.machine_id == record.machine_id && seen.job_id == record.job_id &&
@@ -516,18 +526,19 @@ void Dispatcher::on_fault(const ccbuild_lcm::ccbuild_fault_t& f) {
       return;
   journal_.record_fault(record);
   fault_records_.push_back(record);
-  if (record.policy == "stop") stop(f.machine_id + ": " + fault_name(f.kind) + ": " + f.message);
+  if (record.policy == "stop")
+    stop(record.machine_id + ": " + fault_name(record.kind) + ": " + record.message);
 }
 
 void Dispatcher::advance(Queue& q, std::size_t index, const JournalRow& row) {
   ended_[index] = true;
-  executed_[jobs_[index].job.job_id] = {row.started_s, row.finished_s};
+  executed_[jobs_[index].job_id] = {row.started_s, row.finished_s};
   ++q.next;
   q.wait = Queue::Wait::kSend;
   q.waited_s = 0.0;
 }
 
-void Dispatcher::on_done(const ccbuild_lcm::ccbuild_done_t& done) {
+void Dispatcher::on_done(const JobEnd& done) {
   Queue* q = queue_of(done.machine_id, done.job_id);
   if (!q) return;
   const std::size_t index = q->jobs[q->next];
@@ -535,7 +546,7 @@ void Dispatcher::on_done(const ccbuild_lcm::ccbuild_done_t& done) {
   if (done.ok) {
     journal_.record(done.job_id, row);
     const DispatchJob& o = jobs_[origin_[index]];
-    delay_s_ = std::max(delay_s_, done.finished_s - (o.job.start_s + o.job.duration_s));
+    delay_s_ = std::max(delay_s_, done.finished_s - (o.start_s + o.duration_s));
     advance(*q, index, row);
     return;
   }
@@ -563,7 +574,7 @@ void Dispatcher::step(double real_dt_s) {
     q.silent_s += real_dt_s;
     if (q.next >= q.jobs.size() || !q.heard) continue;  // nothing to a machine not heard
     const std::size_t index = q.jobs[q.next];
-    const auto& job = jobs_[index].job;
+    const DispatchJob& job = jobs_[index];
     q.waited_s += real_dt_s;
     if (q.wait == Queue::Wait::kSend && !released(index)) {
       q.waited_s = 0.0;

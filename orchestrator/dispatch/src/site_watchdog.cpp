@@ -1,5 +1,7 @@
 #include "ccbuild/dispatch/site_watchdog.hpp"
 
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
+
 #include <algorithm>
 #include <limits>
 
@@ -12,19 +14,21 @@ SiteWatchdog::SiteWatchdog(machine::Bus& bus, WatchdogOptions options)
   for (const auto& m : options_.machines) {
     seen_[m];
     bus.subscribe<ccbuild_lcm::ccbuild_status_t>(
-        machine::channel("STATUS", m),
-        [this](const ccbuild_lcm::ccbuild_status_t& s) { on_status(s); });
+        machine::channel("STATUS", m), [this](const ccbuild_lcm::ccbuild_status_t& s) {
+          on_status(s.machine_id, s.sim_time_s, s.x_m, s.y_m);  // the edge: the terms it needs
+        });
   }
 }
 
-void SiteWatchdog::on_status(const ccbuild_lcm::ccbuild_status_t& s) {
-  const auto it = seen_.find(s.machine_id);
+void SiteWatchdog::on_status(const std::string& machine_id, double sim_time_s, double x_m,
+                             double y_m) {
+  const auto it = seen_.find(machine_id);
   if (it == seen_.end()) return;  // another machine's status on its channel: not believed
   Seen& seen = it->second;
   seen.since_s = 0.0;
   // A status older than the last one (reordered, or repeated) adds nothing.
-  if (!seen.track.empty() && s.sim_time_s < seen.track.back().first) return;
-  seen.track.emplace_back(s.sim_time_s, machine::rail_coordinate(s.x_m, s.y_m, options_.rail_axis));
+  if (!seen.track.empty() && sim_time_s < seen.track.back().first) return;
+  seen.track.emplace_back(sim_time_s, machine::rail_coordinate(x_m, y_m, options_.rail_axis));
   if (seen.track.size() > 256) seen.track.pop_front();
 }
 

@@ -188,16 +188,15 @@ std::map<std::string, std::array<double, 4>> homes_of(
   const double rail_max_m = machine::rail_coordinate(machine.x_max_m, machine.y_max_m, rail_axis);
   double first_s = std::numeric_limits<double>::infinity();
   for (const auto& j : jobs)
-    if (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT)
-      first_s = std::min(first_s, j.job.start_s);
+    if (j.kind == dispatch::JobKind::kDeposit) first_s = std::min(first_s, j.start_s);
   std::map<std::string, std::array<double, 4>> homes;
   std::map<std::string, bool> from_first;
   for (const auto& id : ids)
     for (const auto& j : jobs)
-      if (j.job.machine_id == id && !j.chunks.empty()) {
-        const auto& c = j.chunks.front();
+      if (j.machine_id == id && j.path.size() > 0) {
+        const auto& c = j.path;
         homes[id] = {c.x_m[0], c.y_m[0], c.z_m[0], c.heading_rad[0]};
-        from_first[id] = j.job.start_s == first_s;
+        from_first[id] = j.start_s == first_s;
         break;
       }
   const int count = static_cast<int>(ids.size());
@@ -256,7 +255,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   for (int k = 0;; ++k) {
     const std::string id = dispatch::gantry_id(k);
     if (std::none_of(jobs.begin(), jobs.end(),
-                     [&](const dispatch::DispatchJob& j) { return j.job.machine_id == id; }))
+                     [&](const dispatch::DispatchJob& j) { return j.machine_id == id; }))
       break;
     ids.push_back(id);
   }
@@ -475,15 +474,14 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   const double inf = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < dispatcher.jobs().size(); ++k) {
     const auto& j = dispatcher.jobs()[k];
-    if (j.job.kind != ccbuild_lcm::ccbuild_job_t::DEPOSIT) continue;
-    auto& l =
-        layers.try_emplace({j.job.floor, j.job.layer}, std::array<double, 4>{inf, -inf, inf, -inf})
-            .first->second;
+    if (j.kind != dispatch::JobKind::kDeposit) continue;
+    auto& l = layers.try_emplace({j.floor, j.layer}, std::array<double, 4>{inf, -inf, inf, -inf})
+                  .first->second;
     if (dispatcher.origin_of(k) == k) {  // the schedule's, not a recovery job
-      l[0] = std::min(l[0], j.job.start_s);
-      l[1] = std::max(l[1], j.job.start_s + j.job.duration_s);
+      l[0] = std::min(l[0], j.start_s);
+      l[1] = std::max(l[1], j.start_s + j.duration_s);
     }
-    const auto it = dispatcher.executed().find(j.job.job_id);
+    const auto it = dispatcher.executed().find(j.job_id);
     if (it == dispatcher.executed().end()) continue;
     l[2] = std::min(l[2], it->second.first);
     l[3] = std::max(l[3], it->second.second);

@@ -95,10 +95,10 @@ void check_injected(const Injected& inject, const schedule::ScheduleDocument& do
     long runs = 0;
     bool deposits = false;
     for (const auto& j : jobs) {
-      if (j.job.machine_id != f.machine) continue;
+      if (j.machine_id != f.machine) continue;
       ++runs;
-      deposits = deposits || (j.job.kind == ccbuild_lcm::ccbuild_job_t::DEPOSIT &&
-                              j.job.floor == f.floor && j.job.layer == f.layer);
+      deposits = deposits || (j.kind == dispatch::JobKind::kDeposit && j.floor == f.floor &&
+                              j.layer == f.layer);
     }
     if (f.name == "clog" && !deposits)
       throw bad_inject(f.item, printf_string("%s deposits nothing on floor %d layer %d of this "

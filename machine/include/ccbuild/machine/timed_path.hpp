@@ -1,14 +1,9 @@
 #pragma once
-// A job's timed path as the machine follows it, and its path chunks on the wire
-// (ccbuild_path_chunk_t, docs/dispatch.md): one mechanism for cutting a path into chunks
-// of at most MAX_POINTS waypoints and putting them back together, used by the job
-// builder, the dispatcher's recovery jobs and the simulated machine.
+// A job's timed path as the machine follows it. On the wire it travels in path chunks
+// (path_chunks.hpp).
 
 #include <cstdint>
-#include <string>
 #include <vector>
-
-#include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
 
 namespace ccbuild::machine {
 
@@ -23,16 +18,6 @@ struct TimedPath {
   std::size_t size() const { return t_s.size(); }
   void push_back(double t, double x, double y, double z, double heading, bool deposits,
                  std::int64_t wall_id, std::int32_t piece_number);
-  /// Appends waypoint k of `chunk`.
-  void push_back(const ccbuild_lcm::ccbuild_path_chunk_t& chunk, int k);
 };
-
-/// `path` in chunks of at most ccbuild_path_chunk_t::MAX_POINTS waypoints, numbered from
-/// 0, for `machine_id` (utime, seq and job id 0: set when sent).
-std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks_of(const TimedPath& path,
-                                                         const std::string& machine_id);
-
-/// The waypoints of `chunks`, in the order given.
-TimedPath path_of(const std::vector<ccbuild_lcm::ccbuild_path_chunk_t>& chunks);
 
 }  // namespace ccbuild::machine

@@ -1,27 +1,42 @@
 #pragma once
 // A schedule (its JSON, docs/schedule.md) as the jobs the dispatcher sends, machine by
-// machine (docs/dispatch.md): each layer a deposit job per nozzle with its timed path in
-// chunks of at most ccbuild_path_chunk_t::MAX_POINTS waypoints, after a travel job per
-// nozzle from where it ended (a straight line over the layer's move time); waits, pipes,
-// purges, slabs and each climb's phases as jobs of the first gantry. Job ids increase in schedule
-// order (by planned start) in tens, from 10 (the nine after each are for the jobs that recover from
-// its faults); the same schedule gives the same jobs.
+// machine (docs/dispatch.md): each layer a deposit job per nozzle with its timed path,
+// after a travel job per nozzle from where it ended (a straight line over the layer's
+// move time); waits, pipes, purges, slabs and each climb's phases as jobs of the first
+// gantry. Job ids increase in schedule order (by planned start) in tens, from 10 (the
+// nine after each are for the jobs that recover from its faults); the same schedule
+// gives the same jobs.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "ccbuild/machine/timed_path.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
-#include "ccbuild_lcm/ccbuild_job_t.hpp"
-#include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
 
 namespace ccbuild::dispatch {
 
 /// Gantry k (from 0, in rail order) is machine "gantry-<k+1>".
 std::string gantry_id(int nozzle);
 
+/// What a job does. A deposit or travel job has a path; the others are the whole
+/// machine's, timed only.
+enum class JobKind { kDeposit, kTravel, kPipe, kClimbPhase, kSlab, kWait, kPurge };
+
+/// One job for one machine, as the dispatcher plans and journals it (it becomes a job
+/// message and its path chunks only when sent: job_messages.hpp).
 struct DispatchJob {
-  ccbuild_lcm::ccbuild_job_t job;                         ///< utime and seq are set when sent
-  std::vector<ccbuild_lcm::ccbuild_path_chunk_t> chunks;  ///< job.chunk_count of them
+  std::int64_t job_id = 0;  ///< unique within a dispatch, increasing in schedule order
+  std::string machine_id;   ///< e.g. "gantry-1"
+  JobKind kind = JobKind::kWait;
+  int floor = -1;           ///< from 0; -1 when the job is not about a layer
+  int layer = -1;           ///< within the floor, from 0; -1 likewise
+  int nozzle = -1;          ///< from 0 in rail order; -1 for the whole machine
+  double start_s = 0.0;     ///< planned start, schedule s
+  double duration_s = 0.0;  ///< planned duration, s
+  std::string plan;         ///< the schedule's plan key (deposit jobs), else ""
+  std::string detail;       ///< what it is, in words
+  machine::TimedPath path;  ///< times from the job's start; empty for jobs without a path
 };
 
 /// Every job of `schedule` (as read_schedule gives it, re-validated), in the order they are

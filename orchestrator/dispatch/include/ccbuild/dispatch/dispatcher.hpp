@@ -23,10 +23,6 @@
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
-#include "ccbuild_lcm/ccbuild_ack_t.hpp"
-#include "ccbuild_lcm/ccbuild_done_t.hpp"
-#include "ccbuild_lcm/ccbuild_fault_t.hpp"
-#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 struct sqlite3;
 
@@ -41,11 +37,28 @@ struct JournalRow {
   int stopped_at = -1;                       ///< waypoints done when it ended on a fault
 };
 
+/// What a machine stopped for (docs/dispatch.md); the numbers are the journal's and the
+/// wire's codes. kNone: a stop of the dispatcher's own.
+enum class FaultKind : std::int8_t {
+  kNone = 0,
+  kJointLimit = 1,
+  kVelocityLimit = 2,
+  kPathMismatch = 3,
+  kOutOfOrder = 4,
+  kColdJoint = 5,
+  kTooEarly = 6,
+  kAnchorTooYoung = 7,
+  kPinMissed = 8,
+  kPumpClog = 9,
+  kAxisStalled = 10,
+  kMalformed = 11,
+};
+
 /// A fault as the dispatcher met it.
 struct FaultRecord {
   std::string machine_id;
   std::int64_t job_id = 0;
-  std::int8_t kind = 0;
+  FaultKind kind = FaultKind::kNone;
   std::string message;
   std::string policy;  ///< what was done: "retry", "re-plan the rest of the layer", ...
 };
@@ -91,9 +104,9 @@ class Journal {
 /// three times), "re-plan the rest of the layer" (a clog: purge, then the rest of the
 /// path as a new job), "ignore" (a malformed or foreign message the machine rejected:
 /// nothing ran), or "stop" (every other kind: pause every machine and send nothing more).
-std::string policy_of(std::int8_t fault_kind);
-/// The fault kind's name, e.g. "PUMP_CLOG".
-std::string fault_name(std::int8_t fault_kind);
+std::string policy_of(FaultKind kind);
+/// The fault kind's name, e.g. "PUMP_CLOG" ("STOP" for kNone and unknown codes).
+std::string fault_name(FaultKind kind);
 
 struct DispatchOptions {
   double ack_timeout_s = 1.0;  ///< real seconds before a job is sent again
@@ -151,10 +164,19 @@ class Dispatcher {
     bool heard = false;     ///< a status has come from the machine
     double silent_s = 0.0;  ///< real seconds since its last status
   };
+  /// A machine's word that a job ended (its DONE message, translated at the edge).
+  struct JobEnd {
+    std::string machine_id;
+    std::int64_t job_id = 0;
+    bool ok = false;
+    double started_s = 0.0, finished_s = 0.0;  ///< schedule s
+    int stopped_at = -1;                       ///< waypoints done when it ended on a fault
+    std::string detail;
+  };
   void send(std::size_t index);
-  void on_ack(const ccbuild_lcm::ccbuild_ack_t& ack);
-  void on_done(const ccbuild_lcm::ccbuild_done_t& done);
-  void on_fault(const ccbuild_lcm::ccbuild_fault_t& fault);
+  void on_ack(const std::string& machine_id, std::int64_t job_id, bool accepted);
+  void on_done(const JobEnd& done);
+  void on_fault(const FaultRecord& fault);
   Queue* queue_of(const std::string& machine_id, std::int64_t job_id);
   /// After the job at `index` ended as `row`: the jobs that recover from it, inserted
   /// after it in its machine's queue (a purge and the rest of a clogged path, run once

@@ -16,7 +16,6 @@
 
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
-#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::dispatch {
 
@@ -47,7 +46,8 @@ class SiteWatchdog {
   std::vector<std::string> silent() const;
 
  private:
-  void on_status(const ccbuild_lcm::ccbuild_status_t& s);
+  /// A machine's status: its clock (schedule s) and nozzle position (m).
+  void on_status(const std::string& machine_id, double sim_time_s, double x_m, double y_m);
   WatchdogOptions options_;
   struct Seen {
     std::deque<std::pair<double, double>> track;  ///< (machine time s, rail position m)
