@@ -84,10 +84,37 @@ void check_layer_budget(const Building& building, const std::string& file, int l
                       limits::kMaxLayers));
 }
 
+Site read_site(const Field& field, LengthUnit unit) {
+  MapReader map(field, {"origin", "rotation_deg", "place"});
+  map.reject_unknown();
+  Site site;
+  site.source = source_of(field);
+  if (auto origin = map.optional("origin")) {
+    const auto xy = origin->items();
+    if (xy.size() != 2)
+      origin->fail("expected [x, y], the plan origin's place in the machine's frame, got " +
+                   std::to_string(xy.size()) + " numbers");
+    site.origin_m = Eigen::Vector2d(read_length(xy[0], limits::kCoordinate_m, unit),
+                                    read_length(xy[1], limits::kCoordinate_m, unit));
+  }
+  if (auto rotation = map.optional("rotation_deg"))
+    site.rotation_rad = rotation->as_number_in(limits::kSiteRotation_rad, "deg", M_PI / 180.0);
+  if (auto place = map.optional("place")) {
+    const std::string how = place->as_string();
+    if (how != "centre" && how != "center")
+      place->fail(
+          "expected `centre` (the building centred on the machine's x and y travel), got '" + how +
+          "'");
+    if (site.origin_m) place->fail("give either `origin` or `place: centre`, not both");
+    site.centre = true;
+  }
+  return site;
+}
+
 Building building_from_document(const Document& doc, const fs::path& path) {
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "units", "layer_height", "slab_stage_h", "material",
-                       "machine", "floors"});
+                       "machine", "site", "floors"});
   map.reject_unknown();
   const fs::path base = path.has_parent_path() ? path.parent_path() : fs::path(".");
 
@@ -105,6 +132,8 @@ Building building_from_document(const Document& doc, const fs::path& path) {
       resolve_reference(map.required("material"), base, building.material_source);
   building.machine_profile =
       resolve_reference(map.required("machine"), base, building.machine_source);
+
+  if (auto site = map.optional("site")) building.site = read_site(*site, unit);
 
   const Field floors = map.required("floors");
   const auto floor_fields = floors.items();
@@ -197,6 +226,15 @@ Envelope envelope(const Building& building) {
     out.top_m = std::max(out.top_m, floor.base_elevation_m + floor.height_m);
   }
   return out;
+}
+
+void place_building(Building& building, double rotation_rad, const Eigen::Vector2d& origin_m) {
+  const double c = std::cos(rotation_rad), s = std::sin(rotation_rad);
+  for (auto& floor : building.floors)
+    for (auto& v : floor.plan.vertices) {
+      const Eigen::Vector2d p = v.position_m;
+      v.position_m = Eigen::Vector2d(c * p.x() - s * p.y(), s * p.x() + c * p.y()) + origin_m;
+    }
 }
 
 Building load_building(const fs::path& path) {

@@ -30,6 +30,27 @@ floors::MaterialProfile default_material() {
   return m;
 }
 
+// Places the building in the machine's frame: its site's rotation, then its site's origin
+// or (asked for either way) the middle of the machine's x and y travel.
+void place(Project& project, bool centre) {
+  floors::Building& b = project.building;
+  const floors::Site site = b.site.value_or(floors::Site{});
+  schedule::Placement& placed = project.placement;
+  placed.rotation_rad = site.rotation_rad;
+  floors::place_building(b, placed.rotation_rad, Eigen::Vector2d::Zero());
+  if (centre || site.centre) {
+    const machine::MachineModel& m = *project.machine;
+    const floors::Envelope space = floors::envelope(b);
+    const Eigen::Vector2d middle_m(0.5 * (m.x.min_m + m.x.max_m), 0.5 * (m.y.min_m + m.y.max_m));
+    placed.origin_m = middle_m - 0.5 * (space.min_m + space.max_m);
+    placed.how = "centred";
+  } else if (b.site) {
+    placed.origin_m = site.origin_m.value_or(Eigen::Vector2d::Zero());
+    placed.how = "site";
+  }
+  floors::place_building(b, 0.0, placed.origin_m);
+}
+
 }  // namespace
 
 Project open_project(const fs::path& file, const ProjectOptions& options) {
@@ -79,6 +100,7 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     project.material_origin =
         project.material.name + ", " + material_path.string() + " " + material_why;
   }
+  place(project, options.place_centre);
   check_fit(project);
   return project;
 }
@@ -88,8 +110,7 @@ void check_fit(const Project& project) {
   const machine::MachineModel& m = *project.machine;
   const std::string where = m.source_file.empty() ? std::string("built-in machine") : m.source_file;
   auto L = [&](double value_m) { return project.length(value_m, 2); };
-  // Footprint against the x and y travel (where the site origin lies is not modelled, so
-  // lengths are compared).
+  // Footprint against the x and y travel: too large to fit wherever it is placed.
   const floors::Envelope space = floors::envelope(b);
   const Eigen::Vector2d extent = space.size_m();
   const double reach_x = m.x.max_m - m.x.min_m, reach_y = m.y.max_m - m.y.min_m;
@@ -98,6 +119,47 @@ void check_fit(const Project& project) {
                      "the building is " + L(extent.x()) + " x " + L(extent.y()) +
                          " but the machine reaches " + L(reach_x) + " x " + L(reach_y) +
                          " (its x and y joints' ranges)");
+  // Where it stands: every vertex within each axis's travel.
+  DiagnosticSink outside;
+  const char* hint = b.site && !b.site->centre ? "`site: {origin: [x, y]}` in the building file"
+                                               : "with `site: {origin: [x, y]}` in a building file";
+  for (int axis = 0; axis < 2; ++axis) {
+    const machine::AxisLimits& travel = axis == 0 ? m.x : m.y;
+    const char* name = axis == 0 ? "x" : "y";
+    const floors::Vertex* low = nullptr;
+    const floors::Vertex* high = nullptr;
+    std::string low_floor, high_floor;
+    for (const auto& floor : b.floors)
+      for (const auto& v : floor.plan.vertices) {
+        if (!low || v.position_m[axis] < low->position_m[axis]) {
+          low = &v;
+          low_floor = floor.name;
+        }
+        if (!high || v.position_m[axis] > high->position_m[axis]) {
+          high = &v;
+          high_floor = floor.name;
+        }
+      }
+    if (!low) continue;
+    const double span_low_m = low->position_m[axis], span_high_m = high->position_m[axis];
+    const auto report = [&](const floors::Vertex& v, const std::string& floor, double beyond_m,
+                            bool below) {
+      outside.add({v.source.file, v.source.line, v.source.path.empty() ? "vertices" : v.source.path,
+                   "floor '" + floor + "' vertex " + std::to_string(v.id) + " stands at " + name +
+                       " = " + L(v.position_m[axis]) + " on the machine, " +
+                       project.length(beyond_m) + (below ? " before the start" : " past the end") +
+                       " of its " + name + " travel (" + L(below ? travel.min_m : travel.max_m) +
+                       "): the building spans " + name + " " + L(span_low_m) + " to " +
+                       L(span_high_m) + ", the machine's " + name + " travel " + L(travel.min_m) +
+                       " to " + L(travel.max_m) + "; move the building by " + (below ? "+" : "-") +
+                       project.length(beyond_m) + " or more along " + name + " (" + hint +
+                       "), or centre it with --place centre"});
+    };
+    if (span_low_m < travel.min_m - 1e-9) report(*low, low_floor, travel.min_m - span_low_m, true);
+    if (span_high_m > travel.max_m + 1e-9)
+      report(*high, high_floor, span_high_m - travel.max_m, false);
+  }
+  outside.throw_if_any();
   // Height: the top layer is printed at the top of the building, and the nozzle must
   // still lift over the walls there.
   const double top_m = space.top_m;

@@ -92,6 +92,45 @@ TEST(ScheduleCommand, AnInfeasibleBuildingExitsOneAndStillWritesItsSchedule) {
   fs::remove_all(dir);
 }
 
+TEST(ScheduleCommand, ABuildingOffTheRailsIsRefusedAndCentredOnRequest) {
+  // The cottage moved 60 m along the rails of the bundled gantry (x -2..62 m): its length
+  // fits, its place does not.
+  const fs::path dir = scratch("site");
+  std::string text = slurp(testing::source_path("tests/data/buildings/cottage.yaml"));
+  const std::string data = testing::source_path("tests/data/buildings").string() + "/";
+  for (const std::string key : {"material: ", "machine: ", "plan: "})
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
+      text.insert(at + key.size(), data);
+  text.replace(text.find("floors:"), 0, "site: {origin: [60, 0]}\n");
+  std::ofstream(dir / "b.yaml") << text;
+  const std::string out = (dir / "s.json").string();
+  const auto refused = run_ccbuild("schedule " + (dir / "b.yaml").string() + " --quiet -o " + out);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_TRUE(contains(refused.err, "past the end of its x travel (62.00 m)")) << refused.err;
+  EXPECT_FALSE(fs::exists(out));
+  const auto centred =
+      run_ccbuild("schedule " + (dir / "b.yaml").string() + " --quiet --place centre -o " + out);
+  ASSERT_EQ(centred.exit_code, 0) << centred.err;
+  const auto doc = nlohmann::json::parse(slurp(out));
+  EXPECT_EQ(doc["inputs"]["placement"]["how"], "centred");
+  // Every waypoint of every plan stands within the machine's x and y travel, and the
+  // footprint's middle on the travel's middle.
+  double lo_x = 1e9, hi_x = -1e9;
+  for (const auto& [key, plan] : doc["plans"].items())
+    for (const auto& nozzle : plan["nozzles"])
+      for (const auto& w : nozzle["waypoints"]) {
+        const double x = w["x_m"].get<double>(), y = w["y_m"].get<double>();
+        EXPECT_GE(x, -2.0);
+        EXPECT_LE(x, 62.0);
+        EXPECT_GE(y, -2.0);
+        EXPECT_LE(y, 27.0);
+        lo_x = std::min(lo_x, x);
+        hi_x = std::max(hi_x, x);
+      }
+  EXPECT_NEAR(0.5 * (lo_x + hi_x), 30.0, 1e-6);
+  fs::remove_all(dir);
+}
+
 TEST(ScheduleCommand, BadInputIsExitTwo) {
   EXPECT_EQ(run_ccbuild("schedule tests/data/buildings/missing_plan.yaml --quiet").exit_code, 2);
   const auto jobs = run_ccbuild("schedule config/buildings/house.yaml --jobs -1");

@@ -88,6 +88,93 @@ TEST(Project, TheMachineMustReachEveryWallAndTheTop) {
   fs::remove_all(dir);
 }
 
+// A 4 m wall along x from the plan's origin, on the tiny gantry (x 0..5 m, y -2..27 m),
+// the building standing where `site` (YAML, empty for none) says.
+std::string placed_case(const fs::path& dir, const std::string& site) {
+  std::ofstream(dir / "plan.yaml") << "units: m\nvertices:\n  - {id: 1, x: 0, y: 0}\n  - {id: 2, "
+                                      "x: 4, y: 0}\nwalls:\n  - {id: 1, start: 1, end: 2}\n";
+  std::ofstream(dir / "b.yaml")
+      << "units: m\nlayer_height: 0.5\nmaterial: "
+      << testing::source_path("config/materials/standard-mix.yaml").string()
+      << "\nmachine: " << testing::data("machines/tiny_gantry.yaml") << "\n"
+      << site << "\nfloors:\n  - {height: 3, plan: plan.yaml}\n";
+  return (dir / "b.yaml").string();
+}
+
+TEST(Project, EveryVertexMustStandWithinTheMachinesTravel) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_site_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto refused = [&](const std::string& site) {
+    return expect_input_error([&] { open_project(placed_case(dir, site)); });
+  };
+  // Both ends of the x travel, exactly and a millimetre beyond.
+  EXPECT_NO_THROW(open_project(placed_case(dir, "site: {origin: [1, 0]}")));  // x 1..5
+  const InputError past = refused("site: {origin: [1.001, 0]}");
+  EXPECT_TRUE(contains(past.what(),
+                       "vertex 2 stands at x = 5.00 m on the machine, 0.001 m past "
+                       "the end of its x travel (5.00 m)"))
+      << past.what();
+  EXPECT_TRUE(contains(past.what(), "move the building by -0.001 m or more along x"));
+  EXPECT_EQ(past.first().field, "vertices[1]");
+  EXPECT_EQ(past.first().line, 4);
+  EXPECT_EQ(fs::path(past.first().file).filename(), "plan.yaml");
+  EXPECT_EQ(past.diagnostics().size(), 1u);
+  EXPECT_NO_THROW(open_project(placed_case(dir, "")));  // as drawn: x 0..4
+  const InputError before = refused("site: {origin: [-0.001, 0]}");
+  EXPECT_TRUE(contains(before.what(), "0.001 m before the start of its x travel (0.00 m)"))
+      << before.what();
+  EXPECT_EQ(before.first().field, "vertices[0]");
+  // y: the travel starts at -2 m.
+  EXPECT_NO_THROW(open_project(placed_case(dir, "site: {origin: [0, -2]}")));
+  EXPECT_TRUE(contains(refused("site: {origin: [0, -2.5]}").what(), "+0.500 m or more along y"));
+  // The case: a plan far along the rails fits their length but not their place.
+  EXPECT_TRUE(contains(refused("site: {origin: [55, 0]}").what(),
+                       "the building spans x 55.00 m to 59.00 m, the machine's x travel 0.00 m "
+                       "to 5.00 m"));
+  fs::remove_all(dir);
+}
+
+TEST(Project, ASiteTurnsThenMovesThePlanOrCentresIt) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_turn_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // Turned a quarter anticlockwise about the plan's origin, then moved: (4, 0) -> (2, 4).
+  const Project turned = open_project(placed_case(dir, "site: {origin: [2, 0], rotation_deg: 90}"));
+  const auto& v = turned.building.floors[0].plan.vertices;
+  EXPECT_NEAR(v[0].position_m.x(), 2.0, 1e-12);
+  EXPECT_NEAR(v[0].position_m.y(), 0.0, 1e-12);
+  EXPECT_NEAR(v[1].position_m.x(), 2.0, 1e-12);
+  EXPECT_NEAR(v[1].position_m.y(), 4.0, 1e-12);
+  EXPECT_EQ(turned.placement.how, "site");
+  // Centred: the footprint's middle on the travel's middle (2.5, 12.5), whatever the origin.
+  for (const std::string site : {"site: {place: centre}", "site: {origin: [50, 50]}"}) {
+    ProjectOptions o;
+    o.place_centre = site.find("origin") != std::string::npos;  // --place centre overrides
+    const Project centred = open_project(placed_case(dir, site), o);
+    const auto& c = centred.building.floors[0].plan.vertices;
+    EXPECT_NEAR(c[0].position_m.x(), 0.5, 1e-12) << site;
+    EXPECT_NEAR(c[1].position_m.x(), 4.5, 1e-12) << site;
+    EXPECT_NEAR(c[1].position_m.y(), 12.5, 1e-12) << site;
+    EXPECT_EQ(centred.placement.how, "centred") << site;
+    EXPECT_NEAR(centred.placement.origin_m.x(), 0.5, 1e-12) << site;
+  }
+  // What a site cannot say.
+  const struct {
+    const char* site;
+    const char* field;
+    const char* says;
+  } bad[] = {{"site: {origin: [1]}", "site.origin", "expected [x, y]"},
+             {"site: {place: middle}", "site.place", "expected `centre`"},
+             {"site: {origin: [1, 0], place: centre}", "site.place", "not both"},
+             {"site: {rotation_deg: 400}", "site.rotation_deg", "400"},
+             {"site: {origin: [1, 0], turn: 5}", "site.turn", ""}};
+  for (const auto& b : bad) {
+    const InputError e = expect_input_error([&] { open_project(placed_case(dir, b.site)); });
+    EXPECT_EQ(e.first().field, b.field) << b.site << ": " << e.what();
+    EXPECT_TRUE(contains(e.what(), b.says)) << b.site << ": " << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Project, DistinctLayersAreProvenEqualAndCoverTheBuilding) {
   const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
   const auto distinct = distinct_layers(house);

@@ -232,6 +232,30 @@ TEST(ReadSchedule, FeasibilityAndTotalsMustAddUp) {
                         "/layers/4/wait_before_s: waits"));
 }
 
+TEST(ReadSchedule, ThePlacementIsReadBackAndDiffNamesAChange) {
+  const ScheduleDocument house = parse_schedule(golden_text("house"), "house.json");
+  EXPECT_EQ(house.inputs.placement.how, "as drawn");
+  const InputError how = refusal([](json& d) { d["inputs"]["placement"]["how"] = "moved"; });
+  EXPECT_EQ(how.first().field, "/inputs/placement/how");
+  EXPECT_TRUE(testing::contains(how.what(), "\"as drawn\", \"site\" or \"centred\""));
+  const InputError origin =
+      refusal([](json& d) { d["inputs"]["placement"]["origin_m"] = json::array({1.0}); });
+  EXPECT_EQ(origin.first().field, "/inputs/placement/origin_m");
+  // A schedule from before placement was recorded: as drawn.
+  json old = json::parse(golden_text("house"));
+  old["inputs"].erase("placement");
+  EXPECT_EQ(parse_schedule(text_of(old), "old.json").inputs.placement.how, "as drawn");
+  // Moved by a millimetre: a change, whatever the tolerance (every coordinate moves).
+  ScheduleDocument moved = house;
+  moved.inputs.placement.how = "site";
+  moved.inputs.placement.origin_m.x() = 0.001;
+  const ScheduleDiff d = diff_schedules(house, moved, {});
+  ASSERT_TRUE(d.differs());
+  EXPECT_TRUE(testing::contains(d.changes.front(), "placement: as drawn, origin (0.000, 0.000) m"))
+      << d.changes.front();
+  EXPECT_TRUE(testing::contains(d.changes.front(), "-> site, origin (0.001, 0.000) m"));
+}
+
 TEST(DiffTolerance, ARelativeToleranceIsAShareOfTheReference) {
   DiffTolerance t;
   t.relative = 0.095;

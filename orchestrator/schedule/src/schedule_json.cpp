@@ -63,6 +63,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   in.units = floors::to_string(b.units);
   in.layer_height_m = b.layer_height_m;
   in.slab_stage_s = b.slab_stage_s;
+  in.placement = project.placement;
   in.seed = options.seed;
   for (const auto& path : project.files_read())
     in.files.push_back({path.string(), sha256_file_hex(path)});
@@ -101,15 +102,20 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   for (const auto& f : in.files) files.push_back({{"path", f.path}, {"sha256", f.sha256}});
   json material = material_json(in.material);
   material["origin"] = in.material_origin;
-  out["inputs"] = {{"building", in.building},
-                   {"name", in.name},
-                   {"units", in.units},
-                   {"layer_height_m", rounded(in.layer_height_m)},
-                   {"slab_stage_s", rounded(in.slab_stage_s)},
-                   {"seed", in.seed},
-                   {"files", files},
-                   {"machine", recorded_machine_json(in.machine)},
-                   {"material", material}};
+  out["inputs"] = {
+      {"building", in.building},
+      {"name", in.name},
+      {"units", in.units},
+      {"layer_height_m", rounded(in.layer_height_m)},
+      {"slab_stage_s", rounded(in.slab_stage_s)},
+      {"placement",
+       {{"how", in.placement.how},
+        {"origin_m", {rounded(in.placement.origin_m.x()), rounded(in.placement.origin_m.y())}},
+        {"rotation_deg", rounded(in.placement.rotation_rad * 180.0 / M_PI)}}},
+      {"seed", in.seed},
+      {"files", files},
+      {"machine", recorded_machine_json(in.machine)},
+      {"material", material}};
 
   out["feasible"] = schedule.feasible;
   if (schedule.infeasibility) {

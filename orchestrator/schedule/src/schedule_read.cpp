@@ -11,6 +11,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/limits.hpp"
 #include "ccbuild/common/sha256.hpp"
+#include "ccbuild/floors/limits.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "json_reader.hpp"
 #include "schedule_rules.hpp"
@@ -157,8 +158,8 @@ RecordedInputs read_inputs(const JsonAt& root) {
   RecordedInputs in;
   in.ccbuild_version = root.at("ccbuild_version").string(100);
   const JsonAt i = root.at("inputs");
-  i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "seed", "files",
-               "machine", "material"});
+  i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
+               "files", "machine", "material"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -166,6 +167,20 @@ RecordedInputs read_inputs(const JsonAt& root) {
     i.at("units").refuse("expected \"m\" or \"ft\", got \"" + in.units + "\"");
   in.layer_height_m = i.at("layer_height_m").number(Range::above(0, 100), "m");
   in.slab_stage_s = i.at("slab_stage_s").number(kDuration_s, "s");
+  if (const auto placed = i.maybe("placement")) {
+    placed->only_keys({"how", "origin_m", "rotation_deg"});
+    in.placement.how = placed->at("how").string(20);
+    if (in.placement.how != "as drawn" && in.placement.how != "site" &&
+        in.placement.how != "centred")
+      placed->at("how").refuse("expected \"as drawn\", \"site\" or \"centred\", got \"" +
+                               in.placement.how + "\"");
+    const auto origin = placed->at("origin_m").elements(3);
+    if (origin.size() != 2) placed->at("origin_m").refuse("expected [x, y]");
+    in.placement.origin_m = {origin[0].number(floors::limits::kCoordinate_m, "m"),
+                             origin[1].number(floors::limits::kCoordinate_m, "m")};
+    in.placement.rotation_rad =
+        placed->at("rotation_deg").number(Range::closed(-360.0, 360.0), "deg") * M_PI / 180.0;
+  }
   in.seed = i.at("seed").unsigned_integer();
   for (const auto& f : i.at("files").elements(kMaxSmall)) {
     f.only_keys({"path", "sha256"});

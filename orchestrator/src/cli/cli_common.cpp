@@ -102,6 +102,12 @@ void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_option("--material", options.material,
                      "Material profile (default: the building's, or the bundled "
                      "config/materials/standard-mix.yaml)");
+  command
+      .add_option("--place", options.place,
+                  "Where the building stands on the machine: `centre` puts its footprint in the "
+                  "middle of the x and y travel (default: the building's `site:`, else its plan "
+                  "coordinates are the machine's)")
+      ->check(CLI::IsMember({"centre", "center"}));
 }
 
 orchestrator::Project open_input(const std::string& file, const InputOptions& options) {
@@ -114,6 +120,7 @@ orchestrator::Project open_input(const std::string& file, const InputOptions& op
   project.plan_layer_height_m = options.layer_height * scale;
   project.machine_profile = options.machine;
   project.material_profile = options.material;
+  project.place_centre = !options.place.empty();
   return orchestrator::open_project(file, project);
 }
 

@@ -40,10 +40,11 @@ struct InputOptions {
   double layer_height = 0.1;           ///< in `units`
   std::string machine;                 ///< --machine: overrides the building's
   std::string material;                ///< --material: overrides the building's
+  std::string place;                   ///< --place: "centre", or empty (the site's)
 };
 
 /// Adds --units, --floor-height, --layer-height (for plan files) and --machine,
-/// --material to a command.
+/// --material, --place to a command.
 void add_input_options(CLI::App& command, InputOptions& options);
 
 /// Opens FILE through the building-level API with these options. Throws InputError.

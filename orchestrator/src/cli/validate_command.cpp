@@ -50,6 +50,12 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                       {"origin", project.machine_origin},
                       {"reach_m", {reach_x, reach_y, reach_z}}};
     out["extent_m"] = {extent.x(), extent.y(), top_m};
+    const schedule::Placement& placed = project.placement;
+    out["placement"] = {{"how", placed.how},
+                        {"origin_m", {placed.origin_m.x(), placed.origin_m.y()}},
+                        {"rotation_deg", placed.rotation_rad * 180.0 / M_PI},
+                        {"min_m", {space.min_m.x(), space.min_m.y()}},
+                        {"max_m", {space.max_m.x(), space.max_m.y()}}};
     out["floors"] = nlohmann::ordered_json::array();
     for (const auto& f : summary.floors) {
       out["floors"].push_back({{"floor", f.floor_index},
@@ -84,6 +90,19 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
   std::cout << printf_string("  %-10s %s x %s, %s tall; the machine reaches %s x %s x %s\n", "size",
                              L(extent.x()).c_str(), L(extent.y()).c_str(), L(top_m).c_str(),
                              L(reach_x).c_str(), L(reach_y).c_str(), L(reach_z).c_str());
+  {
+    const schedule::Placement& placed = project.placement;
+    std::cout << printf_string(
+        "  %-10s %s: x %s to %s, y %s to %s on the machine (travel x %s to %s, y %s to %s)",
+        "placed", placed.how.c_str(), L(space.min_m.x()).c_str(), L(space.max_m.x()).c_str(),
+        L(space.min_m.y()).c_str(), L(space.max_m.y()).c_str(), L(machine.x.min_m).c_str(),
+        L(machine.x.max_m).c_str(), L(machine.y.min_m).c_str(), L(machine.y.max_m).c_str());
+    if (placed.how != "as drawn")
+      std::cout << printf_string("; plan origin at (%s, %s), turned %.1f deg",
+                                 L(placed.origin_m.x()).c_str(), L(placed.origin_m.y()).c_str(),
+                                 placed.rotation_rad * 180.0 / M_PI);
+    std::cout << "\n";
+  }
   std::cout << "\n"
             << printf_string("  %-5s %-16s %12s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
                              "walls", "openings", "anchors", "layers", "geometries");
@@ -113,10 +132,12 @@ void add_validate_command(CLI::App& app, int& exit_code) {
       "Every problem found is reported with its file, line and field; the exit code is 2 when "
       "anything is wrong, and with --json the problems are printed as JSON on stdout too.\n"
       "Besides the files themselves it checks that the machine can build the building: its "
-      "footprint and height within the machine's reach, and no wall thicker than the nozzle "
-      "lays in one pass.\n"
+      "footprint and height within the machine's reach, every vertex within its x and y travel "
+      "where the building stands (its `site:`, or --place centre), and no wall thicker than the "
+      "nozzle lays in one pass.\n"
       "Examples:\n"
       "  ccbuild validate config/buildings/house.yaml\n"
+      "  ccbuild validate model.yaml --place centre --json\n"
       "  ccbuild validate plan.txt --units ft --floor-height 10 --layer-height 0.5");
   command
       ->add_option("FILE", options->file,

@@ -32,6 +32,18 @@ struct Floor {
   SourceRef source;
 };
 
+/// Where a building stands in the machine's frame (`site:` in the building file). Plan
+/// coordinates are turned by `rotation_rad` (anticlockwise) about the plan's origin, then
+/// moved by the origin: `origin_m` as given, or, with `centre`, so that the footprint's
+/// bounding box sits in the middle of the machine's x and y travel. Without a site (or
+/// with neither), plan coordinates are the machine's.
+struct Site {
+  std::optional<Eigen::Vector2d> origin_m;  ///< `origin: [x, y]`, in the file's unit
+  double rotation_rad = 0.0;                ///< `rotation_deg`, in degrees in the file
+  bool centre = false;                      ///< `place: centre`
+  SourceRef source;
+};
+
 struct Building {
   std::string name;
   std::string source_file;
@@ -45,6 +57,7 @@ struct Building {
   std::filesystem::path machine_profile;
   SourceRef material_source;
   SourceRef machine_source;
+  std::optional<Site> site;
   /// Every file read to build this model (the building file and its plans), so that no
   /// output is ever written over one of them.
   std::vector<std::filesystem::path> files_read;
@@ -59,6 +72,11 @@ struct Envelope {
   Eigen::Vector2d size_m() const { return (max_m - min_m).cwiseMax(Eigen::Vector2d::Zero()); }
 };
 Envelope envelope(const Building& building);
+
+/// Turns every floor plan's vertices by `rotation_rad` about the plan's origin, then
+/// moves them by `origin_m`: p -> R p + origin (walls, openings and anchors go along,
+/// being placed along walls).
+void place_building(Building& building, double rotation_rad, const Eigen::Vector2d& origin_m);
 
 /// Loads and validates a building file (YAML or JSON) and the plans it references
 /// (paths relative to the building file). Does not open the material and machine

@@ -28,6 +28,9 @@ inline const Range kLayerHeight_m = Range::closed(0.001, 1.0);
 /// The slab stage between floors: up to 30 days.
 inline const Range kSlabStage_s = Range::closed(0.0, 30 * 86'400.0);
 
+/// A site's rotation, degrees in the file.
+inline const Range kSiteRotation_rad = Range::closed(-2 * 3.141592653589793, 2 * 3.141592653589793);
+
 /// Ids of vertices and walls: 1 to this.
 inline constexpr std::int64_t kMaxId = 999'999'999;
 inline constexpr int kMaxFloors = 500;

@@ -37,6 +37,9 @@ struct ProjectOptions {
   /// Overrides of the building's profiles (empty: the building's, else the bundled ones).
   std::filesystem::path machine_profile;
   std::filesystem::path material_profile;
+  /// --place centre: the building centred on the machine's x and y travel, whatever its
+  /// `site:` says (its rotation is kept).
+  bool place_centre = false;
 };
 
 /// A user's FILE opened: what a schedule is made for (schedule::Setup), and whether FILE
@@ -51,8 +54,9 @@ struct Project : schedule::Setup {
 Project open_project(const std::filesystem::path& file, const ProjectOptions& options = {});
 
 /// The checks that the machine can build the building at all, in the building's unit:
-/// its footprint within the x and y reach, its height (plus the nozzle's lift) within the
-/// z reach (a climbing machine climbs instead), every wall no thicker than the nozzle
+/// its footprint within the x and y reach, every plan vertex (as placed) within the x and
+/// y travel, saying by how much and which way it falls outside, its height (plus the nozzle's lift)
+/// within the z reach (a climbing machine climbs instead), every wall no thicker than the nozzle
 /// lays in one pass. Throws InputError.
 void check_fit(const Project& project);
 

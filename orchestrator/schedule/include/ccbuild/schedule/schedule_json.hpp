@@ -63,6 +63,9 @@ struct RecordedInputs {
   std::string name;
   std::string units;  ///< "m" or "ft": the building's own unit
   double layer_height_m = 0.0, slab_stage_s = 0.0;
+  /// Where the building stood on the machine: every coordinate in the schedule is in the
+  /// machine's frame. Absent in schedules older than placement: as drawn.
+  Placement placement;
   std::uint64_t seed = 1;
   std::vector<RecordedFile> files;
   RecordedMachine machine;

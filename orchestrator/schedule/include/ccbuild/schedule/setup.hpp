@@ -16,6 +16,16 @@
 
 namespace ccbuild::schedule {
 
+/// Where the building stands in the machine's frame, as resolved when it was opened (its
+/// plans are placed already): plan point p is at R(rotation_rad) p + origin_m.
+struct Placement {
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
+  double rotation_rad = 0.0;
+  /// "as drawn" (no site), "site" (the building's origin), "centred" (--place centre or
+  /// `place: centre`).
+  std::string how = "as drawn";
+};
+
 struct Setup {
   std::filesystem::path file;  ///< as the user named it
   floors::Building building;   ///< a lone plan is a one-floor building named after its file
@@ -26,6 +36,7 @@ struct Setup {
   std::string machine_origin;  ///< "config/machines/cc-gantry.yaml (the building's)", ...
   floors::MaterialProfile material;
   std::string material_origin;
+  Placement placement;
 
   const machine::MachineModel& machine_model() const { return *machine; }
   /// Every file read: the FILE, its plans, the profiles, the URDF.
