@@ -377,6 +377,7 @@ def check_motion(key, plan, machine, info, problems):
     vx, vy, vz = machine["x_speed_m_s"], machine["y_speed_m_s"], machine["z_speed_m_s"]
     rot = machine["rotation_speed_rad_s"]
     lo, hi = machine["stopper_min_rad"], machine["stopper_max_rad"]
+    travel = {"x": machine["x_range_m"], "y": machine["y_range_m"]}
     for n in plan["nozzles"]:
         w = n["waypoints"]
         where = "plan %s nozzle %d" % (key, n["nozzle"])
@@ -385,6 +386,12 @@ def check_motion(key, plan, machine, info, problems):
         if w[-1]["extruding"]:
             problems.append("%s: the last waypoint still extrudes" % where)
         for k, q in enumerate(w):
+            # Coordinates are the machine's (the building placed, inputs.placement).
+            for axis, (t0, t1) in travel.items():
+                v = q[axis + "_m"]
+                if v < t0 - ROUND_P or v > t1 + ROUND_P:
+                    problems.append("%s waypoint %d: %s = %.6f m outside the machine's %s travel "
+                                    "[%g, %g]" % (where, k, axis, v, axis, t0, t1))
             h = q["heading_rad"]
             if (lo is not None and h < lo - ROUND_A) or (hi is not None and h > hi + ROUND_A):
                 problems.append("%s waypoint %d: heading %.6f rad past the stopper [%s, %s]" % (
@@ -1311,6 +1318,10 @@ def corruptions(doc):
             lambda d: d["infeasibility"].update(floor=layers[-1]["floor"], layer=layers[-1]["layer"]))
     add("a slower concrete", "to carry")(
         lambda d: [p.update(age_s=p["age_s"] * 1e3) for p in d["inputs"]["material"]["strength_curve"]])
+    first_plan = next(iter(plans))
+    add("a waypoint off the rails", "outside the machine's y travel")(
+        lambda d: d["plans"][first_plan]["nozzles"][0]["waypoints"][0].update(
+            y_m=d["inputs"]["machine"]["y_range_m"][1] + 0.5))
     place_corruptions(doc, stats, add)
     wait_corruptions(doc, stats, add)
     add("a wrong makespan", "makespan_s")(lambda d: d["totals"].update(makespan_s=d["totals"]["makespan_s"] + 100.0))
