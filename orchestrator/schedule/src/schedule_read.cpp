@@ -11,34 +11,18 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/limits.hpp"
 #include "ccbuild/common/sha256.hpp"
-#include "ccbuild/floors/limits.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "inputs_read.hpp"
 #include "json_reader.hpp"
+#include "read_limits.hpp"
 #include "schedule_rules.hpp"
 
 namespace ccbuild::schedule {
 namespace {
 
 using detail::JsonAt;
+using namespace detail::read_limits;
 using json = nlohmann::json;
-
-// Plausible ranges. Far beyond any real schedule, near enough to refuse garbage before it
-// overflows a computation.
-const Range kTime_s = Range::closed(0.0, 1e10);  // 317 years
-const Range kDuration_s = Range::closed(0.0, 1e10);
-const Range kCoordinate_m = Range::closed(-1e5, 1e5);
-const Range kLength_m = Range::closed(0.0, 1e5);
-const Range kHeading_rad = Range::closed(-1e4, 1e4);
-const Range kSpeed = Range::above(0.0, 1e4);  // m/s, rad/s
-const Range kStrength_mpa = Range::closed(0.0, 1e4);
-const Range kPositive = Range::above(0.0, 1e7);
-constexpr std::int64_t kMaxFloor = 10'000, kMaxLayer = 1'000'000, kMaxNozzles = 64;
-constexpr std::int64_t kMaxGeometry = 10'000'000, kMaxPiece = 1'000'000;
-constexpr std::int64_t kMaxWallId = 9'000'000'000'000'000'000;
-constexpr std::size_t kMaxItems = 50'000'000;  // waypoints of one nozzle, the most of anything
-constexpr std::size_t kMaxLayers = 1'000'000, kMaxPlans = 100'000, kMaxEvents = 1'000'000;
-constexpr std::size_t kMaxSmall = 10'000;  // files, stages, anchors, phases, joints
-constexpr std::size_t kMaxText = 100'000;  // characters of a detail or warning
 
 /// Unit names met in the document, by index in order of first appearance.
 int unit_index(RecordedInputs& in, const JsonAt& at) {
@@ -48,153 +32,6 @@ int unit_index(RecordedInputs& in, const JsonAt& at) {
   if (in.unit_names.size() >= kMaxSmall) at.refuse("too many distinct climbing units");
   in.unit_names.push_back(name);
   return static_cast<int>(in.unit_names.size()) - 1;
-}
-
-RecordedMachine read_machine(const JsonAt& m) {
-  m.only_keys({"name",
-               "deposition_speed_m_s",
-               "travel_speed_m_s",
-               "x_speed_m_s",
-               "y_speed_m_s",
-               "z_speed_m_s",
-               "rotation_speed_rad_s",
-               "rotate_while_moving",
-               "accel_delay_s",
-               "lift_height_m",
-               "lift_time_s",
-               "lower_time_s",
-               "stopper_min_rad",
-               "stopper_max_rad",
-               "nozzle_idle_limit_s",
-               "nozzle_width_m",
-               "x_range_m",
-               "y_range_m",
-               "z_range_m",
-               "origin",
-               "nozzles",
-               "gantry_width_m",
-               "rail_axis",
-               "purge_s",
-               "kind",
-               "anchor_strength_mpa",
-               "pipe_embed_s"});
-  RecordedMachine r;
-  r.name = m.at("name").string(1000);
-  r.deposition_speed_m_s = m.at("deposition_speed_m_s").number(kSpeed, "m/s");
-  r.travel_speed_m_s = m.at("travel_speed_m_s").number(kSpeed, "m/s");
-  r.x_speed_m_s = m.at("x_speed_m_s").number(kSpeed, "m/s");
-  r.y_speed_m_s = m.at("y_speed_m_s").number(kSpeed, "m/s");
-  r.z_speed_m_s = m.at("z_speed_m_s").number(kSpeed, "m/s");
-  r.rotation_speed_rad_s = m.at("rotation_speed_rad_s").number(kSpeed, "rad/s");
-  r.rotate_while_moving = m.at("rotate_while_moving").boolean();
-  r.accel_delay_s = m.at("accel_delay_s").number(Range::closed(0, 1e4), "s");
-  r.lift_height_m = m.at("lift_height_m").number(Range::closed(0, 100), "m");
-  r.lift_time_s = m.at("lift_time_s").number(Range::closed(0, 1e4), "s");
-  r.lower_time_s = m.at("lower_time_s").number(Range::closed(0, 1e4), "s");
-  r.stopper_min_rad = m.at("stopper_min_rad").number_or_null(kHeading_rad, "rad");
-  r.stopper_max_rad = m.at("stopper_max_rad").number_or_null(kHeading_rad, "rad");
-  if (r.stopper_min_rad.has_value() != r.stopper_max_rad.has_value() ||
-      (r.stopper_min_rad && *r.stopper_min_rad > *r.stopper_max_rad))
-    m.at("stopper_max_rad").refuse("expected both stopper ends or neither, min at most max");
-  r.nozzle_idle_limit_s = m.at("nozzle_idle_limit_s").number(kPositive, "s");
-  r.nozzle_width_m = m.at("nozzle_width_m").number(Range::above(0, 100), "m");
-  auto range = [&](const char* key, double& lo, double& hi) {
-    const auto ends = m.at(key).elements(2);
-    if (ends.size() != 2) m.at(key).refuse("expected [min, max]");
-    lo = ends[0].number(kCoordinate_m, "m");
-    hi = ends[1].number(kCoordinate_m, "m");
-    if (lo > hi) m.at(key).refuse("expected [min, max] with min at most max");
-  };
-  range("x_range_m", r.x_min_m, r.x_max_m);
-  range("y_range_m", r.y_min_m, r.y_max_m);
-  range("z_range_m", r.z_min_m, r.z_max_m);
-  r.origin = m.at("origin").string(10'000);
-  r.nozzles = static_cast<int>(m.at("nozzles").integer(1, kMaxNozzles));
-  r.gantry_width_m = m.at("gantry_width_m").number(Range::closed(0, 1000), "m");
-  const std::string axis = m.at("rail_axis").string(10);
-  const auto named = machine::rail_axis_named(axis);
-  if (!named) m.at("rail_axis").refuse("expected \"x\" or \"y\", got \"" + axis + "\"");
-  r.rail_axis = *named;
-  r.purge_s = m.at("purge_s").number(Range::closed(0, 1e6), "s");
-  const std::string kind = m.at("kind").string(100);
-  if (kind != "climbing" && kind != "fixed gantry")
-    m.at("kind").refuse("expected \"climbing\" or \"fixed gantry\", got \"" + kind + "\"");
-  r.climbing = kind == "climbing";
-  if (r.climbing) {
-    r.anchor_strength_mpa = m.at("anchor_strength_mpa").number(kStrength_mpa, "MPa");
-    r.pipe_embed_s = m.at("pipe_embed_s").number(kDuration_s, "s");
-  } else if (m.maybe("anchor_strength_mpa") || m.maybe("pipe_embed_s")) {
-    m.refuse("a fixed gantry has no anchor_strength_mpa or pipe_embed_s");
-  }
-  return r;
-}
-
-void read_material(const JsonAt& m, RecordedInputs& in) {
-  m.only_keys({"name", "density_kg_m3", "min_layer_interval_s", "max_layer_interval_s",
-               "safety_factor", "strength_curve", "origin"});
-  floors::MaterialProfile& p = in.material;
-  p.name = m.at("name").string(1000);
-  p.density_kg_m3 = m.at("density_kg_m3").number(Range::above(0, 1e5), "kg/m3");
-  p.min_layer_interval_s = m.at("min_layer_interval_s").number(kDuration_s, "s");
-  p.max_layer_interval_s = m.at("max_layer_interval_s").number(kDuration_s, "s");
-  if (p.min_layer_interval_s > p.max_layer_interval_s)
-    m.at("max_layer_interval_s").refuse("must be at least min_layer_interval_s");
-  p.safety_factor = m.at("safety_factor").number(Range::above(0, 1e3), "");
-  const auto curve = m.at("strength_curve").elements(kMaxSmall);
-  if (curve.empty()) m.at("strength_curve").refuse("expected at least one point");
-  for (const auto& point : curve) {
-    point.only_keys({"age_s", "strength_mpa"});
-    const double age_s = point.at("age_s").number(kDuration_s, "s");
-    const double mpa = point.at("strength_mpa").number(kStrength_mpa, "MPa");
-    if (!p.strength_curve.empty() &&
-        (age_s <= p.strength_curve.back().age_s || mpa < p.strength_curve.back().strength_mpa))
-      point.refuse("ages must increase and strengths not decrease along the curve");
-    p.strength_curve.push_back({age_s, mpa});
-  }
-  in.material_origin = m.at("origin").string(10'000);
-}
-
-RecordedInputs read_inputs(const JsonAt& root) {
-  RecordedInputs in;
-  in.ccbuild_version = root.at("ccbuild_version").string(100);
-  const JsonAt i = root.at("inputs");
-  i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
-               "files", "machine", "material"});
-  in.building = i.at("building").string(4096);
-  in.name = i.at("name").string(1000);
-  in.units = i.at("units").string(10);
-  if (in.units != "m" && in.units != "ft")
-    i.at("units").refuse("expected \"m\" or \"ft\", got \"" + in.units + "\"");
-  in.layer_height_m = i.at("layer_height_m").number(Range::above(0, 100), "m");
-  in.slab_stage_s = i.at("slab_stage_s").number(kDuration_s, "s");
-  if (const auto placed = i.maybe("placement")) {
-    placed->only_keys({"how", "origin_m", "rotation_deg"});
-    in.placement.how = placed->at("how").string(20);
-    if (in.placement.how != "as drawn" && in.placement.how != "site" &&
-        in.placement.how != "centred")
-      placed->at("how").refuse("expected \"as drawn\", \"site\" or \"centred\", got \"" +
-                               in.placement.how + "\"");
-    const auto origin = placed->at("origin_m").elements(3);
-    if (origin.size() != 2) placed->at("origin_m").refuse("expected [x, y]");
-    in.placement.origin_m = {origin[0].number(floors::limits::kCoordinate_m, "m"),
-                             origin[1].number(floors::limits::kCoordinate_m, "m")};
-    in.placement.rotation_rad =
-        placed->at("rotation_deg").number(Range::closed(-360.0, 360.0), "deg") * M_PI / 180.0;
-  }
-  in.seed = i.at("seed").unsigned_integer();
-  for (const auto& f : i.at("files").elements(kMaxSmall)) {
-    f.only_keys({"path", "sha256"});
-    RecordedFile file{f.at("path").string(4096), f.at("sha256").string(64)};
-    const bool hex =
-        file.sha256.size() == 64 && std::all_of(file.sha256.begin(), file.sha256.end(), [](char c) {
-          return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
-        });
-    if (!hex) f.at("sha256").refuse("expected 64 lowercase hex digits (a SHA-256)");
-    in.files.push_back(std::move(file));
-  }
-  in.machine = read_machine(i.at("machine"));
-  read_material(i.at("material"), in);
-  return in;
 }
 
 std::vector<WaitReason> read_reasons(const JsonAt& list) {
@@ -615,7 +452,7 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
     root.only_keys({"format", "schema_version", "ccbuild_version", "inputs", "feasible",
                     "infeasibility", "totals", "layers", "plans", "stages", "events", "warnings"});
     RecordedInputs& in = doc.inputs;
-    in = read_inputs(root);
+    in = detail::read_inputs(root);
     Schedule& s = doc.schedule;
     s.feasible = root.at("feasible").boolean();
     if (!root.at("infeasibility").is_null())
