@@ -111,7 +111,8 @@ Site read_site(const Field& field, LengthUnit unit) {
   return site;
 }
 
-Building building_from_document(const Document& doc, const fs::path& path) {
+Building building_from_document(const Document& doc, const fs::path& path,
+                                const DrawingReader& drawings) {
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "units", "layer_height", "slab_stage_h", "material",
                        "machine", "site", "floors"});
@@ -156,7 +157,16 @@ Building building_from_document(const Document& doc, const fs::path& path) {
     elevation_m += floor.height_m;
 
     const Field plan = fm.required("plan");
-    if (plan.is_map()) {
+    if (plan.is_map() && MapReader(plan, {}).has("dxf")) {
+      if (!drawings) plan.fail("a drawn plan (dxf) needs ccbuild's importer; this tool has none");
+      ImportedPlan imported = drawings(plan, base, unit);
+      for (auto& note : imported.notes)
+        building.import_notes.push_back("floor '" + floor.name + "': " + note);
+      if (std::find(building.files_read.begin(), building.files_read.end(), imported.file) ==
+          building.files_read.end())
+        building.files_read.push_back(imported.file);
+      floor.plan = std::move(imported.plan);
+    } else if (plan.is_map()) {
       floor.plan = read_plan(plan, unit);
     } else {
       const std::string text = plan.as_string();
@@ -237,11 +247,12 @@ void place_building(Building& building, double rotation_rad, const Eigen::Vector
     }
 }
 
-Building load_building(const fs::path& path) {
-  return building_from_document(load_document(path), path);
+Building load_building(const fs::path& path, const DrawingReader& drawings) {
+  return building_from_document(load_document(path), path, drawings);
 }
 
-BuildingOrPlan load_building_or_plan(const fs::path& path, LengthUnit plan_unit) {
+BuildingOrPlan load_building_or_plan(const fs::path& path, LengthUnit plan_unit,
+                                     const DrawingReader& drawings) {
   const std::string text = read_text_file(path);
   BuildingOrPlan out;
   const PlanFormat format = detect_plan_format(path, text);
@@ -253,7 +264,7 @@ BuildingOrPlan load_building_or_plan(const fs::path& path, LengthUnit plan_unit)
                                                    : parse_yaml(text, path.string());
   if (is_building_document(doc)) {
     out.is_building = true;
-    out.building = building_from_document(doc, path);
+    out.building = building_from_document(doc, path, drawings);
     return out;
   }
   out.plan = read_plan(Field::root(doc), plan_unit);

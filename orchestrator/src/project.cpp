@@ -7,6 +7,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/import/dxf.hpp"
 
 namespace ccbuild::orchestrator {
 namespace fs = std::filesystem;
@@ -56,7 +57,8 @@ void place(Project& project, bool centre) {
 Project open_project(const fs::path& file, const ProjectOptions& options) {
   Project project;
   project.file = file;
-  floors::BuildingOrPlan input = floors::load_building_or_plan(file, options.plan_unit);
+  floors::BuildingOrPlan input =
+      floors::load_building_or_plan(file, options.plan_unit, import::read_drawing);
   project.is_building = input.is_building;
   if (input.is_building) {
     project.building = std::move(input.building);

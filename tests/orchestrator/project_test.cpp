@@ -175,6 +175,23 @@ TEST(Project, ASiteTurnsThenMovesThePlanOrCentresIt) {
   fs::remove_all(dir);
 }
 
+TEST(Project, ADrawnPlanIsReadOnceAndCountsAsAnInput) {
+  // Two floors of one DXF drawing (tests/data/drawings/centrelines_m.dxf).
+  const Project p = open_project(testing::data("buildings/drawn-centrelines.yaml"));
+  ASSERT_EQ(p.building.floors.size(), 2u);
+  EXPECT_EQ(p.building.floors[0].plan.walls.size(), 5u);
+  EXPECT_TRUE(floors::same_model(p.building.floors[0].plan, p.building.floors[1].plan));
+  int drawings = 0;
+  for (const auto& f : p.files_read()) drawings += f.filename() == "centrelines_m.dxf";
+  EXPECT_EQ(drawings, 1) << "the drawing is an input (never overwritten, its checksum recorded)";
+  // Face lines 0.2 m apart make walls thicker than one pass of the bundled nozzle: refused,
+  // naming the drawing's entities, until walls are printed as several beads.
+  const InputError thick =
+      expect_input_error([&] { open_project(testing::data("buildings/drawn-faces.yaml")); });
+  EXPECT_TRUE(contains(thick.what(), "faces_mm.dxf: entities")) << thick.what();
+  EXPECT_TRUE(contains(thick.what(), "is 0.200 m thick"));
+}
+
 TEST(Project, DistinctLayersAreProvenEqualAndCoverTheBuilding) {
   const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
   const auto distinct = distinct_layers(house);

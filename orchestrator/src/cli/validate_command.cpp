@@ -56,6 +56,7 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                         {"rotation_deg", placed.rotation_rad * 180.0 / M_PI},
                         {"min_m", {space.min_m.x(), space.min_m.y()}},
                         {"max_m", {space.max_m.x(), space.max_m.y()}}};
+    out["import_notes"] = b.import_notes;
     out["floors"] = nlohmann::ordered_json::array();
     for (const auto& f : summary.floors) {
       out["floors"].push_back({{"floor", f.floor_index},
@@ -103,6 +104,7 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                                  placed.rotation_rad * 180.0 / M_PI);
     std::cout << "\n";
   }
+  for (const auto& note : b.import_notes) std::cout << "  import     " << note << "\n";
   std::cout << "\n"
             << printf_string("  %-5s %-16s %12s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
                              "walls", "openings", "anchors", "layers", "geometries");

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,9 @@ struct Building {
   SourceRef material_source;
   SourceRef machine_source;
   std::optional<Site> site;
+  /// What the importers of drawn plans left out, and why (empty for plans in ccbuild's
+  /// own formats).
+  std::vector<std::string> import_notes;
   /// Every file read to build this model (the building file and its plans), so that no
   /// output is ever written over one of them.
   std::vector<std::filesystem::path> files_read;
@@ -78,13 +82,25 @@ Envelope envelope(const Building& building);
 /// being placed along walls).
 void place_building(Building& building, double rotation_rad, const Eigen::Vector2d& origin_m);
 
+/// A floor's plan drawn in another format (`plan: {dxf: FILE, ...}`), as an importer read it.
+struct ImportedPlan {
+  FloorPlan plan;
+  std::vector<std::string> notes;  ///< what was left out, and why
+  std::filesystem::path file;      ///< the drawing read
+};
+/// Reads such a plan: `plan` is the floor's `plan:` map, `base` the building file's folder,
+/// `unit` the building's. Given by the caller (ccbuild::import's read_drawing), so that
+/// floors links no format library; without one, a drawn plan is refused.
+using DrawingReader = std::function<ImportedPlan(
+    const Field& plan, const std::filesystem::path& base, LengthUnit unit)>;
+
 /// Loads and validates a building file (YAML or JSON) and the plans it references
 /// (paths relative to the building file). Does not open the material and machine
 /// profiles; their owners load them (load_material_profile, machine::load_machine).
 /// Every number is checked against its plausible range (limits.hpp) and the building's
 /// layers against limits::kMaxLayers. Throws InputError naming file, line and field for
 /// every problem found.
-Building load_building(const std::filesystem::path& path);
+Building load_building(const std::filesystem::path& path, const DrawingReader& drawings = {});
 
 /// A user's FILE: a building (its root has `floors:`), or a single floor plan.
 struct BuildingOrPlan {
@@ -95,7 +111,8 @@ struct BuildingOrPlan {
 
 /// Reads and parses `path` once and loads whatever it is. A plan's lengths are in its own
 /// `units` key when it has one, else in `plan_unit`. Throws InputError.
-BuildingOrPlan load_building_or_plan(const std::filesystem::path& path, LengthUnit plan_unit);
+BuildingOrPlan load_building_or_plan(const std::filesystem::path& path, LengthUnit plan_unit,
+                                     const DrawingReader& drawings = {});
 
 /// A building of one floor holding `plan`, for tools that work on a single plan: checks
 /// the heights (metres) against their ranges (InputError on field `floor_height` or

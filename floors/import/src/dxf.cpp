@@ -1,0 +1,597 @@
+#include "ccbuild/import/dxf.hpp"
+
+#include <dxflib/dl_creationadapter.h>
+#include <dxflib/dl_dxf.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/limits.hpp"
+
+namespace ccbuild::import {
+namespace {
+
+using Eigen::Vector2d;
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string hex_handle(int handle) {
+  return handle < 0 ? std::string("(no handle)") : printf_string("%X", handle);
+}
+
+/// A straight line of the drawing, in drawing units.
+struct DrawnLine {
+  Vector2d a, b;
+  int handle = -1;
+  std::string layer;
+};
+
+struct DrawnInsert {
+  std::string block, layer;
+  Vector2d at;
+  double sx = 1.0, sy = 1.0, angle_deg = 0.0;
+  int handle = -1;
+};
+
+/// Collects what the importer needs while dxflib reads: lines and polylines of the model
+/// space by layer, block definitions' extents, inserts, the unit.
+class Collector : public DL_CreationAdapter {
+ public:
+  std::map<std::string, long> entities_per_layer;  ///< model space, by lower-case layer
+  std::map<std::string, std::string> layer_names;  ///< lower-case -> as drawn
+  std::vector<DrawnLine> lines;                    ///< model space, every layer
+  std::vector<DrawnInsert> inserts;
+  std::map<std::string, std::pair<Vector2d, Vector2d>> block_extent;  ///< min, max
+  std::vector<std::string> skipped;  ///< curved segments (bulges), non-finite points
+  std::optional<int> insunits;
+
+  void setVariableInt(const std::string& key, int value, int) override {
+    if (key == "$INSUNITS") insunits = value;
+  }
+  void addBlock(const DL_BlockData& data) override {
+    end_polyline();
+    block_ = data.name;
+  }
+  void endBlock() override {
+    end_polyline();
+    block_.reset();
+  }
+  void addLine(const DL_LineData& d) override {
+    end_polyline();
+    segment({d.x1, d.y1}, {d.x2, d.y2});
+  }
+  void addPolyline(const DL_PolylineData& d) override {
+    end_polyline();
+    polyline_ = Polyline{};
+    polyline_->closed = (d.flags & 1) != 0;
+    polyline_->handle = attributes.getHandle();
+    polyline_->layer = attributes.getLayer();
+  }
+  void addVertex(const DL_VertexData& d) override {
+    if (!polyline_) return;
+    polyline_->points.emplace_back(d.x, d.y);
+    polyline_->bulges.push_back(d.bulge);
+  }
+  void addInsert(const DL_InsertData& d) override {
+    end_polyline();
+    if (block_) return;  // nested blocks: not read
+    count();
+    inserts.push_back({d.name,
+                       attributes.getLayer(),
+                       {d.ipx, d.ipy},
+                       d.sx,
+                       d.sy,
+                       d.angle,
+                       attributes.getHandle()});
+  }
+  void endEntity() override {}
+  void endSection() override { end_polyline(); }
+  void finish() { end_polyline(); }
+
+ private:
+  struct Polyline {
+    std::vector<Vector2d> points;
+    std::vector<double> bulges;
+    bool closed = false;
+    int handle = -1;
+    std::string layer;
+  };
+  void count() {
+    const std::string layer = attributes.getLayer();
+    ++entities_per_layer[lower(layer)];
+    layer_names.emplace(lower(layer), layer);
+  }
+  void segment(const Vector2d& a, const Vector2d& b, int handle, const std::string& layer,
+               double bulge) {
+    if (block_) {  // a block's definition: only its extent matters (openings)
+      auto [it, fresh] = block_extent.try_emplace(*block_, a, a);
+      for (const Vector2d& p : {a, b}) {
+        if (!p.allFinite()) continue;
+        it->second.first = it->second.first.cwiseMin(p);
+        it->second.second = it->second.second.cwiseMax(p);
+      }
+      return;
+    }
+    if (bulge != 0.0) {
+      skipped.push_back("entity " + hex_handle(handle) + " on layer " + layer +
+                        printf_string(": a curved segment from (%g, %g) to (%g, %g) is not "
+                                      "read (ccbuild prints straight walls)",
+                                      a.x(), a.y(), b.x(), b.y()));
+      return;
+    }
+    lines.push_back({a, b, handle, layer});
+  }
+  void segment(const Vector2d& a, const Vector2d& b) {
+    if (!block_) count();
+    segment(a, b, attributes.getHandle(), attributes.getLayer(), 0.0);
+  }
+  void end_polyline() {
+    if (!polyline_) return;
+    Polyline p = std::move(*polyline_);
+    polyline_.reset();
+    if (!block_) {
+      ++entities_per_layer[lower(p.layer)];
+      layer_names.emplace(lower(p.layer), p.layer);
+    }
+    const std::size_t n = p.points.size();
+    const std::size_t edges = p.closed ? n : (n == 0 ? 0 : n - 1);
+    for (std::size_t k = 0; k < edges; ++k)
+      segment(p.points[k], p.points[(k + 1) % n], p.handle, p.layer, p.bulges[k]);
+  }
+  std::optional<std::string> block_;
+  std::optional<Polyline> polyline_;
+};
+
+/// A wall found: its centreline in metres, its thickness (unset: drawn as a centreline).
+struct FoundWall {
+  Vector2d a, b;
+  std::optional<double> thickness_m;
+  std::string source;  ///< "entity 1A on layer A-WALL" (and its partner)
+};
+
+double cross(const Vector2d& u, const Vector2d& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+/// Face lines that face each other become walls along their middle (see the header).
+std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double scale,
+                                  double max_thickness_m, std::vector<std::string>& notes) {
+  struct Candidate {
+    double distance_m;
+    std::size_t i, j;
+  };
+  const std::size_t n = faces.size();
+  std::vector<Vector2d> a(n), b(n), dir(n);
+  std::vector<double> length(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    a[k] = faces[k].a * scale;
+    b[k] = faces[k].b * scale;
+    length[k] = (b[k] - a[k]).norm();
+    dir[k] = (b[k] - a[k]) / length[k];
+  }
+  // Lines by direction (mod 180 degrees, in half-degree buckets), so that only nearly
+  // parallel lines are compared.
+  std::map<int, std::vector<std::size_t>> by_angle;
+  const auto bucket = [&](std::size_t k) {
+    double angle = std::atan2(dir[k].y(), dir[k].x()) * 180.0 / M_PI;
+    if (angle < 0) angle += 180.0;
+    return static_cast<int>(std::floor(angle * 2.0)) % 360;
+  };
+  for (std::size_t k = 0; k < n; ++k) by_angle[bucket(k)].push_back(k);
+  std::vector<Candidate> candidates;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int own = bucket(i);
+    for (int db : {-1, 0, 1}) {
+      const auto it = by_angle.find((own + db + 360) % 360);
+      if (it == by_angle.end()) continue;
+      for (std::size_t j : it->second) {
+        if (j <= i || std::abs(cross(dir[i], dir[j])) > 0.01) continue;
+        const double d = std::abs(cross(dir[i], a[j] - a[i]));
+        if (d < 0.01 || d > max_thickness_m + 1e-9) continue;
+        // They must run side by side for at least half the shorter one.
+        const double s0 = dir[i].dot(a[j] - a[i]), s1 = dir[i].dot(b[j] - a[i]);
+        const double overlap =
+            std::min(length[i], std::max(s0, s1)) - std::max(0.0, std::min(s0, s1));
+        if (overlap < 0.5 * std::min(length[i], length[j])) continue;
+        candidates.push_back({d, i, j});
+      }
+    }
+  }
+  // Nearest faces first; distances equal to the micrometre (the same drawing in another
+  // unit) in drawing order, so that the plan does not depend on rounding.
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    const long long dx = std::llround(x.distance_m * 1e6), dy = std::llround(y.distance_m * 1e6);
+    return std::tie(dx, x.i, x.j) < std::tie(dy, y.i, y.j);
+  });
+  // Accepted stretches along each line (parameters from its start), so that a line is
+  // paired where it has no partner yet: a long outer face with two inner faces of a wall
+  // that another wall meets in a T.
+  std::vector<std::vector<std::pair<double, double>>> taken(n);
+  const auto free_share = [&](std::size_t k, double from, double to) {
+    double covered = 0.0;
+    for (const auto& [s, e] : taken[k])
+      covered += std::max(0.0, std::min(to, e) - std::max(from, s));
+    return 1.0 - covered / std::max(to - from, 1e-12);
+  };
+  std::vector<FoundWall> walls;
+  for (const Candidate& c : candidates) {
+    const std::size_t i = c.i, j = c.j;
+    const double s0 = dir[i].dot(a[j] - a[i]), s1 = dir[i].dot(b[j] - a[i]);
+    const double from = std::max(0.0, std::min(s0, s1)), to = std::min(length[i], std::max(s0, s1));
+    const double t0 = dir[j].dot(a[i] + from * dir[i] - a[j]),
+                 t1 = dir[j].dot(a[i] + to * dir[i] - a[j]);
+    if (free_share(i, from, to) < 0.5 || free_share(j, std::min(t0, t1), std::max(t0, t1)) < 0.5)
+      continue;
+    taken[i].emplace_back(from, to);
+    taken[j].emplace_back(std::min(t0, t1), std::max(t0, t1));
+    const Vector2d normal = Vector2d(-dir[i].y(), dir[i].x());
+    const double side = normal.dot(a[j] - a[i]) > 0 ? 1.0 : -1.0;
+    const Vector2d half = normal * side * 0.5 * c.distance_m;
+    walls.push_back({a[i] + from * dir[i] + half, a[i] + to * dir[i] + half, c.distance_m,
+                     "entities " + hex_handle(faces[i].handle) + " and " +
+                         hex_handle(faces[j].handle) + " on layer " + faces[i].layer});
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    if (taken[k].empty())
+      notes.push_back(printf_string(
+          "entity %s on layer %s: a face line from (%g, %g) to (%g, %g) with no parallel face "
+          "within %g m to make a wall with; left out",
+          hex_handle(faces[k].handle).c_str(), faces[k].layer.c_str(), faces[k].a.x(),
+          faces[k].a.y(), faces[k].b.x(), faces[k].b.y(), max_thickness_m));
+  return walls;
+}
+
+/// Where face-pair walls meet, their middles stop short of each other (by half a
+/// thickness at an L or a T): each end is extended along its wall to the nearest other
+/// wall's middle line it reaches within the larger of the two thicknesses.
+void join_ends(std::vector<FoundWall>& walls) {
+  const std::vector<FoundWall> before = walls;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (!before[w].thickness_m) continue;
+    const Vector2d d = (before[w].b - before[w].a).normalized();
+    for (int end = 0; end < 2; ++end) {
+      const Vector2d p = end == 0 ? before[w].a : before[w].b;
+      const Vector2d out = end == 0 ? Vector2d(-d) : d;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t v = 0; v < before.size(); ++v) {
+        if (v == w || !before[v].thickness_m) continue;
+        const Vector2d e = before[v].b - before[v].a;
+        const double denom = cross(out, e);
+        if (std::abs(denom) < 1e-9 * e.norm()) continue;  // parallel: a wall going on
+        const double reach = std::max(*before[w].thickness_m, *before[v].thickness_m) + 1e-6;
+        const double t = cross(before[v].a - p, e) / denom;    // along `out`
+        const double u = cross(before[v].a - p, out) / denom;  // along v, 0..1 on it
+        const double slack = reach / e.norm();
+        if (t < -1e-9 || t > reach || u < -slack || u > 1.0 + slack) continue;
+        best = std::min(best, std::max(t, 0.0));
+      }
+      if (std::isfinite(best)) (end == 0 ? walls[w].a : walls[w].b) = p + best * out;
+    }
+  }
+}
+
+/// What dxflib does not check: every real-valued group (codes 10-59, 110-149, 210-239,
+/// 1010-1059) a finite number (dxflib reads "nan" or "1e999x" as 0 or garbage), and the
+/// drawing whole, up to its EOF (dxflib reads a cut-off file as far as it goes).
+void check_dxf_text(const std::string& text, const std::string& file) {
+  std::istringstream in(text);
+  std::string code_line, value;
+  int line = 0;
+  bool ended = false;
+  while (std::getline(in, code_line)) {
+    ++line;
+    if (!code_line.empty() && code_line.back() == '\r') code_line.pop_back();
+    if (code_line.find_first_not_of(" \t") == std::string::npos) continue;
+    char* end = nullptr;
+    const long code = std::strtol(code_line.c_str(), &end, 10);
+    if (end == code_line.c_str() || std::string(end).find_first_not_of(" \t") != std::string::npos)
+      throw InputError(
+          file, line, "",
+          "expected a DXF group code (an integer), got '" + code_line.substr(0, 40) + "'");
+    if (!std::getline(in, value))
+      throw InputError(file, line, "", "the drawing ends after a group code: truncated?");
+    ++line;
+    if (!value.empty() && value.back() == '\r') value.pop_back();
+    const bool real = (code >= 10 && code <= 59) || (code >= 110 && code <= 149) ||
+                      (code >= 210 && code <= 239) || (code >= 1010 && code <= 1059);
+    if (real) {
+      const std::string trimmed = value.substr(value.find_first_not_of(" \t") == std::string::npos
+                                                   ? value.size()
+                                                   : value.find_first_not_of(" \t"));
+      const double v = std::strtod(trimmed.c_str(), &end);
+      if (end == trimmed.c_str() ||
+          std::string(end).find_first_not_of(" \t") != std::string::npos || !std::isfinite(v))
+        throw InputError(file, line, printf_string("group %ld", code),
+                         "expected a finite number, got '" + value.substr(0, 40) + "'");
+    }
+    if (code == 0 && value.find("EOF") != std::string::npos) ended = true;
+  }
+  if (!ended)
+    throw InputError(file, line, "",
+                     "the drawing ends without its EOF marker (0 / EOF): truncated? Export it "
+                     "again");
+}
+
+}  // namespace
+
+std::optional<double> insunits_metres(int code) {
+  switch (code) {
+    case 1:
+      return 0.0254;
+    case 2:
+      return 0.3048;
+    case 4:
+      return 0.001;
+    case 5:
+      return 0.01;
+    case 6:
+      return 1.0;
+    case 14:
+      return 0.1;  // decimetres
+    default:
+      return std::nullopt;
+  }
+}
+
+std::optional<double> unit_metres(const std::string& name) {
+  const std::string n = lower(name);
+  if (n == "mm") return 0.001;
+  if (n == "cm") return 0.01;
+  if (n == "m") return 1.0;
+  if (n == "in") return 0.0254;
+  if (n == "ft") return 0.3048;
+  return std::nullopt;
+}
+
+DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& options) {
+  const std::string file = path.string();
+  const std::string text = read_text_file(path);  // size limit, and its errors
+  if (text.find("SECTION") == std::string::npos)
+    throw InputError(file, 0, "", "not a DXF drawing (no SECTION in it)");
+  check_dxf_text(text, file);
+  Collector c;
+  {
+    std::istringstream stream(text);
+    DL_Dxf dxf;
+    if (!dxf.in(stream, &c))
+      throw InputError(file, 0, "", "dxflib could not read it as a DXF drawing");
+    c.finish();
+  }
+  DxfPlan out;
+  out.notes = c.skipped;
+  // The unit.
+  if (options.metres_per_unit) {
+    out.metres_per_unit = *options.metres_per_unit;
+  } else {
+    const auto from_header = c.insunits ? insunits_metres(*c.insunits) : std::nullopt;
+    if (!from_header)
+      throw InputError(file, 0, "unit",
+                       c.insunits
+                           ? printf_string("the drawing's $INSUNITS is %d, not a length "
+                                           "ccbuild knows (1 in, 2 ft, 4 mm, 5 cm, 6 m, 14 dm): "
+                                           "say the unit (unit: mm, cm, m, in or ft)",
+                                           *c.insunits)
+                           : "the drawing does not say its unit ($INSUNITS): say it (unit: "
+                             "mm, cm, m, in or ft)");
+    out.metres_per_unit = *from_header;
+  }
+  const double scale = out.metres_per_unit;
+  // The layers asked for must exist.
+  const auto layer_list = [&] {
+    std::string list;
+    for (const auto& [key, name] : c.layer_names)
+      list +=
+          (list.empty() ? "" : ", ") + name + printf_string(" (%ld)", c.entities_per_layer[key]);
+    return list.empty() ? std::string("none") : list;
+  };
+  if (options.wall_layers.empty())
+    throw InputError(
+        file, 0, "wall_layers",
+        "say which layers hold the walls; the drawing's layers (entities): " + layer_list());
+  std::set<std::string> walls_on, doors_on, windows_on;
+  for (const auto& [names, into, field] :
+       {std::tuple{&options.wall_layers, &walls_on, "wall_layers"},
+        std::tuple{&options.door_layers, &doors_on, "door_layers"},
+        std::tuple{&options.window_layers, &windows_on, "window_layers"}})
+    for (const std::string& name : *names) {
+      if (!c.entities_per_layer.count(lower(name)))
+        throw InputError(file, 0, field,
+                         "the drawing has no entity on layer '" + name +
+                             "'; its layers (entities): " + layer_list());
+      into->insert(lower(name));
+    }
+  // Wall lines, in metres, checked.
+  std::vector<DrawnLine> wall_lines;
+  for (const DrawnLine& l : c.lines) {
+    if (!walls_on.count(lower(l.layer))) continue;
+    for (const Vector2d& p : {l.a, l.b}) {
+      const Vector2d m = p * scale;
+      if (!m.allFinite() || !floors::limits::kCoordinate_m.contains(m.x()) ||
+          !floors::limits::kCoordinate_m.contains(m.y()))
+        throw InputError(file, 0, "entity " + hex_handle(l.handle),
+                         printf_string("a point (%g, %g) on layer %s is not a coordinate ccbuild "
+                                       "takes (%s)",
+                                       p.x(), p.y(), l.layer.c_str(),
+                                       floors::limits::kCoordinate_m.describe("m").c_str()));
+    }
+    if ((l.b - l.a).norm() * scale <= floors::limits::kMinWallLength_m) {
+      out.notes.push_back("entity " + hex_handle(l.handle) + " on layer " + l.layer +
+                          ": a line of 1 mm or less; left out");
+      continue;
+    }
+    wall_lines.push_back(l);
+  }
+  if (wall_lines.size() > 2 * floors::limits::kMaxWalls)
+    throw InputError(file, 0, "wall_layers",
+                     printf_string("%zu wall lines; ccbuild reads at most %zu", wall_lines.size(),
+                                   2 * floors::limits::kMaxWalls));
+  std::vector<FoundWall> found;
+  if (options.wall_lines == DxfOptions::WallLines::kFaces) {
+    found = pair_faces(wall_lines, scale, options.max_thickness_m, out.notes);
+    join_ends(found);
+  } else {
+    for (const DrawnLine& l : wall_lines)
+      found.push_back({l.a * scale, l.b * scale, std::nullopt,
+                       "entity " + hex_handle(l.handle) + " on layer " + l.layer});
+  }
+  if (found.empty())
+    throw InputError(file, 0, "wall_layers",
+                     "no wall found on layers " + layer_list() +
+                         (options.wall_lines == DxfOptions::WallLines::kFaces
+                              ? " (read as face lines: are they centrelines? wall_lines: "
+                                "centrelines)"
+                              : ""));
+  // Vertices: ends closer than 0.1 mm are one.
+  floors::FloorPlan& plan = out.plan;
+  plan.source_file = file;
+  std::map<std::pair<long long, long long>, std::int64_t> vertex_at;
+  const auto vertex = [&](const Vector2d& p) {
+    const long long gx = std::llround(p.x() * 1e4), gy = std::llround(p.y() * 1e4);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const auto it = vertex_at.find({gx + dx, gy + dy});
+        if (it != vertex_at.end() && (plan.vertices[it->second - 1].position_m - p).norm() <= 1e-4)
+          return it->second;
+      }
+    const auto id = static_cast<std::int64_t>(plan.vertices.size()) + 1;
+    plan.vertices.push_back({id, p, {file, 0, "vertex " + std::to_string(id)}});
+    vertex_at[{gx, gy}] = id;
+    return id;
+  };
+  for (const FoundWall& w : found) {
+    const std::int64_t s = vertex(w.a), e = vertex(w.b);
+    if (s == e) continue;
+    const auto id = static_cast<std::int64_t>(plan.walls.size()) + 1;
+    plan.walls.push_back({id, s, e, w.thickness_m, {file, 0, w.source}});
+  }
+  // Openings: each insert's block extent along its x axis, on the wall it lies on.
+  for (const DrawnInsert& in : c.inserts) {
+    const bool door = doors_on.count(lower(in.layer)) > 0;
+    if (!door && !windows_on.count(lower(in.layer))) continue;
+    const std::string what =
+        "insert " + hex_handle(in.handle) + " of block " + in.block + " on layer " + in.layer;
+    const auto extent = c.block_extent.find(in.block);
+    if (extent == c.block_extent.end() || extent->second.second.x() <= extent->second.first.x()) {
+      out.notes.push_back(what + ": its block draws nothing to measure its width by; left out");
+      continue;
+    }
+    const auto [lo, hi] = extent->second;
+    const double angle = in.angle_deg * M_PI / 180.0;
+    const Eigen::Rotation2Dd turn(angle);
+    const double mid_y = 0.5 * (lo.y() + hi.y()) * in.sy;
+    const Vector2d p0 = (in.at + turn * Vector2d(lo.x() * in.sx, mid_y)) * scale;
+    const Vector2d p1 = (in.at + turn * Vector2d(hi.x() * in.sx, mid_y)) * scale;
+    if (!p0.allFinite() || !p1.allFinite())
+      throw InputError(file, 0, "entity " + hex_handle(in.handle),
+                       "an insert whose position, scale or angle is not a finite number");
+    const Vector2d centre = 0.5 * (p0 + p1);
+    const floors::Wall* on = nullptr;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const floors::Wall& w : plan.walls) {
+      const Vector2d a = plan.wall_start_m(w), b = plan.wall_end_m(w);
+      const Vector2d d = (b - a).normalized();
+      if (std::abs(cross(d, (p1 - p0).normalized())) > 0.1) continue;  // not along it
+      const double s = d.dot(centre - a);
+      if (s < 0.0 || s > (b - a).norm()) continue;
+      const double off = std::abs(cross(d, centre - a));
+      const double within = 0.5 * w.thickness_m.value_or(0.0) + 0.3;
+      if (off <= within && off < nearest) {
+        nearest = off;
+        on = &w;
+      }
+    }
+    if (!on) {
+      out.notes.push_back(what + printf_string(": at (%.3f, %.3f) m, on no wall; left out",
+                                               centre.x(), centre.y()));
+      continue;
+    }
+    const Vector2d a = plan.wall_start_m(*on), b = plan.wall_end_m(*on);
+    const Vector2d d = (b - a).normalized();
+    const double s0 = std::clamp(d.dot(p0 - a), 0.0, (b - a).norm());
+    const double s1 = std::clamp(d.dot(p1 - a), 0.0, (b - a).norm());
+    floors::Opening o;
+    o.id = (door ? "D" : "W") + hex_handle(in.handle);
+    o.wall_id = on->id;
+    o.offset_m = std::min(s0, s1);
+    o.width_m = std::abs(s1 - s0);
+    o.sill_m = door ? 0.0 : options.window_sill_m;
+    o.head_m = door ? options.door_head_m : options.window_head_m;
+    o.source = {file, 0, what};
+    if (o.width_m <= 1e-3) {
+      out.notes.push_back(what + ": crosses its wall rather than lying along it; left out");
+      continue;
+    }
+    plan.openings.push_back(o);
+  }
+  return out;
+}
+
+floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path& base,
+                                  floors::LengthUnit unit) {
+  MapReader map(plan, {"dxf", "wall_layers", "door_layers", "window_layers", "wall_lines", "unit",
+                       "max_thickness", "door_head", "window_sill", "window_head"});
+  map.reject_unknown();
+  const Field file_field = map.required("dxf");
+  const std::string name = file_field.as_string();
+  const std::filesystem::path file = (base / name).lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    file_field.fail("drawing '" + name + "' not found (looked for " + file.string() + ")");
+  DxfOptions o;
+  const auto names = [&](const char* key) {
+    std::vector<std::string> out;
+    if (auto f = map.optional(key)) {
+      if (f->is_sequence()) {
+        for (const Field& item : f->items()) out.push_back(item.as_string());
+      } else {
+        out.push_back(f->as_string());
+      }
+    }
+    return out;
+  };
+  o.wall_layers = names("wall_layers");
+  if (o.wall_layers.empty()) map.required("wall_layers").fail("name at least one layer");
+  o.door_layers = names("door_layers");
+  o.window_layers = names("window_layers");
+  if (auto lines = map.optional("wall_lines")) {
+    const std::string how = lines->as_string();
+    if (how == "centrelines" || how == "centerlines")
+      o.wall_lines = DxfOptions::WallLines::kCentrelines;
+    else if (how != "faces")
+      lines->fail("expected faces (each wall drawn as its two faces) or centrelines, got '" + how +
+                  "'");
+  }
+  if (auto u = map.optional("unit")) {
+    o.metres_per_unit = unit_metres(u->as_string());
+    if (!o.metres_per_unit) u->fail("expected mm, cm, m, in or ft, got '" + u->as_string() + "'");
+  }
+  const std::string unit_name = floors::to_string(unit);
+  const double per = floors::meters_per(unit);
+  if (auto t = map.optional("max_thickness"))
+    o.max_thickness_m = t->as_number_in(floors::limits::kWallThickness_m, unit_name, per);
+  if (auto h = map.optional("door_head"))
+    o.door_head_m = h->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
+  if (auto h = map.optional("window_sill"))
+    o.window_sill_m = h->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
+  if (auto h = map.optional("window_head"))
+    o.window_head_m = h->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
+  DxfPlan read = read_dxf_plan(file, o);
+  read.plan.units = unit;  // messages speak the building's unit
+  return {std::move(read.plan), std::move(read.notes), file};
+}
+
+}  // namespace ccbuild::import

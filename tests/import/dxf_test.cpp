@@ -1,0 +1,166 @@
+// DXF drawings to floor plans (floors/import): walls from face pairs meeting at their L and T
+// junctions, and from centrelines, in millimetres and metres; doors and windows from block
+// inserts; what is left out said by handle; hostile drawings refused with file and line.
+// The drawings are written by tests/tools/make_dxf.py, independently of dxflib.
+
+#include "ccbuild/import/dxf.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "ccbuild/floors/plan.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::import {
+namespace {
+using Eigen::Vector2d;
+using testing::contains;
+using testing::expect_input_error;
+
+std::filesystem::path drawing(const std::string& name) {
+  return testing::source_path("tests/data/drawings/" + name);
+}
+
+DxfOptions faces_options() {
+  DxfOptions o;
+  o.wall_layers = {"a-wall"};  // layer names are matched whatever their case
+  o.door_layers = {"A-DOOR"};
+  o.window_layers = {"A-GLAZ"};
+  return o;
+}
+
+/// How many walls end at each vertex, by position rounded to the millimetre.
+std::map<std::pair<long, long>, int> degrees(const floors::FloorPlan& plan) {
+  std::map<std::pair<long, long>, int> out;
+  for (const auto& w : plan.walls)
+    for (const Vector2d& p : {plan.wall_start_m(w), plan.wall_end_m(w)})
+      ++out[{std::lround(p.x() * 1000), std::lround(p.y() * 1000)}];
+  return out;
+}
+
+const floors::Opening* opening_of(const floors::FloorPlan& plan, char kind) {
+  for (const auto& o : plan.openings)
+    if (o.id[0] == kind) return &o;
+  return nullptr;
+}
+
+TEST(DxfImport, FacePairsBecomeWallsThatMeetAtTheirJunctions) {
+  const DxfPlan read = read_dxf_plan(drawing("faces_mm.dxf"), faces_options());
+  EXPECT_DOUBLE_EQ(read.metres_per_unit, 0.001);  // $INSUNITS 4
+  const floors::FloorPlan& plan = read.plan;
+  // West, east, the wall between the rooms, and south and north cut in two by it.
+  ASSERT_EQ(plan.walls.size(), 7u);
+  for (const auto& w : plan.walls) {
+    ASSERT_TRUE(w.thickness_m);
+    EXPECT_NEAR(*w.thickness_m, 0.2, 1e-9);
+    // Each middle line lies half a thickness inside the outline (0..6 x 0..4).
+    for (const Vector2d& p : {plan.wall_start_m(w), plan.wall_end_m(w)}) {
+      EXPECT_GE(p.x(), 0.1 - 1e-9);
+      EXPECT_LE(p.x(), 5.9 + 1e-9);
+      EXPECT_GE(p.y(), 0.1 - 1e-9);
+      EXPECT_LE(p.y(), 3.9 + 1e-9);
+    }
+  }
+  // Four L corners (two walls each) and two T junctions (three), nothing left dangling.
+  const std::map<std::pair<long, long>, int> expected = {{{100, 100}, 2},   {{5900, 100}, 2},
+                                                         {{5900, 3900}, 2}, {{100, 3900}, 2},
+                                                         {{3000, 100}, 3},  {{3000, 3900}, 3}};
+  EXPECT_EQ(degrees(plan), expected);
+  EXPECT_NO_THROW(floors::validate_plan(plan, 3.0));
+  // The door: 0.9 m along the wall between the rooms, 0.9 m from its south end.
+  const floors::Opening* door = opening_of(plan, 'D');
+  ASSERT_NE(door, nullptr);
+  const floors::Wall& between = *plan.find_wall(door->wall_id);
+  EXPECT_NEAR(plan.wall_start_m(between).x(), 3.0, 1e-9);
+  EXPECT_NEAR(plan.wall_end_m(between).x(), 3.0, 1e-9);
+  EXPECT_NEAR(door->width_m, 0.9, 1e-9);
+  const double from_south = plan.wall_start_m(between).y() < plan.wall_end_m(between).y()
+                                ? door->offset_m
+                                : plan.wall_length_m(between) - door->offset_m - door->width_m;
+  EXPECT_NEAR(from_south, 0.9, 1e-9);
+  EXPECT_EQ(door->sill_m, 0.0);
+  // The window: 1.2 m of the south wall from x = 3.8 m, at the default sill and head.
+  const floors::Opening* window = opening_of(plan, 'W');
+  ASSERT_NE(window, nullptr);
+  EXPECT_NEAR(window->width_m, 1.2, 1e-9);
+  EXPECT_DOUBLE_EQ(window->sill_m, 0.9);
+  EXPECT_DOUBLE_EQ(window->head_m, 2.1);
+  // The stray face line is said, by its handle, and left out.
+  ASSERT_EQ(read.notes.size(), 1u);
+  EXPECT_TRUE(contains(read.notes[0],
+                       "on layer A-WALL: a face line from (0, -2000) to (1000, "
+                       "-2000) with no parallel face"))
+      << read.notes[0];
+}
+
+TEST(DxfImport, MillimetresAndMetresGiveTheSamePlan) {
+  const DxfPlan mm = read_dxf_plan(drawing("faces_mm.dxf"), faces_options());
+  const DxfPlan m = read_dxf_plan(drawing("faces_m.dxf"), faces_options());
+  EXPECT_DOUBLE_EQ(m.metres_per_unit, 1.0);
+  EXPECT_TRUE(floors::same_model(mm.plan, m.plan, 1e-9));
+}
+
+TEST(DxfImport, FacesPairUpToTheMaximumThicknessAndNoFurther) {
+  DxfOptions o = faces_options();
+  o.max_thickness_m = 0.2;  // exactly the walls' thickness: paired
+  EXPECT_EQ(read_dxf_plan(drawing("faces_m.dxf"), o).plan.walls.size(), 7u);
+  o.max_thickness_m = 0.199;
+  const InputError none = expect_input_error([&] { read_dxf_plan(drawing("faces_m.dxf"), o); });
+  EXPECT_EQ(none.first().field, "wall_layers");
+  EXPECT_TRUE(contains(none.what(), "no wall found"));
+}
+
+TEST(DxfImport, CentrelinesAreWallsOfTheNozzlesWidth) {
+  DxfOptions o;
+  o.wall_layers = {"WALLS"};
+  o.door_layers = {"DOORS"};
+  o.wall_lines = DxfOptions::WallLines::kCentrelines;
+  const DxfPlan read = read_dxf_plan(drawing("centrelines_m.dxf"), o);
+  const floors::FloorPlan& plan = read.plan;
+  ASSERT_EQ(plan.walls.size(), 5u);  // the closed polyline's four edges and the line
+  for (const auto& w : plan.walls) EXPECT_FALSE(w.thickness_m);
+  EXPECT_NO_THROW(floors::validate_plan(plan, 3.0));
+  ASSERT_EQ(plan.openings.size(), 1u);
+  EXPECT_NEAR(plan.openings[0].width_m, 0.9, 1e-9);
+  EXPECT_TRUE(read.notes.empty());
+  // A unit given overrides the drawing's: its metres read as centimetres.
+  o.metres_per_unit = 0.01;
+  const DxfPlan cm = read_dxf_plan(drawing("centrelines_m.dxf"), o);
+  EXPECT_NEAR(cm.plan.wall_length_m(cm.plan.walls[0]), 0.058, 1e-12);
+}
+
+TEST(DxfImport, HostileDrawingsAreRefusedWithTheirFileAndLine) {
+  DxfOptions o;
+  o.wall_layers = {"WALLS"};
+  o.wall_lines = DxfOptions::WallLines::kCentrelines;
+  const InputError nan = expect_input_error([&] { read_dxf_plan(drawing("nan.dxf"), o); });
+  EXPECT_EQ(nan.first().field, "group 11");
+  EXPECT_GT(nan.first().line, 0);
+  EXPECT_TRUE(contains(nan.what(), "expected a finite number, got 'nan'"));
+  const InputError cut = expect_input_error([&] { read_dxf_plan(drawing("truncated.dxf"), o); });
+  EXPECT_TRUE(contains(cut.what(), "truncated?")) << cut.what();
+  const InputError unitless =
+      expect_input_error([&] { read_dxf_plan(drawing("unitless.dxf"), o); });
+  EXPECT_EQ(unitless.first().field, "unit");
+  o.metres_per_unit = 1.0;  // said by the user: read
+  EXPECT_EQ(read_dxf_plan(drawing("unitless.dxf"), o).plan.walls.size(), 5u);
+  o.wall_layers = {"A-WALLS"};
+  const InputError layer =
+      expect_input_error([&] { read_dxf_plan(drawing("centrelines_m.dxf"), o); });
+  EXPECT_EQ(layer.first().field, "wall_layers");
+  EXPECT_TRUE(contains(layer.what(), "its layers (entities): DOORS (1), WALLS (2)"))
+      << layer.what();
+  o.wall_layers = {};
+  EXPECT_EQ(
+      expect_input_error([&] { read_dxf_plan(drawing("centrelines_m.dxf"), o); }).first().field,
+      "wall_layers");
+  // Not a drawing at all.
+  EXPECT_TRUE(contains(expect_input_error([&] {
+                         read_dxf_plan(testing::source_path("config/buildings/house.yaml"), o);
+                       }).what(),
+                       "not a DXF drawing"));
+}
+
+}  // namespace
+}  // namespace ccbuild::import

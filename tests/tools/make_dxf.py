@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""Writes the DXF drawings the import tests read (tests/data/drawings/), as plain ASCII
+DXF, independently of dxflib: two rooms side by side, 6 m x 4 m outside, 0.2 m walls, a
+door in the wall between them and a window in the south wall.
+
+  faces_mm.dxf        walls drawn as their two faces (closed polylines), millimetres, with
+                      a stray face line that pairs with nothing
+  faces_m.dxf         the same in metres
+  centrelines_m.dxf   the same walls as centrelines (a polyline and a line), metres
+  unitless.dxf        centrelines with $INSUNITS 0
+  nan.dxf             a wall line with a NaN coordinate
+  truncated.dxf       faces_mm.dxf cut off in the middle of an entity
+
+Usage: make_dxf.py OUT_DIR"""
+
+import os
+import sys
+
+
+class Dxf:
+    def __init__(self, insunits):
+        self.insunits = insunits
+        self.blocks, self.entities = [], []
+        self.handle = 0x100
+
+    def next_handle(self):
+        self.handle += 1
+        return "%X" % self.handle
+
+    @staticmethod
+    def pairs(*items):
+        return "".join("%d\n%s\n" % (code, value) for code, value in items)
+
+    def line(self, layer, a, b, into=None):
+        (self.entities if into is None else into).append(self.pairs(
+            (0, "LINE"), (5, self.next_handle()), (8, layer), (10, a[0]), (20, a[1]), (30, 0),
+            (11, b[0]), (21, b[1]), (31, 0)))
+
+    def polyline(self, layer, points, closed):
+        items = [(0, "LWPOLYLINE"), (5, self.next_handle()), (8, layer), (90, len(points)),
+                 (70, 1 if closed else 0)]
+        for x, y in points:
+            items += [(10, x), (20, y)]
+        self.entities.append(self.pairs(*items))
+
+    def block(self, name, width):
+        body = [self.pairs((0, "BLOCK"), (5, self.next_handle()), (8, "0"), (2, name), (70, 0),
+                           (10, 0), (20, 0), (30, 0), (3, name))]
+        self.line("0", (0, 0), (width, 0), into=body)
+        body.append(self.pairs((0, "ENDBLK"), (5, self.next_handle()), (8, "0")))
+        self.blocks.append("".join(body))
+
+    def insert(self, layer, name, at, angle):
+        self.entities.append(self.pairs(
+            (0, "INSERT"), (5, self.next_handle()), (8, layer), (2, name), (10, at[0]),
+            (20, at[1]), (30, 0), (41, 1), (42, 1), (43, 1), (50, angle)))
+
+    def text(self):
+        return (self.pairs((0, "SECTION"), (2, "HEADER"), (9, "$ACADVER"), (1, "AC1015"),
+                           (9, "$INSUNITS"), (70, self.insunits), (0, "ENDSEC"))
+                + self.pairs((0, "SECTION"), (2, "BLOCKS")) + "".join(self.blocks)
+                + self.pairs((0, "ENDSEC"), (0, "SECTION"), (2, "ENTITIES"))
+                + "".join(self.entities) + self.pairs((0, "ENDSEC"), (0, "EOF")))
+
+
+def two_rooms_faces(k):
+    """Faces, lengths times k (1000: millimetres)."""
+    d = Dxf(4 if k == 1000 else 6)
+    s = lambda pts: [(x * k, y * k) for x, y in pts]
+    d.polyline("A-WALL", s([(0, 0), (6, 0), (6, 4), (0, 4)]), True)
+    d.polyline("A-WALL", s([(0.2, 0.2), (2.9, 0.2), (2.9, 3.8), (0.2, 3.8)]), True)
+    d.polyline("A-WALL", s([(3.1, 0.2), (5.8, 0.2), (5.8, 3.8), (3.1, 3.8)]), True)
+    d.line("A-ANNO", (0, -1 * k), (6 * k, -1 * k))  # a dimension line: not a wall layer
+    d.line("A-WALL", (0, -2 * k), (1 * k, -2 * k))  # a stray face line with no partner
+    d.block("DOOR900", 0.9 * k)
+    d.block("WIN1200", 1.2 * k)
+    d.insert("A-DOOR", "DOOR900", (3.0 * k, 1.0 * k), 90)
+    d.insert("A-GLAZ", "WIN1200", (3.8 * k, 0.1 * k), 0)
+    return d
+
+
+def two_rooms_centrelines(insunits=6):
+    d = Dxf(insunits)
+    d.polyline("WALLS", [(0.1, 0.1), (5.9, 0.1), (5.9, 3.9), (0.1, 3.9)], True)
+    d.line("WALLS", (3.0, 0.1), (3.0, 3.9))
+    d.block("DOOR900", 0.9)
+    d.insert("DOORS", "DOOR900", (3.0, 1.0), 90)
+    return d
+
+
+def main():
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+    faces = two_rooms_faces(1000).text()
+    files = {
+        "faces_mm.dxf": faces,
+        "faces_m.dxf": two_rooms_faces(1).text(),
+        "centrelines_m.dxf": two_rooms_centrelines().text(),
+        "unitless.dxf": two_rooms_centrelines(0).text(),
+        "truncated.dxf": faces[: len(faces) // 2],
+    }
+    nan = two_rooms_centrelines()
+    nan.line("WALLS", (1.0, 1.0), ("nan", 2.0))
+    files["nan.dxf"] = nan.text()
+    for name, text in files.items():
+        with open(os.path.join(out, name), "w") as f:
+            f.write(text)
+
+
+if __name__ == "__main__":
+    main()
