@@ -155,11 +155,39 @@ TEST(DxfImport, HostileDrawingsAreRefusedWithTheirFileAndLine) {
   EXPECT_EQ(
       expect_input_error([&] { read_dxf_plan(drawing("centrelines_m.dxf"), o); }).first().field,
       "wall_layers");
+  EXPECT_TRUE(contains(expect_input_error([&] { read_dxf_plan(drawing("binary.dxf"), o); }).what(),
+                       "a binary DXF: save the drawing as an ASCII DXF"));
+  // A text longer than dxflib's lines (it would loop forever) and trash after the EOF: read.
+  o.wall_layers = {"WALLS"};
+  EXPECT_EQ(read_dxf_plan(drawing("long_text.dxf"), o).plan.walls.size(), 5u);
   // Not a drawing at all.
   EXPECT_TRUE(contains(expect_input_error([&] {
                          read_dxf_plan(testing::source_path("config/buildings/house.yaml"), o);
                        }).what(),
                        "not a DXF drawing"));
+}
+
+TEST(DxfImport, PublicSampleDrawingsRead) {
+  // tests/data/drawings/public/README.md says where they come from.
+  DxfOptions o;
+  o.wall_lines = DxfOptions::WallLines::kCentrelines;
+  // CloudCompare's, through dxflib: an old-style POLYLINE (its VERTEX entities end at SEQEND).
+  o.wall_layers = {"POLYLINE_001"};
+  EXPECT_EQ(
+      expect_input_error([&] { read_dxf_plan(drawing("public/cc_dxflib.dxf"), o); }).first().field,
+      "unit");  // it says none
+  o.metres_per_unit = 1.0;
+  const DxfPlan quad = read_dxf_plan(drawing("public/cc_dxflib.dxf"), o);
+  ASSERT_EQ(quad.plan.walls.size(), 4u);
+  ASSERT_EQ(quad.plan.vertices.size(), 4u);  // its last vertex repeats its first
+  for (const auto& [at, walls] : degrees(quad.plan)) EXPECT_EQ(walls, 2);
+  EXPECT_NO_THROW(floors::validate_plan(quad.plan, 3.0));
+  // Polylines with curved segments: the straight ones are walls, each curved one said.
+  o.wall_layers = {"T-2DPLINE-ALL"};
+  const DxfPlan curved = read_dxf_plan(drawing("public/POLI-ALL210_12.DXF"), o);
+  EXPECT_EQ(curved.plan.walls.size(), 54u);
+  ASSERT_EQ(curved.notes.size(), 31u);
+  for (const auto& note : curved.notes) EXPECT_TRUE(contains(note, "a curved segment")) << note;
 }
 
 }  // namespace

@@ -10,6 +10,9 @@ door in the wall between them and a window in the south wall.
   unitless.dxf        centrelines with $INSUNITS 0
   nan.dxf             a wall line with a NaN coordinate
   truncated.dxf       faces_mm.dxf cut off in the middle of an entity
+  long_text.dxf       centrelines_m.dxf with a text of 2,000 characters (dxflib reads lines
+                      of at most 1,024 and loops forever on a longer one) and trash after EOF
+  binary.dxf          the start of a binary DXF
 
 Usage: make_dxf.py OUT_DIR"""
 
@@ -102,6 +105,11 @@ def main():
     nan = two_rooms_centrelines()
     nan.line("WALLS", (1.0, 1.0), ("nan", 2.0))
     files["nan.dxf"] = nan.text()
+    long_text = two_rooms_centrelines()
+    long_text.entities.append(Dxf.pairs((0, "TEXT"), (5, long_text.next_handle()), (8, "NOTES"),
+                                        (10, 0), (20, 0), (30, 0), (40, 0.2), (1, "x" * 2000)))
+    files["long_text.dxf"] = long_text.text() + "trash after the end\n"
+    files["binary.dxf"] = "AutoCAD Binary DXF\r\n\x1a\x00"
     for name, text in files.items():
         with open(os.path.join(out, name), "w") as f:
             f.write(text)

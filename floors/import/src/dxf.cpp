@@ -99,7 +99,9 @@ class Collector : public DL_CreationAdapter {
                        attributes.getHandle()});
   }
   void endEntity() override {}
-  void endSection() override { end_polyline(); }
+  // A POLYLINE's VERTEX entities end at its SEQEND; an LWPOLYLINE's with the next entity
+  // (dxflib calls endSection after every entity, so that cannot end one).
+  void endSequence() override { end_polyline(); }
   void finish() { end_polyline(); }
 
  private:
@@ -242,8 +244,11 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
     const double side = normal.dot(a[j] - a[i]) > 0 ? 1.0 : -1.0;
     const Vector2d half = normal * side * 0.5 * c.distance_m;
     walls.push_back({a[i] + from * dir[i] + half, a[i] + to * dir[i] + half, c.distance_m,
-                     "entities " + hex_handle(faces[i].handle) + " and " +
-                         hex_handle(faces[j].handle) + " on layer " + faces[i].layer});
+                     faces[i].handle == faces[j].handle
+                         ? "entity " + hex_handle(faces[i].handle) +
+                               " (two of its segments) on layer " + faces[i].layer
+                         : "entities " + hex_handle(faces[i].handle) + " and " +
+                               hex_handle(faces[j].handle) + " on layer " + faces[i].layer});
   }
   for (std::size_t k = 0; k < n; ++k)
     if (taken[k].empty())
@@ -284,10 +289,17 @@ void join_ends(std::vector<FoundWall>& walls) {
   }
 }
 
+/// The longest line dxflib reads (DL_DXF_MAXLINE); on a longer one it loops forever.
+constexpr std::size_t kDxflibMaxLine = 1024;
+
 /// What dxflib does not check: every real-valued group (codes 10-59, 110-149, 210-239,
 /// 1010-1059) a finite number (dxflib reads "nan" or "1e999x" as 0 or garbage), and the
-/// drawing whole, up to its EOF (dxflib reads a cut-off file as far as it goes).
-void check_dxf_text(const std::string& text, const std::string& file) {
+/// drawing whole, up to its EOF (dxflib reads a cut-off file as far as it goes). Returns
+/// the text to give dxflib: up to the EOF, every value longer than dxflib reads (only
+/// text, which ccbuild does not use, is that long) cut short.
+std::string checked_dxf_text(const std::string& text, const std::string& file) {
+  std::string out;
+  out.reserve(text.size());
   std::istringstream in(text);
   std::string code_line, value;
   int line = 0;
@@ -298,7 +310,8 @@ void check_dxf_text(const std::string& text, const std::string& file) {
     if (code_line.find_first_not_of(" \t") == std::string::npos) continue;
     char* end = nullptr;
     const long code = std::strtol(code_line.c_str(), &end, 10);
-    if (end == code_line.c_str() || std::string(end).find_first_not_of(" \t") != std::string::npos)
+    if (code_line.size() > 16 || end == code_line.c_str() ||
+        std::string(end).find_first_not_of(" \t") != std::string::npos)
       throw InputError(
           file, line, "",
           "expected a DXF group code (an integer), got '" + code_line.substr(0, 40) + "'");
@@ -318,12 +331,25 @@ void check_dxf_text(const std::string& text, const std::string& file) {
         throw InputError(file, line, printf_string("group %ld", code),
                          "expected a finite number, got '" + value.substr(0, 40) + "'");
     }
-    if (code == 0 && value.find("EOF") != std::string::npos) ended = true;
+    out += code_line;
+    out += '\n';
+    if (value.size() > kDxflibMaxLine - 24) {
+      if (real)
+        throw InputError(file, line, printf_string("group %ld", code), "a number that long");
+      value.resize(kDxflibMaxLine - 24);
+    }
+    out += value;
+    out += '\n';
+    if (code == 0 && value.find("EOF") != std::string::npos) {
+      ended = true;
+      break;  // what follows the EOF is not the drawing's
+    }
   }
   if (!ended)
     throw InputError(file, line, "",
                      "the drawing ends without its EOF marker (0 / EOF): truncated? Export it "
                      "again");
+  return out;
 }
 
 }  // namespace
@@ -360,12 +386,14 @@ std::optional<double> unit_metres(const std::string& name) {
 DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& options) {
   const std::string file = path.string();
   const std::string text = read_text_file(path);  // size limit, and its errors
+  if (text.rfind("AutoCAD Binary DXF", 0) == 0)
+    throw InputError(file, 0, "", "a binary DXF: save the drawing as an ASCII DXF");
   if (text.find("SECTION") == std::string::npos)
     throw InputError(file, 0, "", "not a DXF drawing (no SECTION in it)");
-  check_dxf_text(text, file);
+  const std::string drawing = checked_dxf_text(text, file);
   Collector c;
   {
-    std::istringstream stream(text);
+    std::istringstream stream(drawing);
     DL_Dxf dxf;
     if (!dxf.in(stream, &c))
       throw InputError(file, 0, "", "dxflib could not read it as a DXF drawing");
@@ -448,13 +476,30 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
       found.push_back({l.a * scale, l.b * scale, std::nullopt,
                        "entity " + hex_handle(l.handle) + " on layer " + l.layer});
   }
-  if (found.empty())
-    throw InputError(file, 0, "wall_layers",
-                     "no wall found on layers " + layer_list() +
-                         (options.wall_lines == DxfOptions::WallLines::kFaces
-                              ? " (read as face lines: are they centrelines? wall_lines: "
-                                "centrelines)"
-                              : ""));
+  // Walls of 1 mm or less (where face pairs barely overlap) would vanish from every layer.
+  std::vector<FoundWall> kept;
+  for (FoundWall& w : found) {
+    if ((w.b - w.a).norm() > floors::limits::kMinWallLength_m) {
+      kept.push_back(std::move(w));
+      continue;
+    }
+    out.notes.push_back(
+        w.source + printf_string(": a wall of %.4f m at (%.3f, %.3f) m, 1 mm or less; left out",
+                                 (w.b - w.a).norm(), w.a.x(), w.a.y()));
+  }
+  found.swap(kept);
+  if (found.empty()) {
+    std::string asked;
+    for (const std::string& name : options.wall_layers) asked += (asked.empty() ? "" : ", ") + name;
+    throw InputError(
+        file, 0, "wall_layers",
+        printf_string("no wall found on layer(s) %s among %zu line segments", asked.c_str(),
+                      wall_lines.size()) +
+            (out.notes.empty() ? std::string() : " (" + out.notes.front() + ")") +
+            (options.wall_lines == DxfOptions::WallLines::kFaces
+                 ? "; read as face lines: are they centrelines? (wall_lines: centrelines)"
+                 : ""));
+  }
   // Vertices: ends closer than 0.1 mm are one.
   floors::FloorPlan& plan = out.plan;
   plan.source_file = file;
