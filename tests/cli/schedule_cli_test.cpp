@@ -131,6 +131,51 @@ TEST(ScheduleCommand, ABuildingOffTheRailsIsRefusedAndCentredOnRequest) {
   fs::remove_all(dir);
 }
 
+TEST(ImportCommand, ADrawingImportedSchedulesAsTheDrawingNamedDirectly) {
+  const fs::path dir = scratch("import");
+  const std::string drawing =
+      testing::source_path("tests/data/drawings/centrelines_m.dxf").string();
+  const std::string building = (dir / "two.yaml").string();
+  const std::string args =
+      " --wall-layers WALLS --door-layers DOORS --wall-lines centrelines "
+      "--floors 2 --floor-height 3 -o " +
+      building;
+  const auto imported = run_ccbuild("import " + drawing + args);
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_TRUE(contains(imported.out, "5 walls (0 with their drawn thickness), 1 openings"));
+  ASSERT_TRUE(fs::exists(dir / "two.plan.yaml"));
+  // The same drawing named by a building file directly.
+  const std::string config = testing::source_path("config").string();
+  std::ofstream(dir / "direct.yaml")
+      << "units: m\nlayer_height: 0.1\nmaterial: " << config << "/materials/standard-mix.yaml\n"
+      << "machine: " << config << "/machines/cc-gantry.yaml\nfloors:\n"
+      << "  - {height: 3, plan: {dxf: " << drawing
+      << ", wall_layers: WALLS, door_layers: DOORS, wall_lines: centrelines}}\n"
+      << "  - {height: 3, plan: {dxf: " << drawing
+      << ", wall_layers: WALLS, door_layers: DOORS, wall_lines: centrelines}}\n";
+  for (const char* name : {"two", "direct"})
+    ASSERT_EQ(run_ccbuild("schedule " + (dir / (std::string(name) + ".yaml")).string() +
+                          " --quiet -o " + (dir / (std::string(name) + ".json")).string())
+                  .exit_code,
+              0)
+        << name;
+  const auto diff =
+      run_ccbuild("diff " + (dir / "two.json").string() + " " + (dir / "direct.json").string());
+  EXPECT_EQ(diff.exit_code, 0) << diff.out;
+  // Nothing replaced without --force, and never the drawing; a bad layer writes nothing.
+  const std::string before = slurp(building);
+  EXPECT_EQ(run_ccbuild("import " + drawing + args).exit_code, 2);
+  EXPECT_EQ(slurp(building), before);
+  EXPECT_EQ(run_ccbuild("import " + drawing + " --wall-layers WALLS -o " + drawing).exit_code, 2);
+  const auto layer =
+      run_ccbuild("import " + drawing + " --wall-layers A-WALL -o " + (dir / "none.yaml").string());
+  EXPECT_EQ(layer.exit_code, 2);
+  EXPECT_TRUE(contains(layer.err, "its layers (entities): DOORS (1), WALLS (2)")) << layer.err;
+  EXPECT_FALSE(fs::exists(dir / "none.yaml"));
+  EXPECT_FALSE(fs::exists(dir / "none.plan.yaml"));
+  fs::remove_all(dir);
+}
+
 TEST(ScheduleCommand, BadInputIsExitTwo) {
   EXPECT_EQ(run_ccbuild("schedule tests/data/buildings/missing_plan.yaml --quiet").exit_code, 2);
   const auto jobs = run_ccbuild("schedule config/buildings/house.yaml --jobs -1");

@@ -13,6 +13,7 @@ void add_climb_command(CLI::App& app, int& exit_code);
 void add_schedule_command(CLI::App& app, int& exit_code);
 void add_diff_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
+void add_import_command(CLI::App& app, int& exit_code);
 void add_dry_run_command(CLI::App& app, int& exit_code);
 
 }  // namespace ccbuild::cli

@@ -121,6 +121,7 @@ int main(int argc, char** argv) {
 
   int exit_code = kExitOk;
   add_validate_command(app, exit_code);
+  add_import_command(app, exit_code);
   add_layers_command(app, exit_code);
   add_plan_layer_command(app, exit_code);
   add_sweep_command(app, exit_code);
