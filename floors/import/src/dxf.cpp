@@ -524,6 +524,8 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     plan.walls.push_back({id, s, e, w.thickness_m, {file, 0, w.source}});
   }
   // Openings: each insert's block extent along its x axis, on the wall it lies on.
+  // Vertex ids are 1..n in order (made above): a wall's ends without a search.
+  const auto at = [&](std::int64_t id) { return plan.vertices[id - 1].position_m; };
   for (const DrawnInsert& in : c.inserts) {
     const bool door = doors_on.count(lower(in.layer)) > 0;
     if (!door && !windows_on.count(lower(in.layer))) continue;
@@ -547,7 +549,7 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     const floors::Wall* on = nullptr;
     double nearest = std::numeric_limits<double>::infinity();
     for (const floors::Wall& w : plan.walls) {
-      const Vector2d a = plan.wall_start_m(w), b = plan.wall_end_m(w);
+      const Vector2d a = at(w.start_vertex), b = at(w.end_vertex);
       const Vector2d d = (b - a).normalized();
       if (std::abs(cross(d, (p1 - p0).normalized())) > 0.1) continue;  // not along it
       const double s = d.dot(centre - a);
@@ -564,7 +566,7 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                                                centre.x(), centre.y()));
       continue;
     }
-    const Vector2d a = plan.wall_start_m(*on), b = plan.wall_end_m(*on);
+    const Vector2d a = at(on->start_vertex), b = at(on->end_vertex);
     const Vector2d d = (b - a).normalized();
     const double s0 = std::clamp(d.dot(p0 - a), 0.0, (b - a).norm());
     const double s1 = std::clamp(d.dot(p1 - a), 0.0, (b - a).norm());
