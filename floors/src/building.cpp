@@ -115,7 +115,7 @@ Building building_from_document(const Document& doc, const fs::path& path,
                                 const DrawingReader& drawings) {
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "units", "layer_height", "slab_stage_h", "material",
-                       "machine", "site", "floors"});
+                       "machine", "site", "wall_pattern", "floors"});
   map.reject_unknown();
   const fs::path base = path.has_parent_path() ? path.parent_path() : fs::path(".");
 
@@ -135,6 +135,15 @@ Building building_from_document(const Document& doc, const fs::path& path,
       resolve_reference(map.required("machine"), base, building.machine_source);
 
   if (auto site = map.optional("site")) building.site = read_site(*site, unit);
+  if (auto pattern = map.optional("wall_pattern")) {
+    const auto parsed = parse_wall_pattern(pattern->as_string());
+    if (!parsed)
+      pattern->fail(
+          "expected skins, solid or skins-with-ties (what lies between a thick wall's "
+          "two skins), got '" +
+          pattern->as_string() + "'");
+    building.wall_pattern = *parsed;
+  }
 
   const Field floors = map.required("floors");
   const auto floor_fields = floors.items();

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <unordered_map>
 
+#include "beads_internal.hpp"
 #include "ccbuild/common/input_error.hpp"
 
 namespace ccbuild::floors {
@@ -74,6 +75,7 @@ Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceO
     }
     if (from < length) add(from, length);
   }
+  if (plan.beads.bead_width_m > 0.0) pieces = bead_pieces(plan, pieces, options);
   return layer_from_pieces(pieces, options);
 }
 
@@ -105,6 +107,8 @@ Layer layer_from_pieces(const std::vector<PieceSpec>& pieces, const SliceOptions
       seg.end_point = merger.add(p->end_m);
       if (seg.start_point == seg.end_point) continue;
       seg.length_m = (layer.points[seg.end_point] - layer.points[seg.start_point]).norm();
+      seg.width_m = p->width_m;
+      seg.role = p->role;
       layer.segments.push_back(seg);
     }
     const int count = static_cast<int>(layer.segments.size() - first);

@@ -103,6 +103,8 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
         project.material.name + ", " + material_path.string() + " " + material_why;
   }
   place(project, options.place_centre);
+  for (auto& floor : project.building.floors)
+    floor.plan.beads = {project.machine->nozzle_width_m, project.building.wall_pattern};
   check_fit(project);
   return project;
 }
@@ -172,19 +174,30 @@ void check_fit(const Project& project) {
                          L(m.lift_height_m) +
                          " over its walls, but the machine's z joint reaches " + L(reach_z) +
                          "; this machine cannot build it");
-  // One pass per wall: a wall thicker than the nozzle lays cannot be printed as planned.
+  // Beads: a wall one bead thick is one pass, a thicker one two skins and what its
+  // pattern puts between them; thinner than one bead, or between one and two, it cannot
+  // be printed with this nozzle.
   DiagnosticSink sink;
+  const double bead_m = m.nozzle_width_m;
   for (const auto& floor : b.floors)
     for (const auto& wall : floor.plan.walls) {
-      if (wall.thickness_m && *wall.thickness_m > m.nozzle_width_m + 1e-9)
-        sink.add({wall.source.file, wall.source.line,
-                  wall.source.path.empty() ? "thickness" : wall.source.path + ".thickness",
-                  "wall " + std::to_string(wall.id) + " is " + project.length(*wall.thickness_m) +
-                      " thick, but the nozzle of " + m.name + " lays " +
-                      project.length(m.nozzle_width_m) +
-                      " in one pass and ccbuild plans one pass per wall: draw it as parallel "
-                      "walls a nozzle width apart, or use a machine with a wider nozzle "
-                      "(nozzle_width_m)"});
+      if (!wall.thickness_m) continue;
+      const double t = *wall.thickness_m;
+      const bool thin = t < bead_m - 1e-6;
+      if (!thin && floors::beads_across(t, bead_m) != 0) continue;
+      sink.add({wall.source.file, wall.source.line,
+                wall.source.path.empty() ? "thickness" : wall.source.path + ".thickness",
+                "wall " + std::to_string(wall.id) + " is " + project.length(t) +
+                    " thick, but the nozzle of " + m.name + " lays a bead " +
+                    project.length(bead_m) + " wide, and a wall is printed " +
+                    (thin ? "at least one bead wide"
+                          : "as one bead, or as two skins of one bead each and what lies between "
+                            "them (wall_pattern)") +
+                    ": make it " + project.length(bead_m) + " (one bead) or " +
+                    project.length(2 * bead_m) +
+                    " or more (two skins), or use a machine whose nozzle lays " +
+                    project.length(t) + (thin ? "" : " or at most " + project.length(0.5 * t)) +
+                    " (nozzle_width_m)"});
     }
   sink.throw_if_any();
 }

@@ -87,9 +87,11 @@ TEST(HostileInput, FixturesAreRefusedWithAReason) {
        "the building is 25.00 m tall, and the nozzle lifts 0.15 m over its walls, but the "
        "machine's z joint reaches 18.00 m"},
       {"plan-layer tests/data/hostile/thick_wall.yaml",
-       "walls[0].thickness: wall 1 is 0.600 m thick, but the nozzle of CC gantry, up to three "
-       "nozzles "
-       "lays 0.150 m in one pass"},
+       "walls[0].thickness: wall 1 is 0.200 m thick, but the nozzle of CC gantry, up to three "
+       "nozzles lays a bead 0.150 m wide, and a wall is printed as one bead, or as two skins of "
+       "one bead each and what lies between them (wall_pattern): make it 0.150 m (one bead) or "
+       "0.300 m or more (two skins), or use a machine whose nozzle lays 0.200 m or at most "
+       "0.100 m (nozzle_width_m)"},
       {"plan-layer tests/data/hostile/high_window.yaml",
        "head (3.500 m) is above the floor height (3.000 m)"},
       {"validate tests/data/hostile/feet_opening_off_wall.yaml",

@@ -85,6 +85,15 @@ TEST(Project, TheMachineMustReachEveryWallAndTheTop) {
   EXPECT_TRUE(contains(thick.what(), "wall 1 is 0.151 m thick"));
   EXPECT_EQ(thick.first().field, "walls[0].thickness");
   EXPECT_EQ(thick.first().line, 6);
+  // Beads of 0.15 m: one bead, or two skins from 0.30 m on; thinner than one is refused.
+  EXPECT_NO_THROW(open_project(fit_case(dir, 5.0, 3.0, 0.30)));
+  EXPECT_NO_THROW(open_project(fit_case(dir, 5.0, 3.0, 0.60)));
+  EXPECT_TRUE(
+      contains(expect_input_error([&] { open_project(fit_case(dir, 5.0, 3.0, 0.299)); }).what(),
+               "0.299 m thick"));
+  EXPECT_TRUE(
+      contains(expect_input_error([&] { open_project(fit_case(dir, 5.0, 3.0, 0.149)); }).what(),
+               "at least one bead wide"));
   fs::remove_all(dir);
 }
 
@@ -184,8 +193,8 @@ TEST(Project, ADrawnPlanIsReadOnceAndCountsAsAnInput) {
   int drawings = 0;
   for (const auto& f : p.files_read()) drawings += f.filename() == "centrelines_m.dxf";
   EXPECT_EQ(drawings, 1) << "the drawing is an input (never overwritten, its checksum recorded)";
-  // Face lines 0.2 m apart make walls thicker than one pass of the bundled nozzle: refused,
-  // naming the drawing's entities, until walls are printed as several beads.
+  // Face lines 0.2 m apart make walls thicker than one bead of the bundled nozzle and
+  // thinner than two: refused, naming the drawing's entities.
   const InputError thick =
       expect_input_error([&] { open_project(testing::data("buildings/drawn-faces.yaml")); });
   EXPECT_TRUE(contains(thick.what(), "faces_mm.dxf: entities")) << thick.what();

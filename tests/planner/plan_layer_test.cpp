@@ -421,3 +421,28 @@ TEST(PlanLayer, NeighbourhoodNames) {
 
 }  // namespace
 }  // namespace ccbuild::planner
+
+namespace ccbuild::planner {
+namespace {
+
+// Walls thicker than one bead (the masonry house: 0.45 m and 0.30 m walls, T junctions,
+// a door) sliced into beads for a 0.15 m nozzle: every pattern's beads are each
+// deposited once, and a tour through rings of skins is no longer than the beads' own
+// length by more than the moves between rings.
+TEST(PlanLayer, EveryBeadOfAThickWallIsDepositedOnce) {
+  floors::FloorPlan plan = floors::load_plan(testing::data("buildings/plans/masonry.yaml"));
+  for (auto pattern : {floors::WallPattern::kSkins, floors::WallPattern::kSolid,
+                       floors::WallPattern::kSkinsWithTies}) {
+    plan.beads = {0.15, pattern};
+    const floors::Layer layer = floors::slice_plan_at(plan, 0.5, 1.0);  // the door is open
+    ASSERT_GT(layer.segments.size(), plan.walls.size());
+    const LayerPlan p = plan_layer(layer, testing::simple_machine(), PlanOptions{});
+    EXPECT_TRUE(covers_every_segment_once(p.sequence, layer.segments.size()))
+        << floors::wall_pattern_name(pattern);
+    EXPECT_NEAR(p.evaluation.deposition_s * testing::simple_machine().deposition_speed_m_s,
+                layer.total_length_m(), 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace ccbuild::planner

@@ -41,7 +41,11 @@ ones, never used to compute them. It checks:
      every anchor of its stage has reached the anchor strength, counted from the end
      of the latest placement of that pipe (and its anchor-strength reasons are those
      waits); it follows its stage's last layer; its duration is its phases' sum.
-  9. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
+  9. beads (walls thicker than one bead): each bead piece names its kind (skin, core,
+     tie) and a width; no two beads' footprints (the piece widened by half its width each
+     side) overlap, except beads that meet end to end, which must not double back along
+     each other;
+ 10. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
      slabs and machine time are what the layers and events add up to.
 
 Usage: check_schedule.py SCHEDULE.json              exit 0 when sound, 1 with the problems
@@ -369,6 +373,81 @@ def check_coverage(key, plan, problems):
             at = max(at, s1)
         if at < length - ON_SPAN:
             problems.append("%s: %.4f m to its end (%.4f m) never deposited" % (where, at, length))
+
+
+BEAD_KINDS = ("skin", "core", "tie")
+OVERLAP = 1e-6    # m: beads may overlap by a micrometre (the JSON rounds to one)
+
+
+def footprint(a, b, width):
+    """The piece widened by half its width each side, as 4 corners anticlockwise."""
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    n = math.hypot(dx, dy)
+    hx, hy = -dy / n * width / 2, dx / n * width / 2
+    return [(a[0] - hx, a[1] - hy), (b[0] - hx, b[1] - hy), (b[0] + hx, b[1] + hy), (a[0] + hx, a[1] + hy)]
+
+
+def clip_area(subject, clip):
+    """Area common to two convex anticlockwise polygons (Sutherland-Hodgman)."""
+    out = subject
+    for i in range(len(clip)):
+        if not out:
+            return 0.0
+        (ax, ay), (bx, by) = clip[i], clip[(i + 1) % len(clip)]
+        side = lambda p: (bx - ax) * (p[1] - ay) - (by - ay) * (p[0] - ax)
+        inp, out = out, []
+        for j in range(len(inp)):
+            p, q = inp[j], inp[(j + 1) % len(inp)]
+            sp, sq = side(p), side(q)
+            if sp >= 0:
+                out.append(p)
+            if (sp >= 0) != (sq >= 0):
+                t = sp / (sp - sq)
+                out.append((p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])))
+    return abs(sum(out[i][0] * out[(i + 1) % len(out)][1] - out[(i + 1) % len(out)][0] * out[i][1]
+                   for i in range(len(out)))) / 2 if len(out) >= 3 else 0.0
+
+
+def check_beads(key, plan, problems):
+    """Beads name their kind and width; no two overlap unless they meet end to end."""
+    beads = []
+    for piece in plan["pieces"]:
+        if "bead" not in piece and "width_m" not in piece:
+            continue
+        label = "plan %s: wall %s piece %s" % (key, piece["wall"], piece["piece"])
+        if piece.get("bead") not in BEAD_KINDS:
+            problems.append("%s: bead kind %r is none of %s" % (label, piece.get("bead"), BEAD_KINDS))
+            continue
+        width = piece.get("width_m")
+        if not isinstance(width, (int, float)) or isinstance(width, bool) or not 0 < width <= 10:
+            problems.append("%s: bead width %r is not a width" % (label, width))
+            continue
+        a, b = tuple(piece["start_m"]), tuple(piece["end_m"])
+        if math.hypot(b[0] - a[0], b[1] - a[1]) <= 0:
+            continue
+        fp = footprint(a, b, width)
+        box = (min(p[0] for p in fp), min(p[1] for p in fp), max(p[0] for p in fp), max(p[1] for p in fp))
+        beads.append((label, a, b, width, fp, box))
+    beads.sort(key=lambda x: x[5][0])
+    close = lambda p, q: math.hypot(p[0] - q[0], p[1] - q[1]) <= 1e-6
+    for i, (li, ai, bi, wi, fi, xi) in enumerate(beads):
+        for lj, aj, bj, wj, fj, xj in beads[i + 1:]:
+            if xj[0] > xi[2]:
+                break
+            if xj[1] > xi[3] or xj[3] < xi[1]:
+                continue
+            if any(close(p, q) for p in (ai, bi) for q in (aj, bj)):
+                ux, uy = bi[0] - ai[0], bi[1] - ai[1]
+                vx, vy = bj[0] - aj[0], bj[1] - aj[1]
+                cross = ux * vy - uy * vx
+                if abs(cross) <= 1e-9 * math.hypot(ux, uy) * math.hypot(vx, vy) and ux * vx + uy * vy != 0:
+                    # collinear and meeting: they must continue, not double back
+                    if not (close(bi, aj) or close(ai, bj)) or (close(ai, aj) or close(bi, bj)):
+                        problems.append("%s and %s double back along each other" % (li, lj))
+                continue
+            area = clip_area(fi, fj)
+            if area > OVERLAP * max(wi, wj):
+                problems.append("%s and %s overlap (%.2g m2 of footprint in common)" % (li, lj, area))
 
 
 def check_motion(key, plan, machine, info, problems):
@@ -1056,6 +1135,7 @@ def check(doc):
     for key, plan in doc["plans"].items():
         info = infos[key] = Plan(key, plan)
         guarded("coverage", check_coverage, problems, key, plan, problems)
+        guarded("beads", check_beads, problems, key, plan, problems)
         guarded("motion", check_motion, problems, key, plan, machine, info, problems)
         guarded("gantry", check_gantries, problems, key, plan, machine, info, problems)
     stats["infos"] = infos
@@ -1217,6 +1297,17 @@ def corruptions(doc):
         return d["plans"][used]["nozzles"][nozzle]["waypoints"]
 
     add("schema version 2", "NOT A SCHEDULE")(lambda d: d.update(schema_version=2))
+    skins = [(pc["length_m"], k2, j) for k2, p in plans.items() for j, pc in enumerate(p["pieces"])
+             if pc.get("bead") == "skin"]
+    if skins:
+        _, bk, bj = max(skins)
+
+        def wider(d):
+            piece = d["plans"][bk]["pieces"][bj]
+            piece["width_m"] *= 2
+        add("a skin bead twice as wide", "overlap")(wider)
+        add("a bead of no known kind", "bead kind")(
+            lambda d: d["plans"][bk]["pieces"][bj].update(bead="brick"))
     add("a layer without end_s", "no `end_s`")(lambda d: d["layers"][3].pop("end_s"))
     add("two layers swapped", "out of building order")(
         lambda d: d["layers"].__setitem__(slice(3, 5), [d["layers"][4], d["layers"][3]]))

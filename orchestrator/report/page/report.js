@@ -374,8 +374,10 @@
         var v = ends.length ? Math.max.apply(null, ends) : null;
         if (v !== null && (worst === null || v > worst.v)) worst = { v: v, p: p };
         var line = svg('line', { 'class': 'heat-piece', x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]),
-                                 y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': 5, 'stroke-linecap': 'round' }, root);
-        hover(line, 'wall ' + p.wall + ' piece ' + p.piece + '\n' + (v === null ? 'no wall under it' :
+                                 y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': p.width_m ? Math.max(1, p.width_m * k - 1) : 5,
+                                 'stroke-linecap': p.width_m ? 'butt' : 'round' }, root);
+        hover(line, 'wall ' + p.wall + ' piece ' + p.piece + (p.bead ? ' (' + p.bead + ' bead, ' + (p.width_m * 1000).toFixed(0) + ' mm wide)' : '') +
+          '\n' + (v === null ? 'no wall under it' :
           'covered ' + duration(v) + ' after the piece under it (maximum ' + duration(hi) + ')'));
       });
       note.textContent = 'Each piece coloured by its longest local interval, from green (the minimum, ' + duration(lo) +
@@ -468,7 +470,8 @@
       var root = svg('svg', { width: W, height: H }, card);
       var X = function (v) { return 10 + (v - x0) * k; }, Y = function (v) { return H - 10 - (v - y0) * k; };
       plan.pieces.forEach(function (p) {
-        svg('line', { x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]), y2: Y(p.end_m[1]), stroke: '#d5d9e0', 'stroke-width': 4 }, root);
+        svg('line', { x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]), y2: Y(p.end_m[1]), stroke: '#d5d9e0',
+                      'stroke-width': p.width_m ? Math.max(1, p.width_m * k - 0.5) : 4 }, root);
       });
       // Several nozzles: each one's section along the rails, tinted behind its walls.
       var railX = machine.rail_axis !== 'y';
@@ -552,13 +555,17 @@
     });
     runs.forEach(function (run) {
       var plan = S.plans[run.plan], z0 = run.bottom.z_bottom_m, z1 = run.top.z_m;
+      // Beads of walls thicker than one bead are as wide as the plan says.
+      var widths = {};
+      plan.pieces.forEach(function (p) { if (p.width_m) widths[p.wall + ':' + p.piece] = p.width_m; });
       plan.nozzles.forEach(function (n) {
         var w = n.waypoints;
         for (var k = 0; k + 1 < w.length; k++) {
           if (!w[k].extruding) continue;
           var ax = w[k].x_m, ay = w[k].y_m, bx = w[k + 1].x_m, by = w[k + 1].y_m;
           var dx = bx - ax, dy = by - ay, len = Math.sqrt(dx * dx + dy * dy) || 1;
-          var nx = -dy / len * half, ny = dx / len * half, base = pos.length / 3;
+          var hw = (widths[w[k].wall + ':' + w[k].piece] || 2 * half) / 2;
+          var nx = -dy / len * hw, ny = dx / len * hw, base = pos.length / 3;
           [[ax, ay, w[k].t_s], [bx, by, w[k + 1].t_s]].forEach(function (e) {
             [[1, z0], [-1, z0], [-1, z1], [1, z1]].forEach(function (c) {
               pos.push(e[0] + c[0] * nx, e[1] + c[0] * ny, c[1]);

@@ -154,7 +154,8 @@ std::string layer_plan_svg(const ReportContext& context, const floors::Layer& la
     Eigen::Vector2d a = layer.start_m(s), b = layer.end_m(s);
     if (step.reversed) std::swap(a, b);
     walls += "<line x1=\"" + svg::px(view.X(a.x())) + "\" y1=\"" + svg::px(view.Y(a.y())) +
-             "\" x2=\"" + svg::px(view.X(b.x())) + "\" y2=\"" + svg::px(view.Y(b.y())) + "\"/>\n";
+             "\" x2=\"" + svg::px(view.X(b.x())) + "\" y2=\"" + svg::px(view.Y(b.y())) + "\"" +
+             detail::bead_stroke(view, s) + "/>\n";
     arrows += detail::arrowhead(view, a, b, "#333");
   }
   doc.raw(walls + "</g>\n" + arrows + "</g>\n<g id=\"wall-ids\">\n");

@@ -155,7 +155,8 @@ std::string multi_plan_svg(const ReportContext& context, const floors::Layer& la
   for (const auto& s : layer.segments) {
     const auto a = layer.start_m(s), b = layer.end_m(s);
     walls += "<line x1=\"" + svg::px(view.X(a.x())) + "\" y1=\"" + svg::px(view.Y(a.y())) +
-             "\" x2=\"" + svg::px(view.X(b.x())) + "\" y2=\"" + svg::px(view.Y(b.y())) + "\"/>\n";
+             "\" x2=\"" + svg::px(view.X(b.x())) + "\" y2=\"" + svg::px(view.Y(b.y())) + "\"" +
+             detail::bead_stroke(view, s) + "/>\n";
   }
   doc.raw(walls + "</g>\n");
   const double font = std::clamp(view.scale_px_per_m * 0.3, 7.0, 11.0);

@@ -113,6 +113,15 @@ void draw_scale_bar(svg::Document& doc, const PlanView& view, double x_px, doubl
   doc.raw("</g>\n");
 }
 
+std::string bead_stroke(const PlanView& view, const floors::LayerSegment& segment) {
+  if (segment.role == floors::BeadRole::kPass || segment.width_m <= 0.0) return "";
+  // A pixel less than the bead, so that beads side by side stay apart on the drawing;
+  // a skin's square ends fill the corners where it turns.
+  return " stroke-width=\"" + svg::px(std::max(1.0, segment.width_m * view.scale_px_per_m - 1.0)) +
+         "\" stroke-linecap=\"" + (segment.role == floors::BeadRole::kSkin ? "square" : "butt") +
+         "\"";
+}
+
 std::string arrowhead(const PlanView& view, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                       const std::string& colour, double size_px) {
   // In drawing coordinates (y down), so the head keeps its size at any scale.

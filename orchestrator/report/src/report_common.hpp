@@ -57,6 +57,11 @@ void draw_axes(svg::Document& doc, const PlanView& view, floors::LengthUnit unit
 void draw_scale_bar(svg::Document& doc, const PlanView& view, double x_px, double y_px,
                     floors::LengthUnit unit);
 /// An arrowhead at the middle of a -> b (m), pointing from a to b.
+/// For a bead of a wall thicker than one bead (width_m set), the stroke attributes that
+/// draw it at its width; empty for a wall in one pass (drawn as the
+/// group says).
+std::string bead_stroke(const PlanView& view, const floors::LayerSegment& segment);
+
 std::string arrowhead(const PlanView& view, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
                       const std::string& colour, double size_px = 6.0);
 /// The wall-id label of a piece ("12", "12:2"), placed beside its middle.

@@ -31,6 +31,12 @@ json pieces_json(const floors::Layer& layer) {
                    {"start_m", point_json(layer.start_m(s))},
                    {"end_m", point_json(layer.end_m(s))},
                    {"length_m", rounded(s.length_m)}});
+    // A bead of a wall thicker than one bead says what it is and how wide; a wall in one
+    // pass is as wide as the machine's nozzle (inputs.machine.nozzle_width_m).
+    if (s.role != floors::BeadRole::kPass) {
+      out.back()["bead"] = floors::bead_role_name(s.role);
+      out.back()["width_m"] = rounded(s.width_m);
+    }
   }
   return out;
 }

@@ -52,8 +52,8 @@ bool same_plan(const SchedulePlan& a, const SchedulePlan& b) {
   for (std::size_t k = 0; k < a.layer.segments.size(); ++k) {
     const auto &s = a.layer.segments[k], &t = b.layer.segments[k];
     if (s.wall_id != t.wall_id || s.piece != t.piece || s.piece_count != t.piece_count ||
-        s.length_m != t.length_m || a.layer.start_m(s) != b.layer.start_m(t) ||
-        a.layer.end_m(s) != b.layer.end_m(t))
+        s.length_m != t.length_m || s.role != t.role || s.width_m != t.width_m ||
+        a.layer.start_m(s) != b.layer.start_m(t) || a.layer.end_m(s) != b.layer.end_m(t))
       return false;
   }
   // A golden may keep its paths' digests only: then the digests are compared.

@@ -140,7 +140,8 @@ floors::Layer read_pieces(const JsonAt& list) {
     return static_cast<int>(layer.points.size()) - 1;
   };
   for (const auto& s : list.elements(kMaxItems)) {
-    s.only_keys({"wall", "piece", "piece_count", "start_m", "end_m", "length_m"});
+    s.only_keys(
+        {"wall", "piece", "piece_count", "start_m", "end_m", "length_m", "bead", "width_m"});
     floors::LayerSegment seg;
     seg.wall_id = s.at("wall").integer(1, kMaxWallId);
     seg.piece = static_cast<int>(s.at("piece").integer(1, kMaxPiece)) - 1;
@@ -149,6 +150,14 @@ floors::Layer read_pieces(const JsonAt& list) {
     seg.start_point = point(s.at("start_m"));
     seg.end_point = point(s.at("end_m"));
     seg.length_m = s.at("length_m").number(kLength_m, "m");
+    if (s.maybe("bead") || s.maybe("width_m")) {
+      const std::string role = s.at("bead").string(16);
+      const auto parsed = floors::parse_bead_role(role);
+      if (!parsed || *parsed == floors::BeadRole::kPass)
+        s.at("bead").refuse("expected skin, core or tie, got '" + role + "'");
+      seg.role = *parsed;
+      seg.width_m = s.at("width_m").number(Range::above(0, 10), "m");
+    }
     layer.segments.push_back(seg);
   }
   return layer;

@@ -37,7 +37,8 @@ CutLayer cut_layer(const floors::Layer& layer, RailAxis axis, const std::vector<
     for (std::size_t k = 0; k + 1 < at.size(); ++k) {
       const Eigen::Vector2d p = at[k] == 0.0 ? a : Eigen::Vector2d(a + at[k] * (b - a));
       const Eigen::Vector2d q = at[k + 1] == 1.0 ? b : Eigen::Vector2d(a + at[k + 1] * (b - a));
-      pieces.push_back({seg.wall_id, p, q, seg.piece * 1e7 + at[k] * seg.length_m});
+      pieces.push_back(
+          {seg.wall_id, p, q, seg.piece * 1e7 + at[k] * seg.length_m, seg.width_m, seg.role});
     }
   }
   CutLayer out;

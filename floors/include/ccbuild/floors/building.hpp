@@ -59,6 +59,8 @@ struct Building {
   SourceRef material_source;
   SourceRef machine_source;
   std::optional<Site> site;
+  /// Between the two skins of a wall thicker than one bead (`wall_pattern:`).
+  WallPattern wall_pattern = WallPattern::kSolid;
   /// What the importers of drawn plans left out, and why (empty for plans in ccbuild's
   /// own formats).
   std::vector<std::string> import_notes;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/floors/beads.hpp"
 #include "ccbuild/floors/units.hpp"
 
 namespace ccbuild {
@@ -57,6 +58,9 @@ struct FloorPlan {
   std::vector<Opening> openings;
   std::string source_file;
   LengthUnit units = LengthUnit::kMeter;  ///< the unit the file used: messages speak it
+  /// How walls thicker than one bead are sliced (set from the machine by a project;
+  /// bead width 0: one pass per wall).
+  BeadSpec beads;
 
   const Vertex* find_vertex(std::int64_t id) const;
   const Wall* find_wall(std::int64_t id) const;

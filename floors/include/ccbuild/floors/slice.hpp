@@ -26,6 +26,8 @@ struct LayerSegment {
   int start_point = 0;  ///< index into Layer::points
   int end_point = 0;
   double length_m = 0.0;
+  double width_m = 0.0;  ///< the bead's width; 0 when the plan was sliced without beads
+  BeadRole role = BeadRole::kPass;
 };
 
 struct Layer {
@@ -56,6 +58,8 @@ struct PieceSpec {
   Eigen::Vector2d start_m = Eigen::Vector2d::Zero();  ///< in the wall's own direction
   Eigen::Vector2d end_m = Eigen::Vector2d::Zero();
   double along_m = 0.0;  ///< where the piece starts along its wall: orders the pieces
+  double width_m = 0.0;  ///< as LayerSegment
+  BeadRole role = BeadRole::kPass;
 };
 
 /// Builds a layer from pieces: merges endpoints closer than the tolerance, drops pieces

@@ -1,0 +1,323 @@
+// Walls thicker than one bead sliced into beads: skins along the faces and around the
+// ends, then the pattern's core or ties; at L, T and X junctions, at openings, and at the
+// thicknesses where the number of beads changes.
+
+#include <gtest/gtest.h>
+
+#define BOOST_ALLOW_DEPRECATED_HEADERS
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/point_xy.hpp>
+#include <boost/geometry/geometries/polygon.hpp>
+#undef BOOST_ALLOW_DEPRECATED_HEADERS
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/beads.hpp"
+#include "ccbuild/floors/plan.hpp"
+#include "ccbuild/floors/slice.hpp"
+
+namespace ccbuild::floors {
+namespace {
+
+constexpr double kBead = 0.15;
+constexpr double kTol = 1e-6;
+
+using Vec = Eigen::Vector2d;
+
+struct WallSpec {
+  double x0, y0, x1, y1, thickness;
+};
+
+FloorPlan plan_of(const std::vector<WallSpec>& walls, WallPattern pattern = WallPattern::kSolid) {
+  FloorPlan plan;
+  auto vertex = [&](double x, double y) {
+    for (const auto& v : plan.vertices)
+      if (v.position_m.x() == x && v.position_m.y() == y) return v.id;
+    plan.vertices.push_back({static_cast<std::int64_t>(plan.vertices.size()) + 1, {x, y}, {}});
+    return plan.vertices.back().id;
+  };
+  for (const auto& w : walls) {
+    const auto a = vertex(w.x0, w.y0), b = vertex(w.x1, w.y1);
+    plan.walls.push_back({static_cast<std::int64_t>(plan.walls.size()) + 1, a, b, w.thickness, {}});
+  }
+  validate_plan(plan);
+  plan.beads = {kBead, pattern};
+  return plan;
+}
+
+double cross(const Vec& a, const Vec& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+double point_segment(const Vec& p, const Vec& a, const Vec& b) {
+  const Vec d = b - a;
+  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * d)).norm();
+}
+
+namespace bg = boost::geometry;
+using Footprint = bg::model::polygon<bg::model::d2::point_xy<double>>;
+
+// The ground a bead covers: its centre line widened by half its width each side.
+Footprint footprint(const Vec& a, const Vec& b, double width_m) {
+  const Vec d = (b - a).normalized();
+  const Vec h = 0.5 * width_m * Vec(-d.y(), d.x());
+  Footprint f;
+  for (const Vec& v : {Vec(a - h), Vec(a + h), Vec(b + h), Vec(b - h), Vec(a - h)})
+    bg::append(f.outer(), bg::model::d2::point_xy<double>(v.x(), v.y()));
+  bg::correct(f);
+  return f;
+}
+
+double overlap_m2(const Footprint& f, const Footprint& g) {
+  std::vector<Footprint> common;
+  bg::intersection(f, g, common);
+  double area = 0.0;
+  for (const auto& c : common) area += bg::area(c);
+  return area;
+}
+
+// The wall (of the plan) whose outline, reaching past a junction end by half the thickest
+// wall met there, holds `p` with `margin` to spare across; -1 when none does.
+std::int64_t wall_holding(const FloorPlan& plan, const Vec& p, double margin) {
+  for (const auto& w : plan.walls) {
+    const Vec a = plan.wall_start_m(w), b = plan.wall_end_m(w);
+    const double length = (b - a).norm();
+    const Vec dir = (b - a) / length, normal(-dir.y(), dir.x());
+    double reach[2] = {0.0, 0.0};
+    for (const auto& o : plan.walls) {
+      if (o.id == w.id) continue;
+      const Vec c = plan.wall_start_m(o), d = plan.wall_end_m(o);
+      if (point_segment(a, c, d) < kTol) reach[0] = std::max(reach[0], 0.5 * *o.thickness_m);
+      if (point_segment(b, c, d) < kTol) reach[1] = std::max(reach[1], 0.5 * *o.thickness_m);
+    }
+    const double s = (p - a).dot(dir), n = (p - a).dot(normal);
+    if (s >= -reach[0] - kTol && s <= length + reach[1] + kTol &&
+        std::abs(n) <= 0.5 * *w.thickness_m - margin + kTol)
+      return w.id;
+  }
+  return -1;
+}
+
+// What every bead layer must hold: each bead inside a wall's outline by half its width;
+// no two beads' footprints overlap unless they meet end to end (at a corner, where they
+// share the corner's square), and those never double back along each other; bead widths
+// the nozzle's (the core excepted).
+void expect_sound(const FloorPlan& plan, const Layer& layer) {
+  ASSERT_FALSE(layer.segments.empty());
+  for (const auto& s : layer.segments) {
+    const Vec a = layer.start_m(s), b = layer.end_m(s);
+    if (s.role != BeadRole::kCore) EXPECT_NEAR(s.width_m, kBead, kTol);
+    for (const Vec& p : {a, Vec(0.5 * (a + b)), b})
+      EXPECT_NE(wall_holding(plan, p, 0.5 * s.width_m), -1)
+          << "wall " << s.wall_id << " piece " << s.piece << " (" << bead_role_name(s.role)
+          << ") at " << p.transpose() << " is outside every wall's outline";
+  }
+  for (std::size_t i = 0; i < layer.segments.size(); ++i)
+    for (std::size_t j = i + 1; j < layer.segments.size(); ++j) {
+      const auto& s = layer.segments[i];
+      const auto& t = layer.segments[j];
+      const bool meet = s.start_point == t.start_point || s.start_point == t.end_point ||
+                        s.end_point == t.start_point || s.end_point == t.end_point;
+      const Vec a = layer.start_m(s), b = layer.end_m(s), c = layer.start_m(t), d = layer.end_m(t);
+      if (meet) {
+        // End to end, never doubling back along each other.
+        const Vec u = (b - a).normalized(), v = (d - c).normalized();
+        const bool collinear = std::abs(cross(u, v)) < 1e-9;
+        const bool overlap =
+            collinear && (point_segment(c, a, b) < kTol && point_segment(d, a, b) < kTol);
+        EXPECT_FALSE(overlap) << "beads " << i << " and " << j << " overlap";
+        continue;
+      }
+      // A micrometre's overlap is rounding.
+      EXPECT_LE(overlap_m2(footprint(a, b, s.width_m), footprint(c, d, t.width_m)),
+                1e-6 * std::max(s.width_m, t.width_m))
+          << "wall " << s.wall_id << " piece " << s.piece << " (" << bead_role_name(s.role)
+          << ") and wall " << t.wall_id << " piece " << t.piece << " (" << bead_role_name(t.role)
+          << ") overlap";
+    }
+}
+
+std::vector<const LayerSegment*> of_role(const Layer& layer, BeadRole role) {
+  std::vector<const LayerSegment*> out;
+  for (const auto& s : layer.segments)
+    if (s.role == role) out.push_back(&s);
+  return out;
+}
+
+// Every skin end is shared by exactly two skins: the skins close into rings.
+void expect_closed_skins(const Layer& layer) {
+  std::map<int, int> degree;
+  for (const auto* s : of_role(layer, BeadRole::kSkin))
+    ++degree[s->start_point], ++degree[s->end_point];
+  ASSERT_FALSE(degree.empty());
+  for (const auto& [point, count] : degree)
+    EXPECT_EQ(count, 2) << "skin end at " << layer.points[point].transpose();
+}
+
+// The beads of one wall that run along it at `across_m` from its middle, as intervals of
+// distance along it, merged; their union must be [from, to].
+void expect_covered(const FloorPlan& plan, const Layer& layer, std::int64_t wall_id,
+                    double across_m, double from_m, double to_m) {
+  const Wall& w = *plan.find_wall(wall_id);
+  const Vec a = plan.wall_start_m(w), b = plan.wall_end_m(w);
+  const Vec dir = (b - a).normalized(), normal(-dir.y(), dir.x());
+  std::vector<std::pair<double, double>> spans;
+  for (const auto& s : layer.segments) {
+    const Vec p = layer.start_m(s), q = layer.end_m(s);
+    if (s.wall_id != wall_id) continue;
+    if (std::abs((p - a).dot(normal) - across_m) > kTol ||
+        std::abs((q - a).dot(normal) - across_m) > kTol)
+      continue;
+    const double u = (p - a).dot(dir), v = (q - a).dot(dir);
+    spans.emplace_back(std::min(u, v), std::max(u, v));
+  }
+  std::sort(spans.begin(), spans.end());
+  ASSERT_FALSE(spans.empty()) << "no bead at " << across_m << " across wall " << wall_id;
+  EXPECT_NEAR(spans.front().first, from_m, kTol);
+  double reach = spans.front().first;
+  for (const auto& [u, v] : spans) {
+    EXPECT_LE(u, reach + kTol) << "a gap along wall " << wall_id << " at " << across_m;
+    reach = std::max(reach, v);
+  }
+  EXPECT_NEAR(reach, to_m, kTol);
+}
+
+TEST(Beads, HowManyAcrossChangesExactlyAtOneAndTwoBeads) {
+  EXPECT_EQ(beads_across(0.15, 0.15), 1);
+  EXPECT_EQ(beads_across(0.15 + 5e-7, 0.15), 1);  // within a micrometre: still one
+  EXPECT_EQ(beads_across(0.151, 0.15), 0);
+  EXPECT_EQ(beads_across(0.299, 0.15), 0);
+  EXPECT_EQ(beads_across(0.30, 0.15), 2);
+  EXPECT_EQ(beads_across(0.60, 0.15), 2);
+}
+
+TEST(Beads, AWallOneBeadThickIsOnePassAlongItsMiddle) {
+  const FloorPlan plan = plan_of({{0, 0, 4, 0, kBead}});
+  const Layer layer = plan_as_layer(plan);
+  ASSERT_EQ(layer.segments.size(), 1u);
+  EXPECT_EQ(layer.segments[0].role, BeadRole::kPass);
+  EXPECT_NEAR(layer.segments[0].length_m, 4.0, kTol);
+  EXPECT_NEAR(layer.segments[0].width_m, kBead, kTol);
+}
+
+TEST(Beads, AWallTwoBeadsThickIsTwoSkinsClosedAroundItsEnds) {
+  const FloorPlan plan = plan_of({{0, 0, 4, 0, 2 * kBead}});
+  const Layer layer = plan_as_layer(plan);
+  expect_sound(plan, layer);
+  expect_closed_skins(layer);
+  EXPECT_TRUE(of_role(layer, BeadRole::kCore).empty());  // nothing left between the skins
+  // Each face's skin runs the wall's length less the returns' half bead at each end.
+  expect_covered(plan, layer, 1, +0.5 * kBead, 0.5 * kBead, 4 - 0.5 * kBead);
+  expect_covered(plan, layer, 1, -0.5 * kBead, 0.5 * kBead, 4 - 0.5 * kBead);
+  EXPECT_EQ(layer.segments.size(), 4u);  // two skins and two returns
+}
+
+TEST(Beads, BetweenOneAndTwoBeadsAWallIsRefusedWithItsId) {
+  FloorPlan plan = plan_of({{0, 0, 4, 0, 0.2}});
+  plan.walls[0].source = {"plan.yaml", 7, "walls[0]"};
+  try {
+    plan_as_layer(plan);
+    FAIL() << "a 0.2 m wall with 0.15 m beads was sliced";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.first().line, 7);
+    EXPECT_EQ(e.first().field, "walls[0].thickness");
+    EXPECT_NE(std::string(e.what()).find("wall 1"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Beads, AtAnLTheSkinsTurnTheCornerAndTheCoresMeet) {
+  const double t = 3 * kBead;
+  const FloorPlan plan = plan_of({{0, 0, 0, 4, t}, {0, 0, 3, 0, t}});
+  const Layer layer = plan_as_layer(plan);
+  expect_sound(plan, layer);
+  expect_closed_skins(layer);
+  // Wall 1 runs up x = 0 from the corner; its outer face is at x = -t/2 (across +t/2).
+  expect_covered(plan, layer, 1, 0.5 * t - 0.5 * kBead, -0.5 * t + 0.5 * kBead, 4 - 0.5 * kBead);
+  const auto cores = of_role(layer, BeadRole::kCore);
+  ASSERT_EQ(cores.size(), 2u);
+  for (const auto* c : cores) EXPECT_NEAR(c->width_m, t - 2 * kBead, kTol);
+  // Both cores start at the corner's middle.
+  EXPECT_TRUE((layer.start_m(*cores[0]) - Vec(0, 0)).norm() < kTol ||
+              (layer.end_m(*cores[0]) - Vec(0, 0)).norm() < kTol);
+}
+
+TEST(Beads, AtATAndAnXNoBeadCrossesAnother) {
+  const double t = 0.45;
+  const FloorPlan tee = plan_of({{0, 0, 3, 0, t}, {3, 0, 6, 0, t}, {3, 0, 3, 4, t}});
+  const Layer tee_layer = plan_as_layer(tee);
+  expect_sound(tee, tee_layer);
+  expect_closed_skins(tee_layer);
+  // The back face of the T runs unbroken from end to end, shared by its two walls.
+  expect_covered(tee, tee_layer, 1, -0.5 * t + 0.5 * kBead, 0.5 * kBead, 3);
+  expect_covered(tee, tee_layer, 2, -0.5 * t + 0.5 * kBead, 0, 3 - 0.5 * kBead);
+
+  const FloorPlan cross_plan =
+      plan_of({{0, 0, 3, 0, t}, {3, 0, 6, 0, t}, {3, -3, 3, 0, t}, {3, 0, 3, 3, t}},
+              WallPattern::kSkinsWithTies);
+  const Layer x_layer = plan_as_layer(cross_plan);
+  expect_sound(cross_plan, x_layer);
+  expect_closed_skins(x_layer);
+  EXPECT_EQ(of_role(x_layer, BeadRole::kSkin).size() % 4, 0u);  // four arms alike
+}
+
+TEST(Beads, SkinsTurnAtAnOpeningsJambsAndNothingIsPrintedInIt) {
+  FloorPlan plan = plan_of({{0, 0, 6, 0, 0.3}});
+  plan.openings.push_back({"D1", 1, 2.0, 1.0, 0.0, 2.1, {}});
+  const Layer layer = slice_plan_at(plan, 1.0, 1.1);
+  expect_sound(plan, layer);
+  expect_closed_skins(layer);
+  for (const auto& s : layer.segments)
+    for (const Vec& p : {layer.start_m(s), layer.end_m(s)})
+      EXPECT_FALSE(p.x() > 2.0 + kTol && p.x() < 3.0 - kTol)
+          << "a bead in the door at " << p.transpose();
+  // Returns close each jamb half a bead in from it.
+  int returns = 0;
+  for (const auto* s : of_role(layer, BeadRole::kSkin)) {
+    const Vec a = layer.start_m(*s), b = layer.end_m(*s);
+    if (std::abs(a.x() - b.x()) < kTol &&
+        (std::abs(a.x() - 1.925) < kTol || std::abs(a.x() - 3.075) < kTol))
+      ++returns;
+  }
+  EXPECT_EQ(returns, 2);
+  // Above the door the wall is whole again: one ring.
+  EXPECT_EQ(slice_plan_at(plan, 2.2, 2.3).segments.size(), 4u);
+}
+
+TEST(Beads, TiesZigZagBetweenTheSkinsTouchingTheirInnerEdges) {
+  const double t = 0.6;  // a core of 0.3 m: ties swing 0.075 m either side of the middle
+  const FloorPlan plan = plan_of({{0, 0, 5, 0, t}}, WallPattern::kSkinsWithTies);
+  const Layer layer = plan_as_layer(plan);
+  expect_sound(plan, layer);
+  const auto ties = of_role(layer, BeadRole::kTie);
+  ASSERT_GE(ties.size(), 2u);
+  for (const auto* s : ties)
+    for (const Vec& p : {layer.start_m(*s), layer.end_m(*s)})
+      EXPECT_NEAR(std::abs(p.y()), 0.5 * (t - 2 * kBead - kBead), kTol);
+  const FloorPlan cavity = plan_of({{0, 0, 5, 0, t}}, WallPattern::kSkins);
+  EXPECT_EQ(plan_as_layer(cavity).segments.size(), 4u);
+}
+
+TEST(Beads, AOneBeadWallStopsAtAThickWallsFace) {
+  const FloorPlan plan = plan_of({{0, 0, 6, 0, 0.3}, {3, 0, 3, 3, kBead}});
+  const Layer layer = plan_as_layer(plan);
+  expect_sound(plan, layer);
+  const auto passes = of_role(layer, BeadRole::kPass);
+  ASSERT_EQ(passes.size(), 1u);
+  EXPECT_NEAR(std::min(layer.start_m(*passes[0]).y(), layer.end_m(*passes[0]).y()), 0.15, kTol);
+}
+
+TEST(Beads, WithoutABeadWidthEveryWallIsOnePassAsBefore) {
+  FloorPlan plan = plan_of({{0, 0, 4, 0, 0.45}, {0, 0, 0, 4, 0.45}});
+  plan.beads = {};
+  const Layer layer = plan_as_layer(plan);
+  ASSERT_EQ(layer.segments.size(), 2u);
+  for (const auto& s : layer.segments) EXPECT_EQ(s.width_m, 0.0);
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
