@@ -102,6 +102,9 @@ struct Item {
   double length_m = 0.0;
   double reach_m[2] = {0.0, 0.0};
   bool junction[2] = {false, false};
+  /// Half the core of the widest wall that runs on through this end (a T's through wall
+  /// not cut there): this wall's core stops at that core's side.
+  double through_core_m[2] = {0.0, 0.0};
 
   double along(const Vec& p) const { return (p - a).dot(dir); }
   double across(const Vec& p) const { return (p - a).dot(normal); }
@@ -262,6 +265,10 @@ class Beads {
           if (&other == &it || distance_to_segment(p, other) > merge_m_) continue;
           it.junction[end] = true;
           it.reach_m[end] = std::max(it.reach_m[end], 0.5 * other.thickness_m);
+          const double s = other.along(p);
+          if (s > merge_m_ && s < other.length_m - merge_m_)
+            it.through_core_m[end] =
+                std::max(it.through_core_m[end], 0.5 * (other.thickness_m - 2.0 * bead_m_));
         }
       }
     }
@@ -294,7 +301,7 @@ class Beads {
   void skins(std::vector<PieceSpec>& out) const {
     const BMulti rings = offset_inwards(region_, 0.5 * bead_m_);
     auto ring_beads = [&](const BPolygon::ring_type& ring) {
-      const std::vector<Vec> pts = corners_of(ring);
+      const std::vector<Vec> pts = exact_corners(corners_of(ring));
       for (std::size_t k = 0; k < pts.size() && pts.size() >= 2; ++k)
         edge_beads(pts[k], pts[(k + 1) % pts.size()], out);
     };
@@ -302,6 +309,48 @@ class Beads {
       ring_beads(poly.outer());
       for (const auto& inner : poly.inners()) ring_beads(inner);
     }
+  }
+
+  // The line a stretch of skin from p to q lies on, exactly: half a bead inside the face
+  // of the wall it runs along, or inside the end of the wall it closes; the library's
+  // offset is only within about a micrometre of it (more far from the origin).
+  std::pair<Vec, Vec> exact_line(const Vec& p, const Vec& q) const {
+    const Vec dir = (q - p).normalized(), mid = 0.5 * (p + q);
+    const Item* it = owner(mid, dir);
+    if (!it) return {p, dir};
+    const double inset = 0.5 * it->thickness_m - 0.5 * bead_m_;
+    if (std::abs(cross(dir, it->dir)) < 1e-6) {
+      const double side = it->across(mid) >= 0.0 ? 1.0 : -1.0;
+      return {Vec(it->a + side * inset * it->normal), it->dir};
+    }
+    if (std::abs(dir.dot(it->dir)) < 1e-6) {  // a return across an end
+      const double s = it->along(mid);
+      const double at = s < 0.5 * it->length_m ? -it->reach_m[0] + 0.5 * bead_m_
+                                               : it->length_m + it->reach_m[1] - 0.5 * bead_m_;
+      return {Vec(it->a + at * it->dir), it->normal};
+    }
+    return {p, dir};
+  }
+
+  // A ring's corners moved onto the exact lines of its stretches: each corner where the
+  // lines of the stretches before and after it cross (kept when they are parallel, or
+  // when the crossing is not within a micrometre-scale distance of it).
+  std::vector<Vec> exact_corners(const std::vector<Vec>& pts) const {
+    const std::size_t n = pts.size();
+    if (n < 3) return pts;
+    std::vector<std::pair<Vec, Vec>> lines;
+    for (std::size_t k = 0; k < n; ++k) lines.push_back(exact_line(pts[k], pts[(k + 1) % n]));
+    std::vector<Vec> out = pts;
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& [p0, d0] = lines[(k + n - 1) % n];
+      const auto& [p1, d1] = lines[k];
+      const double det = cross(d0, d1);
+      if (std::abs(det) < 1e-9) continue;
+      const double t = cross(p1 - p0, d1) / det;
+      const Vec corner = p0 + t * d0;
+      if ((corner - pts[k]).norm() <= 1e-4) out[k] = corner;
+    }
+    return out;
   }
 
   // One straight stretch of skin, split where the wall it runs along changes.
@@ -350,6 +399,15 @@ class Beads {
     }
   }
 
+  // A core's end where it is exactly: the wall's end, or a bead inside a free end (where
+  // it meets the return), when the library's clip is that within its rounding.
+  Vec exact_core_end(const Item& it, const Vec& p) const {
+    const double s = it.along(p);
+    for (double exact : {0.0, it.length_m, bead_m_, it.length_m - bead_m_})
+      if (std::abs(s - exact) <= 1e-4) return it.a + exact * it.dir;
+    return p;
+  }
+
   // Inside the skins: a core poured along each wall's middle, or a zig-zag tie.
   void cores(std::vector<PieceSpec>& out) const {
     const BMulti inside = offset_inwards(region_, bead_m_);
@@ -362,9 +420,11 @@ class Beads {
       bg::intersection(line, inside, parts);
       for (const auto& part : parts) {
         if (part.size() < 2) continue;
-        Vec p = ev(part.front()), q = ev(part.back());
+        Vec p = exact_core_end(it, ev(part.front())), q = exact_core_end(it, ev(part.back()));
         if ((q - p).dot(it.dir) < 0.0) std::swap(p, q);
-        if ((q - p).norm() <= merge_m_) continue;
+        if ((p - it.a).norm() <= merge_m_) p += std::max(0.0, it.through_core_m[0]) * it.dir;
+        if ((q - it.b).norm() <= merge_m_) q -= std::max(0.0, it.through_core_m[1]) * it.dir;
+        if ((q - p).dot(it.dir) <= merge_m_) continue;
         if (plan_.beads.pattern == WallPattern::kSolid)
           out.push_back(bead(it, p, q, core_m, BeadRole::kCore));
         else

@@ -193,6 +193,8 @@ TEST(Beads, HowManyAcrossChangesExactlyAtOneAndTwoBeads) {
   EXPECT_EQ(beads_across(0.151, 0.15), 0);
   EXPECT_EQ(beads_across(0.299, 0.15), 0);
   EXPECT_EQ(beads_across(0.30, 0.15), 2);
+  EXPECT_EQ(beads_across(0.30 - 5e-7, 0.15), 2);  // within a micrometre of two: two
+  EXPECT_EQ(beads_across(0.30 - 2e-6, 0.15), 0);
   EXPECT_EQ(beads_across(0.60, 0.15), 2);
 }
 
@@ -317,6 +319,38 @@ TEST(Beads, WithoutABeadWidthEveryWallIsOnePassAsBefore) {
   const Layer layer = plan_as_layer(plan);
   ASSERT_EQ(layer.segments.size(), 2u);
   for (const auto& s : layer.segments) EXPECT_EQ(s.width_m, 0.0);
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
+
+namespace ccbuild::floors {
+namespace {
+
+// Placed far from the origin (as a site places a building), the skins still lie exactly
+// half a bead inside their faces: the library's offset is corrected onto them.
+TEST(Beads, FarFromTheOriginSkinsLieExactlyHalfABeadInsideTheFaces) {
+  // Wall 3 stands on wall 1 (a T whose through wall is not cut there): its core and ties
+  // stop at the side of wall 1's.
+  const double x0 = 41.3, y0 = 23.7, t = 0.6;
+  for (auto pattern : {WallPattern::kSolid, WallPattern::kSkinsWithTies}) {
+    const FloorPlan p = plan_of(
+        {{x0, y0, x0 + 5, y0, t}, {x0 + 5, y0, x0 + 5, y0 + 4, t}, {x0 + 2, y0, x0 + 2, y0 + 4, t}},
+        pattern);
+    expect_sound(p, plan_as_layer(p));
+  }
+  const FloorPlan plan = plan_of(
+      {{x0, y0, x0 + 5, y0, t}, {x0 + 5, y0, x0 + 5, y0 + 4, t}, {x0 + 2, y0, x0 + 2, y0 + 4, t}});
+  const Layer layer = plan_as_layer(plan);
+  int checked = 0;
+  for (const auto* s : of_role(layer, BeadRole::kSkin)) {
+    const Vec a = layer.start_m(*s), b = layer.end_m(*s);
+    if (std::abs(a.y() - b.y()) < 1e-9 && s->wall_id == 1) {
+      EXPECT_NEAR(std::abs(a.y() - y0), 0.5 * t - 0.5 * kBead, 1e-9) << a.transpose();
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 2);
 }
 
 }  // namespace
