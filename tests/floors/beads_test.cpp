@@ -355,3 +355,29 @@ TEST(Beads, FarFromTheOriginSkinsLieExactlyHalfABeadInsideTheFaces) {
 
 }  // namespace
 }  // namespace ccbuild::floors
+
+namespace ccbuild::floors {
+namespace {
+
+double deposited_m2(const Layer& layer) {
+  double area = 0.0;
+  for (const auto& s : layer.segments) area += s.width_m * s.length_m;
+  return area;
+}
+
+// Solid walls deposit their own volume (bead width times length, summed, against the
+// outline's area): a free-standing wall, and an L (outline (4 + 3) t: the corner square
+// counted once; the cores overlap in one quarter of the corner's core square and leave
+// another unfilled, which cancel); cavity walls deposit their skins only.
+TEST(Beads, ASolidWallDepositsItsOwnVolume) {
+  const double t = 0.45;
+  EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 4, 0, t}}))), 4 * t, 1e-9);
+  EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 0, 4, t}, {0, 0, 3, 0, t}}))),
+              (4 + 3) * t, 1e-9);
+  const double ring_m = 2 * ((4 - kBead) + (t - kBead));
+  EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 4, 0, t}}, WallPattern::kSkins))),
+              ring_m * kBead, 1e-9);
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
