@@ -80,6 +80,9 @@ using BBox = bg::model::box<BPoint>;
 using Vec = Eigen::Vector2d;
 
 constexpr double kTolerance_m = 1e-6;
+// Sine of the angle under which two directions are one: a stretch of the library's
+// offset ring is parallel to its wall only to about a micrometre over its length.
+constexpr double kParallel = 1e-4;
 
 BPoint bp(const Vec& v) {
   return {v.x(), v.y()};
@@ -152,14 +155,18 @@ BMulti offset_inwards(const BMulti& region, double distance_m) {
   return out;
 }
 
+// Corners of an offset ring closer than this are one: the library leaves stubs of a
+// micrometre or so where an offset edge ends on a corner.
+constexpr double kCornerMerge_m = 1e-5;
+
 // A ring's corners, without repeated points and without points where it runs straight on.
 std::vector<Vec> corners_of(const BPolygon::ring_type& ring) {
   std::vector<Vec> pts;
   for (const auto& p : ring) {
     const Vec v = ev(p);
-    if (pts.empty() || (v - pts.back()).norm() > kTolerance_m) pts.push_back(v);
+    if (pts.empty() || (v - pts.back()).norm() > kCornerMerge_m) pts.push_back(v);
   }
-  if (pts.size() > 1 && (pts.front() - pts.back()).norm() <= kTolerance_m) pts.pop_back();
+  if (pts.size() > 1 && (pts.front() - pts.back()).norm() <= kCornerMerge_m) pts.pop_back();
   bool changed = true;
   while (changed && pts.size() >= 3) {
     changed = false;
@@ -290,7 +297,7 @@ class Beads {
       if (std::abs(it.across(mid)) > 0.5 * it.thickness_m + kTolerance_m) continue;
       if (s < -it.reach_m[0] - kTolerance_m || s > it.length_m + it.reach_m[1] + kTolerance_m)
         continue;
-      const bool parallel = std::abs(cross(dir, it.dir)) < 1e-6;
+      const bool parallel = std::abs(cross(dir, it.dir)) < kParallel;
       const bool inside = s >= -kTolerance_m && s <= it.length_m + kTolerance_m;
       const int rank = parallel ? (inside ? 0 : 1) : (inside ? 2 : 3);
       if (rank < best_rank) best = &it, best_rank = rank;
@@ -319,11 +326,11 @@ class Beads {
     const Item* it = owner(mid, dir);
     if (!it) return {p, dir};
     const double inset = 0.5 * it->thickness_m - 0.5 * bead_m_;
-    if (std::abs(cross(dir, it->dir)) < 1e-6) {
+    if (std::abs(cross(dir, it->dir)) < kParallel) {
       const double side = it->across(mid) >= 0.0 ? 1.0 : -1.0;
       return {Vec(it->a + side * inset * it->normal), it->dir};
     }
-    if (std::abs(dir.dot(it->dir)) < 1e-6) {  // a return across an end
+    if (std::abs(dir.dot(it->dir)) < kParallel) {  // a return across an end
       const double s = it->along(mid);
       const double at = s < 0.5 * it->length_m ? -it->reach_m[0] + 0.5 * bead_m_
                                                : it->length_m + it->reach_m[1] - 0.5 * bead_m_;
@@ -365,7 +372,7 @@ class Beads {
                  std::back_inserter(found));
     for (const auto& [box, i] : found) {
       const Item& it = thick_[i];
-      if (std::abs(cross(dir, it.dir)) >= 1e-6) continue;
+      if (std::abs(cross(dir, it.dir)) >= kParallel) continue;
       for (const Vec& end : {it.a, it.b}) {
         const double s = (end - p).dot(dir);
         if (s > merge_m_ && s < length - merge_m_) cuts.push_back(s);

@@ -372,11 +372,41 @@ double deposited_m2(const Layer& layer) {
 TEST(Beads, ASolidWallDepositsItsOwnVolume) {
   const double t = 0.45;
   EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 4, 0, t}}))), 4 * t, 1e-9);
-  EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 0, 4, t}, {0, 0, 3, 0, t}}))),
-              (4 + 3) * t, 1e-9);
+  EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 0, 4, t}, {0, 0, 3, 0, t}}))), (4 + 3) * t,
+              1e-9);
   const double ring_m = 2 * ((4 - kBead) + (t - kBead));
   EXPECT_NEAR(deposited_m2(plan_as_layer(plan_of({{0, 0, 4, 0, t}}, WallPattern::kSkins))),
               ring_m * kBead, 1e-9);
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
+
+namespace ccbuild::floors {
+namespace {
+
+// Two rooms whose partition (0.3 m) has a door, the outer walls 0.3 m as a drawing in
+// millimetres gives them (0.29999999999999998): the skins at the door's jambs turn exactly
+// half a bead inside the partition's faces.
+TEST(Beads, AtADoorInAPartitionTheReturnsTurnExactly) {
+  FloorPlan plan = plan_of({{0.15, 0.15, 3, 0.15, 0.29999999999999998},
+                            {3, 0.15, 5.85, 0.15, 0.29999999999999998},
+                            {5.85, 0.15, 5.85, 3.85, 0.29999999999999998},
+                            {5.85, 3.85, 3, 3.85, 0.29999999999999998},
+                            {3, 3.85, 0.15, 3.85, 0.29999999999999998},
+                            {0.15, 3.85, 0.15, 0.15, 0.29999999999999998},
+                            {3, 0.15, 3, 3.85, 0.3}});
+  plan.openings.push_back({"D", 7, 0.85, 0.9, 0.0, 2.1, {}});
+  const Layer layer = slice_plan_at(plan, 0.0, 0.5);
+  expect_sound(plan, layer);
+  expect_closed_skins(layer);
+  for (const auto& s : layer.segments) {
+    if (s.wall_id != 7) continue;
+    for (const Vec& p : {layer.start_m(s), layer.end_m(s)}) {
+      EXPECT_NEAR(std::abs(p.x() - 3.0), 0.075, 1e-9) << p.transpose();
+      if (std::abs(p.y() - 0.925) < 1e-3) EXPECT_NEAR(p.y(), 0.925, 1e-9);
+    }
+  }
 }
 
 }  // namespace

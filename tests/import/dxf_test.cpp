@@ -192,3 +192,51 @@ TEST(DxfImport, PublicSampleDrawingsRead) {
 
 }  // namespace
 }  // namespace ccbuild::import
+
+namespace ccbuild::import {
+namespace {
+
+// Doors and windows left as gaps in the wall lines (with gap_openings): the walls on
+// either side become one wall with an opening exactly in the gap, a window where a line
+// on a window layer (glazing) lies in it, else a door; without gap_openings, walls.
+TEST(DxfImport, GapsInWallLinesAreOpeningsWhenAsked) {
+  for (const char* file : {"gaps_faces_mm.dxf", "gaps_m.dxf"}) {
+    SCOPED_TRACE(file);
+    DxfOptions o;
+    if (std::string(file) == "gaps_m.dxf") o.wall_lines = DxfOptions::WallLines::kCentrelines;
+    o.wall_layers = {std::string(file) == "gaps_m.dxf" ? "WALLS" : "A-WALL"};
+    o.window_layers = {std::string(file) == "gaps_m.dxf" ? "GLAZING" : "A-GLAZ"};
+    const std::size_t walls_without = read_dxf_plan(drawing(file), o).plan.walls.size();
+    o.gap_openings = true;
+    const DxfPlan read = read_dxf_plan(drawing(file), o);
+    floors::validate_plan(read.plan, 3.0);
+    EXPECT_EQ(read.plan.walls.size() + 2, walls_without);  // two gaps: two walls fewer
+    ASSERT_EQ(read.plan.openings.size(), 2u);
+    for (const auto& op : read.plan.openings) {
+      const floors::Wall& w = *read.plan.find_wall(op.wall_id);
+      const Vector2d a = read.plan.wall_start_m(w), b = read.plan.wall_end_m(w);
+      const Vector2d d = (b - a).normalized();
+      const Vector2d from = a + op.offset_m * d, to = a + (op.offset_m + op.width_m) * d;
+      if (op.id[1] == 'W') {  // the south wall's window, x 3.8 to 5.0 at y 0.15
+        EXPECT_NEAR(std::min(from.x(), to.x()), 3.8, 1e-9);
+        EXPECT_NEAR(std::max(from.x(), to.x()), 5.0, 1e-9);
+        EXPECT_NEAR(from.y(), 0.15, 1e-9);
+        EXPECT_NEAR(op.sill_m, o.window_sill_m, 1e-12);
+        EXPECT_TRUE(contains(op.source.path, "glazing")) << op.source.path;
+      } else {  // the partition's door, y 1.0 to 1.9 at x 3
+        EXPECT_EQ(op.id[1], 'D');
+        EXPECT_NEAR(std::min(from.y(), to.y()), 1.0, 1e-9);
+        EXPECT_NEAR(std::max(from.y(), to.y()), 1.9, 1e-9);
+        EXPECT_NEAR(from.x(), 3.0, 1e-9);
+        EXPECT_EQ(op.sill_m, 0.0);
+        EXPECT_NEAR(op.head_m, o.door_head_m, 1e-12);
+      }
+    }
+    // A gap wider than the largest asked for stays a gap.
+    o.max_gap_m = 1.0;
+    EXPECT_EQ(read_dxf_plan(drawing(file), o).plan.openings.size(), 1u);
+  }
+}
+
+}  // namespace
+}  // namespace ccbuild::import

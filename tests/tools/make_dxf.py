@@ -13,6 +13,10 @@ door in the wall between them and a window in the south wall.
   long_text.dxf       centrelines_m.dxf with a text of 2,000 characters (dxflib reads lines
                       of at most 1,024 and loops forever on a longer one) and trash after EOF
   binary.dxf          the start of a binary DXF
+  gaps_faces_mm.dxf   two rooms with 0.3 m walls drawn as faces (lines) in millimetres, the
+                      door and the window left as gaps in the wall lines (closed by jamb
+                      lines), a glazing line across the window's gap on layer A-GLAZ
+  gaps_m.dxf          the same as centrelines in metres, without jambs
 
 Usage: make_dxf.py OUT_DIR"""
 
@@ -91,6 +95,34 @@ def two_rooms_centrelines(insunits=6):
     return d
 
 
+def two_rooms_gaps_faces():
+    """0.3 m walls as face lines, mm; the partition's door (y 1.0-1.9) and the south wall's
+    window (x 3.8-5.0) are gaps with jamb lines across the wall at their ends."""
+    d = Dxf(4)
+    k = 1000
+    line = lambda a, b, layer="A-WALL": d.line(layer, (a[0] * k, a[1] * k), (b[0] * k, b[1] * k))
+    line((0, 0), (3.8, 0)); line((5.0, 0), (6, 0))                 # south, outer face
+    line((6, 0), (6, 4)); line((6, 4), (0, 4)); line((0, 4), (0, 0))
+    line((0.3, 0.3), (2.85, 0.3)); line((2.85, 0.3), (2.85, 1.0))  # room 1's inner faces
+    line((2.85, 1.9), (2.85, 3.7)); line((2.85, 3.7), (0.3, 3.7)); line((0.3, 3.7), (0.3, 0.3))
+    line((3.15, 0.3), (3.8, 0.3)); line((5.0, 0.3), (5.7, 0.3))    # room 2's inner faces
+    line((5.7, 0.3), (5.7, 3.7)); line((5.7, 3.7), (3.15, 3.7))
+    line((3.15, 3.7), (3.15, 1.9)); line((3.15, 1.0), (3.15, 0.3))
+    line((2.85, 1.0), (3.15, 1.0)); line((2.85, 1.9), (3.15, 1.9))  # door jambs
+    line((3.8, 0), (3.8, 0.3)); line((5.0, 0), (5.0, 0.3))          # window jambs
+    line((3.8, 0.15), (5.0, 0.15), "A-GLAZ")                          # glazing
+    return d
+
+
+def two_rooms_gaps_centrelines():
+    d = Dxf(6)
+    d.line("WALLS", (0.15, 0.15), (3.8, 0.15)); d.line("WALLS", (5.0, 0.15), (5.85, 0.15))
+    d.polyline("WALLS", [(5.85, 0.15), (5.85, 3.85), (0.15, 3.85), (0.15, 0.15)], False)
+    d.line("WALLS", (3.0, 0.15), (3.0, 1.0)); d.line("WALLS", (3.0, 1.9), (3.0, 3.85))
+    d.line("GLAZING", (3.8, 0.15), (5.0, 0.15))
+    return d
+
+
 def main():
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
@@ -101,6 +133,8 @@ def main():
         "centrelines_m.dxf": two_rooms_centrelines().text(),
         "unitless.dxf": two_rooms_centrelines(0).text(),
         "truncated.dxf": faces[: len(faces) // 2],
+        "gaps_faces_mm.dxf": two_rooms_gaps_faces().text(),
+        "gaps_m.dxf": two_rooms_gaps_centrelines().text(),
     }
     nan = two_rooms_centrelines()
     nan.line("WALLS", (1.0, 1.0), ("nan", 2.0))

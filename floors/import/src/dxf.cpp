@@ -158,11 +158,19 @@ class Collector : public DL_CreationAdapter {
   std::optional<Polyline> polyline_;
 };
 
+/// A gap in a wall's line read as an opening, from the wall's start.
+struct FoundGap {
+  double offset_m = 0.0, width_m = 0.0;
+  bool window = false;
+  std::string source;
+};
+
 /// A wall found: its centreline in metres, its thickness (unset: drawn as a centreline).
 struct FoundWall {
   Vector2d a, b;
   std::optional<double> thickness_m;
   std::string source;  ///< "entity 1A on layer A-WALL" (and its partner)
+  std::vector<FoundGap> gaps;
 };
 
 double cross(const Vector2d& u, const Vector2d& v) {
@@ -287,6 +295,120 @@ void join_ends(std::vector<FoundWall>& walls) {
       if (std::isfinite(best)) (end == 0 ? walls[w].a : walls[w].b) = p + best * out;
     }
   }
+}
+
+/// Gaps in wall lines as openings: two walls in line (parallel, on one line within
+/// 1 mm, equal thickness), each with a free end (no other wall within 0.1 mm of it)
+/// facing the other's across at most `max_gap_m`, become one wall with an opening in the
+/// gap; a window when a line on a window layer has its middle in the gap, else a door.
+/// Each free end joins its nearest such partner; chains (wall, gap, wall, gap, wall)
+/// become one wall.
+std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
+                                 const std::vector<DrawnLine>& glazing, double scale,
+                                 double max_gap_m) {
+  const std::size_t n = walls.size();
+  const auto touches_other = [&](const Vector2d& p, std::size_t self) {
+    for (std::size_t v = 0; v < n; ++v) {
+      if (v == self) continue;
+      const Vector2d e = walls[v].b - walls[v].a;
+      const double t = std::clamp((p - walls[v].a).dot(e) / e.squaredNorm(), 0.0, 1.0);
+      if ((walls[v].a + t * e - p).norm() <= 1e-4) return true;
+    }
+    return false;
+  };
+  // partner[2w + end] = 2v + end' of the nearest facing free end.
+  std::vector<long> partner(2 * n, -1);
+  std::vector<std::pair<double, std::pair<std::size_t, std::size_t>>> links;
+  for (std::size_t w = 0; w < n; ++w) {
+    const Vector2d dw = (walls[w].b - walls[w].a).normalized();
+    for (int end = 0; end < 2; ++end) {
+      const Vector2d p = end == 0 ? walls[w].a : walls[w].b;
+      const Vector2d out = end == 0 ? Vector2d(-dw) : dw;
+      if (touches_other(p, w)) continue;
+      for (std::size_t v = w + 1; v < n; ++v) {
+        if (walls[v].thickness_m.has_value() != walls[w].thickness_m.has_value() ||
+            (walls[v].thickness_m &&
+             std::abs(*walls[v].thickness_m - *walls[w].thickness_m) > 1e-3))
+          continue;
+        const Vector2d dv = (walls[v].b - walls[v].a).normalized();
+        if (std::abs(cross(dw, dv)) > 1e-6) continue;
+        for (int other = 0; other < 2; ++other) {
+          const Vector2d q = other == 0 ? walls[v].a : walls[v].b;
+          const double gap = (q - p).dot(out);
+          if (gap <= 1e-3 || gap > max_gap_m || std::abs(cross(out, q - p)) > 1e-3) continue;
+          // q must be v's end facing back towards p, and free.
+          const Vector2d v_out = other == 0 ? Vector2d(-dv) : dv;
+          if (v_out.dot(out) > -0.5 || touches_other(q, v)) continue;
+          links.push_back({gap, {2 * w + end, 2 * v + other}});
+        }
+      }
+    }
+  }
+  std::sort(links.begin(), links.end());
+  for (const auto& [gap, ends] : links)
+    if (partner[ends.first] < 0 && partner[ends.second] < 0) {
+      partner[ends.first] = static_cast<long>(ends.second);
+      partner[ends.second] = static_cast<long>(ends.first);
+    }
+  std::vector<FoundWall> out;
+  std::vector<char> used(n, 0);
+  for (std::size_t w = 0; w < n; ++w) {
+    if (used[w]) continue;
+    // The chain's start: walk from w out through its start end until an end has no
+    // partner (a closed ring of gaps stops where it began).
+    std::size_t first = w;
+    int first_end = 0;
+    {
+      std::vector<char> seen(n, 0);
+      seen[first] = 1;
+      for (;;) {
+        const long next = partner[2 * first + first_end];
+        if (next < 0 || seen[next / 2]) break;
+        first = static_cast<std::size_t>(next / 2);
+        first_end = 1 - static_cast<int>(next % 2);
+        seen[first] = 1;
+      }
+    }
+    // From `first`, its chain-free end `first_end` is where the merged wall starts.
+    FoundWall merged = walls[first];
+    if (first_end == 1) std::swap(merged.a, merged.b);
+    merged.gaps.clear();
+    std::size_t at = first;
+    int out_end = 1 - first_end;
+    used[at] = 1;
+    for (;;) {
+      const long next = partner[2 * at + out_end];
+      if (next < 0 || used[next / 2]) break;
+      const std::size_t v = static_cast<std::size_t>(next / 2);
+      const int in_end = static_cast<int>(next % 2);
+      const Vector2d p = out_end == 0 ? walls[at].a : walls[at].b;
+      const Vector2d q = in_end == 0 ? walls[v].a : walls[v].b;
+      const Vector2d far = in_end == 0 ? walls[v].b : walls[v].a;
+      FoundGap g;
+      g.offset_m = (p - merged.a).norm();
+      g.width_m = (q - p).norm();
+      g.source = "the gap between " + walls[at].source + " and " + walls[v].source;
+      const Vector2d d = (q - p) / g.width_m;
+      for (const DrawnLine& l : glazing) {
+        const Vector2d mid = 0.5 * (l.a + l.b) * scale;
+        const double s = (mid - p).dot(d);
+        const double across = std::abs(cross(d, mid - p));
+        if (s > 0.0 && s < g.width_m && across <= 0.5 * merged.thickness_m.value_or(0.0) + 0.3) {
+          g.window = true;
+          g.source += " (glazing: entity " + hex_handle(l.handle) + ")";
+          break;
+        }
+      }
+      merged.gaps.push_back(std::move(g));
+      merged.b = far;
+      merged.source += ", " + walls[v].source;
+      used[v] = 1;
+      at = v;
+      out_end = 1 - in_end;
+    }
+    out.push_back(std::move(merged));
+  }
+  return out;
 }
 
 /// The longest line dxflib reads (DL_DXF_MAXLINE); on a longer one it loops forever.
@@ -488,6 +610,12 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                                  (w.b - w.a).norm(), w.a.x(), w.a.y()));
   }
   found.swap(kept);
+  if (options.gap_openings && !found.empty()) {
+    std::vector<DrawnLine> glazing;
+    for (const DrawnLine& l : c.lines)
+      if (windows_on.count(lower(l.layer))) glazing.push_back(l);
+    found = join_gaps(std::move(found), glazing, scale, options.max_gap_m);
+  }
   if (found.empty()) {
     std::string asked;
     for (const std::string& name : options.wall_layers) asked += (asked.empty() ? "" : ", ") + name;
@@ -522,6 +650,17 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     if (s == e) continue;
     const auto id = static_cast<std::int64_t>(plan.walls.size()) + 1;
     plan.walls.push_back({id, s, e, w.thickness_m, {file, 0, w.source}});
+    for (const FoundGap& g : w.gaps) {
+      floors::Opening o;
+      o.id = printf_string("%s%zu", g.window ? "GW" : "GD", plan.openings.size() + 1);
+      o.wall_id = id;
+      o.offset_m = g.offset_m;
+      o.width_m = g.width_m;
+      o.sill_m = g.window ? options.window_sill_m : 0.0;
+      o.head_m = g.window ? options.window_head_m : options.door_head_m;
+      o.source = {file, 0, g.source};
+      plan.openings.push_back(o);
+    }
   }
   // Openings: each insert's block extent along its x axis, on the wall it lies on.
   // Vertex ids are 1..n in order (made above): a wall's ends without a search.
@@ -590,7 +729,8 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
 floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path& base,
                                   floors::LengthUnit unit) {
   MapReader map(plan, {"dxf", "wall_layers", "door_layers", "window_layers", "wall_lines", "unit",
-                       "max_thickness", "door_head", "window_sill", "window_head"});
+                       "max_thickness", "door_head", "window_sill", "window_head", "gap_openings",
+                       "max_gap"});
   map.reject_unknown();
   const Field file_field = map.required("dxf");
   const std::string name = file_field.as_string();
@@ -630,6 +770,9 @@ floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path
   const double per = floors::meters_per(unit);
   if (auto t = map.optional("max_thickness"))
     o.max_thickness_m = t->as_number_in(floors::limits::kWallThickness_m, unit_name, per);
+  if (auto g = map.optional("gap_openings")) o.gap_openings = g->as_bool();
+  if (auto g = map.optional("max_gap"))
+    o.max_gap_m = g->as_number_in(floors::limits::kOpeningWidth_m, unit_name, per);
   if (auto h = map.optional("door_head"))
     o.door_head_m = h->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
   if (auto h = map.optional("window_sill"))

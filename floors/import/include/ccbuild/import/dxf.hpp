@@ -7,8 +7,9 @@
 // are apart, over the stretch where both run; where walls meet (L, T, X) their middles are
 // extended to meet each other. Doors and windows are block INSERTs on their layers: the
 // block's extent along its x axis, as inserted, is the opening, placed on the wall it
-// lies on. What cannot be read (a curved segment, a face line with no partner, an opening
-// on no wall) is left out and said in `notes`, naming the entity's handle and where it is.
+// lies on; with gap_openings, so is a gap in a wall's line. What cannot be read (a curved segment,
+// a face line with no partner, an opening on no wall) is left out and said in `notes`, naming the
+// entity's handle and where it is.
 
 #include <filesystem>
 #include <optional>
@@ -28,7 +29,12 @@ struct DxfOptions {
   /// Metres per drawing unit; unset: from the drawing's $INSUNITS (refused when unitless).
   std::optional<double> metres_per_unit;
   double max_thickness_m = 0.6;  ///< face lines further apart are not one wall
-  double door_head_m = 2.1;      ///< doors: sill 0
+  /// A gap between two walls in line (same thickness, their free ends facing each other,
+  /// at most `max_gap_m` apart) is an opening: a window when a line on a window layer
+  /// lies in it (glazing), else a door; the two walls become one.
+  bool gap_openings = false;
+  double max_gap_m = 3.0;
+  double door_head_m = 2.1;  ///< doors: sill 0
   double window_sill_m = 0.9, window_head_m = 2.1;
 };
 
