@@ -28,6 +28,15 @@ double cross(const Vector2d& u, const Vector2d& v) {
   return u.x() * v.y() - u.y() * v.x();
 }
 
+/// Lengths rounded to the nanometre: what the unit conversions and placements leave
+/// beyond that is noise (0.9000000000000004), and plan files are read by people.
+double clean(double value_m) {
+  return std::round(value_m * 1e9) / 1e9;
+}
+Vector2d clean(const Vector2d& p) {
+  return {clean(p.x()), clean(p.y())};
+}
+
 /// Storeys at one elevation (within a millimetre) make one floor.
 struct Level {
   std::vector<const FoundStorey*> storeys;
@@ -148,7 +157,7 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
           return it->second;
       }
     const auto id = static_cast<std::int64_t>(plan.vertices.size()) + 1;
-    plan.vertices.push_back({id, p, {file, 0, "vertex " + std::to_string(id)}});
+    plan.vertices.push_back({id, clean(p), {file, 0, "vertex " + std::to_string(id)}});
     vertex_at[{gx, gy}] = id;
     return id;
   };
@@ -165,7 +174,7 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
     wall.id = static_cast<std::int64_t>(plan.walls.size()) + 1;
     wall.start_vertex = s;
     wall.end_vertex = e;
-    wall.thickness_m = p.wall->thickness_m;
+    wall.thickness_m = clean(p.wall->thickness_m);
     wall.global_id = p.wall->what.guid;
     wall.source = {file, 0, p.wall->what.describe()};
     plan.walls.push_back(wall);
@@ -221,10 +230,10 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
       floors::Opening opening;
       opening.id = o.label.empty() ? o.what.guid : o.label;
       opening.wall_id = on->id;
-      opening.offset_m = s0;
-      opening.width_m = s1 - s0;
-      opening.sill_m = sill;
-      opening.head_m = head;
+      opening.offset_m = clean(s0);
+      opening.width_m = clean(s1 - s0);
+      opening.sill_m = clean(sill);
+      opening.head_m = clean(head);
       opening.global_id = o.what.guid;
       opening.source = {file, 0, what};
       // Two openings sharing a stretch and a height band: the later is left out.
@@ -413,11 +422,11 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
     floors::Floor floor;
     floor.name = l.name;
     floor.index = static_cast<int>(k);
-    floor.height_m = l.height_m;
+    floor.height_m = clean(l.height_m);
     floor.base_elevation_m = base_m;
     floor.source = {file, 0, first.what.describe()};
     floor.plan = make_plan(l, file, options, out.notes, left_out);
-    base_m += l.height_m;
+    base_m += floor.height_m;
     if (floor.plan.walls.size() > floors::limits::kMaxWalls)
       throw InputError(file, 0, first.what.describe(),
                        printf_string("%zu walls on one floor; ccbuild takes at most %zu",
