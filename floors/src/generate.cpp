@@ -140,13 +140,12 @@ FloorPlan generate_plan(const PlanGeneratorOptions& options) {
                                window / 10.0,
                                0.9,
                                2.1,
-                               {},
                                {}});
     } else if (!exterior && length >= door + 4 && uniform(0, 1) < options.door_probability) {
       const int slack = length - door - 4;
       const int offset = 2 + static_cast<int>(rng() % (slack + 1));
       plan.openings.push_back(
-          {"D" + std::to_string(wall.id), wall.id, offset / 10.0, door / 10.0, 0.0, 2.1, {}, {}});
+          {"D" + std::to_string(wall.id), wall.id, offset / 10.0, door / 10.0, 0.0, 2.1, {}});
     }
   }
   return plan;

@@ -521,7 +521,7 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     const std::int64_t s = vertex(w.a), e = vertex(w.b);
     if (s == e) continue;
     const auto id = static_cast<std::int64_t>(plan.walls.size()) + 1;
-    plan.walls.push_back({id, s, e, w.thickness_m, {file, 0, w.source}, {}});
+    plan.walls.push_back({id, s, e, w.thickness_m, {file, 0, w.source}});
   }
   // Openings: each insert's block extent along its x axis, on the wall it lies on.
   // Vertex ids are 1..n in order (made above): a wall's ends without a search.

@@ -1,6 +1,6 @@
-// The IFC model read through IFC++: units, storeys, the walls contained in them with their
-// axes, thicknesses and heights, and the openings voiding them. The only file that sees
-// IFC++.
+// The IFC model read through IFC++: units, true north and map conversion, storeys and the
+// walls contained in them, their materials and layer sets (the walls' and openings'
+// geometry: ifc_geometry.cpp).
 
 #include <ifcpp/IFC4/include/IfcArbitraryClosedProfileDef.h>
 #include <ifcpp/IFC4/include/IfcArcIndex.h>
@@ -78,19 +78,10 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
-#include "ifc_internal.hpp"
+#include "ifc_reader.hpp"
 
 namespace ccbuild::import::ifc {
-namespace {
-
-using Eigen::Isometry3d;
-using Eigen::Matrix3d;
-using Eigen::Vector2d;
-using Eigen::Vector3d;
-template <class T, class U>
-std::shared_ptr<T> as(const std::shared_ptr<U>& p) {
-  return std::dynamic_pointer_cast<T>(p);
-}
+namespace detail {
 
 std::string utf8(const std::wstring& w) {
   std::string out;
@@ -128,71 +119,6 @@ Element element_of(const IfcRoot& e) {
   return {e.className(), e.m_GlobalId ? utf8(e.m_GlobalId->m_value) : std::string("(no GlobalId)"),
           label(e.m_Name)};
 }
-
-/// An element that cannot be read for a reason the model is to blame for (thrown inside,
-/// caught per element: the element is left out and said).
-struct Unusable {
-  std::string why;
-};
-
-/// The model is broken (a placement cycle): an input error for the whole file.
-struct Broken {
-  std::string why;
-};
-
-class Reader {
- public:
-  Reader(const std::string& file, const IfcOptions& options) : file_(file), options_(options) {}
-
-  ModelContents read(const std::shared_ptr<BuildingModel>& model);
-
- private:
-  double length(const std::shared_ptr<IfcLengthMeasure>& m) const {
-    if (!m) throw Unusable{"a length is missing"};
-    return m->m_value * unit_;
-  }
-  Vector3d point(const std::shared_ptr<IfcCartesianPoint>& p) const {
-    if (!p) throw Unusable{"a point is missing"};
-    Vector3d out = Vector3d::Zero();
-    for (std::size_t k = 0; k < p->m_Coordinates.size() && k < 3; ++k)
-      out[static_cast<int>(k)] = length(p->m_Coordinates[k]);
-    return out;
-  }
-  static Vector3d direction(const std::shared_ptr<IfcDirection>& d, const Vector3d& fallback) {
-    if (!d) return fallback;
-    Vector3d out = Vector3d::Zero();
-    for (std::size_t k = 0; k < d->m_DirectionRatios.size() && k < 3; ++k)
-      if (d->m_DirectionRatios[k]) out[static_cast<int>(k)] = d->m_DirectionRatios[k]->m_value;
-    if (out.norm() < 1e-12) throw Unusable{"a direction of length zero"};
-    return out.normalized();
-  }
-  Isometry3d axis_placement(const std::shared_ptr<IfcAxis2Placement>& p) const;
-  Isometry3d world(const std::shared_ptr<IfcObjectPlacement>& placement, const Element& who) const;
-  void read_units(const std::shared_ptr<IfcProject>& project, ModelContents& out);
-  void report_georeferencing(const std::shared_ptr<BuildingModel>& model, ModelContents& out);
-  std::vector<std::string> material_names(const IfcObjectDefinition& object) const;
-  std::optional<std::tuple<double, double>> layer_set(const IfcObjectDefinition& object) const;
-  void read_wall(const std::shared_ptr<IfcWall>& wall, const Element& parent, double z_shift_m,
-                 FoundStorey& storey, ModelContents& out, int depth);
-  void read_openings(const IfcElement& wall, const Isometry3d& wall_world, double z_shift_m,
-                     FoundWall& into, ModelContents& out);
-
-  struct Solid {
-    std::vector<Vector2d> profile;  ///< closed polygon in the solid's Position frame
-    bool curved = false;            ///< the profile approximated from a curve
-    Isometry3d position = Isometry3d::Identity();
-    Vector3d extrusion = Vector3d::UnitZ();  ///< in the Position frame, as long as the depth
-    bool clipped = false;
-  };
-  std::optional<Solid> solid_of(const std::shared_ptr<IfcRepresentationItem>& item,
-                                int depth) const;
-  std::vector<Vector2d> curve_points(const std::shared_ptr<IfcCurve>& curve, bool& curved,
-                                     int depth) const;
-
-  std::string file_;
-  const IfcOptions& options_;
-  double unit_ = 1.0;
-};
 
 Isometry3d Reader::axis_placement(const std::shared_ptr<IfcAxis2Placement>& p) const {
   Isometry3d t = Isometry3d::Identity();
@@ -378,335 +304,6 @@ std::optional<std::tuple<double, double>> Reader::layer_set(
   return std::nullopt;
 }
 
-std::vector<Vector2d> Reader::curve_points(const std::shared_ptr<IfcCurve>& curve, bool& curved,
-                                           int depth) const {
-  std::vector<Vector2d> out;
-  if (depth > 8) throw Unusable{"its curves nest too deep"};
-  if (auto poly = as<IfcPolyline>(curve)) {
-    for (const auto& p : poly->m_Points) out.push_back(point(p).head<2>());
-  } else if (auto indexed = as<IfcIndexedPolyCurve>(curve)) {
-    for (const auto& s : indexed->m_Segments)
-      if (as<IfcArcIndex>(s)) curved = true;
-    if (auto list = as<IfcCartesianPointList2D>(indexed->m_Points)) {
-      for (const auto& c : list->m_CoordList)
-        if (c.size() >= 2 && c[0] && c[1])
-          out.emplace_back(c[0]->m_value * unit_, c[1]->m_value * unit_);
-    } else if (auto list3 = as<IfcCartesianPointList3D>(indexed->m_Points)) {
-      for (const auto& c : list3->m_CoordList)
-        if (c.size() >= 2 && c[0] && c[1])
-          out.emplace_back(c[0]->m_value * unit_, c[1]->m_value * unit_);
-    }
-  } else if (auto composite = as<IfcCompositeCurve>(curve)) {
-    for (const auto& segment : composite->m_Segments) {
-      if (!segment) continue;
-      auto pts = curve_points(segment->m_ParentCurve, curved, depth + 1);
-      if (segment->m_SameSense && !segment->m_SameSense->m_value)
-        std::reverse(pts.begin(), pts.end());
-      for (const auto& p : pts)
-        if (out.empty() || (out.back() - p).norm() > 1e-9) out.push_back(p);
-    }
-  } else if (auto trimmed = as<IfcTrimmedCurve>(curve)) {
-    if (as<IfcConic>(trimmed->m_BasisCurve)) {
-      curved = true;
-      return out;
-    }
-    if (as<IfcLine>(trimmed->m_BasisCurve)) {
-      for (const auto* trim : {&trimmed->m_Trim1, &trimmed->m_Trim2})
-        for (const auto& t : *trim)
-          if (auto p = as<IfcCartesianPoint>(t)) {
-            out.push_back(point(p).head<2>());
-            break;
-          }
-      if (out.size() != 2) throw Unusable{"its axis is a line trimmed by parameters, not points"};
-      return out;
-    }
-    throw Unusable{std::string("its axis is a trimmed ") +
-                   (trimmed->m_BasisCurve ? trimmed->m_BasisCurve->className() : "nothing")};
-  } else if (as<IfcConic>(curve)) {
-    curved = true;
-  } else if (curve) {
-    throw Unusable{std::string("a curve ccbuild does not read (") + curve->className() + ")"};
-  }
-  return out;
-}
-
-std::optional<Reader::Solid> Reader::solid_of(const std::shared_ptr<IfcRepresentationItem>& item,
-                                              int depth) const {
-  if (depth > 16) return std::nullopt;
-  if (auto boolean = as<IfcBooleanResult>(item)) {
-    auto first = solid_of(as<IfcRepresentationItem>(boolean->m_FirstOperand), depth + 1);
-    if (first) first->clipped = true;
-    return first;
-  }
-  auto extruded = as<IfcExtrudedAreaSolid>(item);
-  if (!extruded || !extruded->m_SweptArea) return std::nullopt;
-  Solid s;
-  if (extruded->m_Position) s.position = axis_placement(extruded->m_Position);
-  if (!extruded->m_Depth) return std::nullopt;
-  s.extrusion = direction(extruded->m_ExtrudedDirection, Vector3d::UnitZ()) *
-                extruded->m_Depth->m_value * unit_;
-  const auto& area = extruded->m_SweptArea;
-  if (auto rect = as<IfcRectangleProfileDef>(area)) {
-    if (!rect->m_XDim || !rect->m_YDim) return std::nullopt;
-    const double hx = 0.5 * rect->m_XDim->m_value * unit_, hy = 0.5 * rect->m_YDim->m_value * unit_;
-    Isometry3d p = Isometry3d::Identity();
-    if (rect->m_Position) p = axis_placement(rect->m_Position);
-    for (const Vector2d& c :
-         {Vector2d(-hx, -hy), Vector2d(hx, -hy), Vector2d(hx, hy), Vector2d(-hx, hy)})
-      s.profile.push_back((p * Vector3d(c.x(), c.y(), 0.0)).head<2>());
-  } else if (auto circle = as<IfcCircleProfileDef>(area)) {
-    if (!circle->m_Radius) return std::nullopt;
-    const double r = circle->m_Radius->m_value * unit_;
-    Isometry3d p = Isometry3d::Identity();
-    if (circle->m_Position) p = axis_placement(circle->m_Position);
-    for (int k = 0; k < 16; ++k) {
-      const double a = 2.0 * M_PI * k / 16.0;
-      s.profile.push_back((p * Vector3d(r * std::cos(a), r * std::sin(a), 0.0)).head<2>());
-    }
-    s.curved = true;
-  } else if (auto arbitrary = as<IfcArbitraryClosedProfileDef>(area)) {
-    s.profile = curve_points(arbitrary->m_OuterCurve, s.curved, 0);
-    if (s.profile.size() > 1 && (s.profile.front() - s.profile.back()).norm() < 1e-9)
-      s.profile.pop_back();
-  } else {
-    return std::nullopt;
-  }
-  if (s.profile.size() < 3) return std::nullopt;
-  return s;
-}
-
-void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_world*/,
-                           double z_shift_m, FoundWall& into, ModelContents& out) {
-  for (const auto& weak : wall.m_HasOpenings_inverse) {
-    auto rel = weak.lock();
-    if (!rel || !rel->m_RelatedOpeningElement) continue;
-    const auto& opening = rel->m_RelatedOpeningElement;
-    FoundOpening found;
-    found.what = element_of(*opening);
-    found.label = found.what.name;
-    if (auto o = as<IfcOpeningElement>(opening)) {
-      if (o->m_PredefinedType &&
-          o->m_PredefinedType->m_enum == IfcOpeningElementTypeEnum::ENUM_RECESS) {
-        out.notes.push_back(found.what.describe() + " in " + into.what.describe() +
-                            ": a recess, not through the wall; left out");
-        ++out.left_out;
-        continue;
-      }
-      for (const auto& fills : o->m_HasFillings_inverse)
-        if (auto f = fills.lock(); f && f->m_RelatedBuildingElement) {
-          const Element filler = element_of(*f->m_RelatedBuildingElement);
-          found.filled_by = filler.describe();
-          if (!filler.name.empty()) found.label = filler.name;
-          break;
-        }
-    }
-    try {
-      const Isometry3d place = world(opening->m_ObjectPlacement, found.what);
-      if (opening->m_Representation)
-        for (const auto& rep : opening->m_Representation->m_Representations) {
-          if (!rep) continue;
-          for (const auto& item : rep->m_Items) {
-            const auto solid = solid_of(item, 0);
-            if (!solid) continue;
-            for (const Vector2d& p : solid->profile) {
-              const Vector3d base = place * (solid->position * Vector3d(p.x(), p.y(), 0.0));
-              const Vector3d top =
-                  base + place.linear() * (solid->position.linear() * solid->extrusion);
-              for (Vector3d c : {base, top}) {
-                c.z() += z_shift_m;
-                found.corners_m.push_back(c);
-              }
-            }
-          }
-        }
-    } catch (const Unusable& u) {
-      found.corners_m.clear();
-      out.notes.push_back(found.what.describe() + " in " + into.what.describe() + ": " + u.why +
-                          "; left out");
-      ++out.left_out;
-      continue;
-    }
-    if (found.corners_m.empty()) {
-      out.notes.push_back(found.what.describe() + " in " + into.what.describe() +
-                          ": no extruded body to measure it by; left out");
-      ++out.left_out;
-      continue;
-    }
-    into.openings.push_back(std::move(found));
-  }
-}
-
-void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& parent,
-                       double z_shift_m, FoundStorey& storey, ModelContents& out, int depth) {
-  FoundWall found;
-  found.what = element_of(*wall);
-  const std::string who =
-      found.what.describe() + (parent.guid.empty() ? "" : " (part of " + parent.describe() + ")");
-  const auto skip = [&](const std::string& why) {
-    out.notes.push_back(who + ": " + why + "; left out");
-    ++out.left_out;
-  };
-  // A wall made of parts (IfcRelAggregates) without geometry of its own: its parts.
-  if (!wall->m_Representation && depth < 4) {
-    bool parts = false;
-    for (const auto& weak : wall->m_IsDecomposedBy_inverse)
-      if (auto rel = weak.lock())
-        for (const auto& part : rel->m_RelatedObjects)
-          if (auto w = as<IfcWall>(part)) {
-            parts = true;
-            read_wall(w, found.what, z_shift_m, storey, out, depth + 1);
-          }
-    if (parts) return;
-  }
-  try {
-    const Isometry3d place = world(wall->m_ObjectPlacement, found.what);
-    if (std::abs(place.linear().col(2).z()) < 1.0 - 1e-6)
-      return skip(
-          "its placement is tilted (its z axis is not vertical): a sloped wall ccbuild "
-          "cannot print");
-    std::vector<Vector2d> axis;
-    bool curved = false;
-    std::optional<Solid> body;
-    if (wall->m_Representation)
-      for (const auto& rep : wall->m_Representation->m_Representations) {
-        if (!rep) continue;
-        const std::string id = lower(label(rep->m_RepresentationIdentifier));
-        for (const auto& item : rep->m_Items) {
-          if (id == "axis" && axis.empty() && !curved) {
-            if (auto c = as<IfcCurve>(item)) axis = curve_points(c, curved, 0);
-          } else if (id != "axis" && !body) {
-            body = solid_of(item, 0);
-          }
-        }
-      }
-    if (curved)
-      return skip(
-          "its axis is curved (an arc); ccbuild prints straight walls: model it as "
-          "straight pieces to print it");
-    if (body && body->curved)
-      return skip("its body's footprint is curved; ccbuild prints straight walls");
-    // The body in the wall's frame: its footprint corners, its extent in z.
-    std::vector<Vector2d> footprint;
-    if (body) {
-      const Vector3d along = body->position.linear() * body->extrusion;
-      if (std::abs(along.normalized().z()) < 1.0 - 1e-6)
-        return skip(
-            "its body is extruded at a slant or sideways: a sloped wall ccbuild cannot "
-            "print");
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Vector2d& p : body->profile) {
-        const Vector3d base = body->position * Vector3d(p.x(), p.y(), 0.0);
-        if (std::abs(body->position.linear().col(2).z()) < 1.0 - 1e-6)
-          return skip(
-              "its body's profile is not horizontal: ccbuild reads walls extruded "
-              "upwards");
-        footprint.push_back(base.head<2>());
-        lo = std::min({lo, base.z(), base.z() + along.z()});
-        hi = std::max({hi, base.z(), base.z() + along.z()});
-      }
-      const double z0 = (place * Vector3d(0, 0, 0)).z() + z_shift_m;
-      found.bottom_m = z0 + lo;
-      found.top_m = z0 + hi;
-      found.clipped = body->clipped;
-    }
-    const auto layers = layer_set(*wall);
-    // The centreline in the wall's frame.
-    std::vector<std::pair<Vector2d, Vector2d>> local;
-    if (axis.size() >= 2) {
-      // Straight runs of the polyline.
-      std::vector<Vector2d> corners{axis.front()};
-      for (std::size_t k = 1; k + 1 < axis.size(); ++k) {
-        const Vector2d a = corners.back(), b = axis[k], c = axis[k + 1];
-        const Vector2d d = (c - a).normalized();
-        if (std::abs(d.x() * (b - a).y() - d.y() * (b - a).x()) > options_.straightness_tolerance_m)
-          corners.push_back(b);
-      }
-      corners.push_back(axis.back());
-      for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
-        const Vector2d a = corners[k], b = corners[k + 1];
-        if ((b - a).norm() < 1e-9) continue;
-        const Vector2d d = (b - a).normalized(), left(-d.y(), d.x());
-        double thickness = 0.0, offset = 0.0;
-        if (layers) {
-          std::tie(thickness, offset) = *layers;
-        } else if (!footprint.empty()) {
-          double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-          for (const Vector2d& p : footprint) {
-            lo = std::min(lo, left.dot(p - a));
-            hi = std::max(hi, left.dot(p - a));
-          }
-          thickness = hi - lo;
-          offset = 0.5 * (lo + hi);
-        } else {
-          return skip("neither a material layer set nor a body gives its thickness");
-        }
-        found.thickness_m = thickness;
-        local.emplace_back(a + offset * left, b + offset * left);
-      }
-    } else if (!footprint.empty()) {
-      // The footprint's longest edge gives the direction; its faces are the two lines
-      // every corner lies on.
-      std::size_t longest = 0;
-      for (std::size_t k = 0; k < footprint.size(); ++k)
-        if ((footprint[(k + 1) % footprint.size()] - footprint[k]).norm() >
-            (footprint[(longest + 1) % footprint.size()] - footprint[longest]).norm())
-          longest = k;
-      const Vector2d o = footprint[longest];
-      const Vector2d d = (footprint[(longest + 1) % footprint.size()] - o).normalized();
-      const Vector2d left(-d.y(), d.x());
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Vector2d& p : footprint) {
-        lo = std::min(lo, left.dot(p - o));
-        hi = std::max(hi, left.dot(p - o));
-      }
-      const double tol = std::max(options_.straightness_tolerance_m, 0.01 * (hi - lo));
-      double a_min[2] = {std::numeric_limits<double>::infinity(),
-                         std::numeric_limits<double>::infinity()};
-      double a_max[2] = {-a_min[0], -a_min[0]};
-      for (const Vector2d& p : footprint) {
-        const double y = left.dot(p - o), x = d.dot(p - o);
-        const int face = std::abs(y - lo) <= tol ? 0 : std::abs(y - hi) <= tol ? 1 : -1;
-        if (face < 0)
-          return skip(
-              printf_string("its body's footprint (%zu corners, no axis) is not one "
-                            "straight wall",
-                            footprint.size()));
-        a_min[face] = std::min(a_min[face], x);
-        a_max[face] = std::max(a_max[face], x);
-      }
-      if (!std::isfinite(a_min[0]) || !std::isfinite(a_min[1]))
-        return skip("its body's footprint has no width");
-      const double mid = 0.5 * (lo + hi);
-      const double x0 = 0.5 * (a_min[0] + a_min[1]), x1 = 0.5 * (a_max[0] + a_max[1]);
-      found.thickness_m = layers ? std::get<0>(*layers) : hi - lo;
-      local.emplace_back(o + x0 * d + mid * left, o + x1 * d + mid * left);
-    } else {
-      return skip("no usable geometry: neither an axis nor an extruded body ccbuild reads");
-    }
-    if (!floors::limits::kWallThickness_m.contains(found.thickness_m))
-      return skip(printf_string("its thickness %.4f m is not one ccbuild takes (%s)",
-                                found.thickness_m,
-                                floors::limits::kWallThickness_m.describe("m").c_str()));
-    for (const auto& [a, b] : local) {
-      const Vector3d wa = place * Vector3d(a.x(), a.y(), 0.0),
-                     wb = place * Vector3d(b.x(), b.y(), 0.0);
-      for (const Vector3d& p : {wa, wb})
-        if (!p.allFinite() || !floors::limits::kCoordinate_m.contains(p.x()) ||
-            !floors::limits::kCoordinate_m.contains(p.y()))
-          throw InputError(
-              file_, 0, found.what.describe(),
-              printf_string("a point (%g, %g) m that is not a coordinate ccbuild "
-                            "takes (%s)",
-                            p.x(), p.y(), floors::limits::kCoordinate_m.describe("m").c_str()));
-      found.pieces.emplace_back(wa.head<2>(), wb.head<2>());
-    }
-    read_openings(*wall, place, z_shift_m, found, out);
-  } catch (const Unusable& u) {
-    return skip(u.why);
-  }
-  storey.walls.push_back(std::move(found));
-}
-
 ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
   ModelContents out;
   std::shared_ptr<IfcProject> project;
@@ -804,11 +401,15 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
   return out;
 }
 
+}  // namespace detail
+
+namespace {
+
 void on_message(void* sink, shared_ptr<StatusCallback::Message> m) {
   if (!m) return;
   if (m->m_message_type == StatusCallback::MESSAGE_TYPE_ERROR ||
       m->m_message_type == StatusCallback::MESSAGE_TYPE_WARNING) {
-    std::string text = utf8(m->m_message_text);
+    std::string text = detail::utf8(m->m_message_text);
     while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
     static_cast<std::vector<std::pair<bool, std::string>>*>(sink)->emplace_back(
         m->m_message_type == StatusCallback::MESSAGE_TYPE_ERROR, text);
@@ -836,9 +437,9 @@ ModelContents read_model(std::string text, const std::string& file, const IfcOpt
   }
   ModelContents out;
   try {
-    Reader r(file, options);
+    detail::Reader r(file, options);
     out = r.read(model);
-  } catch (const Broken& b) {
+  } catch (const detail::Broken& b) {
     throw InputError(file, 0, "", b.why);
   }
   // What IFC++ said while reading (a reference to an entity the file does not have, say):

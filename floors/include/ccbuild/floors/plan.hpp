@@ -39,7 +39,7 @@ struct Wall {
   SourceRef source;
   /// The IFC GlobalId of the element it was imported from (`guid:` in plan files); empty
   /// for walls not imported from an IFC model.
-  std::string global_id;
+  std::string global_id{};
 };
 
 /// A gap in a wall: absent from every layer whose mid-height lies in [sill, head).
@@ -54,7 +54,7 @@ struct Opening {
   SourceRef source;
   /// The IFC GlobalId of the opening element it was imported from (`guid:`); empty
   /// otherwise.
-  std::string global_id;
+  std::string global_id{};
 };
 
 struct FloorPlan {
