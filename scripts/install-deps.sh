@@ -11,7 +11,7 @@ packages=(
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev libode-dev
   liburdfdom-dev libfcl-dev liblemon-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
-  libdxflib-dev
+  libdxflib-dev libifcplusplus-dev
   libsqlite3-dev libgtest-dev libgmock-dev libbenchmark-dev
   iproute2 util-linux
   python3

@@ -58,7 +58,8 @@ bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m) {
     const auto& v = b.walls[i];
     if (u.id != v.id || u.start_vertex != v.start_vertex || u.end_vertex != v.end_vertex ||
         u.thickness_m.has_value() != v.thickness_m.has_value() ||
-        (u.thickness_m && !near(*u.thickness_m, *v.thickness_m, tolerance_m)))
+        (u.thickness_m && !near(*u.thickness_m, *v.thickness_m, tolerance_m)) ||
+        u.global_id != v.global_id)
       return false;
   }
   for (std::size_t i = 0; i < a.openings.size(); ++i) {
@@ -66,7 +67,7 @@ bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m) {
     const auto& v = b.openings[i];
     if (u.id != v.id || u.wall_id != v.wall_id || !near(u.offset_m, v.offset_m, tolerance_m) ||
         !near(u.width_m, v.width_m, tolerance_m) || !near(u.sill_m, v.sill_m, tolerance_m) ||
-        !near(u.head_m, v.head_m, tolerance_m))
+        !near(u.head_m, v.head_m, tolerance_m) || u.global_id != v.global_id)
       return false;
   }
   return true;

@@ -40,7 +40,7 @@ SourceRef source_of(const Field& field) {
 }
 
 Opening read_opening(const Field& field, LengthUnit unit) {
-  MapReader map(field, {"id", "kind", "wall", "offset", "width", "sill", "head"});
+  MapReader map(field, {"id", "kind", "wall", "offset", "width", "sill", "head", "guid"});
   map.reject_unknown();
   Opening opening;
   opening.source = source_of(field);
@@ -62,6 +62,7 @@ Opening read_opening(const Field& field, LengthUnit unit) {
     map.required("sill");
   }
   opening.head_m = read_length(map.required("head"), limits::kOpeningHeight_m, unit);
+  if (auto guid = map.optional("guid")) opening.global_id = guid->as_string();
   return opening;
 }
 
@@ -91,7 +92,7 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
   const auto wall_items = walls.items();
   check_count(walls, wall_items.size(), limits::kMaxWalls, "walls");
   for (const Field& item : wall_items) {
-    MapReader w(item, {"id", "start", "end", "thickness"});
+    MapReader w(item, {"id", "start", "end", "thickness", "guid"});
     w.reject_unknown();
     Wall wall;
     wall.source = source_of(item);
@@ -100,6 +101,7 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
     wall.end_vertex = read_id(w.required("end"));
     if (auto t = w.optional("thickness"))
       wall.thickness_m = read_length(*t, limits::kWallThickness_m, unit);
+    if (auto guid = w.optional("guid")) wall.global_id = guid->as_string();
     plan.walls.push_back(wall);
   }
   if (auto openings = map.optional("openings")) {

@@ -8,6 +8,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/import/dxf.hpp"
+#include "ccbuild/import/ifc.hpp"
 
 namespace ccbuild::orchestrator {
 namespace fs = std::filesystem;
@@ -57,15 +58,23 @@ void place(Project& project, bool centre) {
 Project open_project(const fs::path& file, const ProjectOptions& options) {
   Project project;
   project.file = file;
-  floors::BuildingOrPlan input =
-      floors::load_building_or_plan(file, options.plan_unit, import::read_drawing);
-  project.is_building = input.is_building;
-  if (input.is_building) {
-    project.building = std::move(input.building);
+  if (import::is_ifc_path(file)) {
+    // An IFC model is a building; its profiles are the flags' or the bundled ones.
+    import::IfcOptions ifc;
+    ifc.layer_height_m = options.plan_layer_height_m;
+    project.is_building = true;
+    project.building = import::read_ifc_building(file, ifc).building;
   } else {
-    project.building =
-        floors::building_from_plan(std::move(input.plan), file.stem().string(),
-                                   options.plan_floor_height_m, options.plan_layer_height_m);
+    floors::BuildingOrPlan input =
+        floors::load_building_or_plan(file, options.plan_unit, import::read_drawing);
+    project.is_building = input.is_building;
+    if (input.is_building) {
+      project.building = std::move(input.building);
+    } else {
+      project.building =
+          floors::building_from_plan(std::move(input.plan), file.stem().string(),
+                                     options.plan_floor_height_m, options.plan_layer_height_m);
+    }
   }
   const floors::Building& b = project.building;
 
@@ -75,7 +84,8 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
                         const char* flag) {
     if (!given.empty())
       return std::pair<fs::path, std::string>(given, std::string("(") + flag + ")");
-    if (project.is_building) return std::pair<fs::path, std::string>(buildings, "(the building's)");
+    if (project.is_building && !buildings.empty())
+      return std::pair<fs::path, std::string>(buildings, "(the building's)");
     return std::pair<fs::path, std::string>(bundled(bundled_file), "(bundled default)");
   };
   std::error_code ec;

@@ -1,5 +1,6 @@
-// ccbuild import DRAWING.dxf -o building.yaml: a DXF floor plan as a building a user can
-// review and edit: the building file, and the plan in ccbuild's own YAML beside it.
+// ccbuild import DRAWING.dxf|MODEL.ifc -o building.yaml: a DXF floor plan or an IFC model as
+// a building a user can review and edit: the building file, and its plans in ccbuild's own
+// YAML beside it.
 
 #include <cstdlib>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
 #include "ccbuild/import/dxf.hpp"
+#include "ccbuild/import/ifc.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -27,6 +29,8 @@ struct ImportOptions {
   double floor_height_m = 3.0;
   double layer_height_m = 0.1;
   std::string machine, material;
+  std::vector<std::string> wall_types, excluded_materials;  ///< IFC; empty: the defaults
+  bool no_material_filter = false;
   bool force = false;
 };
 
@@ -50,10 +54,11 @@ std::string quoted(const std::string& text) {
   return out + "\"";
 }
 
-std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing) {
+std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
+                      const std::string& what = "the drawing's entity") {
   std::string out = "# Imported by `ccbuild import` from " + drawing +
-                    " (every wall and opening names\n# the drawing's entity it came from).\n"
-                    "units: m\nvertices:\n";
+                    " (every wall and opening names\n# " + what +
+                    " it came from).\nunits: m\nvertices:\n";
   for (const auto& v : plan.vertices)
     out += printf_string("  - {id: %lld, x: %s, y: %s}\n", static_cast<long long>(v.id),
                          exact(v.position_m.x()).c_str(), exact(v.position_m.y()).c_str());
@@ -63,15 +68,18 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing)
         printf_string("  - {id: %lld, start: %lld, end: %lld", static_cast<long long>(w.id),
                       static_cast<long long>(w.start_vertex), static_cast<long long>(w.end_vertex));
     if (w.thickness_m) out += ", thickness: " + exact(*w.thickness_m);
+    if (!w.global_id.empty()) out += ", guid: " + quoted(w.global_id);
     out += "}  # " + w.source.path + "\n";
   }
   if (!plan.openings.empty()) out += "openings:\n";
   for (const auto& o : plan.openings)
-    out +=
-        printf_string("  - {id: %s, wall: %lld, offset: %s, width: %s, sill: %s, head: %s}  # %s\n",
-                      quoted(o.id).c_str(), static_cast<long long>(o.wall_id),
-                      exact(o.offset_m).c_str(), exact(o.width_m).c_str(), exact(o.sill_m).c_str(),
-                      exact(o.head_m).c_str(), o.source.path.c_str());
+    out += printf_string(
+        "  - {id: %s, wall: %lld, offset: %s, width: %s, sill: %s, head: %s%s}  # "
+        "%s\n",
+        quoted(o.id).c_str(), static_cast<long long>(o.wall_id), exact(o.offset_m).c_str(),
+        exact(o.width_m).c_str(), exact(o.sill_m).c_str(), exact(o.head_m).c_str(),
+        o.global_id.empty() ? "" : (", guid: " + quoted(o.global_id)).c_str(),
+        o.source.path.c_str());
   return out;
 }
 
@@ -81,6 +89,68 @@ std::string relative_to(const fs::path& target, const fs::path& folder) {
       .lexically_normal()
       .lexically_relative(fs::absolute(folder).lexically_normal())
       .generic_string();
+}
+
+/// An IFC model: the building file, and one plan file per distinct storey plan beside it.
+void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::path& material) {
+  const fs::path out(o.output);
+  const fs::path folder = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  import::IfcOptions options;
+  if (!o.wall_types.empty()) options.wall_types = o.wall_types;
+  if (!o.excluded_materials.empty()) options.excluded_materials = o.excluded_materials;
+  if (o.no_material_filter) options.excluded_materials.clear();
+  options.layer_height_m = o.layer_height_m;
+  const import::IfcImport read = import::read_ifc_building(o.drawing, options);
+  const floors::Building& b = read.building;
+  // Floors with the same plan share its file.
+  std::vector<std::size_t> plan_of(b.floors.size());
+  std::vector<std::size_t> distinct;  // floor index of each plan file's first floor
+  for (std::size_t k = 0; k < b.floors.size(); ++k) {
+    plan_of[k] = distinct.size();
+    for (std::size_t d = 0; d < distinct.size(); ++d)
+      if (floors::same_model(b.floors[distinct[d]].plan, b.floors[k].plan, 0.0)) {
+        plan_of[k] = d;
+        break;
+      }
+    if (plan_of[k] == distinct.size()) distinct.push_back(k);
+  }
+  std::vector<fs::path> plan_paths;
+  for (std::size_t d = 0; d < distinct.size(); ++d)
+    plan_paths.push_back(folder / (out.stem().string() + printf_string(".%zu.plan.yaml", d + 1)));
+  OutputClaims outputs({o.drawing, machine, material});
+  outputs.claim_file("--output", out, o.force);
+  for (const auto& p : plan_paths) outputs.claim_file("--output (its plans)", p, o.force);
+
+  std::string building = "# Imported by `ccbuild import` from " + o.drawing + " (" + read.schema +
+                         "): review it, then `ccbuild validate` it.\n# What the import left out "
+                         "or ignored:\n";
+  for (const auto& note : read.notes) building += "#   " + note + "\n";
+  building += "name: " + quoted(b.name) + "\nunits: m\nlayer_height: " + exact(b.layer_height_m) +
+              "\nmaterial: " + quoted(relative_to(material, folder)) +
+              "\nmachine: " + quoted(relative_to(machine, folder)) + "\nfloors:\n";
+  for (std::size_t k = 0; k < b.floors.size(); ++k)
+    building += printf_string("  - {name: %s, height: %s, plan: %s}  # %s\n",
+                              quoted(b.floors[k].name).c_str(), exact(b.floors[k].height_m).c_str(),
+                              quoted(plan_paths[plan_of[k]].filename().string()).c_str(),
+                              b.floors[k].source.path.c_str());
+  for (std::size_t d = 0; d < distinct.size(); ++d)
+    write_file_atomically(
+        plan_paths[d],
+        plan_yaml(b.floors[distinct[d]].plan, o.drawing, "the IFC element (type, GlobalId, name)"),
+        o.force, {o.drawing});
+  write_file_atomically(out, building, o.force, {o.drawing});
+
+  for (const auto& note : read.notes) std::cerr << "import: note: " << note << "\n";
+  std::size_t walls = 0, openings = 0;
+  for (const auto& f : b.floors) {
+    walls += f.plan.walls.size();
+    openings += f.plan.openings.size();
+  }
+  std::cout << printf_string(
+      "%s: %zu floors, %zu walls, %zu openings (%s)\nwritten: %s and %zu "
+      "plan file%s beside it\n",
+      o.drawing.c_str(), b.floors.size(), walls, openings, read.schema.c_str(),
+      out.string().c_str(), distinct.size(), distinct.size() == 1 ? "" : "s");
 }
 
 void run_import(const ImportOptions& o, int& exit_code) {
@@ -95,6 +165,24 @@ void run_import(const ImportOptions& o, int& exit_code) {
   const fs::path material = o.material.empty()
                                 ? fs::path(CCBUILD_CONFIG_DIR) / "materials/standard-mix.yaml"
                                 : fs::path(o.material);
+  if (import::is_ifc_path(o.drawing)) {
+    for (const auto& [given, flag] :
+         {std::pair{!o.wall_layers.empty(), "--wall-layers"},
+          std::pair{!o.door_layers.empty(), "--door-layers"},
+          std::pair{!o.window_layers.empty(), "--window-layers"},
+          std::pair{!o.unit.empty(), "--unit"}, std::pair{o.floors != 1, "--floors"}})
+      if (given)
+        throw InputError("", 0, flag,
+                         "is for DXF drawings; an IFC model says its storeys, walls and unit");
+    run_ifc_import(o, machine, material);
+    exit_code = kExitOk;
+    return;
+  }
+  if (!o.wall_types.empty() || !o.excluded_materials.empty() || o.no_material_filter)
+    throw InputError("", 0, "--wall-types",
+                     "--wall-types and --exclude-materials are for IFC models");
+  if (o.wall_layers.empty())
+    throw InputError("", 0, "--wall-layers", "a DXF drawing needs --wall-layers (its wall layers)");
   OutputClaims outputs({o.drawing, machine, material});
   outputs.claim_file("--output", out, o.force);
   outputs.claim_file("--output (its plan)", plan_path, o.force);
@@ -141,25 +229,49 @@ void add_import_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ImportOptions>();
   CLI::App* command = app.add_subcommand(
       "import",
-      "Turn a DXF floor plan into a building you can review, edit and schedule: the building "
-      "file (-o) and, beside it, the plan in ccbuild's own YAML (<name>.plan.yaml), every wall "
-      "and opening commented with the drawing's entity it came from. The same plan repeats on "
-      "every floor (--floors). Walls drawn as two face lines become one wall along their "
-      "middle, as thick as they are apart (--wall-lines centrelines for plans drawn as "
-      "centrelines); doors and windows are block inserts on their layers. What cannot be read "
-      "is said on stderr, naming the entity (docs/formats.md, \"DXF drawings\"). A building "
-      "file can also name the drawing directly (plan: {dxf: ...}); both give the same plan.\n"
+      "Turn an IFC model or a DXF floor plan into a building you can review, edit and "
+      "schedule: the building file (-o) and, beside it, its plans in ccbuild's own YAML, every "
+      "wall and opening commented with the element it came from.\n"
+      "IFC (IFC4, IFC2X3; docs/formats.md, \"IFC models\"): every storey with walls is a floor "
+      "(height: to the next storey), one plan file per distinct storey plan "
+      "(<name>.1.plan.yaml, ...); walls of the types asked for (--wall-types) whose materials are "
+      "printable (--exclude-materials) with their axis, thickness and openings; each keeps its "
+      "GlobalId (guid:). Curtain walls, curved or sloped walls and what else cannot be printed is "
+      "said on stderr, naming the element's GlobalId; nothing is guessed. Every command also "
+      "takes the .ifc directly, with the default filters; both routes give the same schedule.\n"
+      "DXF: the same plan repeats on every floor (--floors), in <name>.plan.yaml. Walls drawn as "
+      "two face lines become one wall along their middle, as thick as they are apart "
+      "(--wall-lines centrelines for plans drawn as centrelines); doors and windows are block "
+      "inserts on their layers. A building file can also name the drawing directly (plan: {dxf: "
+      "...}); both give the same plan.\n"
       "Examples:\n"
+      "  ccbuild import house.ifc -o house.yaml\n"
+      "  ccbuild import house.ifc --wall-types IfcWall,IfcWallStandardCase,IfcWallElementedCase "
+      "--exclude-materials glass -o house.yaml\n"
       "  ccbuild import ground.dxf --wall-layers A-WALL --door-layers A-DOOR -o house.yaml\n"
       "  ccbuild import plan.dxf --wall-layers WALLS --wall-lines centrelines --unit mm "
       "--floors 3 --floor-height 2.8 -o block.yaml");
-  command->add_option("DRAWING", o->drawing, "The DXF drawing")->required();
+  command->add_option("DRAWING", o->drawing, "The IFC model (.ifc) or DXF drawing")->required();
   command->add_option("-o,--output", o->output, "The building file to write (YAML)")
       ->required()
       ->check(output_path());
-  command->add_option("--wall-layers", o->wall_layers, "Layers holding the walls (any case)")
-      ->required()
+  command
+      ->add_option("--wall-layers", o->wall_layers,
+                   "DXF: layers holding the walls (any case; required for a drawing)")
       ->delimiter(',');
+  command
+      ->add_option("--wall-types", o->wall_types,
+                   "IFC: element types read as walls (default IfcWall,IfcWallStandardCase; add "
+                   "IfcWallElementedCase for stud walls)")
+      ->delimiter(',');
+  command
+      ->add_option("--exclude-materials", o->excluded_materials,
+                   "IFC: a wall all of whose materials' names contain one of these (any case) is "
+                   "not printed (default glass,gypsum,plasterboard,drywall,timber,wood,stud,"
+                   "insulation)")
+      ->delimiter(',');
+  command->add_flag("--no-material-filter", o->no_material_filter,
+                    "IFC: print walls whatever their materials");
   command->add_option("--door-layers", o->door_layers, "Layers holding door block inserts")
       ->delimiter(',');
   command->add_option("--window-layers", o->window_layers, "Layers holding window block inserts")

@@ -38,6 +38,9 @@ struct Wall {
   std::int64_t end_vertex = 0;
   std::optional<double> thickness_m;  ///< unset: the machine's nozzle width
   SourceRef source;
+  /// The IFC GlobalId of the element it was imported from (`guid:` in plan files); empty
+  /// for walls not imported from an IFC model.
+  std::string global_id{};
 };
 
 /// A gap in a wall: absent from every layer whose mid-height lies in [sill, head).
@@ -50,6 +53,9 @@ struct Opening {
   double sill_m = 0.0;  ///< above the floor's base
   double head_m = 0.0;  ///< above the floor's base
   SourceRef source;
+  /// The IFC GlobalId of the opening element it was imported from (`guid:`); empty
+  /// otherwise.
+  std::string global_id{};
 };
 
 struct FloorPlan {

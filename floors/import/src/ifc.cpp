@@ -1,0 +1,460 @@
+// An IFC model as a Building (ifc.hpp): storeys become floors, walls are joined where they
+// meet, openings are placed on the walls they cut.
+
+#include "ccbuild/import/ifc.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/common/limits.hpp"
+#include "ccbuild/floors/limits.hpp"
+#include "ifc_internal.hpp"
+
+namespace ccbuild::import {
+namespace {
+
+using Eigen::Vector2d;
+using ifc::FoundOpening;
+using ifc::FoundStorey;
+using ifc::FoundWall;
+
+double cross(const Vector2d& u, const Vector2d& v) {
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+/// Lengths rounded to the nanometre: what the unit conversions and placements leave
+/// beyond that is noise (0.9000000000000004), and plan files are read by people.
+double clean(double value_m) {
+  return std::round(value_m * 1e9) / 1e9;
+}
+Vector2d clean(const Vector2d& p) {
+  return {clean(p.x()), clean(p.y())};
+}
+
+/// Storeys at one elevation (within a millimetre) make one floor.
+struct Level {
+  std::vector<const FoundStorey*> storeys;
+  double elevation_m = 0.0;
+  std::string name;
+  std::vector<const FoundWall*> walls;  ///< its own and those spanning into it
+  double height_m = 0.0;
+};
+
+/// One straight piece of a wall on a floor, while the floor's plan is made.
+struct Piece {
+  Vector2d a, b;
+  const FoundWall* wall = nullptr;
+  bool alive = true;
+};
+
+/// Where walls meet, an axis stops short of the other wall's axis (at its face) or runs past
+/// it (to the far face): each end not already at another wall's end is moved along its wall
+/// to the nearest other wall's axis it reaches within the larger of the two thicknesses.
+void join_ends(std::vector<Piece>& pieces, double tolerance_m) {
+  const std::vector<Piece> before = pieces;
+  for (std::size_t w = 0; w < pieces.size(); ++w) {
+    const Vector2d d = (before[w].b - before[w].a).normalized();
+    for (int end = 0; end < 2; ++end) {
+      const Vector2d p = end == 0 ? before[w].a : before[w].b;
+      bool shared = false;
+      for (std::size_t v = 0; v < before.size() && !shared; ++v)
+        shared = v != w && ((before[v].a - p).norm() <= tolerance_m ||
+                            (before[v].b - p).norm() <= tolerance_m);
+      if (shared) continue;
+      const Vector2d out = end == 0 ? Vector2d(-d) : d;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t v = 0; v < before.size(); ++v) {
+        if (v == w) continue;
+        const Vector2d e = before[v].b - before[v].a;
+        const double denom = cross(out, e);
+        if (std::abs(denom) < 1e-6 * e.norm()) continue;  // parallel
+        const double reach =
+            std::max(before[w].wall->thickness_m, before[v].wall->thickness_m) + tolerance_m;
+        const double t = cross(before[v].a - p, e) / denom;    // along `out`
+        const double u = cross(before[v].a - p, out) / denom;  // along v, 0..1 on it
+        const double slack = reach / e.norm();
+        if (std::abs(t) > reach || u < -slack || u > 1.0 + slack) continue;
+        if (std::abs(t) < std::abs(best)) best = t;
+      }
+      if (!std::isfinite(best) || std::abs(best) <= 1e-12) continue;
+      (end == 0 ? pieces[w].a : pieces[w].b) = p + best * out;
+    }
+  }
+}
+
+/// Two pieces on one line sharing a stretch would be printed twice: the later keeps only
+/// what the earlier does not cover (or, when the earlier lies inside it, the earlier goes).
+void remove_overlaps(std::vector<Piece>& pieces, double tolerance_m,
+                     std::vector<std::string>& notes, const std::string& floor) {
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    for (std::size_t j = i + 1; j < pieces.size(); ++j) {
+      Piece& p = pieces[i];
+      Piece& q = pieces[j];
+      if (!p.alive || !q.alive) continue;
+      const double length = (p.b - p.a).norm();
+      const Vector2d d = (p.b - p.a) / length, n(-d.y(), d.x());
+      if (std::abs(n.dot(q.a - p.a)) > tolerance_m || std::abs(n.dot(q.b - p.a)) > tolerance_m)
+        continue;
+      double q0 = d.dot(q.a - p.a), q1 = d.dot(q.b - p.a);
+      const bool reversed = q0 > q1;
+      if (reversed) std::swap(q0, q1);
+      const double overlap = std::min(length, q1) - std::max(0.0, q0);
+      if (overlap <= tolerance_m) continue;
+      const std::string said = "floor '" + floor + "': " + q.wall->what.describe() + " and " +
+                               p.wall->what.describe() +
+                               printf_string(" overlap along %.3f m on one line", overlap);
+      if (q0 < -tolerance_m && q1 > length + tolerance_m) {  // p inside q
+        p.alive = false;
+        notes.push_back(said + "; the first is printed as part of the second");
+        continue;
+      }
+      if (q0 >= -tolerance_m && q1 <= length + tolerance_m) {  // q inside p
+        q.alive = false;
+        notes.push_back(said + "; the first is printed as part of the second");
+        continue;
+      }
+      // Partial: q keeps what lies beyond p.
+      const double from = q0 < 0.0 ? q0 : length, to = q0 < 0.0 ? 0.0 : q1;
+      const Vector2d k0 = p.a + from * d, k1 = p.a + to * d;
+      q.a = reversed ? k1 : k0;
+      q.b = reversed ? k0 : k1;
+      if (to - from <= floors::limits::kMinWallLength_m) q.alive = false;
+      notes.push_back(said + "; the second is cut back to where the first ends");
+    }
+}
+
+floors::FloorPlan make_plan(const Level& level, const std::string& file, const IfcOptions& options,
+                            std::vector<std::string>& notes, int& openings_left_out) {
+  std::vector<Piece> pieces;
+  for (const FoundWall* w : level.walls)
+    for (const auto& [a, b] : w->pieces) pieces.push_back({a, b, w, true});
+  join_ends(pieces, options.join_tolerance_m);
+  for (Piece& p : pieces)
+    if ((p.b - p.a).norm() <= floors::limits::kMinWallLength_m) {
+      p.alive = false;
+      notes.push_back("floor '" + level.name + "': " + p.wall->what.describe() +
+                      ": 1 mm or less of it is left where it meets other walls; left out");
+    }
+  remove_overlaps(pieces, options.join_tolerance_m, notes, level.name);
+
+  floors::FloorPlan plan;
+  plan.source_file = file;
+  std::map<std::pair<long long, long long>, std::int64_t> vertex_at;
+  const double cell = std::max(options.join_tolerance_m, 1e-6);
+  const auto vertex = [&](const Vector2d& p) {
+    const long long gx = std::llround(p.x() / cell), gy = std::llround(p.y() / cell);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const auto it = vertex_at.find({gx + dx, gy + dy});
+        if (it != vertex_at.end() &&
+            (plan.vertices[it->second - 1].position_m - p).norm() <= options.join_tolerance_m)
+          return it->second;
+      }
+    const auto id = static_cast<std::int64_t>(plan.vertices.size()) + 1;
+    plan.vertices.push_back({id, clean(p), {file, 0, "vertex " + std::to_string(id)}});
+    vertex_at[{gx, gy}] = id;
+    return id;
+  };
+  struct Made {
+    std::int64_t id;
+    const Piece* piece;
+  };
+  std::vector<Made> made;
+  for (const Piece& p : pieces) {
+    if (!p.alive) continue;
+    const std::int64_t s = vertex(p.a), e = vertex(p.b);
+    if (s == e) continue;
+    floors::Wall wall;
+    wall.id = static_cast<std::int64_t>(plan.walls.size()) + 1;
+    wall.start_vertex = s;
+    wall.end_vertex = e;
+    wall.thickness_m = clean(p.wall->thickness_m);
+    wall.global_id = p.wall->what.guid;
+    wall.source = {file, 0, p.wall->what.describe()};
+    plan.walls.push_back(wall);
+    made.push_back({wall.id, &p});
+  }
+  // Openings: on the piece of their wall they lie on, within the floor's height.
+  const auto at = [&](std::int64_t id) { return plan.vertices[id - 1].position_m; };
+  for (const FoundWall* w : level.walls)
+    for (const FoundOpening& o : w->openings) {
+      double z0 = std::numeric_limits<double>::infinity(), z1 = -z0;
+      for (const auto& c : o.corners_m) {
+        z0 = std::min(z0, c.z());
+        z1 = std::max(z1, c.z());
+      }
+      const double sill = std::max(0.0, z0 - level.elevation_m);
+      const double head = std::min(level.height_m, z1 - level.elevation_m);
+      if (head - sill <= 1e-3) continue;  // not on this floor
+      const std::string what =
+          o.what.describe() + (o.filled_by.empty() ? "" : ", filled by " + o.filled_by);
+      const floors::Wall* on = nullptr;
+      double s0 = 0.0, s1 = 0.0, nearest = std::numeric_limits<double>::infinity();
+      for (const Made& m : made) {
+        if (m.piece->wall != w) continue;
+        const floors::Wall& wall = plan.walls[m.id - 1];
+        const Vector2d a = at(wall.start_vertex), b = at(wall.end_vertex);
+        const double length = (b - a).norm();
+        const Vector2d d = (b - a) / length;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo, off = 0.0;
+        for (const auto& c : o.corners_m) {
+          lo = std::min(lo, d.dot(c.head<2>() - a));
+          hi = std::max(hi, d.dot(c.head<2>() - a));
+          off += std::abs(cross(d, c.head<2>() - a)) / static_cast<double>(o.corners_m.size());
+        }
+        const double mid = 0.5 * (lo + hi);
+        if (mid < 0.0 || mid > length || off >= nearest) continue;
+        nearest = off;
+        on = &wall;
+        s0 = std::clamp(lo, 0.0, length);
+        s1 = std::clamp(hi, 0.0, length);
+      }
+      if (!on) {
+        notes.push_back("floor '" + level.name + "': " + what + ": not on what is left of " +
+                        w->what.describe() + "; left out");
+        ++openings_left_out;
+        continue;
+      }
+      if (s1 - s0 <= 1e-3) {
+        notes.push_back("floor '" + level.name + "': " + what +
+                        ": no width along its wall; left out");
+        ++openings_left_out;
+        continue;
+      }
+      floors::Opening opening;
+      opening.id = o.label.empty() ? o.what.guid : o.label;
+      opening.wall_id = on->id;
+      opening.offset_m = clean(s0);
+      opening.width_m = clean(s1 - s0);
+      opening.sill_m = clean(sill);
+      opening.head_m = clean(head);
+      opening.global_id = o.what.guid;
+      opening.source = {file, 0, what};
+      // Two openings sharing a stretch and a height band: the later is left out.
+      bool clash = false;
+      for (const auto& other : plan.openings)
+        if (other.wall_id == opening.wall_id &&
+            std::min(other.offset_m + other.width_m, opening.offset_m + opening.width_m) -
+                    std::max(other.offset_m, opening.offset_m) >
+                1e-6 &&
+            std::min(other.head_m, opening.head_m) - std::max(other.sill_m, opening.sill_m) >
+                1e-6) {
+          notes.push_back("floor '" + level.name + "': " + what + ": overlaps " +
+                          other.source.path + "; left out");
+          ++openings_left_out;
+          clash = true;
+          break;
+        }
+      if (!clash) plan.openings.push_back(opening);
+    }
+  return plan;
+}
+
+}  // namespace
+
+bool is_ifc_path(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".ifc";
+}
+
+IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions& options) {
+  const std::string file = path.string();
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > ccbuild::limits::kMaxInputFileBytes)
+    throw InputError(file, 0, "",
+                     printf_string("is %.1f MiB; ccbuild reads IFC models of at most %llu MiB: "
+                                   "export only what is to be printed (the storeys and their "
+                                   "walls, without furniture and services)",
+                                   static_cast<double>(size) / (1024.0 * 1024.0),
+                                   static_cast<unsigned long long>(
+                                       ccbuild::limits::kMaxInputFileBytes / (1024 * 1024))));
+  std::string text = read_text_file(path);
+  IfcImport out;
+  out.schema = ifc::check_step_text(text, file, options.max_entities).schema;
+  ifc::ModelContents model = ifc::read_model(std::move(text), file, options);
+  out.metres_per_unit = model.metres_per_unit;
+  out.notes = model.notes;
+  int left_out = model.left_out;
+
+  // Levels: storeys by elevation, those at one elevation together.
+  std::vector<const FoundStorey*> storeys;
+  for (const auto& s : model.storeys) storeys.push_back(&s);
+  std::stable_sort(storeys.begin(), storeys.end(), [](const FoundStorey* a, const FoundStorey* b) {
+    return a->elevation_m < b->elevation_m;
+  });
+  std::vector<Level> levels;
+  for (const FoundStorey* s : storeys) {
+    if (levels.empty() || s->elevation_m - levels.back().elevation_m > 1e-3) {
+      levels.push_back({});
+      levels.back().elevation_m = s->elevation_m;
+    } else {
+      out.notes.push_back(s->what.describe() + printf_string(" stands at the elevation of ") +
+                          levels.back().storeys.front()->what.describe() +
+                          printf_string(" (%.3f m): one floor", s->elevation_m));
+    }
+    Level& l = levels.back();
+    l.storeys.push_back(s);
+    const std::string name = s->what.name.empty() ? s->what.guid : s->what.name;
+    l.name += (l.name.empty() ? "" : " + ") + name;
+  }
+  // Heights to the next level; the top one's from its walls.
+  const auto wall_top = [&](const Level& l) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (const FoundStorey* s : l.storeys)
+      for (const FoundWall& w : s->walls)
+        if (w.top_m) top = std::max(top, *w.top_m);
+    return top - l.elevation_m;
+  };
+  for (std::size_t k = 0; k < levels.size(); ++k)
+    levels[k].height_m = k + 1 < levels.size() ? levels[k + 1].elevation_m - levels[k].elevation_m
+                                               : wall_top(levels[k]);
+  // Walls on their storey's level, and on every level above or below they fill half of.
+  for (std::size_t k = 0; k < levels.size(); ++k)
+    for (const FoundStorey* s : levels[k].storeys)
+      for (const FoundWall& w : s->walls)
+        for (std::size_t f = 0; f < levels.size(); ++f) {
+          Level& l = levels[f];
+          bool on = f == k;
+          if (!on && w.bottom_m && w.top_m && l.height_m > 0.0) {
+            const double overlap = std::min(*w.top_m, l.elevation_m + l.height_m) -
+                                   std::max(*w.bottom_m, l.elevation_m);
+            on = overlap >= 0.5 * l.height_m;
+            if (on)
+              out.notes.push_back(w.what.describe() + " of storey '" + levels[k].name +
+                                  "' also stands on storey '" + l.name + "' (it spans both)");
+          }
+          if (on) l.walls.push_back(&w);
+        }
+  // Levels without walls make no floor; the heights of those kept run to the next kept one.
+  std::vector<Level> kept;
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    if (levels[k].walls.empty()) {
+      out.notes.push_back(
+          printf_string("storey '%s' at %.3f m has no walls ccbuild prints; no "
+                        "floor is made of it",
+                        levels[k].name.c_str(), levels[k].elevation_m));
+      continue;
+    }
+    kept.push_back(levels[k]);
+    Level& l = kept.back();
+    std::size_t next = k + 1;
+    while (next < levels.size() && levels[next].walls.empty()) ++next;
+    if (next < levels.size()) {
+      l.height_m = levels[next].elevation_m - l.elevation_m;
+    } else if (k + 1 < levels.size()) {
+      l.height_m = levels[k + 1].elevation_m - l.elevation_m;
+      next = k + 1;
+    } else {
+      l.height_m = wall_top(l);
+      if (!(l.height_m > 1e-3) || !std::isfinite(l.height_m)) {
+        l.height_m = options.default_storey_height_m;
+        out.notes.push_back(
+            printf_string("storey '%s', the top one: no storey above it and no "
+                          "wall height says its height; %.3f m taken",
+                          l.name.c_str(), l.height_m));
+      } else {
+        out.notes.push_back(
+            printf_string("storey '%s', the top one: %.3f m high, as its "
+                          "tallest wall (no storey above it)",
+                          l.name.c_str(), l.height_m));
+      }
+      continue;
+    }
+    if (next > k + 1)
+      out.notes.push_back(printf_string(
+          "storey '%s' runs up to storey '%s' at %.3f m (%.3f m), "
+          "across storeys without walls",
+          l.name.c_str(), levels[next].name.c_str(), levels[next].elevation_m, l.height_m));
+  }
+  if (kept.empty()) {
+    std::string why;
+    int shown = 0;
+    for (const auto& note : out.notes)
+      if (note.find("left out") != std::string::npos && ++shown <= 3) why += "; " + note;
+    throw InputError(file, 0, "",
+                     printf_string("no wall ccbuild can print in any of the model's %zu storeys",
+                                   levels.size()) +
+                         why);
+  }
+
+  floors::Building& b = out.building;
+  b.name = model.building_name.empty() ? path.stem().string() : model.building_name;
+  b.source_file = file;
+  b.files_read.push_back(path);
+  b.units = floors::LengthUnit::kMeter;
+  b.layer_height_m = options.layer_height_m;
+  if (std::abs(kept.front().elevation_m) > 1e-6)
+    out.notes.push_back(
+        printf_string("the lowest floor, '%s', stands at %.3f m in the model; the "
+                      "building's heights are counted from it",
+                      kept.front().name.c_str(), kept.front().elevation_m));
+  DiagnosticSink sink;
+  double base_m = 0.0;
+  int walls = 0, openings = 0;
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    Level& l = kept[k];
+    const FoundStorey& first = *l.storeys.front();
+    if (!floors::limits::kFloorHeight_m.contains(l.height_m))
+      throw InputError(file, 0, first.what.describe(),
+                       printf_string("storey '%s' is %.3f m high, not a floor height ccbuild "
+                                     "takes (%s)",
+                                     l.name.c_str(), l.height_m,
+                                     floors::limits::kFloorHeight_m.describe("m").c_str()));
+    for (const FoundWall* w : l.walls)
+      if (w->top_m && *w->top_m - l.elevation_m < 0.75 * l.height_m && w->bottom_m &&
+          *w->bottom_m >= l.elevation_m - 1e-3)
+        out.notes.push_back(printf_string(
+            "floor '%s': %s is %.3f m high; it is printed to the "
+            "floor's height, %.3f m",
+            l.name.c_str(), w->what.describe().c_str(), *w->top_m - *w->bottom_m, l.height_m));
+      else if (w->clipped)
+        out.notes.push_back("floor '" + l.name + "': " + w->what.describe() +
+                            ": its body is cut (under a roof, say); it is printed to the "
+                            "floor's full height");
+    floors::Floor floor;
+    floor.name = l.name;
+    floor.index = static_cast<int>(k);
+    floor.height_m = clean(l.height_m);
+    floor.base_elevation_m = base_m;
+    floor.source = {file, 0, first.what.describe()};
+    floor.plan = make_plan(l, file, options, out.notes, left_out);
+    base_m += floor.height_m;
+    if (floor.plan.walls.size() > floors::limits::kMaxWalls)
+      throw InputError(file, 0, first.what.describe(),
+                       printf_string("%zu walls on one floor; ccbuild takes at most %zu",
+                                     floor.plan.walls.size(), floors::limits::kMaxWalls));
+    try {
+      floors::validate_plan(floor.plan, floor.height_m, "floor '" + floor.name + "'");
+    } catch (const InputError& error) {
+      for (const auto& d : error.diagnostics()) sink.add(d);
+    }
+    walls += static_cast<int>(floor.plan.walls.size());
+    openings += static_cast<int>(floor.plan.openings.size());
+    b.floors.push_back(std::move(floor));
+  }
+  sink.throw_if_any();
+  double layers = 0.0;
+  for (const auto& f : b.floors) layers += std::ceil(f.height_m / b.layer_height_m - 1e-9);
+  if (layers > static_cast<double>(floors::limits::kMaxLayers))
+    throw InputError(file, 0, "",
+                     printf_string("%.0f layers of %.3f m make this building; ccbuild plans at "
+                                   "most %ld",
+                                   layers, b.layer_height_m, floors::limits::kMaxLayers));
+  out.notes.push_back(printf_string(
+      "imported %d walls and %d openings on %zu floor%s (%s, 1 unit = %g m); left out: %d "
+      "element%s (each said above)",
+      walls, openings, b.floors.size(), b.floors.size() == 1 ? "" : "s", out.schema.c_str(),
+      out.metres_per_unit, left_out, left_out == 1 ? "" : "s"));
+  b.import_notes = out.notes;
+  return out;
+}
+
+}  // namespace ccbuild::import

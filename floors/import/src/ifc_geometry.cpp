@@ -1,0 +1,410 @@
+// The geometry of walls and openings read through IFC++: axes, extruded bodies, the
+// centreline, thickness and height of a wall, the corners of an opening (ifc.hpp).
+
+#include <ifcpp/IFC4/include/IfcArbitraryClosedProfileDef.h>
+#include <ifcpp/IFC4/include/IfcArcIndex.h>
+#include <ifcpp/IFC4/include/IfcAxis2Placement2D.h>
+#include <ifcpp/IFC4/include/IfcAxis2Placement3D.h>
+#include <ifcpp/IFC4/include/IfcBoolean.h>
+#include <ifcpp/IFC4/include/IfcBooleanResult.h>
+#include <ifcpp/IFC4/include/IfcBuilding.h>
+#include <ifcpp/IFC4/include/IfcBuildingStorey.h>
+#include <ifcpp/IFC4/include/IfcCartesianPoint.h>
+#include <ifcpp/IFC4/include/IfcCartesianPointList2D.h>
+#include <ifcpp/IFC4/include/IfcCartesianPointList3D.h>
+#include <ifcpp/IFC4/include/IfcCircle.h>
+#include <ifcpp/IFC4/include/IfcCircleProfileDef.h>
+#include <ifcpp/IFC4/include/IfcCompositeCurve.h>
+#include <ifcpp/IFC4/include/IfcCompositeCurveSegment.h>
+#include <ifcpp/IFC4/include/IfcConic.h>
+#include <ifcpp/IFC4/include/IfcConversionBasedUnit.h>
+#include <ifcpp/IFC4/include/IfcCurtainWall.h>
+#include <ifcpp/IFC4/include/IfcDirection.h>
+#include <ifcpp/IFC4/include/IfcDirectionSenseEnum.h>
+#include <ifcpp/IFC4/include/IfcExtrudedAreaSolid.h>
+#include <ifcpp/IFC4/include/IfcGeometricRepresentationContext.h>
+#include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
+#include <ifcpp/IFC4/include/IfcIndexedPolyCurve.h>
+#include <ifcpp/IFC4/include/IfcLabel.h>
+#include <ifcpp/IFC4/include/IfcLayerSetDirectionEnum.h>
+#include <ifcpp/IFC4/include/IfcLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcLine.h>
+#include <ifcpp/IFC4/include/IfcLocalPlacement.h>
+#include <ifcpp/IFC4/include/IfcMapConversion.h>
+#include <ifcpp/IFC4/include/IfcMaterial.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayer.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayerSet.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayerSetUsage.h>
+#include <ifcpp/IFC4/include/IfcMaterialList.h>
+#include <ifcpp/IFC4/include/IfcMeasureWithUnit.h>
+#include <ifcpp/IFC4/include/IfcNonNegativeLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcOpeningElement.h>
+#include <ifcpp/IFC4/include/IfcOpeningElementTypeEnum.h>
+#include <ifcpp/IFC4/include/IfcPolyline.h>
+#include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcProductDefinitionShape.h>
+#include <ifcpp/IFC4/include/IfcProject.h>
+#include <ifcpp/IFC4/include/IfcRatioMeasure.h>
+#include <ifcpp/IFC4/include/IfcReal.h>
+#include <ifcpp/IFC4/include/IfcRectangleProfileDef.h>
+#include <ifcpp/IFC4/include/IfcRelAggregates.h>
+#include <ifcpp/IFC4/include/IfcRelAssociatesMaterial.h>
+#include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
+#include <ifcpp/IFC4/include/IfcRelDefinesByType.h>
+#include <ifcpp/IFC4/include/IfcRelFillsElement.h>
+#include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
+#include <ifcpp/IFC4/include/IfcRepresentation.h>
+#include <ifcpp/IFC4/include/IfcSIPrefix.h>
+#include <ifcpp/IFC4/include/IfcSIUnit.h>
+#include <ifcpp/IFC4/include/IfcSIUnitName.h>
+#include <ifcpp/IFC4/include/IfcSite.h>
+#include <ifcpp/IFC4/include/IfcTrimmedCurve.h>
+#include <ifcpp/IFC4/include/IfcTypeObject.h>
+#include <ifcpp/IFC4/include/IfcUnitAssignment.h>
+#include <ifcpp/IFC4/include/IfcUnitEnum.h>
+#include <ifcpp/IFC4/include/IfcWall.h>
+#include <ifcpp/model/BuildingException.h>
+#include <ifcpp/model/BuildingModel.h>
+#include <ifcpp/reader/ReaderSTEP.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/limits.hpp"
+#include "ifc_reader.hpp"
+
+namespace ccbuild::import::ifc::detail {
+
+std::vector<Vector2d> Reader::curve_points(const std::shared_ptr<IfcCurve>& curve, bool& curved,
+                                           int depth) const {
+  std::vector<Vector2d> out;
+  if (depth > 8) throw Unusable{"its curves nest too deep"};
+  if (auto poly = as<IfcPolyline>(curve)) {
+    for (const auto& p : poly->m_Points) out.push_back(point(p).head<2>());
+  } else if (auto indexed = as<IfcIndexedPolyCurve>(curve)) {
+    for (const auto& s : indexed->m_Segments)
+      if (as<IfcArcIndex>(s)) curved = true;
+    if (auto list = as<IfcCartesianPointList2D>(indexed->m_Points)) {
+      for (const auto& c : list->m_CoordList)
+        if (c.size() >= 2 && c[0] && c[1])
+          out.emplace_back(c[0]->m_value * unit_, c[1]->m_value * unit_);
+    } else if (auto list3 = as<IfcCartesianPointList3D>(indexed->m_Points)) {
+      for (const auto& c : list3->m_CoordList)
+        if (c.size() >= 2 && c[0] && c[1])
+          out.emplace_back(c[0]->m_value * unit_, c[1]->m_value * unit_);
+    }
+  } else if (auto composite = as<IfcCompositeCurve>(curve)) {
+    for (const auto& segment : composite->m_Segments) {
+      if (!segment) continue;
+      auto pts = curve_points(segment->m_ParentCurve, curved, depth + 1);
+      if (segment->m_SameSense && !segment->m_SameSense->m_value)
+        std::reverse(pts.begin(), pts.end());
+      for (const auto& p : pts)
+        if (out.empty() || (out.back() - p).norm() > 1e-9) out.push_back(p);
+    }
+  } else if (auto trimmed = as<IfcTrimmedCurve>(curve)) {
+    if (as<IfcConic>(trimmed->m_BasisCurve)) {
+      curved = true;
+      return out;
+    }
+    if (as<IfcLine>(trimmed->m_BasisCurve)) {
+      for (const auto* trim : {&trimmed->m_Trim1, &trimmed->m_Trim2})
+        for (const auto& t : *trim)
+          if (auto p = as<IfcCartesianPoint>(t)) {
+            out.push_back(point(p).head<2>());
+            break;
+          }
+      if (out.size() != 2) throw Unusable{"its axis is a line trimmed by parameters, not points"};
+      return out;
+    }
+    throw Unusable{std::string("its axis is a trimmed ") +
+                   (trimmed->m_BasisCurve ? trimmed->m_BasisCurve->className() : "nothing")};
+  } else if (as<IfcConic>(curve)) {
+    curved = true;
+  } else if (curve) {
+    throw Unusable{std::string("a curve ccbuild does not read (") + curve->className() + ")"};
+  }
+  return out;
+}
+
+std::optional<Reader::Solid> Reader::solid_of(const std::shared_ptr<IfcRepresentationItem>& item,
+                                              int depth) const {
+  if (depth > 16) return std::nullopt;
+  if (auto boolean = as<IfcBooleanResult>(item)) {
+    auto first = solid_of(as<IfcRepresentationItem>(boolean->m_FirstOperand), depth + 1);
+    if (first) first->clipped = true;
+    return first;
+  }
+  auto extruded = as<IfcExtrudedAreaSolid>(item);
+  if (!extruded || !extruded->m_SweptArea) return std::nullopt;
+  Solid s;
+  if (extruded->m_Position) s.position = axis_placement(extruded->m_Position);
+  if (!extruded->m_Depth) return std::nullopt;
+  s.extrusion = direction(extruded->m_ExtrudedDirection, Vector3d::UnitZ()) *
+                extruded->m_Depth->m_value * unit_;
+  const auto& area = extruded->m_SweptArea;
+  if (auto rect = as<IfcRectangleProfileDef>(area)) {
+    if (!rect->m_XDim || !rect->m_YDim) return std::nullopt;
+    const double hx = 0.5 * rect->m_XDim->m_value * unit_, hy = 0.5 * rect->m_YDim->m_value * unit_;
+    Isometry3d p = Isometry3d::Identity();
+    if (rect->m_Position) p = axis_placement(rect->m_Position);
+    for (const Vector2d& c :
+         {Vector2d(-hx, -hy), Vector2d(hx, -hy), Vector2d(hx, hy), Vector2d(-hx, hy)})
+      s.profile.push_back((p * Vector3d(c.x(), c.y(), 0.0)).head<2>());
+  } else if (auto circle = as<IfcCircleProfileDef>(area)) {
+    if (!circle->m_Radius) return std::nullopt;
+    const double r = circle->m_Radius->m_value * unit_;
+    Isometry3d p = Isometry3d::Identity();
+    if (circle->m_Position) p = axis_placement(circle->m_Position);
+    for (int k = 0; k < 16; ++k) {
+      const double a = 2.0 * M_PI * k / 16.0;
+      s.profile.push_back((p * Vector3d(r * std::cos(a), r * std::sin(a), 0.0)).head<2>());
+    }
+    s.curved = true;
+  } else if (auto arbitrary = as<IfcArbitraryClosedProfileDef>(area)) {
+    s.profile = curve_points(arbitrary->m_OuterCurve, s.curved, 0);
+    if (s.profile.size() > 1 && (s.profile.front() - s.profile.back()).norm() < 1e-9)
+      s.profile.pop_back();
+  } else {
+    return std::nullopt;
+  }
+  if (s.profile.size() < 3) return std::nullopt;
+  return s;
+}
+
+void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_world*/,
+                           double z_shift_m, FoundWall& into, ModelContents& out) {
+  for (const auto& weak : wall.m_HasOpenings_inverse) {
+    auto rel = weak.lock();
+    if (!rel || !rel->m_RelatedOpeningElement) continue;
+    const auto& opening = rel->m_RelatedOpeningElement;
+    FoundOpening found;
+    found.what = element_of(*opening);
+    found.label = found.what.name;
+    if (auto o = as<IfcOpeningElement>(opening)) {
+      if (o->m_PredefinedType &&
+          o->m_PredefinedType->m_enum == IfcOpeningElementTypeEnum::ENUM_RECESS) {
+        out.notes.push_back(found.what.describe() + " in " + into.what.describe() +
+                            ": a recess, not through the wall; left out");
+        ++out.left_out;
+        continue;
+      }
+      for (const auto& fills : o->m_HasFillings_inverse)
+        if (auto f = fills.lock(); f && f->m_RelatedBuildingElement) {
+          const Element filler = element_of(*f->m_RelatedBuildingElement);
+          found.filled_by = filler.describe();
+          if (!filler.name.empty()) found.label = filler.name;
+          break;
+        }
+    }
+    try {
+      const Isometry3d place = world(opening->m_ObjectPlacement, found.what);
+      if (opening->m_Representation)
+        for (const auto& rep : opening->m_Representation->m_Representations) {
+          if (!rep) continue;
+          for (const auto& item : rep->m_Items) {
+            const auto solid = solid_of(item, 0);
+            if (!solid) continue;
+            for (const Vector2d& p : solid->profile) {
+              const Vector3d base = place * (solid->position * Vector3d(p.x(), p.y(), 0.0));
+              const Vector3d top =
+                  base + place.linear() * (solid->position.linear() * solid->extrusion);
+              for (Vector3d c : {base, top}) {
+                c.z() += z_shift_m;
+                found.corners_m.push_back(c);
+              }
+            }
+          }
+        }
+    } catch (const Unusable& u) {
+      found.corners_m.clear();
+      out.notes.push_back(found.what.describe() + " in " + into.what.describe() + ": " + u.why +
+                          "; left out");
+      ++out.left_out;
+      continue;
+    }
+    if (found.corners_m.empty()) {
+      out.notes.push_back(found.what.describe() + " in " + into.what.describe() +
+                          ": no extruded body to measure it by; left out");
+      ++out.left_out;
+      continue;
+    }
+    into.openings.push_back(std::move(found));
+  }
+}
+
+void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& parent,
+                       double z_shift_m, FoundStorey& storey, ModelContents& out, int depth) {
+  FoundWall found;
+  found.what = element_of(*wall);
+  const std::string who =
+      found.what.describe() + (parent.guid.empty() ? "" : " (part of " + parent.describe() + ")");
+  const auto skip = [&](const std::string& why) {
+    out.notes.push_back(who + ": " + why + "; left out");
+    ++out.left_out;
+  };
+  // A wall made of parts (IfcRelAggregates) without geometry of its own: its parts.
+  if (!wall->m_Representation && depth < 4) {
+    bool parts = false;
+    for (const auto& weak : wall->m_IsDecomposedBy_inverse)
+      if (auto rel = weak.lock())
+        for (const auto& part : rel->m_RelatedObjects)
+          if (auto w = as<IfcWall>(part)) {
+            parts = true;
+            read_wall(w, found.what, z_shift_m, storey, out, depth + 1);
+          }
+    if (parts) return;
+  }
+  try {
+    const Isometry3d place = world(wall->m_ObjectPlacement, found.what);
+    if (std::abs(place.linear().col(2).z()) < 1.0 - 1e-6)
+      return skip(
+          "its placement is tilted (its z axis is not vertical): a sloped wall ccbuild "
+          "cannot print");
+    std::vector<Vector2d> axis;
+    bool curved = false;
+    std::optional<Solid> body;
+    if (wall->m_Representation)
+      for (const auto& rep : wall->m_Representation->m_Representations) {
+        if (!rep) continue;
+        const std::string id = lower(label(rep->m_RepresentationIdentifier));
+        for (const auto& item : rep->m_Items) {
+          if (id == "axis" && axis.empty() && !curved) {
+            if (auto c = as<IfcCurve>(item)) axis = curve_points(c, curved, 0);
+          } else if (id != "axis" && !body) {
+            body = solid_of(item, 0);
+          }
+        }
+      }
+    if (curved)
+      return skip(
+          "its axis is curved (an arc); ccbuild prints straight walls: model it as "
+          "straight pieces to print it");
+    if (body && body->curved)
+      return skip("its body's footprint is curved; ccbuild prints straight walls");
+    // The body in the wall's frame: its footprint corners, its extent in z.
+    std::vector<Vector2d> footprint;
+    if (body) {
+      const Vector3d along = body->position.linear() * body->extrusion;
+      if (std::abs(along.normalized().z()) < 1.0 - 1e-6)
+        return skip(
+            "its body is extruded at a slant or sideways: a sloped wall ccbuild cannot "
+            "print");
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Vector2d& p : body->profile) {
+        const Vector3d base = body->position * Vector3d(p.x(), p.y(), 0.0);
+        if (std::abs(body->position.linear().col(2).z()) < 1.0 - 1e-6)
+          return skip(
+              "its body's profile is not horizontal: ccbuild reads walls extruded "
+              "upwards");
+        footprint.push_back(base.head<2>());
+        lo = std::min({lo, base.z(), base.z() + along.z()});
+        hi = std::max({hi, base.z(), base.z() + along.z()});
+      }
+      const double z0 = (place * Vector3d(0, 0, 0)).z() + z_shift_m;
+      found.bottom_m = z0 + lo;
+      found.top_m = z0 + hi;
+      found.clipped = body->clipped;
+    }
+    const auto layers = layer_set(*wall);
+    // The centreline in the wall's frame.
+    std::vector<std::pair<Vector2d, Vector2d>> local;
+    if (axis.size() >= 2) {
+      // Straight runs of the polyline.
+      std::vector<Vector2d> corners{axis.front()};
+      for (std::size_t k = 1; k + 1 < axis.size(); ++k) {
+        const Vector2d a = corners.back(), b = axis[k], c = axis[k + 1];
+        const Vector2d d = (c - a).normalized();
+        if (std::abs(d.x() * (b - a).y() - d.y() * (b - a).x()) > options_.straightness_tolerance_m)
+          corners.push_back(b);
+      }
+      corners.push_back(axis.back());
+      for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
+        const Vector2d a = corners[k], b = corners[k + 1];
+        if ((b - a).norm() < 1e-9) continue;
+        const Vector2d d = (b - a).normalized(), left(-d.y(), d.x());
+        double thickness = 0.0, offset = 0.0;
+        if (layers) {
+          std::tie(thickness, offset) = *layers;
+        } else if (!footprint.empty()) {
+          double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+          for (const Vector2d& p : footprint) {
+            lo = std::min(lo, left.dot(p - a));
+            hi = std::max(hi, left.dot(p - a));
+          }
+          thickness = hi - lo;
+          offset = 0.5 * (lo + hi);
+        } else {
+          return skip("neither a material layer set nor a body gives its thickness");
+        }
+        found.thickness_m = thickness;
+        local.emplace_back(a + offset * left, b + offset * left);
+      }
+    } else if (!footprint.empty()) {
+      // The footprint's longest edge gives the direction; its faces are the two lines
+      // every corner lies on.
+      std::size_t longest = 0;
+      for (std::size_t k = 0; k < footprint.size(); ++k)
+        if ((footprint[(k + 1) % footprint.size()] - footprint[k]).norm() >
+            (footprint[(longest + 1) % footprint.size()] - footprint[longest]).norm())
+          longest = k;
+      const Vector2d o = footprint[longest];
+      const Vector2d d = (footprint[(longest + 1) % footprint.size()] - o).normalized();
+      const Vector2d left(-d.y(), d.x());
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (const Vector2d& p : footprint) {
+        lo = std::min(lo, left.dot(p - o));
+        hi = std::max(hi, left.dot(p - o));
+      }
+      const double tol = std::max(options_.straightness_tolerance_m, 0.01 * (hi - lo));
+      double a_min[2] = {std::numeric_limits<double>::infinity(),
+                         std::numeric_limits<double>::infinity()};
+      double a_max[2] = {-a_min[0], -a_min[0]};
+      for (const Vector2d& p : footprint) {
+        const double y = left.dot(p - o), x = d.dot(p - o);
+        const int face = std::abs(y - lo) <= tol ? 0 : std::abs(y - hi) <= tol ? 1 : -1;
+        if (face < 0)
+          return skip(
+              printf_string("its body's footprint (%zu corners, no axis) is not one "
+                            "straight wall",
+                            footprint.size()));
+        a_min[face] = std::min(a_min[face], x);
+        a_max[face] = std::max(a_max[face], x);
+      }
+      if (!std::isfinite(a_min[0]) || !std::isfinite(a_min[1]))
+        return skip("its body's footprint has no width");
+      const double mid = 0.5 * (lo + hi);
+      const double x0 = 0.5 * (a_min[0] + a_min[1]), x1 = 0.5 * (a_max[0] + a_max[1]);
+      found.thickness_m = layers ? std::get<0>(*layers) : hi - lo;
+      local.emplace_back(o + x0 * d + mid * left, o + x1 * d + mid * left);
+    } else {
+      return skip("no usable geometry: neither an axis nor an extruded body ccbuild reads");
+    }
+    if (!floors::limits::kWallThickness_m.contains(found.thickness_m))
+      return skip(printf_string("its thickness %.4f m is not one ccbuild takes (%s)",
+                                found.thickness_m,
+                                floors::limits::kWallThickness_m.describe("m").c_str()));
+    for (const auto& [a, b] : local) {
+      const Vector3d wa = place * Vector3d(a.x(), a.y(), 0.0),
+                     wb = place * Vector3d(b.x(), b.y(), 0.0);
+      for (const Vector3d& p : {wa, wb})
+        if (!p.allFinite() || !floors::limits::kCoordinate_m.contains(p.x()) ||
+            !floors::limits::kCoordinate_m.contains(p.y()))
+          throw InputError(
+              file_, 0, found.what.describe(),
+              printf_string("a point (%g, %g) m that is not a coordinate ccbuild "
+                            "takes (%s)",
+                            p.x(), p.y(), floors::limits::kCoordinate_m.describe("m").c_str()));
+      found.pieces.emplace_back(wa.head<2>(), wb.head<2>());
+    }
+    read_openings(*wall, place, z_shift_m, found, out);
+  } catch (const Unusable& u) {
+    return skip(u.why);
+  }
+  storey.walls.push_back(std::move(found));
+}
+
+}  // namespace ccbuild::import::ifc::detail

@@ -1,0 +1,74 @@
+#pragma once
+// The IFC importer's stages (ifc.hpp): the STEP text checked before IFC++ sees it
+// (ifc_step.cpp), what the model holds read through IFC++ (ifc_model.cpp), and the floors
+// made of it (ifc.cpp). Nothing of IFC++ leaks out of ifc_model.cpp.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccbuild/import/ifc.hpp"
+
+namespace ccbuild::import::ifc {
+
+/// What the STEP text says about itself.
+struct StepSummary {
+  std::string schema;  ///< FILE_SCHEMA's first name, upper case
+  std::size_t entities = 0;
+};
+
+/// Checks the text of an IFC STEP file before IFC++ reads it: the ISO-10303-21 header, a
+/// schema IFC++ reads (IFC4, IFC2X3), a DATA section closed by ENDSEC and the file by
+/// END-ISO-10303-21 (else truncated), at most `max_entities` entities, every number finite.
+/// Throws InputError naming `file` and the line.
+StepSummary check_step_text(const std::string& text, const std::string& file,
+                            std::size_t max_entities);
+
+/// An element of the model, as notes name it: "IfcWall 2O2Fr$t4X7Zf8NOew3FNr2 'Wall-042'".
+struct Element {
+  std::string type, guid, name;
+  std::string describe() const;
+};
+
+/// An opening through a wall: the corners of its body, in the model's frame, metres (z
+/// corrected as the wall's, see FoundWall::z_shift_m).
+struct FoundOpening {
+  Element what;
+  std::string filled_by;  ///< "IfcDoor 1hF... 'Front door'", empty when nothing fills it
+  std::string label;      ///< a short name for the plan: the filler's, else the opening's
+  std::vector<Eigen::Vector3d> corners_m;
+};
+
+/// A wall as read: straight pieces of its centreline in the model's plan, metres.
+struct FoundWall {
+  Element what;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pieces;
+  double thickness_m = 0.0;
+  std::optional<double> bottom_m, top_m;  ///< its body's extent in z, when it has one
+  bool clipped = false;                   ///< its body is cut (under a roof, say)
+  std::vector<FoundOpening> openings;
+};
+
+struct FoundStorey {
+  Element what;
+  double elevation_m = 0.0;
+  int order = 0;  ///< position in the file, for a stable order
+  std::vector<FoundWall> walls;
+};
+
+/// What read_model found.
+struct ModelContents {
+  double metres_per_unit = 1.0;
+  std::string building_name;
+  std::vector<FoundStorey> storeys;
+  std::vector<std::string> notes;  ///< elements left out or ignored, in file order
+  int left_out = 0;                ///< elements left out (walls, curtain walls, openings)
+};
+
+/// Reads the checked STEP text with IFC++ and collects storeys, walls and openings.
+/// Throws InputError naming `file` (and the element) for what IFC++ reports as an error,
+/// a model without a project or storeys, a placement chain that loops or is too deep.
+ModelContents read_model(std::string text, const std::string& file, const IfcOptions& options);
+
+}  // namespace ccbuild::import::ifc

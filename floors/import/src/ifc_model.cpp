@@ -1,0 +1,458 @@
+// The IFC model read through IFC++: units, true north and map conversion, storeys and the
+// walls contained in them, their materials and layer sets (the walls' and openings'
+// geometry: ifc_geometry.cpp).
+
+#include <ifcpp/IFC4/include/IfcArbitraryClosedProfileDef.h>
+#include <ifcpp/IFC4/include/IfcArcIndex.h>
+#include <ifcpp/IFC4/include/IfcAxis2Placement2D.h>
+#include <ifcpp/IFC4/include/IfcAxis2Placement3D.h>
+#include <ifcpp/IFC4/include/IfcBoolean.h>
+#include <ifcpp/IFC4/include/IfcBooleanResult.h>
+#include <ifcpp/IFC4/include/IfcBuilding.h>
+#include <ifcpp/IFC4/include/IfcBuildingStorey.h>
+#include <ifcpp/IFC4/include/IfcCartesianPoint.h>
+#include <ifcpp/IFC4/include/IfcCartesianPointList2D.h>
+#include <ifcpp/IFC4/include/IfcCartesianPointList3D.h>
+#include <ifcpp/IFC4/include/IfcCircle.h>
+#include <ifcpp/IFC4/include/IfcCircleProfileDef.h>
+#include <ifcpp/IFC4/include/IfcCompositeCurve.h>
+#include <ifcpp/IFC4/include/IfcCompositeCurveSegment.h>
+#include <ifcpp/IFC4/include/IfcConic.h>
+#include <ifcpp/IFC4/include/IfcConversionBasedUnit.h>
+#include <ifcpp/IFC4/include/IfcCurtainWall.h>
+#include <ifcpp/IFC4/include/IfcDirection.h>
+#include <ifcpp/IFC4/include/IfcDirectionSenseEnum.h>
+#include <ifcpp/IFC4/include/IfcExtrudedAreaSolid.h>
+#include <ifcpp/IFC4/include/IfcGeometricRepresentationContext.h>
+#include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
+#include <ifcpp/IFC4/include/IfcIndexedPolyCurve.h>
+#include <ifcpp/IFC4/include/IfcLabel.h>
+#include <ifcpp/IFC4/include/IfcLayerSetDirectionEnum.h>
+#include <ifcpp/IFC4/include/IfcLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcLine.h>
+#include <ifcpp/IFC4/include/IfcLocalPlacement.h>
+#include <ifcpp/IFC4/include/IfcMapConversion.h>
+#include <ifcpp/IFC4/include/IfcMaterial.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayer.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayerSet.h>
+#include <ifcpp/IFC4/include/IfcMaterialLayerSetUsage.h>
+#include <ifcpp/IFC4/include/IfcMaterialList.h>
+#include <ifcpp/IFC4/include/IfcMeasureWithUnit.h>
+#include <ifcpp/IFC4/include/IfcNonNegativeLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcOpeningElement.h>
+#include <ifcpp/IFC4/include/IfcOpeningElementTypeEnum.h>
+#include <ifcpp/IFC4/include/IfcPolyline.h>
+#include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcProductDefinitionShape.h>
+#include <ifcpp/IFC4/include/IfcProject.h>
+#include <ifcpp/IFC4/include/IfcRatioMeasure.h>
+#include <ifcpp/IFC4/include/IfcReal.h>
+#include <ifcpp/IFC4/include/IfcRectangleProfileDef.h>
+#include <ifcpp/IFC4/include/IfcRelAggregates.h>
+#include <ifcpp/IFC4/include/IfcRelAssociatesMaterial.h>
+#include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
+#include <ifcpp/IFC4/include/IfcRelDefinesByType.h>
+#include <ifcpp/IFC4/include/IfcRelFillsElement.h>
+#include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
+#include <ifcpp/IFC4/include/IfcRepresentation.h>
+#include <ifcpp/IFC4/include/IfcSIPrefix.h>
+#include <ifcpp/IFC4/include/IfcSIUnit.h>
+#include <ifcpp/IFC4/include/IfcSIUnitName.h>
+#include <ifcpp/IFC4/include/IfcSite.h>
+#include <ifcpp/IFC4/include/IfcTrimmedCurve.h>
+#include <ifcpp/IFC4/include/IfcTypeObject.h>
+#include <ifcpp/IFC4/include/IfcUnitAssignment.h>
+#include <ifcpp/IFC4/include/IfcUnitEnum.h>
+#include <ifcpp/IFC4/include/IfcWall.h>
+#include <ifcpp/model/BuildingException.h>
+#include <ifcpp/model/BuildingModel.h>
+#include <ifcpp/reader/ReaderSTEP.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <memory>
+#include <set>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/limits.hpp"
+#include "ifc_reader.hpp"
+
+namespace ccbuild::import::ifc {
+namespace detail {
+
+std::string utf8(const std::wstring& w) {
+  std::string out;
+  for (wchar_t wc : w) {
+    const auto c = static_cast<std::uint32_t>(wc);
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+    } else if (c < 0x800) {
+      out += static_cast<char>(0xC0 | (c >> 6));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    } else if (c < 0x10000) {
+      out += static_cast<char>(0xE0 | (c >> 12));
+      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    } else {
+      out += static_cast<char>(0xF0 | (c >> 18));
+      out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (c & 0x3F));
+    }
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string label(const std::shared_ptr<IfcLabel>& l) {
+  return l ? utf8(l->m_value) : std::string();
+}
+
+Element element_of(const IfcRoot& e) {
+  return {e.className(), e.m_GlobalId ? utf8(e.m_GlobalId->m_value) : std::string("(no GlobalId)"),
+          label(e.m_Name)};
+}
+
+Isometry3d Reader::axis_placement(const std::shared_ptr<IfcAxis2Placement>& p) const {
+  Isometry3d t = Isometry3d::Identity();
+  if (auto p3 = as<IfcAxis2Placement3D>(p)) {
+    const Vector3d z = direction(p3->m_Axis, Vector3d::UnitZ());
+    Vector3d x = direction(p3->m_RefDirection, Vector3d::UnitX());
+    x = x - x.dot(z) * z;  // IFC's rule: the reference direction projected off the axis
+    if (x.norm() < 1e-9) x = std::abs(z.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
+    x = (x - x.dot(z) * z).normalized();
+    Matrix3d r;
+    r.col(0) = x;
+    r.col(1) = z.cross(x);
+    r.col(2) = z;
+    t.linear() = r;
+    t.translation() = point(p3->m_Location);
+  } else if (auto p2 = as<IfcAxis2Placement2D>(p)) {
+    Vector3d x = direction(p2->m_RefDirection, Vector3d::UnitX());
+    x.z() = 0.0;
+    if (x.norm() < 1e-9) throw Unusable{"a 2-D placement with a vertical direction"};
+    x.normalize();
+    Matrix3d r = Matrix3d::Identity();
+    r.col(0) = x;
+    r.col(1) = Vector3d(-x.y(), x.x(), 0.0);
+    t.linear() = r;
+    t.translation() = point(p2->m_Location);
+  }
+  return t;
+}
+
+Isometry3d Reader::world(const std::shared_ptr<IfcObjectPlacement>& placement,
+                         const Element& who) const {
+  Isometry3d t = Isometry3d::Identity();
+  std::set<const IfcObjectPlacement*> seen;
+  std::shared_ptr<IfcObjectPlacement> at = placement;
+  int depth = 0;
+  while (at) {
+    if (!seen.insert(at.get()).second)
+      throw Broken{who.describe() + ": its placement chain loops (IfcLocalPlacement #" +
+                   std::to_string(at->m_entity_id) +
+                   " is placed relative to itself, or to a placement relative to it)"};
+    if (++depth > ifc_limits::kMaxPlacementDepth)
+      throw Broken{who.describe() + printf_string(": its placement chain is more than %d "
+                                                  "placements deep",
+                                                  ifc_limits::kMaxPlacementDepth)};
+    auto local = as<IfcLocalPlacement>(at);
+    if (!local)
+      throw Unusable{std::string("placed by an ") + at->className() +
+                     ", which ccbuild does not read (only IfcLocalPlacement)"};
+    t = axis_placement(local->m_RelativePlacement) * t;
+    at = local->m_PlacementRelTo;
+  }
+  if (!t.matrix().allFinite()) throw Unusable{"its placement is not finite"};
+  return t;
+}
+
+void Reader::read_units(const std::shared_ptr<IfcProject>& project, ModelContents& out) {
+  unit_ = 1.0;
+  bool found = false;
+  if (project && project->m_UnitsInContext)
+    for (const auto& u : project->m_UnitsInContext->m_Units) {
+      if (auto si = as<IfcSIUnit>(u)) {
+        if (!si->m_UnitType || si->m_UnitType->m_enum != IfcUnitEnum::ENUM_LENGTHUNIT) continue;
+        double factor = 1.0;
+        if (si->m_Prefix) {
+          static const double kPrefix[] = {1e18, 1e15, 1e12, 1e9,  1e6,  1e3,   1e2,   1e1,
+                                           1e-1, 1e-2, 1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 1e-18};
+          factor = kPrefix[static_cast<int>(si->m_Prefix->m_enum)];
+        }
+        unit_ = factor;
+        found = true;
+      } else if (auto cb = as<IfcConversionBasedUnit>(u)) {
+        if (!cb->m_UnitType || cb->m_UnitType->m_enum != IfcUnitEnum::ENUM_LENGTHUNIT) continue;
+        double value = 0.0, base = 1.0;
+        if (cb->m_ConversionFactor) {
+          const auto& v = cb->m_ConversionFactor->m_ValueComponent;
+          if (auto l = as<IfcLengthMeasure>(v)) value = l->m_value;
+          if (auto r = as<IfcRatioMeasure>(v)) value = r->m_value;
+          if (auto r = as<IfcReal>(v)) value = r->m_value;
+          if (auto si = as<IfcSIUnit>(cb->m_ConversionFactor->m_UnitComponent))
+            if (si->m_Prefix) {
+              static const double kPrefix[] = {1e18, 1e15, 1e12, 1e9,  1e6,  1e3,   1e2,   1e1,
+                                               1e-1, 1e-2, 1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 1e-18};
+              base = kPrefix[static_cast<int>(si->m_Prefix->m_enum)];
+            }
+        }
+        if (!(value > 0.0) || !std::isfinite(value))
+          throw InputError(file_, 0, "IfcConversionBasedUnit #" + std::to_string(cb->m_entity_id),
+                           "the length unit '" + label(cb->m_Name) +
+                               "' has no usable conversion factor to metres");
+        unit_ = value * base;
+        found = true;
+      }
+    }
+  if (!found)
+    out.notes.push_back(
+        "the project names no length unit (IfcUnitAssignment); lengths are "
+        "taken as metres");
+  out.metres_per_unit = unit_;
+}
+
+void Reader::report_georeferencing(const std::shared_ptr<BuildingModel>& model,
+                                   ModelContents& out) {
+  std::set<long long> norths;  // each angle said once (a model has several contexts)
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    if (auto context = as<IfcGeometricRepresentationContext>(entity)) {
+      if (!context->m_TrueNorth) continue;
+      Vector3d north;
+      try {
+        north = direction(context->m_TrueNorth, Vector3d::UnitY());
+      } catch (const Unusable&) {
+        continue;
+      }
+      const double angle_deg = std::atan2(-north.x(), north.y()) * 180.0 / M_PI;
+      if (std::abs(angle_deg) < 1e-6 || !norths.insert(std::llround(angle_deg * 1e3)).second)
+        continue;
+      out.notes.push_back(printf_string(
+          "the model's true north (IfcGeometricRepresentationContext #%d) is turned %.2f "
+          "degrees from its y axis; ignored: the plan keeps the model's axes",
+          id, angle_deg));
+    } else if (auto map = as<IfcMapConversion>(entity)) {
+      const auto v = [](const std::shared_ptr<IfcLengthMeasure>& m) {
+        return m ? m->m_value : 0.0;
+      };
+      out.notes.push_back(printf_string(
+          "the model's map conversion (IfcMapConversion #%d: eastings %g, northings %g, "
+          "height %g) is ignored: the plan keeps the model's own coordinates",
+          id, v(map->m_Eastings), v(map->m_Northings), v(map->m_OrthogonalHeight)));
+    }
+  }
+}
+
+std::vector<std::string> Reader::material_names(const IfcObjectDefinition& object) const {
+  std::vector<std::string> names;
+  const auto from = [&](const IfcObjectDefinition& o) {
+    for (const auto& weak : o.m_HasAssociations_inverse) {
+      auto rel = as<IfcRelAssociatesMaterial>(weak.lock());
+      if (!rel) continue;
+      const auto& m = rel->m_RelatingMaterial;
+      std::shared_ptr<IfcMaterialLayerSet> set;
+      if (auto usage = as<IfcMaterialLayerSetUsage>(m)) set = usage->m_ForLayerSet;
+      if (auto s = as<IfcMaterialLayerSet>(m)) set = s;
+      if (set)
+        for (const auto& layer : set->m_MaterialLayers)
+          if (layer && layer->m_Material) names.push_back(label(layer->m_Material->m_Name));
+      if (auto material = as<IfcMaterial>(m)) names.push_back(label(material->m_Name));
+      if (auto list = as<IfcMaterialList>(m))
+        for (const auto& material : list->m_Materials)
+          if (material) names.push_back(label(material->m_Name));
+    }
+  };
+  from(object);
+  if (names.empty())
+    if (auto typed = dynamic_cast<const IfcObject*>(&object))
+      for (const auto& weak : typed->m_IsTypedBy_inverse)
+        if (auto rel = weak.lock(); rel && rel->m_RelatingType) from(*rel->m_RelatingType);
+  return names;
+}
+
+// The layer set's total thickness and the offset of its middle from the wall's axis,
+// along the wall's local y (from IfcMaterialLayerSetUsage), m.
+std::optional<std::tuple<double, double>> Reader::layer_set(
+    const IfcObjectDefinition& object) const {
+  for (const auto& weak : object.m_HasAssociations_inverse) {
+    auto rel = as<IfcRelAssociatesMaterial>(weak.lock());
+    if (!rel) continue;
+    auto usage = as<IfcMaterialLayerSetUsage>(rel->m_RelatingMaterial);
+    if (!usage || !usage->m_ForLayerSet) continue;
+    if (usage->m_LayerSetDirection &&
+        usage->m_LayerSetDirection->m_enum != IfcLayerSetDirectionEnum::ENUM_AXIS2)
+      continue;
+    double total = 0.0;
+    for (const auto& layer : usage->m_ForLayerSet->m_MaterialLayers)
+      if (layer && layer->m_LayerThickness) total += layer->m_LayerThickness->m_value * unit_;
+    if (!(total > 0.0)) continue;
+    const double sense = usage->m_DirectionSense && usage->m_DirectionSense->m_enum ==
+                                                        IfcDirectionSenseEnum::ENUM_NEGATIVE
+                             ? -1.0
+                             : 1.0;
+    const double offset =
+        usage->m_OffsetFromReferenceLine ? usage->m_OffsetFromReferenceLine->m_value * unit_ : 0.0;
+    return std::tuple{total, offset + sense * 0.5 * total};
+  }
+  return std::nullopt;
+}
+
+ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
+  ModelContents out;
+  std::shared_ptr<IfcProject> project;
+  for (const auto& [id, entity] : model->getMapIfcEntities())
+    if ((project = as<IfcProject>(entity))) break;
+  if (!project) throw InputError(file_, 0, "", "the model has no IfcProject: not a building model");
+  read_units(project, out);
+  report_georeferencing(model, out);
+  // Buildings: their name, and a word when there are several.
+  std::vector<std::string> buildings;
+  for (const auto& [id, entity] : model->getMapIfcEntities())
+    if (auto b = as<::IfcBuilding>(entity)) buildings.push_back(label(b->m_Name));
+  if (!buildings.empty()) out.building_name = buildings.front();
+  if (buildings.size() > 1)
+    out.notes.push_back(
+        printf_string("the model holds %zu buildings (IfcBuilding); their "
+                      "storeys are read together, by elevation",
+                      buildings.size()));
+  if (out.building_name.empty()) out.building_name = label(project->m_Name);
+  // Storeys and what they contain.
+  std::set<std::string> wall_types;
+  for (const auto& t : options_.wall_types) wall_types.insert(lower(t));
+  int order = 0;
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    auto storey = as<IfcBuildingStorey>(entity);
+    if (!storey) continue;
+    FoundStorey s;
+    s.what = element_of(*storey);
+    s.order = order++;
+    double placed_z = 0.0;
+    try {
+      placed_z = storey->m_ObjectPlacement
+                     ? world(storey->m_ObjectPlacement, s.what).translation().z()
+                     : 0.0;
+    } catch (const Unusable& u) {
+      out.notes.push_back(s.what.describe() + ": " + u.why + "; its elements left out");
+      ++out.left_out;
+      continue;
+    }
+    s.elevation_m = storey->m_Elevation ? storey->m_Elevation->m_value * unit_ : placed_z;
+    // Elements are placed relative to the storey's placement; its Elevation attribute is
+    // the storey's level: elements' heights are taken relative to both agreeing.
+    const double z_shift_m = s.elevation_m - placed_z;
+    for (const auto& weak : storey->m_ContainsElements_inverse) {
+      auto rel = weak.lock();
+      if (!rel) continue;
+      for (const auto& product : rel->m_RelatedElements) {
+        if (!product) continue;
+        const std::string type = product->className();
+        if (auto wall = as<IfcWall>(product)) {
+          const Element e = element_of(*wall);
+          if (!wall_types.count(lower(type))) {
+            out.notes.push_back(e.describe() + ": an " + type +
+                                " is not among the wall types read (" +
+                                [&] {
+                                  std::string list;
+                                  for (const auto& t : options_.wall_types)
+                                    list += (list.empty() ? "" : ", ") + t;
+                                  return list;
+                                }() +
+                                "); left out");
+            ++out.left_out;
+            continue;
+          }
+          const auto names = material_names(*wall);
+          bool printable = names.empty();
+          std::string excluded_by;
+          for (const auto& name : names) {
+            bool excluded = false;
+            for (const auto& pattern : options_.excluded_materials)
+              if (!pattern.empty() && lower(name).find(lower(pattern)) != std::string::npos) {
+                excluded = true;
+                if (excluded_by.empty()) excluded_by = name + "' (matches '" + pattern + "')";
+              }
+            printable = printable || !excluded;
+          }
+          if (!printable) {
+            out.notes.push_back(e.describe() + ": its material '" + excluded_by +
+                                " is not printable; left out");
+            ++out.left_out;
+            continue;
+          }
+          read_wall(wall, Element{}, z_shift_m, s, out, 0);
+        } else if (as<IfcCurtainWall>(product)) {
+          out.notes.push_back(element_of(*product).describe() +
+                              ": a curtain wall, not printable; left out");
+          ++out.left_out;
+        }
+      }
+    }
+    out.storeys.push_back(std::move(s));
+  }
+  if (out.storeys.empty())
+    throw InputError(file_, 0, "", "the model has no building storeys (IfcBuildingStorey)");
+  return out;
+}
+
+}  // namespace detail
+
+namespace {
+
+void on_message(void* sink, shared_ptr<StatusCallback::Message> m) {
+  if (!m) return;
+  if (m->m_message_type == StatusCallback::MESSAGE_TYPE_ERROR ||
+      m->m_message_type == StatusCallback::MESSAGE_TYPE_WARNING) {
+    std::string text = detail::utf8(m->m_message_text);
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+    static_cast<std::vector<std::pair<bool, std::string>>*>(sink)->emplace_back(
+        m->m_message_type == StatusCallback::MESSAGE_TYPE_ERROR, text);
+  }
+}
+
+}  // namespace
+
+std::string Element::describe() const {
+  return type + " " + guid + (name.empty() ? std::string() : " '" + name + "'");
+}
+
+ModelContents read_model(std::string text, const std::string& file, const IfcOptions& options) {
+  std::vector<std::pair<bool, std::string>> messages;  // (error?, text)
+  auto model = std::make_shared<BuildingModel>();
+  ReaderSTEP reader;
+  reader.setMessageCallBack(&messages, &on_message);
+  model->setMessageCallBack(&messages, &on_message);
+  try {
+    reader.loadModelFromString(text, model);
+  } catch (const OutOfMemoryException&) {
+    throw InputError(file, 0, "", "IFC++ ran out of memory reading it: the model is too large");
+  } catch (const std::exception& e) {
+    throw InputError(file, 0, "", std::string("IFC++ could not read it: ") + e.what());
+  }
+  ModelContents out;
+  try {
+    detail::Reader r(file, options);
+    out = r.read(model);
+  } catch (const detail::Broken& b) {
+    throw InputError(file, 0, "", b.why);
+  }
+  // What IFC++ said while reading (a reference to an entity the file does not have, say):
+  // the elements it concerns are read as far as they can be, and it is said.
+  std::size_t said = 0;
+  for (const auto& [error, message] : messages)
+    if (++said <= 10)
+      out.notes.push_back(std::string(error ? "IFC++ error: " : "IFC++ warning: ") + message);
+  if (said > 10) out.notes.push_back(printf_string("IFC++: and %zu more messages", said - 10));
+  // IFC++ models hold references in both directions; let them go.
+  model->unsetInverseAttributes();
+  model->clearIfcModel();
+  return out;
+}
+
+}  // namespace ccbuild::import::ifc

@@ -1,0 +1,294 @@
+// IFC models to buildings (floors/import): storeys, walls through the whole placement chain
+// in millimetres, feet and metres, axes moved to the middle of their layer sets and joined,
+// openings from their voids, what cannot be printed said by GlobalId, hostile models refused
+// with the file named. The models are written by tests/tools/make_ifc.py, independently of
+// IFC++; tests/data/ifc/public holds a real one (its README says where from).
+
+#include "ccbuild/import/ifc.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <regex>
+
+#include "ccbuild/common/limits.hpp"
+#include "ccbuild/floors/plan.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::import {
+namespace {
+namespace fs = std::filesystem;
+using Eigen::Vector2d;
+using testing::contains;
+using testing::expect_input_error;
+
+fs::path model(const std::string& name) {
+  return testing::source_path("tests/data/ifc/" + name);
+}
+
+/// The GlobalId of the element named `name` in a model's text.
+std::string guid_of(const fs::path& file, const std::string& name) {
+  const std::string text = testing::slurp(file);
+  const std::regex entity("\\('([0-9A-Za-z_$]{22})',[^,]*,'" + name + "'");
+  std::smatch m;
+  EXPECT_TRUE(std::regex_search(text, m, entity)) << name;
+  return m.size() > 1 ? m[1].str() : std::string();
+}
+
+std::string all(const std::vector<std::string>& notes) {
+  std::string out;
+  for (const auto& n : notes) out += n + "\n";
+  return out;
+}
+
+const floors::Wall* wall_named(const floors::FloorPlan& plan, const std::string& name) {
+  for (const auto& w : plan.walls)
+    if (contains(w.source.path, "'" + name + "'")) return &w;
+  return nullptr;
+}
+
+const floors::Opening* opening_named(const floors::FloorPlan& plan, const std::string& name) {
+  for (const auto& o : plan.openings)
+    if (o.id == name) return &o;
+  return nullptr;
+}
+
+void expect_near(const Vector2d& p, double x, double y) {
+  EXPECT_NEAR(p.x(), x, 1e-6) << p.transpose();
+  EXPECT_NEAR(p.y(), y, 1e-6) << p.transpose();
+}
+
+/// A point of make_ifc.py's building frame (x, y), where it lies in the model: the building
+/// stands at (10 m, 5 m) on its site, turned by 90 degrees.
+void expect_at(const Vector2d& p, double x, double y) {
+  expect_near(p, 10.0 - y, 5.0 + x);
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_ifc_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+TEST(IfcImport, TheHouseInMillimetresBecomesTwoFloorsOfWallsAndOpenings) {
+  const fs::path file = model("house_ifc4.ifc");
+  const IfcImport read = read_ifc_building(file);
+  EXPECT_EQ(read.schema, "IFC4");
+  EXPECT_DOUBLE_EQ(read.metres_per_unit, 0.001);
+  const floors::Building& b = read.building;
+  EXPECT_EQ(b.name, "House");
+  ASSERT_EQ(b.floors.size(), 2u);  // the roof storey has no walls
+  EXPECT_EQ(b.floors[0].name, "Ground floor");
+  EXPECT_EQ(b.floors[1].name, "First floor");
+  EXPECT_DOUBLE_EQ(b.floors[0].height_m, 3.0);  // to the first floor's elevation
+  EXPECT_DOUBLE_EQ(b.floors[1].height_m, 3.0);  // to the roof storey's
+  EXPECT_DOUBLE_EQ(b.floors[1].base_elevation_m, 3.0);
+  const floors::FloorPlan& ground = b.floors[0].plan;
+  ASSERT_EQ(ground.walls.size(), 5u);
+  ASSERT_EQ(b.floors[1].plan.walls.size(), 5u);
+  for (const auto& f : b.floors)
+    for (const auto& w : f.plan.walls) {
+      ASSERT_TRUE(w.thickness_m);
+      EXPECT_DOUBLE_EQ(*w.thickness_m, 0.15);  // 150 mm
+      EXPECT_EQ(w.global_id.size(), 22u);
+    }
+  // The building stands at (10 m, 5 m) on its site, turned by 90 degrees: its own (x, y) is
+  // (10 - y, 5 + x) in the model. The south wall runs along the building's x.
+  const floors::Wall* south = wall_named(ground, "South wall");
+  ASSERT_NE(south, nullptr);
+  EXPECT_EQ(south->global_id, guid_of(file, "South wall"));
+  expect_near(ground.wall_start_m(*south), 10.0, 5.0);
+  expect_near(ground.wall_end_m(*south), 10.0, 13.0);
+  // The west wall has no axis: its body's rectangle gives it.
+  const floors::Wall* west = wall_named(ground, "West wall");
+  ASSERT_NE(west, nullptr);
+  expect_near(ground.wall_start_m(*west), 4.0, 5.0);
+  expect_near(ground.wall_end_m(*west), 10.0, 5.0);
+  // The inner wall's axis stops at the outer walls' faces; it is extended to their axes.
+  const floors::Wall* inner = wall_named(ground, "Inner wall");
+  ASSERT_NE(inner, nullptr);
+  expect_near(ground.wall_start_m(*inner), 10.0, 9.0);
+  expect_near(ground.wall_end_m(*inner), 4.0, 9.0);
+  EXPECT_EQ(ground.vertices.size(), 6u);  // every junction one shared vertex
+  // Openings: along the wall from its start, sill and head above the floor.
+  const floors::Opening* door = opening_named(ground, "Front door");
+  ASSERT_NE(door, nullptr);
+  EXPECT_EQ(door->wall_id, south->id);
+  EXPECT_NEAR(door->offset_m, 1.0, 1e-9);
+  EXPECT_NEAR(door->width_m, 0.9, 1e-9);
+  EXPECT_NEAR(door->sill_m, 0.0, 1e-9);
+  EXPECT_NEAR(door->head_m, 2.1, 1e-9);
+  EXPECT_EQ(door->global_id, guid_of(file, "Opening for Front door"));
+  EXPECT_TRUE(contains(door->source.path, "filled by IfcDoor " + guid_of(file, "Front door")));
+  // A window whose body is drawn in the wall's elevation and extruded through it.
+  const floors::Opening* window = opening_named(ground, "Kitchen window");
+  ASSERT_NE(window, nullptr);
+  EXPECT_NEAR(window->offset_m, 4.8, 1e-9);
+  EXPECT_NEAR(window->width_m, 1.2, 1e-9);
+  EXPECT_NEAR(window->sill_m, 0.9, 1e-9);
+  EXPECT_NEAR(window->head_m, 2.1, 1e-9);
+  // The hall door lies 2 m along the inner wall's axis, which now starts 75 mm earlier.
+  const floors::Opening* hall = opening_named(ground, "Hall door");
+  ASSERT_NE(hall, nullptr);
+  EXPECT_EQ(hall->wall_id, inner->id);
+  EXPECT_NEAR(hall->offset_m, 2.075, 1e-9);
+  // Upstairs: sill and head above the first floor.
+  const floors::Opening* bedroom = opening_named(b.floors[1].plan, "Bedroom window");
+  ASSERT_NE(bedroom, nullptr);
+  EXPECT_NEAR(bedroom->sill_m, 1.0, 1e-9);
+  EXPECT_NEAR(bedroom->head_m, 2.2, 1e-9);
+  // What was left out or ignored, each by GlobalId.
+  const std::string notes = all(read.notes);
+  EXPECT_TRUE(contains(notes, "IfcCurtainWall " + guid_of(file, "Glass screen") +
+                                  " 'Glass screen': a curtain wall, not printable; left out"));
+  EXPECT_TRUE(contains(notes, "IfcWall " + guid_of(file, "Curved garden wall") +
+                                  " 'Curved garden wall': its axis is curved"));
+  EXPECT_TRUE(contains(notes, guid_of(file, "Bedroom partition") +
+                                  " 'Bedroom partition': its material 'Gypsum board'"));
+  EXPECT_TRUE(contains(notes, "storey 'Roof' at 6.000 m has no walls"));
+  EXPECT_TRUE(contains(notes, "true north"));
+  EXPECT_TRUE(contains(notes, "map conversion"));
+  EXPECT_TRUE(contains(read.notes.back(), "imported 10 walls and 4 openings on 2 floors"));
+  EXPECT_TRUE(contains(read.notes.back(), "left out: 3 elements"));
+  EXPECT_EQ(b.import_notes, read.notes);
+}
+
+TEST(IfcImport, TheSameHouseInIfc2x3GivesTheSamePlansAndItsTopStoreyFromItsWalls) {
+  const IfcImport four = read_ifc_building(model("house_ifc4.ifc"));
+  const IfcImport two = read_ifc_building(model("house_ifc2x3.ifc"));
+  EXPECT_EQ(two.schema, "IFC2X3");
+  ASSERT_EQ(two.building.floors.size(), 2u);
+  EXPECT_DOUBLE_EQ(two.building.floors[1].height_m, 2.8);  // no storey above: its walls
+  EXPECT_TRUE(contains(all(two.notes), "the top one: 2.800 m high, as its tallest wall"));
+  for (std::size_t k = 0; k < 2; ++k) {
+    floors::FloorPlan a = four.building.floors[k].plan, b = two.building.floors[k].plan;
+    // The same elements have other GlobalIds in the other file.
+    for (auto* p : {&a, &b}) {
+      for (auto& w : p->walls) w.global_id.clear();
+      for (auto& o : p->openings) o.global_id.clear();
+    }
+    EXPECT_TRUE(floors::same_model(a, b, 1e-9)) << k;
+  }
+}
+
+TEST(IfcImport, ThickWallsDrawnAlongTheirFaceAreCentredOnTheirLayerSetsAndMeet) {
+  const IfcImport read = read_ifc_building(model("thick_ifc4.ifc"));
+  EXPECT_DOUBLE_EQ(read.metres_per_unit, 1.0);
+  const floors::FloorPlan& plan = read.building.floors.at(0).plan;
+  ASSERT_EQ(plan.walls.size(), 5u);
+  // The outer walls' middles are 0.15 m inside the 6 m x 5 m outline, meeting at corners.
+  const floors::Wall* first = wall_named(plan, "Outer wall 1");
+  ASSERT_NE(first, nullptr);
+  EXPECT_DOUBLE_EQ(*first->thickness_m, 0.3);
+  expect_at(plan.wall_start_m(*first), 0.15, 0.15);
+  expect_at(plan.wall_end_m(*first), 5.85, 0.15);
+  const floors::Wall* third = wall_named(plan, "Outer wall 3");
+  ASSERT_NE(third, nullptr);
+  expect_at(plan.wall_start_m(*third), 5.85, 4.85);
+  expect_at(plan.wall_end_m(*third), 0.15, 4.85);
+  // The inner wall, stopped at the outer walls' inner faces, reaches their middles.
+  const floors::Wall* inner = wall_named(plan, "Inner wall");
+  ASSERT_NE(inner, nullptr);
+  EXPECT_DOUBLE_EQ(*inner->thickness_m, 0.15);
+  expect_at(plan.wall_start_m(*inner), 3.0, 0.15);
+  expect_at(plan.wall_end_m(*inner), 3.0, 4.85);
+  EXPECT_EQ(plan.vertices.size(), 6u);
+}
+
+TEST(IfcImport, AConversionBasedFootIsConvertedToMetres) {
+  const IfcImport read = read_ifc_building(model("feet_ifc2x3.ifc"));
+  EXPECT_NEAR(read.metres_per_unit, 0.3048, 1e-12);
+  const floors::Building& b = read.building;
+  ASSERT_EQ(b.floors.size(), 1u);
+  EXPECT_NEAR(b.floors[0].height_m, 10 * 0.3048, 1e-9);  // its walls' height
+  const floors::FloorPlan& plan = b.floors[0].plan;
+  ASSERT_EQ(plan.walls.size(), 4u);
+  EXPECT_NEAR(*plan.walls[0].thickness_m, 0.5 * 0.3048, 1e-9);
+  EXPECT_NEAR(plan.wall_length_m(plan.walls[0]), 20 * 0.3048, 1e-9);
+}
+
+TEST(IfcImport, FiltersChooseWhichWallsArePrinted) {
+  IfcOptions o;
+  o.excluded_materials.clear();            // the gypsum partition too
+  o.wall_types = {"ifcwallstandardcase"};  // any case; the west wall is an IfcWall
+  const IfcImport read = read_ifc_building(model("house_ifc4.ifc"), o);
+  EXPECT_EQ(read.building.floors[1].plan.walls.size(), 6u);  // the partition too
+  EXPECT_EQ(read.building.floors[0].plan.walls.size(), 4u);  // the west wall (an IfcWall) out
+  EXPECT_NE(wall_named(read.building.floors[1].plan, "Bedroom partition"), nullptr);
+  EXPECT_EQ(wall_named(read.building.floors[0].plan, "West wall"), nullptr);
+  EXPECT_TRUE(contains(all(read.notes), "an IfcWall is not among the wall types read"));
+}
+
+TEST(IfcImport, HostileModelsAreRefusedNamingTheFile) {
+  const auto refused = [](const fs::path& file, const std::string& message,
+                          const IfcOptions& o = {}) {
+    const InputError e = expect_input_error([&] { read_ifc_building(file, o); });
+    EXPECT_EQ(e.first().file, file.string());
+    EXPECT_TRUE(contains(e.what(), message));
+  };
+  refused(model("truncated.ifc"), "truncated");
+  refused(model("self_placement.ifc"), guid_of(model("self_placement.ifc"), "Only wall") +
+                                           " 'Only wall': its placement "
+                                           "chain loops");
+  refused(model("nan.ifc"), "the number 1.0E999 is not a finite number");
+  refused(model("no_walls.ifc"), "no wall ccbuild can print");
+  IfcOptions few;
+  few.max_entities = 100;
+  refused(model("house_ifc4.ifc"), "more than 100 entities", few);
+  const fs::path dir = scratch("hostile");
+  // A 50 MB model (sparse: nothing is written) is over the limit, said before reading it.
+  const fs::path big = dir / "big.ifc";
+  std::ofstream(big) << "ISO-10303-21;\n";
+  fs::resize_file(big, 50'000'000);
+  refused(big, "is 47.7 MiB; ccbuild reads IFC models of at most 32 MiB");
+  // Not a STEP file, another schema, an IFC-ZIP.
+  std::ofstream(dir / "plan.ifc") << "vertices:\n  - {id: 1, x: 0, y: 0}\n";
+  refused(dir / "plan.ifc", "not an IFC model");
+  std::string text = testing::slurp(model("house_ifc4.ifc"));
+  text.replace(text.find("FILE_SCHEMA(('IFC4'))"), 21, "FILE_SCHEMA(('IFC4X3'))");
+  std::ofstream(dir / "ifc4x3.ifc") << text;
+  refused(dir / "ifc4x3.ifc", "schema IFC4X3: ccbuild reads IFC4 and IFC2X3");
+  std::ofstream(dir / "zipped.ifc") << "PK\x03\x04";
+  refused(dir / "zipped.ifc", "IFC-ZIP");
+  refused(dir / "missing.ifc", "cannot open file");
+  fs::remove_all(dir);
+}
+
+TEST(IfcImport, ThePublicDuplexModelImportsItsConcreteWallsAndLeavesTheStudWallsOut) {
+  // buildingSMART's Duplex Apartment (Revit 2011, IFC2X3; CC BY 4.0): four storeys from the
+  // foundation at -1.25 m to the roof's parapets.
+  const fs::path file = model("public/Duplex_A_20110907.ifc");
+  const IfcImport read = read_ifc_building(file);
+  EXPECT_EQ(read.schema, "IFC2X3");
+  const floors::Building& b = read.building;
+  ASSERT_EQ(b.floors.size(), 4u);
+  EXPECT_EQ(b.floors[0].name, "T/FDN");
+  EXPECT_EQ(b.floors[1].name, "Level 1");
+  EXPECT_NEAR(b.floors[0].height_m, 1.25, 1e-9);
+  EXPECT_NEAR(b.floors[1].height_m, 3.1, 1e-6);
+  EXPECT_NEAR(b.floors[2].height_m, 2.9, 1e-6);
+  int walls = 0, openings = 0;
+  for (const auto& f : b.floors) {
+    walls += static_cast<int>(f.plan.walls.size());
+    openings += static_cast<int>(f.plan.openings.size());
+    for (const auto& w : f.plan.walls) {
+      EXPECT_FALSE(w.global_id.empty());
+      EXPECT_GT(*w.thickness_m, 0.1);
+      EXPECT_LT(*w.thickness_m, 0.6);
+    }
+  }
+  EXPECT_EQ(walls, 23);
+  EXPECT_EQ(openings, 26);
+  const std::string notes = all(read.notes);
+  EXPECT_TRUE(contains(notes,
+                       "'Basic Wall:Interior - Partition (92mm Stud):138584': its "
+                       "material 'Plasterboard'"));
+  EXPECT_TRUE(contains(notes, "the lowest floor, 'T/FDN', stands at -1.250 m"));
+  EXPECT_TRUE(contains(read.notes.back(), "left out: 34 elements"));
+}
+
+}  // namespace
+}  // namespace ccbuild::import
