@@ -174,7 +174,7 @@ std::vector<Vec> corners_of(const BPolygon::ring_type& ring) {
       const Vec& prev = pts[(i + pts.size() - 1) % pts.size()];
       const Vec& next = pts[(i + 1) % pts.size()];
       const Vec u = (pts[i] - prev).normalized(), w = (next - pts[i]).normalized();
-      if (std::abs(cross(u, w)) < 1e-9 && u.dot(w) > 0.0) {
+      if (std::abs(cross(u, w)) < kParallel && u.dot(w) > 0.0) {
         pts.erase(pts.begin() + static_cast<std::ptrdiff_t>(i));
         changed = true;
         break;
@@ -352,7 +352,11 @@ class Beads {
       const auto& [p0, d0] = lines[(k + n - 1) % n];
       const auto& [p1, d1] = lines[k];
       const double det = cross(d0, d1);
-      if (std::abs(det) < 1e-9) continue;
+      if (std::abs(det) < 1e-9) {  // one line on: the corner is put on it
+        const Vec on = p1 + (pts[k] - p1).dot(d1) * d1;
+        if ((on - pts[k]).norm() <= 1e-4) out[k] = on;
+        continue;
+      }
       const double t = cross(p1 - p0, d1) / det;
       const Vec corner = p0 + t * d0;
       if ((corner - pts[k]).norm() <= 1e-4) out[k] = corner;
