@@ -3,7 +3,9 @@
 // the model named directly; hostile models exit 2 naming the file.
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -66,6 +68,22 @@ TEST(IfcCommands, AModelImportedSchedulesAsTheModelNamedDirectly) {
   const auto diff = run_ccbuild("diff " + (dir / "imported.json").string() + " " +
                                 (dir / "direct.json").string());
   EXPECT_EQ(diff.exit_code, 0) << diff.out;
+  // Provenance: both routes' schedules name each wall's GlobalId under its floor and id,
+  // and the report's tooltips look them up there.
+  const auto guid_at = plan.find("guid: \"");
+  ASSERT_NE(guid_at, std::string::npos);
+  const std::string guid = plan.substr(guid_at + 7, 22);
+  for (const char* output : {"imported.json", "direct.json"}) {
+    const auto doc = nlohmann::json::parse(slurp(dir / output));
+    const auto& floor0 = doc.at("inputs").at("provenance").at(0);
+    EXPECT_EQ(floor0.at("floor"), 0) << output;
+    EXPECT_EQ(floor0.at("walls").at("1"), guid) << output;
+    EXPECT_EQ(floor0.at("openings").size(), 3u) << output;
+  }
+  const auto report = run_ccbuild("report " + (dir / "direct.json").string() + " -o " +
+                                  (dir / "report.html").string());
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_TRUE(contains(slurp(dir / "report.html"), "IFC GlobalId "));
   EXPECT_TRUE(contains(diff.out, "agree"));
   // Nothing replaced without --force, never the model; DXF flags are refused for a model.
   const std::string before = slurp(building);

@@ -21,6 +21,13 @@
   };
 
   var S = JSON.parse(document.getElementById('schedule-data').textContent);
+  // A wall's IFC GlobalId on a floor, when the building came from a BIM model.
+  var PROVENANCE = {};
+  (S.inputs.provenance || []).forEach(function (f) { PROVENANCE[f.floor] = f; });
+  function guidOf(floor, wall) {
+    var f = PROVENANCE[floor];
+    return f && f.walls[String(wall)] ? f.walls[String(wall)] : null;
+  }
   var NS = 'http://www.w3.org/2000/svg';
   var COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf'];
   var REASON_COLORS = { 'min-interval': '#f2a900', 'strength': '#8e44ad', 'anchor-strength': '#c0392b',
@@ -376,7 +383,9 @@
         var line = svg('line', { 'class': 'heat-piece', x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]),
                                  y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': p.width_m ? Math.max(1, p.width_m * k - 1) : 5,
                                  'stroke-linecap': p.width_m ? 'butt' : 'round' }, root);
+        var guid = guidOf(l.floor, p.wall);
         hover(line, 'wall ' + p.wall + ' piece ' + p.piece + (p.bead ? ' (' + p.bead + ' bead, ' + (p.width_m * 1000).toFixed(0) + ' mm wide)' : '') +
+          (guid ? '\nIFC GlobalId ' + guid : '') +
           '\n' + (v === null ? 'no wall under it' :
           'covered ' + duration(v) + ' after the piece under it (maximum ' + duration(hi) + ')'));
       });

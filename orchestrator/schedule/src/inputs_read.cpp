@@ -123,7 +123,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   in.ccbuild_version = root.at("ccbuild_version").string(100);
   const JsonAt i = root.at("inputs");
   i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
-               "files", "machine", "material"});
+               "files", "machine", "material", "provenance"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -155,6 +155,27 @@ RecordedInputs read_inputs(const JsonAt& root) {
         });
     if (!hex) f.at("sha256").refuse("expected 64 lowercase hex digits (a SHA-256)");
     in.files.push_back(std::move(file));
+  }
+  if (const auto provenance = i.maybe("provenance")) {
+    for (const auto& f : provenance->elements(kMaxSmall)) {
+      f.only_keys({"floor", "walls", "openings"});
+      FloorProvenance p;
+      p.floor = static_cast<int>(f.at("floor").integer(0, floors::limits::kMaxFloors));
+      for (const auto& [id, guid] : f.at("walls").members(kMaxItems)) {
+        std::size_t used = 0;
+        long long wall = 0;
+        try {
+          wall = std::stoll(id, &used);
+        } catch (const std::exception&) {
+        }
+        if (used != id.size() || wall < 1)
+          guid.refuse("expected a wall id as the key, got \"" + id + "\"");
+        p.walls.emplace_back(wall, guid.string(64));
+      }
+      for (const auto& [id, guid] : f.at("openings").members(kMaxItems))
+        p.openings.emplace_back(id, guid.string(64));
+      in.provenance.push_back(std::move(p));
+    }
   }
   in.machine = read_machine(i.at("machine"));
   read_material(i.at("material"), in);

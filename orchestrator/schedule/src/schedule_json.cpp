@@ -83,6 +83,15 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   in.material = project.material;
   in.material_origin = project.material_origin;
   in.unit_names = project.unit_names();
+  for (const auto& floor : b.floors) {
+    FloorProvenance p;
+    p.floor = floor.index;
+    for (const auto& w : floor.plan.walls)
+      if (!w.global_id.empty()) p.walls.emplace_back(w.id, w.global_id);
+    for (const auto& o : floor.plan.openings)
+      if (!o.global_id.empty() && !o.id.empty()) p.openings.emplace_back(o.id, o.global_id);
+    if (!p.walls.empty() || !p.openings.empty()) in.provenance.push_back(std::move(p));
+  }
   return in;
 }
 
@@ -116,6 +125,18 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
       {"files", files},
       {"machine", recorded_machine_json(in.machine)},
       {"material", material}};
+  // Only for buildings read from a BIM model: older schedules and YAML buildings keep
+  // their bytes.
+  if (!in.provenance.empty()) {
+    json floors_json = json::array();
+    for (const auto& p : in.provenance) {
+      json walls = json::object(), openings = json::object();
+      for (const auto& [id, guid] : p.walls) walls[std::to_string(id)] = guid;
+      for (const auto& [id, guid] : p.openings) openings[id] = guid;
+      floors_json.push_back({{"floor", p.floor}, {"walls", walls}, {"openings", openings}});
+    }
+    out["inputs"]["provenance"] = floors_json;
+  }
 
   out["feasible"] = schedule.feasible;
   if (schedule.infeasibility) {

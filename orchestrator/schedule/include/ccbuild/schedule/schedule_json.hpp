@@ -57,6 +57,14 @@ struct RecordedMachine {
 };
 
 /// What a schedule records about the run that made it.
+/// Where a floor's walls and openings came from in a BIM model: their IFC GlobalIds, by
+/// wall id and opening id (only those that have one), so that a user finds them there.
+struct FloorProvenance {
+  int floor = 0;
+  std::vector<std::pair<std::int64_t, std::string>> walls;
+  std::vector<std::pair<std::string, std::string>> openings;
+};
+
 struct RecordedInputs {
   std::string ccbuild_version = kCcbuildVersion;
   std::string building;  ///< the file, as the run named it
@@ -73,6 +81,8 @@ struct RecordedInputs {
   std::string material_origin;
   /// The climbing units' names: anchors and climb phases name their unit by index here.
   std::vector<std::string> unit_names;
+  /// Empty unless the building came from a model whose elements have GlobalIds.
+  std::vector<FloorProvenance> provenance;
 };
 
 /// A schedule with what it was made from, as its JSON holds it.
