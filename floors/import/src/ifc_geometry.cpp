@@ -266,48 +266,67 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           "cannot print");
     std::vector<Vector2d> axis;
     bool curved = false;
-    std::optional<Solid> body;
+    // Every solid of the body: Revit, for one, exports a layered wall as one extrusion per
+    // layer, side by side; the wall is all of them.
+    std::vector<Solid> bodies;
     if (wall->m_Representation)
       for (const auto& rep : wall->m_Representation->m_Representations) {
         if (!rep) continue;
         const std::string id = lower(label(rep->m_RepresentationIdentifier));
-        for (const auto& item : rep->m_Items) {
-          if (id == "axis" && axis.empty() && !curved) {
-            if (auto c = as<IfcCurve>(item)) axis = curve_points(c, curved, 0);
-          } else if (id != "axis" && !body) {
-            body = solid_of(item, 0);
-          }
+        if (id == "axis") {
+          for (const auto& item : rep->m_Items)
+            if (auto c = as<IfcCurve>(item); c && axis.empty() && !curved)
+              axis = curve_points(c, curved, 0);
+        } else if (bodies.empty()) {
+          for (const auto& item : rep->m_Items)
+            if (auto solid = solid_of(item, 0)) bodies.push_back(std::move(*solid));
         }
       }
     if (curved)
       return skip(
           "its axis is curved (an arc); ccbuild prints straight walls: model it as "
           "straight pieces to print it");
-    if (body && body->curved)
-      return skip("its body's footprint is curved; ccbuild prints straight walls");
-    // The body in the wall's frame: its footprint corners, its extent in z.
+    for (const Solid& body : bodies)
+      if (body.curved) return skip("its body's footprint is curved; ccbuild prints straight walls");
+    // The body in the wall's frame: its footprint corners, its extent in z. A solid is
+    // extruded upwards from a horizontal profile, or through the wall from a profile in the
+    // wall's elevation (a wall with a gable or a notch, as Revit exports it): both stand
+    // upright; the second only when extruded across the axis (checked below).
     std::vector<Vector2d> footprint;
-    if (body) {
-      const Vector3d along = body->position.linear() * body->extrusion;
-      if (std::abs(along.normalized().z()) < 1.0 - 1e-6)
-        return skip(
-            "its body is extruded at a slant or sideways: a sloped wall ccbuild cannot "
-            "print");
+    std::vector<Vector2d> across;  // the horizontal directions of solids extruded sideways
+    if (!bodies.empty()) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Vector2d& p : body->profile) {
-        const Vector3d base = body->position * Vector3d(p.x(), p.y(), 0.0);
-        if (std::abs(body->position.linear().col(2).z()) < 1.0 - 1e-6)
+      for (const Solid& body : bodies) {
+        const Vector3d along = body.position.linear() * body.extrusion;
+        const Vector3d normal = body.position.linear().col(2);
+        const bool upwards = std::abs(along.normalized().z()) >= 1.0 - 1e-6;
+        const bool sideways = std::abs(along.normalized().z()) <= 1e-6;
+        if (!upwards && !sideways)
+          return skip(
+              "its body is extruded at a slant: a sloped wall ccbuild cannot "
+              "print");
+        if (upwards && std::abs(normal.z()) < 1.0 - 1e-6)
           return skip(
               "its body's profile is not horizontal: ccbuild reads walls extruded "
-              "upwards");
-        footprint.push_back(base.head<2>());
-        lo = std::min({lo, base.z(), base.z() + along.z()});
-        hi = std::max({hi, base.z(), base.z() + along.z()});
+              "upwards or through their thickness");
+        if (sideways && std::abs(normal.z()) > 1e-6)
+          return skip(
+              "its body's profile is not upright: ccbuild reads walls extruded "
+              "upwards or through their thickness");
+        if (sideways) across.push_back(along.head<2>().normalized());
+        for (const Vector2d& p : body.profile) {
+          const Vector3d base = body.position * Vector3d(p.x(), p.y(), 0.0);
+          footprint.push_back(base.head<2>());
+          if (sideways) footprint.push_back((base + along).head<2>());
+          lo = std::min({lo, base.z(), base.z() + along.z()});
+          hi = std::max({hi, base.z(), base.z() + along.z()});
+        }
       }
       const double z0 = (place * Vector3d(0, 0, 0)).z() + z_shift_m;
       found.bottom_m = z0 + lo;
       found.top_m = z0 + hi;
-      found.clipped = body->clipped;
+      found.clipped =
+          std::any_of(bodies.begin(), bodies.end(), [](const Solid& b) { return b.clipped; });
     }
     const auto layers = layer_set(*wall);
     // The centreline in the wall's frame.
@@ -326,6 +345,11 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
         const Vector2d a = corners[k], b = corners[k + 1];
         if ((b - a).norm() < 1e-9) continue;
         const Vector2d d = (b - a).normalized(), left(-d.y(), d.x());
+        for (const Vector2d& e : across)
+          if (std::abs(e.dot(d)) > 1e-6)
+            return skip(
+                "its body is extruded sideways along its axis, not through it: ccbuild "
+                "reads walls extruded upwards or through their thickness");
         double thickness = 0.0, offset = 0.0;
         if (layers) {
           std::tie(thickness, offset) = *layers;
@@ -344,6 +368,10 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
         local.emplace_back(a + offset * left, b + offset * left);
       }
     } else if (!footprint.empty()) {
+      if (bodies.size() != 1 || !across.empty())
+        return skip(
+            "it has no axis, and its body is not one solid extruded upwards (ccbuild "
+            "finds the axis of such a body only)");
       // The footprint's longest edge gives the direction; its faces are the two lines
       // every corner lies on.
       std::size_t longest = 0;
