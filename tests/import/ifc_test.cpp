@@ -220,6 +220,12 @@ TEST(IfcImport, ALayeredBodyIsAllItsSolidsAndAnElevationExtrudedThroughAWallStan
   expect_at(plan.wall_end_m(*wall_named(plan, "West wall")), 0.0, 0.0);
   EXPECT_EQ(plan.vertices.size(), 4u);
   EXPECT_TRUE(contains(read.notes.back(), "left out: 0 elements")) << all(read.notes);
+  // The north wall's cornice, swept along it, is no part of its thickness; said.
+  EXPECT_TRUE(contains(all(read.notes),
+                       "'North wall': 1 of its body's 4 solids extruded "
+                       "sideways along it (a sweep or a cornice?) are not "
+                       "printed"))
+      << all(read.notes);
 }
 
 TEST(IfcImport, AConversionBasedFootIsConvertedToMetres) {

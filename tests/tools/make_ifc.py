@@ -37,9 +37,10 @@ centred on the axis. The IFC4 file also has a true north and a map conversion.
   feet_ifc2x3.ifc       one storey of four walls in feet (a conversion-based unit)
   layered_ifc4.ifc      one storey of four 300 mm walls without a material layer set, their
                         bodies as Revit exports them: the south and north walls one
-                        extrusion per layer (100 + 100 + 100 mm side by side), the east
-                        and west walls their elevation extruded through them (the west
-                        wall's with a gable); millimetres
+                        extrusion per layer (100 + 100 + 100 mm side by side; the north
+                        wall also a cornice swept along it), the east and west walls their
+                        elevation extruded through them (the west wall's with a gable);
+                        millimetres
   truncated.ifc         house_ifc4.ifc cut off in the middle of an entity
   self_placement.ifc    a wall whose placement is placed relative to itself
   nan.ifc               a wall whose placement point is 1.0E999 (not a finite number)
@@ -397,6 +398,10 @@ def layered():
             for y in (-0.1, 0.0, 0.1):
                 solids.append(m.extrusion(m.rectangle((length / 2, y), length, 0.1),
                                           f.add("IFCAXIS2PLACEMENT3D", m.origin, "$", "$"), h))
+            if k == 2:  # a cornice on the north wall's outer face, swept along it
+                pos = m.axis3((0, 0, 0), ref=(0, 1, 0), axis=(1, 0, 0))
+                cornice = m.rectangle((-0.175, 2.8), 0.05, 0.1)
+                solids.append(m.extrusion(cornice, pos, length))
         else:  # the elevation (x along the wall, y up), extruded through the wall
             top = [(length, h), (0, h)] if k == 1 else [(length, h), (length / 2, h + 0.5),
                                                         (0, h)]

@@ -70,6 +70,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -293,10 +294,13 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
     // wall's elevation (a wall with a gable or a notch, as Revit exports it): both stand
     // upright; the second only when extruded across the axis (checked below).
     std::vector<Vector2d> footprint;
-    std::vector<Vector2d> across;  // the horizontal directions of solids extruded sideways
+    std::vector<std::size_t> owner;  // the solid each footprint corner is of
+    // The horizontal direction of each solid extruded sideways.
+    std::vector<std::optional<Vector2d>> across(bodies.size());
     if (!bodies.empty()) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Solid& body : bodies) {
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Solid& body = bodies[i];
         const Vector3d along = body.position.linear() * body.extrusion;
         const Vector3d normal = body.position.linear().col(2);
         const bool upwards = std::abs(along.normalized().z()) >= 1.0 - 1e-6;
@@ -313,11 +317,15 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           return skip(
               "its body's profile is not upright: ccbuild reads walls extruded "
               "upwards or through their thickness");
-        if (sideways) across.push_back(along.head<2>().normalized());
+        if (sideways) across[i] = along.head<2>().normalized();
         for (const Vector2d& p : body.profile) {
           const Vector3d base = body.position * Vector3d(p.x(), p.y(), 0.0);
           footprint.push_back(base.head<2>());
-          if (sideways) footprint.push_back((base + along).head<2>());
+          owner.push_back(i);
+          if (sideways) {
+            footprint.push_back((base + along).head<2>());
+            owner.push_back(i);
+          }
           lo = std::min({lo, base.z(), base.z() + along.z()});
           hi = std::max({hi, base.z(), base.z() + along.z()});
         }
@@ -341,23 +349,32 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           corners.push_back(b);
       }
       corners.push_back(axis.back());
+      bool said = false;
       for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
         const Vector2d a = corners[k], b = corners[k + 1];
         if ((b - a).norm() < 1e-9) continue;
         const Vector2d d = (b - a).normalized(), left(-d.y(), d.x());
-        for (const Vector2d& e : across)
-          if (std::abs(e.dot(d)) > 1e-6)
-            return skip(
-                "its body is extruded sideways along its axis, not through it: ccbuild "
-                "reads walls extruded upwards or through their thickness");
+        // A solid extruded sideways along the wall (a sweep, a cornice) is not a part of
+        // its thickness.
+        std::vector<bool> along_it(bodies.size(), false);
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+          along_it[i] = across[i] && std::abs(across[i]->dot(d)) > 1e-6;
+        const auto kept =
+            static_cast<std::size_t>(std::count(along_it.begin(), along_it.end(), false));
+        if (kept < bodies.size() && !std::exchange(said, true))
+          out.notes.push_back(printf_string(
+              "%s: %zu of its body's %zu solids extruded sideways along it (a sweep or a "
+              "cornice?) are not printed",
+              who.c_str(), bodies.size() - kept, bodies.size()));
         double thickness = 0.0, offset = 0.0;
         if (layers) {
           std::tie(thickness, offset) = *layers;
-        } else if (!footprint.empty()) {
+        } else if (kept > 0) {
           double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-          for (const Vector2d& p : footprint) {
-            lo = std::min(lo, left.dot(p - a));
-            hi = std::max(hi, left.dot(p - a));
+          for (std::size_t j = 0; j < footprint.size(); ++j) {
+            if (along_it[owner[j]]) continue;
+            lo = std::min(lo, left.dot(footprint[j] - a));
+            hi = std::max(hi, left.dot(footprint[j] - a));
           }
           thickness = hi - lo;
           offset = 0.5 * (lo + hi);
@@ -368,7 +385,7 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
         local.emplace_back(a + offset * left, b + offset * left);
       }
     } else if (!footprint.empty()) {
-      if (bodies.size() != 1 || !across.empty())
+      if (bodies.size() != 1 || across[0])
         return skip(
             "it has no axis, and its body is not one solid extruded upwards (ccbuild "
             "finds the axis of such a body only)");
