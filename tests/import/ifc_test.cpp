@@ -198,6 +198,36 @@ TEST(IfcImport, ThickWallsDrawnAlongTheirFaceAreCentredOnTheirLayerSetsAndMeet) 
   EXPECT_EQ(plan.vertices.size(), 6u);
 }
 
+TEST(IfcImport, ALayeredBodyIsAllItsSolidsAndAnElevationExtrudedThroughAWallStandsUpright) {
+  // Revit's IFC4 export (the public Gymzaal model): a cavity wall's body is one extrusion
+  // per layer, side by side (the first alone is its 70 mm cavity: the wall was read as
+  // 0.07 m thick); a wall with a gable or notch is its elevation extruded through it (it
+  // was left out as sloped). No material layer set: the thickness is the bodies' width.
+  const IfcImport read = read_ifc_building(model("layered_ifc4.ifc"));
+  ASSERT_EQ(read.building.floors.size(), 1u);
+  EXPECT_NEAR(read.building.floors[0].height_m, 3.5, 1e-9);  // the gable's top
+  const floors::FloorPlan& plan = read.building.floors[0].plan;
+  ASSERT_EQ(plan.walls.size(), 4u) << all(read.notes);
+  for (const char* name : {"South wall", "East wall", "North wall", "West wall"}) {
+    const floors::Wall* w = wall_named(plan, name);
+    ASSERT_NE(w, nullptr) << name;
+    EXPECT_NEAR(*w->thickness_m, 0.3, 1e-9) << name;
+  }
+  expect_at(plan.wall_start_m(*wall_named(plan, "South wall")), 0.0, 0.0);
+  expect_at(plan.wall_end_m(*wall_named(plan, "South wall")), 6.0, 0.0);
+  expect_at(plan.wall_start_m(*wall_named(plan, "East wall")), 6.0, 0.0);
+  expect_at(plan.wall_end_m(*wall_named(plan, "East wall")), 6.0, 4.0);
+  expect_at(plan.wall_end_m(*wall_named(plan, "West wall")), 0.0, 0.0);
+  EXPECT_EQ(plan.vertices.size(), 4u);
+  EXPECT_TRUE(contains(read.notes.back(), "left out: 0 elements")) << all(read.notes);
+  // The north wall's cornice, swept along it, is no part of its thickness; said.
+  EXPECT_TRUE(contains(all(read.notes),
+                       "'North wall': 1 of its body's 4 solids extruded "
+                       "sideways along it (a sweep or a cornice?) are not "
+                       "printed"))
+      << all(read.notes);
+}
+
 TEST(IfcImport, AConversionBasedFootIsConvertedToMetres) {
   const IfcImport read = read_ifc_building(model("feet_ifc2x3.ifc"));
   EXPECT_NEAR(read.metres_per_unit, 0.3048, 1e-12);

@@ -35,6 +35,12 @@ centred on the axis. The IFC4 file also has a true north and a map conversion.
   thick_ifc4.ifc        one storey, outer walls 300 mm whose axis is their outer face (the
                         material layer set offset from it), metres
   feet_ifc2x3.ifc       one storey of four walls in feet (a conversion-based unit)
+  layered_ifc4.ifc      one storey of four 300 mm walls without a material layer set, their
+                        bodies as Revit exports them: the south and north walls one
+                        extrusion per layer (100 + 100 + 100 mm side by side; the north
+                        wall also a cornice swept along it), the east and west walls their
+                        elevation extruded through them (the west wall's with a gable);
+                        millimetres
   truncated.ifc         house_ifc4.ifc cut off in the middle of an entity
   self_placement.ifc    a wall whose placement is placed relative to itself
   nan.ifc               a wall whose placement point is 1.0E999 (not a finite number)
@@ -372,6 +378,46 @@ def feet():
     return m.f
 
 
+def layered():
+    m = Model("IFC4", "mm")
+    g = m.storey("Ground", 0.0)
+    f = m.f
+    t, h = 0.3, 3.0
+    brick = f.add("IFCMATERIAL", s("Brick"), "$", "$")
+    corners = [(0, 0), (6, 0), (6, 4), (0, 4)]
+    for k, name in enumerate(["South wall", "East wall", "North wall", "West wall"]):
+        a, b = corners[k], corners[(k + 1) % 4]
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        length = math.hypot(dx, dy)
+        place = m.placement(g[1], (a[0], a[1], 0), (dx / length, dy / length))
+        line = f.add("IFCPOLYLINE", "(%s,%s)" % (m.mpoint(0, 0), m.mpoint(length, 0)))
+        axis = f.add("IFCSHAPEREPRESENTATION", m.axis_context, "'Axis'", "'Curve2D'",
+                     "(%s)" % line)
+        solids = []
+        if k % 2 == 0:  # three layers side by side, each its own extrusion
+            for y in (-0.1, 0.0, 0.1):
+                solids.append(m.extrusion(m.rectangle((length / 2, y), length, 0.1),
+                                          f.add("IFCAXIS2PLACEMENT3D", m.origin, "$", "$"), h))
+            if k == 2:  # a cornice on the north wall's outer face, swept along it
+                pos = m.axis3((0, 0, 0), ref=(0, 1, 0), axis=(1, 0, 0))
+                cornice = m.rectangle((-0.175, 2.8), 0.05, 0.1)
+                solids.append(m.extrusion(cornice, pos, length))
+        else:  # the elevation (x along the wall, y up), extruded through the wall
+            top = [(length, h), (0, h)] if k == 1 else [(length, h), (length / 2, h + 0.5),
+                                                        (0, h)]
+            profile = m.polygon_profile([(0, 0), (length, 0)] + top)
+            pos = m.axis3((0, t / 2, 0), ref=(1, 0, 0), axis=(0, -1, 0))
+            solids.append(m.extrusion(profile, pos, t))
+        body = f.add("IFCSHAPEREPRESENTATION", m.body_context, "'Body'", "'SweptSolid'",
+                     "(%s)" % ",".join(solids))
+        w = f.add("IFCWALL", m.id(), m.history, s(name), "$", "$", place,
+                  m.shape([axis, body]), "$", "$")
+        m.contained[g[0]].append(w)
+        f.add("IFCRELASSOCIATESMATERIAL", m.id(), m.history, "$", "$", "(%s)" % w, brick)
+    m.finish()
+    return m.f
+
+
 def small(schema="IFC4"):
     """One storey, one wall: the base of the hostile files."""
     m = Model(schema, "mm")
@@ -398,6 +444,7 @@ def main():
     write("house_ifc2x3.ifc", house("IFC2X3", roof=False).text("house_ifc2x3.ifc"))
     write("thick_ifc4.ifc", thick().text("thick_ifc4.ifc"))
     write("feet_ifc2x3.ifc", feet().text("feet_ifc2x3.ifc"))
+    write("layered_ifc4.ifc", layered().text("layered_ifc4.ifc"))
     text = house("IFC4").text("truncated.ifc")
     write("truncated.ifc", text[: int(len(text) * 0.6)])
     # A wall's placement relative to itself.

@@ -70,6 +70,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -266,48 +267,74 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           "cannot print");
     std::vector<Vector2d> axis;
     bool curved = false;
-    std::optional<Solid> body;
+    // Every solid of the body: Revit, for one, exports a layered wall as one extrusion per
+    // layer, side by side; the wall is all of them.
+    std::vector<Solid> bodies;
     if (wall->m_Representation)
       for (const auto& rep : wall->m_Representation->m_Representations) {
         if (!rep) continue;
         const std::string id = lower(label(rep->m_RepresentationIdentifier));
-        for (const auto& item : rep->m_Items) {
-          if (id == "axis" && axis.empty() && !curved) {
-            if (auto c = as<IfcCurve>(item)) axis = curve_points(c, curved, 0);
-          } else if (id != "axis" && !body) {
-            body = solid_of(item, 0);
-          }
+        if (id == "axis") {
+          for (const auto& item : rep->m_Items)
+            if (auto c = as<IfcCurve>(item); c && axis.empty() && !curved)
+              axis = curve_points(c, curved, 0);
+        } else if (bodies.empty()) {
+          for (const auto& item : rep->m_Items)
+            if (auto solid = solid_of(item, 0)) bodies.push_back(std::move(*solid));
         }
       }
     if (curved)
       return skip(
           "its axis is curved (an arc); ccbuild prints straight walls: model it as "
           "straight pieces to print it");
-    if (body && body->curved)
-      return skip("its body's footprint is curved; ccbuild prints straight walls");
-    // The body in the wall's frame: its footprint corners, its extent in z.
+    for (const Solid& body : bodies)
+      if (body.curved) return skip("its body's footprint is curved; ccbuild prints straight walls");
+    // The body in the wall's frame: its footprint corners, its extent in z. A solid is
+    // extruded upwards from a horizontal profile, or through the wall from a profile in the
+    // wall's elevation (a wall with a gable or a notch, as Revit exports it): both stand
+    // upright; the second only when extruded across the axis (checked below).
     std::vector<Vector2d> footprint;
-    if (body) {
-      const Vector3d along = body->position.linear() * body->extrusion;
-      if (std::abs(along.normalized().z()) < 1.0 - 1e-6)
-        return skip(
-            "its body is extruded at a slant or sideways: a sloped wall ccbuild cannot "
-            "print");
+    std::vector<std::size_t> owner;  // the solid each footprint corner is of
+    // The horizontal direction of each solid extruded sideways.
+    std::vector<std::optional<Vector2d>> across(bodies.size());
+    if (!bodies.empty()) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (const Vector2d& p : body->profile) {
-        const Vector3d base = body->position * Vector3d(p.x(), p.y(), 0.0);
-        if (std::abs(body->position.linear().col(2).z()) < 1.0 - 1e-6)
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        const Solid& body = bodies[i];
+        const Vector3d along = body.position.linear() * body.extrusion;
+        const Vector3d normal = body.position.linear().col(2);
+        const bool upwards = std::abs(along.normalized().z()) >= 1.0 - 1e-6;
+        const bool sideways = std::abs(along.normalized().z()) <= 1e-6;
+        if (!upwards && !sideways)
+          return skip(
+              "its body is extruded at a slant: a sloped wall ccbuild cannot "
+              "print");
+        if (upwards && std::abs(normal.z()) < 1.0 - 1e-6)
           return skip(
               "its body's profile is not horizontal: ccbuild reads walls extruded "
-              "upwards");
-        footprint.push_back(base.head<2>());
-        lo = std::min({lo, base.z(), base.z() + along.z()});
-        hi = std::max({hi, base.z(), base.z() + along.z()});
+              "upwards or through their thickness");
+        if (sideways && std::abs(normal.z()) > 1e-6)
+          return skip(
+              "its body's profile is not upright: ccbuild reads walls extruded "
+              "upwards or through their thickness");
+        if (sideways) across[i] = along.head<2>().normalized();
+        for (const Vector2d& p : body.profile) {
+          const Vector3d base = body.position * Vector3d(p.x(), p.y(), 0.0);
+          footprint.push_back(base.head<2>());
+          owner.push_back(i);
+          if (sideways) {
+            footprint.push_back((base + along).head<2>());
+            owner.push_back(i);
+          }
+          lo = std::min({lo, base.z(), base.z() + along.z()});
+          hi = std::max({hi, base.z(), base.z() + along.z()});
+        }
       }
       const double z0 = (place * Vector3d(0, 0, 0)).z() + z_shift_m;
       found.bottom_m = z0 + lo;
       found.top_m = z0 + hi;
-      found.clipped = body->clipped;
+      found.clipped =
+          std::any_of(bodies.begin(), bodies.end(), [](const Solid& b) { return b.clipped; });
     }
     const auto layers = layer_set(*wall);
     // The centreline in the wall's frame.
@@ -322,18 +349,32 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           corners.push_back(b);
       }
       corners.push_back(axis.back());
+      bool said = false;
       for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
         const Vector2d a = corners[k], b = corners[k + 1];
         if ((b - a).norm() < 1e-9) continue;
         const Vector2d d = (b - a).normalized(), left(-d.y(), d.x());
+        // A solid extruded sideways along the wall (a sweep, a cornice) is not a part of
+        // its thickness.
+        std::vector<bool> along_it(bodies.size(), false);
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+          along_it[i] = across[i] && std::abs(across[i]->dot(d)) > 1e-6;
+        const auto kept =
+            static_cast<std::size_t>(std::count(along_it.begin(), along_it.end(), false));
+        if (kept < bodies.size() && !std::exchange(said, true))
+          out.notes.push_back(printf_string(
+              "%s: %zu of its body's %zu solids extruded sideways along it (a sweep or a "
+              "cornice?) are not printed",
+              who.c_str(), bodies.size() - kept, bodies.size()));
         double thickness = 0.0, offset = 0.0;
         if (layers) {
           std::tie(thickness, offset) = *layers;
-        } else if (!footprint.empty()) {
+        } else if (kept > 0) {
           double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-          for (const Vector2d& p : footprint) {
-            lo = std::min(lo, left.dot(p - a));
-            hi = std::max(hi, left.dot(p - a));
+          for (std::size_t j = 0; j < footprint.size(); ++j) {
+            if (along_it[owner[j]]) continue;
+            lo = std::min(lo, left.dot(footprint[j] - a));
+            hi = std::max(hi, left.dot(footprint[j] - a));
           }
           thickness = hi - lo;
           offset = 0.5 * (lo + hi);
@@ -344,6 +385,10 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
         local.emplace_back(a + offset * left, b + offset * left);
       }
     } else if (!footprint.empty()) {
+      if (bodies.size() != 1 || across[0])
+        return skip(
+            "it has no axis, and its body is not one solid extruded upwards (ccbuild "
+            "finds the axis of such a body only)");
       // The footprint's longest edge gives the direction; its faces are the two lines
       // every corner lies on.
       std::size_t longest = 0;
