@@ -173,6 +173,33 @@ TEST(ImportCommand, ADrawingImportedSchedulesAsTheDrawingNamedDirectly) {
   EXPECT_TRUE(contains(layer.err, "its layers (entities): DOORS (1), WALLS (2)")) << layer.err;
   EXPECT_FALSE(fs::exists(dir / "none.yaml"));
   EXPECT_FALSE(fs::exists(dir / "none.plan.yaml"));
+  // Doors and windows left as gaps in 0.3 m face lines: openings with --gap-openings, and
+  // the imported building (its walls as beads) schedules as the one naming the drawing.
+  const std::string gaps = testing::source_path("tests/data/drawings/gaps_faces_mm.dxf").string();
+  const std::string gapped = (dir / "gaps.yaml").string();
+  const auto with = run_ccbuild("import " + gaps +
+                                " --wall-layers A-WALL --window-layers A-GLAZ --gap-openings "
+                                "--layer-height 0.5 -o " +
+                                gapped);
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_TRUE(contains(with.out, "7 walls (7 with their drawn thickness), 2 openings")) << with.out;
+  const std::string plan = slurp(dir / "gaps.plan.yaml");
+  EXPECT_TRUE(contains(plan, "offset: 0.85, width: 0.9, sill: 0, head: 2.1")) << plan;
+  EXPECT_TRUE(contains(plan, "offset: 0.8, width: 1.2, sill: 0.9, head: 2.1")) << plan;
+  ASSERT_EQ(
+      run_ccbuild("schedule " + gapped + " --quiet -o " + (dir / "gaps.json").string()).exit_code,
+      0);
+  ASSERT_EQ(run_ccbuild("schedule tests/data/buildings/drawn-gaps.yaml --quiet -o " +
+                        (dir / "drawn.json").string())
+                .exit_code,
+            0);
+  const auto same =
+      run_ccbuild("diff " + (dir / "gaps.json").string() + " " + (dir / "drawn.json").string());
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+  const auto without =
+      run_ccbuild("import " + gaps + " --wall-layers A-WALL -o " + (dir / "nogaps.yaml").string());
+  EXPECT_TRUE(contains(without.out, "9 walls (9 with their drawn thickness), 0 openings"))
+      << without.out;
   fs::remove_all(dir);
 }
 

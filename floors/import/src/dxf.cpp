@@ -385,8 +385,10 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
       const Vector2d q = in_end == 0 ? walls[v].a : walls[v].b;
       const Vector2d far = in_end == 0 ? walls[v].b : walls[v].a;
       FoundGap g;
-      g.offset_m = (p - merged.a).norm();
-      g.width_m = (q - p).norm();
+      // To the nanometre: a drawing in millimetres gives 0.8000000000000003 m.
+      const auto nm = [](double v) { return std::round(v * 1e9) / 1e9; };
+      g.offset_m = nm((p - merged.a).norm());
+      g.width_m = nm((q - p).norm());
       g.source = "the gap between " + walls[at].source + " and " + walls[v].source;
       const Vector2d d = (q - p) / g.width_m;
       for (const DrawnLine& l : glazing) {

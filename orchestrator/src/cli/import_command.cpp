@@ -31,6 +31,8 @@ struct ImportOptions {
   std::string machine, material;
   std::vector<std::string> wall_types, excluded_materials;  ///< IFC; empty: the defaults
   bool no_material_filter = false;
+  bool gap_openings = false;  ///< DXF: gaps in wall lines as doors and windows
+  double max_gap_m = 3.0;
   bool force = false;
 };
 
@@ -170,7 +172,8 @@ void run_import(const ImportOptions& o, int& exit_code) {
          {std::pair{!o.wall_layers.empty(), "--wall-layers"},
           std::pair{!o.door_layers.empty(), "--door-layers"},
           std::pair{!o.window_layers.empty(), "--window-layers"},
-          std::pair{!o.unit.empty(), "--unit"}, std::pair{o.floors != 1, "--floors"}})
+          std::pair{!o.unit.empty(), "--unit"}, std::pair{o.floors != 1, "--floors"},
+          std::pair{o.gap_openings, "--gap-openings"}})
       if (given)
         throw InputError("", 0, flag,
                          "is for DXF drawings; an IFC model says its storeys, walls and unit");
@@ -194,6 +197,8 @@ void run_import(const ImportOptions& o, int& exit_code) {
   d.wall_lines = o.wall_lines == "faces" ? import::DxfOptions::WallLines::kFaces
                                          : import::DxfOptions::WallLines::kCentrelines;
   if (!o.unit.empty()) d.metres_per_unit = import::unit_metres(o.unit);
+  d.gap_openings = o.gap_openings;
+  d.max_gap_m = o.max_gap_m;
   const import::DxfPlan read = import::read_dxf_plan(o.drawing, d);
   floors::validate_plan(read.plan, o.floor_height_m, "the imported plan");
 
@@ -242,7 +247,9 @@ void add_import_command(CLI::App& app, int& exit_code) {
       "DXF: the same plan repeats on every floor (--floors), in <name>.plan.yaml. Walls drawn as "
       "two face lines become one wall along their middle, as thick as they are apart "
       "(--wall-lines centrelines for plans drawn as centrelines); doors and windows are block "
-      "inserts on their layers. A building file can also name the drawing directly (plan: {dxf: "
+      "inserts on their layers, or, with --gap-openings, gaps in the wall lines (a window where "
+      "a line on a window layer lies in the gap, else a door). A building file can also name the "
+      "drawing directly (plan: {dxf: "
       "...}); both give the same plan.\n"
       "Examples:\n"
       "  ccbuild import house.ifc -o house.yaml\n"
@@ -280,6 +287,14 @@ void add_import_command(CLI::App& app, int& exit_code) {
       ->add_option("--wall-lines", o->wall_lines,
                    "How walls are drawn: faces (two lines a wall's thickness apart) or centrelines")
       ->check(CLI::IsMember({"faces", "centrelines"}))
+      ->capture_default_str();
+  command->add_flag("--gap-openings", o->gap_openings,
+                    "DXF: a gap between two walls in line is a door, or a window where a line on "
+                    "a window layer (glazing) lies in it");
+  command
+      ->add_option("--max-gap", o->max_gap_m,
+                   "DXF: the widest gap read as an opening, m (with --gap-openings)")
+      ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
   command
       ->add_option("--unit", o->unit,
