@@ -21,11 +21,7 @@ using testing::run_ccbuild;
 using testing::slurp;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("ccbuild_schedule_cli_" + name + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing::scratch_dir("schedule_cli", name);
 }
 
 TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {

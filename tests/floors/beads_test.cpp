@@ -19,6 +19,7 @@
 #include "ccbuild/floors/beads.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "ccbuild/floors/slice.hpp"
+#include "plans.hpp"
 
 namespace ccbuild::floors {
 namespace {
@@ -33,18 +34,13 @@ struct WallSpec {
 };
 
 FloorPlan plan_of(const std::vector<WallSpec>& walls, WallPattern pattern = WallPattern::kSolid) {
-  FloorPlan plan;
-  auto vertex = [&](double x, double y) {
-    for (const auto& v : plan.vertices)
-      if (v.position_m.x() == x && v.position_m.y() == y) return v.id;
-    plan.vertices.push_back({static_cast<std::int64_t>(plan.vertices.size()) + 1, {x, y}, {}});
-    return plan.vertices.back().id;
-  };
+  std::vector<std::array<double, 4>> lines;
+  std::vector<double> thicknesses;
   for (const auto& w : walls) {
-    const auto a = vertex(w.x0, w.y0), b = vertex(w.x1, w.y1);
-    plan.walls.push_back({static_cast<std::int64_t>(plan.walls.size()) + 1, a, b, w.thickness, {}});
+    lines.push_back({w.x0, w.y0, w.x1, w.y1});
+    thicknesses.push_back(w.thickness);
   }
-  validate_plan(plan);
+  FloorPlan plan = testing::plan_from_walls(lines, thicknesses);
   plan.beads = {kBead, pattern};
   return plan;
 }

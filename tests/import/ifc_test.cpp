@@ -66,11 +66,7 @@ void expect_at(const Vector2d& p, double x, double y) {
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("ccbuild_ifc_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return testing::scratch_dir("ifc_test", name);
 }
 
 TEST(IfcImport, TheHouseInMillimetresBecomesTwoFloorsOfWallsAndOpenings) {

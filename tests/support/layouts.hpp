@@ -9,27 +9,9 @@
 #include "ccbuild/floors/plan.hpp"
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "plans.hpp"
 
 namespace ccbuild::testing {
-
-/// A plan from (x0, y0, x1, y1) walls; shared points become shared vertices.
-inline floors::FloorPlan plan_from_walls(const std::vector<std::array<double, 4>>& walls) {
-  floors::FloorPlan plan;
-  auto vertex = [&](double x, double y) {
-    for (const auto& v : plan.vertices)
-      if (v.position_m.x() == x && v.position_m.y() == y) return v.id;
-    plan.vertices.push_back({static_cast<std::int64_t>(plan.vertices.size()) + 1, {x, y}, {}});
-    return plan.vertices.back().id;
-  };
-  for (const auto& w : walls) {
-    const auto a = vertex(w[0], w[1]);
-    const auto b = vertex(w[2], w[3]);
-    plan.walls.push_back(
-        {static_cast<std::int64_t>(plan.walls.size()) + 1, a, b, std::nullopt, {}});
-  }
-  floors::validate_plan(plan);
-  return plan;
-}
 
 inline floors::Layer layer_from_walls(const std::vector<std::array<double, 4>>& walls) {
   return floors::plan_as_layer(plan_from_walls(walls));

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "ccbuild/common/input_error.hpp"
 
 namespace ccbuild::testing {
@@ -28,6 +30,16 @@ inline std::string slurp(const std::filesystem::path& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+/// An empty folder of its own for one test: `prefix` and `name` with this process's id
+/// (tests of one binary may run in parallel under CTest).
+inline std::filesystem::path scratch_dir(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("ccbuild_" + prefix + "_" + name + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 /// Runs `action`, expects an InputError, and returns it for further checks.
