@@ -1,0 +1,56 @@
+#pragma once
+// The DXF importer's walls (not public): what dxflib's lines become, and how face lines
+// pair into walls, their ends meet at junctions, and gaps between them become openings.
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ccbuild::import::detail {
+
+using Eigen::Vector2d;
+
+/// An entity's handle as the drawing writes it (hex), or "(no handle)".
+std::string hex_handle(int handle);
+
+/// A straight line of the drawing, in drawing units.
+struct DrawnLine {
+  Vector2d a, b;
+  int handle = -1;
+  std::string layer;
+};
+
+/// A gap in a wall's line read as an opening, from the wall's start.
+struct FoundGap {
+  double offset_m = 0.0, width_m = 0.0;
+  bool window = false;
+  std::string source;
+};
+
+/// A wall found: its centreline in metres, its thickness (unset: drawn as a centreline).
+struct FoundWall {
+  Vector2d a, b;
+  std::optional<double> thickness_m;
+  std::string source;  ///< "entity 1A on layer A-WALL" (and its partner)
+  std::vector<FoundGap> gaps{};
+};
+
+double cross(const Vector2d& u, const Vector2d& v);
+
+/// Face lines (in drawing units, `scale` metres each) facing each other at most
+/// `max_thickness_m` apart become walls along their middle; what pairs with nothing is
+/// said in `notes`.
+std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double scale,
+                                  double max_thickness_m, std::vector<std::string>& notes);
+
+/// Extends face-pair walls' ends to the middle line of the wall they meet.
+void join_ends(std::vector<FoundWall>& walls);
+
+/// Joins walls in line across gaps of at most `max_gap_m` into one wall with an opening
+/// in each gap (a window where a `glazing` line lies in it).
+std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
+                                 const std::vector<DrawnLine>& glazing, double scale,
+                                 double max_gap_m);
+
+}  // namespace ccbuild::import::detail
