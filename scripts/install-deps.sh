@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config
   liblcm-dev liblcm-bin libglib2.0-dev
-  libeigen3-dev
+  libeigen3-dev libboost-dev   # Boost.Geometry (header-only): walls as beads
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev libode-dev
   liburdfdom-dev libfcl-dev liblemon-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
