@@ -92,6 +92,8 @@ TEST(HostileInput, FixturesAreRefusedWithAReason) {
        "one bead each and what lies between them (wall_pattern): make it 0.150 m (one bead) or "
        "0.300 m or more (two skins), or use a machine whose nozzle lays 0.200 m or at most "
        "0.100 m (nozzle_width_m)"},
+      {"validate tests/data/hostile/bad_wall_pattern.yaml",
+       "bad_wall_pattern.yaml:4: wall_pattern: expected skins, solid or skins-with-ties"},
       {"plan-layer tests/data/hostile/high_window.yaml",
        "head (3.500 m) is above the floor height (3.000 m)"},
       {"validate tests/data/hostile/feet_opening_off_wall.yaml",

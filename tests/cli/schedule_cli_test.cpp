@@ -353,3 +353,20 @@ TEST(DryRunCommand, BadInputIsExitTwoBeforeAnythingStarts) {
 
 }  // namespace
 }  // namespace ccbuild
+
+namespace ccbuild {
+namespace {
+
+TEST(ValidateCommand, SaysWhichWallsArePrintedAsBeadsAndHow) {
+  const auto solid = testing::run_ccbuild("validate tests/data/buildings/masonry.yaml");
+  ASSERT_EQ(solid.exit_code, 0) << solid.err;
+  EXPECT_TRUE(testing::contains(solid.out,
+                                "walls      1 in one pass of the 0.15 m nozzle, 8 as beads: two "
+                                "skins and a poured core (wall_pattern: solid)"))
+      << solid.out;
+  const auto ties = testing::run_ccbuild("validate tests/data/buildings/masonry-ties.yaml");
+  EXPECT_TRUE(testing::contains(ties.out, "8 as beads: two skins and a zig-zag tie")) << ties.out;
+}
+
+}  // namespace
+}  // namespace ccbuild

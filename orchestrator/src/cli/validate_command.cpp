@@ -104,6 +104,24 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                                  placed.rotation_rad * 180.0 / M_PI);
     std::cout << "\n";
   }
+  {
+    // How the walls are printed: one pass each, or beads (two skins and the pattern's fill).
+    int one_pass = 0, beaded = 0;
+    for (const auto& f : b.floors)
+      for (const auto& w : f.plan.walls)
+        (w.thickness_m && floors::beads_across(*w.thickness_m, machine.nozzle_width_m) == 2
+             ? beaded
+             : one_pass)++;
+    std::cout << printf_string("  %-10s %d in one pass of the %s nozzle", "walls", one_pass,
+                               L(machine.nozzle_width_m).c_str());
+    if (beaded > 0)
+      std::cout << printf_string(", %d as beads: two skins and %s (wall_pattern: %s)", beaded,
+                                 b.wall_pattern == floors::WallPattern::kSolid   ? "a poured core"
+                                 : b.wall_pattern == floors::WallPattern::kSkins ? "a cavity"
+                                                                                 : "a zig-zag tie",
+                                 floors::wall_pattern_name(b.wall_pattern));
+    std::cout << "\n";
+  }
   for (const auto& note : b.import_notes) std::cout << "  import     " << note << "\n";
   std::cout << "\n"
             << printf_string("  %-5s %-16s %12s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
@@ -135,8 +153,9 @@ void add_validate_command(CLI::App& app, int& exit_code) {
       "anything is wrong, and with --json the problems are printed as JSON on stdout too.\n"
       "Besides the files themselves it checks that the machine can build the building: its "
       "footprint and height within the machine's reach, every vertex within its x and y travel "
-      "where the building stands (its `site:`, or --place centre), and no wall thicker than the "
-      "nozzle lays in one pass.\n"
+      "where the building stands (its `site:`, or --place centre), and every wall printable as "
+      "beads of the nozzle's width: one bead, or two skins and what the building's wall_pattern "
+      "puts between them.\n"
       "Examples:\n"
       "  ccbuild validate config/buildings/house.yaml\n"
       "  ccbuild validate model.yaml --place centre --json\n"
