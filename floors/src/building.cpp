@@ -155,15 +155,17 @@ Building building_from_document(const Document& doc, const fs::path& path,
   double elevation_m = 0.0;
   for (std::size_t i = 0; i < floor_fields.size(); ++i) {
     const Field& f = floor_fields[i];
-    MapReader fm(f, {"name", "height", "plan", "openings", "anchors"});
+    MapReader fm(f, {"name", "height", "slab", "plan", "openings", "anchors"});
     fm.reject_unknown();
     Floor floor;
     floor.index = static_cast<int>(i);
     floor.source = source_of(f);
     floor.name = fm.has("name") ? fm.required("name").as_string() : "floor " + std::to_string(i);
     floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
+    if (auto slab = fm.optional("slab"))
+      floor.slab_m = read_length(*slab, limits::kSlabThickness_m, unit);
     floor.base_elevation_m = elevation_m;
-    elevation_m += floor.height_m;
+    elevation_m += floor.height_m + floor.slab_m;
 
     const Field plan = fm.required("plan");
     if (plan.is_map() && MapReader(plan, {}).has("dxf")) {

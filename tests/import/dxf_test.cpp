@@ -130,6 +130,61 @@ TEST(DxfImport, CentrelinesAreWallsOfTheNozzlesWidth) {
   EXPECT_NEAR(cm.plan.wall_length_m(cm.plan.walls[0]), 0.058, 1e-12);
 }
 
+TEST(DxfImport, AttributedInsertsSetTheirOpeningsSillAndHead) {
+  // ATTRIBs after an INSERT (66 = 1, up to its SEQEND) tagged SILL and HEAD, in any case:
+  // a number in the drawing's unit, or with mm, cm or m. Without one, the floor's default
+  // (a door's sill: 0).
+  DxfOptions o;
+  o.wall_layers = {"WALLS"};
+  o.door_layers = {"DOORS"};
+  o.window_layers = {"WINDOWS"};
+  o.wall_lines = DxfOptions::WallLines::kCentrelines;
+  o.door_head_m = 2.0;
+  o.window_sill_m = 0.8;
+  o.window_head_m = 1.9;
+  const DxfPlan read = read_dxf_plan(drawing("attributes_m.dxf"), o);
+  const auto& openings = read.plan.openings;
+  ASSERT_EQ(openings.size(), 3u);
+  const auto find = [&](const std::string& id) -> const floors::Opening& {
+    for (const auto& op : openings)
+      if (op.id == id) return op;
+    ADD_FAILURE() << id;
+    return openings.front();
+  };
+  const floors::Opening& door = find("D10F");  // head "2.3": metres, the drawing's unit
+  EXPECT_NEAR(door.sill_m, 0.0, 1e-12);
+  EXPECT_NEAR(door.head_m, 2.3, 1e-12);
+  const floors::Opening& south = find("W112");  // SILL "1000mm", Head "2.2m"
+  EXPECT_NEAR(south.sill_m, 1.0, 1e-12);
+  EXPECT_NEAR(south.head_m, 2.2, 1e-12);
+  EXPECT_NEAR(south.width_m, 1.2, 1e-9);
+  const floors::Opening& north = find("W116");  // SILL 0.5; its head the floor's default
+  EXPECT_NEAR(north.sill_m, 0.5, 1e-12);
+  EXPECT_NEAR(north.head_m, 1.9, 1e-12);
+  EXPECT_NO_THROW(floors::validate_plan(read.plan, 3.0));
+  // A value that is not a number, or not a height above a floor (2100 in a drawing in
+  // metres): refused, naming the insert's handle and the tag.
+  const InputError text =
+      expect_input_error([&] { read_dxf_plan(drawing("attribute_not_number.dxf"), o); });
+  EXPECT_EQ(text.first().field, "entity 112");
+  EXPECT_TRUE(contains(text.what(),
+                       "its attribute SILL (ATTRIB 113) is 'about a metre', not a "
+                       "number"))
+      << text.what();
+  const InputError range =
+      expect_input_error([&] { read_dxf_plan(drawing("attribute_out_of_range.dxf"), o); });
+  EXPECT_EQ(range.first().field, "entity 10F");
+  EXPECT_TRUE(contains(range.what(),
+                       "its attribute HEAD (ATTRIB 110) is '2100', 2100.000 m: "
+                       "not a sill or head height"))
+      << range.what();
+  // A sill at or above the floor's default head: refused too.
+  o.window_head_m = 0.5;
+  const InputError order =
+      expect_input_error([&] { read_dxf_plan(drawing("attributes_m.dxf"), o); });
+  EXPECT_TRUE(contains(order.what(), "is not below its head")) << order.what();
+}
+
 TEST(DxfImport, HostileDrawingsAreRefusedWithTheirFileAndLine) {
   DxfOptions o;
   o.wall_layers = {"WALLS"};

@@ -79,8 +79,9 @@ TEST(IfcImport, TheHouseInMillimetresBecomesTwoFloorsOfWallsAndOpenings) {
   ASSERT_EQ(b.floors.size(), 2u);  // the roof storey has no walls
   EXPECT_EQ(b.floors[0].name, "Ground floor");
   EXPECT_EQ(b.floors[1].name, "First floor");
-  EXPECT_DOUBLE_EQ(b.floors[0].height_m, 3.0);  // to the first floor's elevation
-  EXPECT_DOUBLE_EQ(b.floors[1].height_m, 3.0);  // to the roof storey's
+  // Walls up to the underside of the slab over them (TheWallsOfAFloorStopUnderTheSlabOverIt).
+  EXPECT_DOUBLE_EQ(b.floors[0].height_m, 2.8);  // under the first floor's slab
+  EXPECT_DOUBLE_EQ(b.floors[1].height_m, 2.8);  // under the roof slab
   EXPECT_DOUBLE_EQ(b.floors[1].base_elevation_m, 3.0);
   const floors::FloorPlan& ground = b.floors[0].plan;
   ASSERT_EQ(ground.walls.size(), 5u);
@@ -168,6 +169,52 @@ TEST(IfcImport, TheSameHouseInIfc2x3GivesTheSamePlansAndItsTopStoreyFromItsWalls
     }
     EXPECT_TRUE(floors::same_model(a, b, 1e-9)) << k;
   }
+}
+
+TEST(IfcImport, TheWallsOfAFloorStopUnderTheSlabOverIt) {
+  // With slabs (house_ifc4.ifc): each floor's walls run from its storey's elevation to the
+  // underside of the slab over them, the next storey's floor slab (ArchiCAD's way: placed at
+  // its underside, extruded up) or the roof's slab (Revit's way: placed at its top,
+  // extruded down; part of an IfcRoof). The slab lies between them and the next floor.
+  const fs::path with_slabs = model("house_ifc4.ifc");
+  const IfcImport four = read_ifc_building(with_slabs);
+  const auto& f4 = four.building.floors;
+  ASSERT_EQ(f4.size(), 2u);
+  EXPECT_NEAR(f4[0].height_m, 2.8, 1e-9);
+  EXPECT_NEAR(f4[0].slab_m, 0.2, 1e-9);
+  EXPECT_NEAR(f4[1].base_elevation_m, 3.0, 1e-9);  // the storey's elevation still
+  EXPECT_NEAR(f4[1].height_m, 2.8, 1e-9);
+  EXPECT_NEAR(f4[1].slab_m, 0.2, 1e-9);
+  const std::string notes = all(four.notes);
+  EXPECT_TRUE(contains(notes,
+                       "floor 'Ground floor': 2.800 m high, from its level (0.000 m) to "
+                       "the underside of IfcSlab " +
+                           guid_of(with_slabs, "First floor slab") +
+                           " 'First floor slab' (FLOOR slab, 0.200 m thick, in storey "
+                           "'First floor') at 2.800 m"))
+      << notes;
+  EXPECT_TRUE(contains(notes,
+                       "floor 'First floor': 2.800 m high, from its level (3.000 m) to "
+                       "the underside of IfcSlab " +
+                           guid_of(with_slabs, "Roof slab") +
+                           " 'Roof slab' (ROOF slab, 0.200 m thick, in storey 'Roof')"))
+      << notes;
+  // A stair landing is no slab the walls carry; the ground slab lies under the ground floor.
+  EXPECT_TRUE(contains(notes, "'Stair landing': a slab neither FLOOR, BASESLAB nor ROOF"));
+  EXPECT_FALSE(contains(notes, "the top one"));
+  // The openings' heads stay under the slab.
+  for (const auto& f : f4)
+    for (const auto& o : f.plan.openings) EXPECT_LE(o.head_m, f.height_m + 1e-9) << o.id;
+  // Without slabs (house_ifc2x3.ifc, the same storeys and walls): storey to storey, and the
+  // top floor as its tallest wall, as before.
+  const IfcImport two = read_ifc_building(model("house_ifc2x3.ifc"));
+  const auto& f2 = two.building.floors;
+  ASSERT_EQ(f2.size(), 2u);
+  EXPECT_NEAR(f2[0].height_m, 3.0, 1e-9);
+  EXPECT_NEAR(f2[0].slab_m, 0.0, 1e-12);
+  EXPECT_NEAR(f2[1].height_m, 2.8, 1e-9);
+  EXPECT_NEAR(f2[1].base_elevation_m, 3.0, 1e-9);
+  EXPECT_TRUE(contains(all(two.notes), "the model has no slab"));
 }
 
 TEST(IfcImport, ThickWallsDrawnAlongTheirFaceAreCentredOnTheirLayerSetsAndMeet) {
@@ -293,9 +340,15 @@ TEST(IfcImport, ThePublicDuplexModelImportsItsConcreteWallsAndLeavesTheStudWalls
   ASSERT_EQ(b.floors.size(), 4u);
   EXPECT_EQ(b.floors[0].name, "T/FDN");
   EXPECT_EQ(b.floors[1].name, "Level 1");
-  EXPECT_NEAR(b.floors[0].height_m, 1.25, 1e-9);
-  EXPECT_NEAR(b.floors[1].height_m, 3.1, 1e-6);
+  // Walls under the slabs over them: the foundation walls up to the underside of the
+  // lowest slab on grade of Level 1 (-0.137 m; without slabs 1.25 m), Level 1 under Level
+  // 2's wood joist floor (0.305 m; 3.1 m storey to storey), Level 2 under the roof's slab,
+  // whose underside is the roof storey's elevation.
+  EXPECT_NEAR(b.floors[0].height_m, 1.113, 1e-6);
+  EXPECT_NEAR(b.floors[1].height_m, 2.795, 1e-6);
   EXPECT_NEAR(b.floors[2].height_m, 2.9, 1e-6);
+  EXPECT_NEAR(b.floors[1].base_elevation_m, 1.25, 1e-6);
+  EXPECT_NEAR(b.floors[2].base_elevation_m, 4.35, 1e-6);
   int walls = 0, openings = 0;
   for (const auto& f : b.floors) {
     walls += static_cast<int>(f.plan.walls.size());

@@ -17,6 +17,12 @@ door in the wall between them and a window in the south wall.
                       door and the window left as gaps in the wall lines (closed by jamb
                       lines), a glazing line across the window's gap on layer A-GLAZ
   gaps_m.dxf          the same as centrelines in metres, without jambs
+  attributes_m.dxf    centrelines in metres with attributed inserts (INSERT with 66 = 1,
+                      ATTRIBs, SEQEND): a door with HEAD 2.3 (the drawing's unit), a window
+                      with SILL 1000mm and HEAD 2.2m (tags in any case), a window with only
+                      SILL 0.5 (its head the floor's default)
+  attribute_not_number.dxf    the same, the window's SILL 'about a metre'
+  attribute_out_of_range.dxf  the same, the door's HEAD 2100 (2.1 km in metres)
 
 Usage: make_dxf.py OUT_DIR"""
 
@@ -57,10 +63,25 @@ class Dxf:
         body.append(self.pairs((0, "ENDBLK"), (5, self.next_handle()), (8, "0")))
         self.blocks.append("".join(body))
 
-    def insert(self, layer, name, at, angle):
-        self.entities.append(self.pairs(
-            (0, "INSERT"), (5, self.next_handle()), (8, layer), (2, name), (10, at[0]),
-            (20, at[1]), (30, 0), (41, 1), (42, 1), (43, 1), (50, angle)))
+    def insert(self, layer, name, at, angle, attributes=()):
+        """An INSERT; with `attributes` ((tag, value), ...), group 66 = 1 and an ATTRIB per
+        pair after it, ended by a SEQEND, as AutoCAD writes attributed blocks."""
+        handle = self.next_handle()
+        items = [(0, "INSERT"), (5, handle), (8, layer)]
+        if attributes:
+            items.append((66, 1))
+        items += [(2, name), (10, at[0]), (20, at[1]), (30, 0), (41, 1), (42, 1), (43, 1),
+                  (50, angle)]
+        self.entities.append(self.pairs(*items))
+        for tag, value in attributes:
+            self.entities.append(self.pairs(
+                (0, "ATTRIB"), (5, self.next_handle()), (330, handle), (100, "AcDbEntity"),
+                (8, layer), (100, "AcDbText"), (10, at[0]), (20, at[1]), (30, 0), (40, 0.1),
+                (1, value), (100, "AcDbAttribute"), (2, tag), (70, 0)))
+        if attributes:
+            self.entities.append(self.pairs((0, "SEQEND"), (5, self.next_handle()),
+                                            (330, handle), (8, layer)))
+        return handle
 
     def text(self):
         return (self.pairs((0, "SECTION"), (2, "HEADER"), (9, "$ACADVER"), (1, "AC1015"),
@@ -123,6 +144,24 @@ def two_rooms_gaps_centrelines():
     return d
 
 
+def two_rooms_attributes(door_attributes=(("head", "2.3"),),
+                         window_attributes=(("SILL", "1000mm"), ("Head", "2.2m"))):
+    """The centrelines (metres) with a door whose HEAD attribute is 2.3 (the drawing's
+    unit), a window in the south wall with SILL 1000mm and HEAD 2.2m, and a window in the
+    north wall with only a SILL of 0.5 (its head the floor's default)."""
+    d = two_rooms_centrelines()
+    d.entities.clear()
+    d.blocks.clear()
+    d.polyline("WALLS", [(0.1, 0.1), (5.9, 0.1), (5.9, 3.9), (0.1, 3.9)], True)
+    d.line("WALLS", (3.0, 0.1), (3.0, 3.9))
+    d.block("DOOR900", 0.9)
+    d.block("WIN1200", 1.2)
+    d.insert("DOORS", "DOOR900", (3.0, 1.0), 90, door_attributes)
+    d.insert("WINDOWS", "WIN1200", (3.8, 0.1), 0, window_attributes)
+    d.insert("WINDOWS", "WIN1200", (1.0, 3.9), 0, (("sill", "0.5"),))
+    return d
+
+
 def main():
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
@@ -136,6 +175,11 @@ def main():
         "gaps_faces_mm.dxf": two_rooms_gaps_faces().text(),
         "gaps_m.dxf": two_rooms_gaps_centrelines().text(),
     }
+    files["attributes_m.dxf"] = two_rooms_attributes().text()
+    files["attribute_not_number.dxf"] = two_rooms_attributes(
+        window_attributes=(("SILL", "about a metre"),)).text()
+    files["attribute_out_of_range.dxf"] = two_rooms_attributes(
+        door_attributes=(("HEAD", "2100"),)).text()  # millimetres in a drawing in metres
     nan = two_rooms_centrelines()
     nan.line("WALLS", (1.0, 1.0), ("nan", 2.0))
     files["nan.dxf"] = nan.text()

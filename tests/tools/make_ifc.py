@@ -30,8 +30,17 @@ Walls are 150 mm thick (one nozzle of the bundled gantry), their material layer 
 centred on the axis. The IFC4 file also has a true north and a map conversion.
 
   house_ifc4.ifc        the house, IFC4, millimetres
-  house_ifc2x3.ifc      the same house, IFC2X3, millimetres, without the roof storey (the
-                        first floor's height comes from its walls)
+                        Its slabs (house_ifc4.ifc only): a ground slab (BASESLAB, top at
+                        0, 200 mm, placed at its top and extruded down with a NEGATIVE
+                        layer set, as Revit does), a stair landing (LANDING, top at 1.5 m:
+                        not a slab the walls carry), the first floor's slab (FLOOR, top
+                        at 3.0 m, 200 mm, placed at its underside and extruded up, as
+                        ArchiCAD does) and a flat roof (IfcRoof in the roof storey made of
+                        a ROOF slab, top at 6.0 m, 200 mm): both floors are 2.8 m of wall
+                        under a 0.2 m slab.
+  house_ifc2x3.ifc      the same house, IFC2X3, millimetres, without the roof storey and
+                        without slabs (the ground floor runs to the first floor's
+                        elevation, the first floor's height comes from its walls)
   thick_ifc4.ifc        one storey, outer walls 300 mm whose axis is their outer face (the
                         material layer set offset from it), metres
   feet_ifc2x3.ifc       one storey of four walls in feet (a conversion-based unit)
@@ -199,7 +208,37 @@ class Model:
                 f.add("IFCRELCONTAINEDINSPATIALSTRUCTURE", self.id(), self.history, "$", "$",
                       "(%s)" % ",".join(self.contained[st]), st)
 
-    def layer_usage(self, material, thickness_m, offset_m):
+    def slab(self, storey, name, kind, top_m, thickness_m, style="down", roof=None):
+        """A slab over the house's footprint, its top `top_m` above its storey: placed at its
+        top and extruded down (Revit's way, its layer set NEGATIVE along AXIS3) or placed at
+        its underside and extruded up (ArchiCAD's way). Contained in `storey`, or, with
+        `roof` (a name), made part of an IfcRoof contained in it."""
+        f = self.f
+        st, st_place = storey
+        z = top_m if style == "down" else top_m - thickness_m
+        place = self.placement(st_place, (0, 0, z))
+        solid = self.extrusion(self.rectangle((4, 3), 8.15, 6.15),
+                               f.add("IFCAXIS2PLACEMENT3D", self.origin, "$", "$"), thickness_m,
+                               (0, 0, -1) if style == "down" else (0, 0, 1))
+        rep = f.add("IFCSHAPEREPRESENTATION", self.body_context, "'Body'", "'SweptSolid'",
+                    "(%s)" % solid)
+        sl = f.add("IFCSLAB", self.id(), self.history, s(name), "$", "$", place,
+                   self.shape([rep]), "$", "." + kind + ".")
+        f.add("IFCRELASSOCIATESMATERIAL", self.id(), self.history, "$", "$", "(%s)" % sl,
+              self.layer_usage("Concrete", thickness_m, 0.0, ".AXIS3.",
+                               ".NEGATIVE." if style == "down" else ".POSITIVE."))
+        if roof:
+            roof_place = self.placement(st_place, (0, 0, 0))
+            r = f.add("IFCROOF", self.id(), self.history, s(roof), "$", "$", roof_place, "$",
+                      "$", ".FLAT_ROOF.")
+            f.add("IFCRELAGGREGATES", self.id(), self.history, "$", "$", r, "(%s)" % sl)
+            self.contained[st].append(r)
+        else:
+            self.contained[st].append(sl)
+        return sl
+
+    def layer_usage(self, material, thickness_m, offset_m, axis=".AXIS2.",
+                    sense=".POSITIVE."):
         f = self.f
         if material not in self.materials:
             self.materials[material] = f.add("IFCMATERIAL", s(material),
@@ -209,7 +248,7 @@ class Model:
                       *(("$", "$", "$", "$") if self.ifc4 else ()))
         lset = f.add("IFCMATERIALLAYERSET", "(%s)" % layer, s(material),
                      *(("$",) if self.ifc4 else ()))
-        return f.add("IFCMATERIALLAYERSETUSAGE", lset, ".AXIS2.", ".POSITIVE.",
+        return f.add("IFCMATERIALLAYERSETUSAGE", lset, axis, sense,
                      self.L(offset_m), *(("$",) if self.ifc4 else ()))
 
     def extrusion(self, profile, position, depth_m, direction=(0, 0, 1)):
@@ -305,7 +344,7 @@ class Model:
         return o
 
 
-def house(schema, roof=True):
+def house(schema, roof=True, slabs=False):
     m = Model(schema, "mm")
     t = 0.15
     g = m.storey("Ground floor", 0.0)
@@ -320,7 +359,12 @@ def house(schema, roof=True):
     m.wall(g, "Glass screen", (8, 6), (10, 6), 0.05, 3.0, entity="IFCCURTAINWALL",
            material="Glass", axis=False)
     m.wall(g, "Curved garden wall", (-3, 0), (-1, 0), t, 1.0, curve=4.0, body=None)
+    if slabs:
+        m.slab(g, "Ground slab", "BASESLAB", 0.0, 0.2)
+        m.slab(g, "Stair landing", "LANDING", 1.5, 0.2)
     f1 = m.storey("First floor", 3.0)
+    if slabs:
+        m.slab(f1, "First floor slab", "FLOOR", 0.0, 0.2, style="up")
     h1 = 2.8
     m.wall(f1, "South wall", (0, 0), (8, 0), t, h1)
     m.wall(f1, "East wall", (8, 0), (8, 6), t, h1)
@@ -330,7 +374,9 @@ def house(schema, roof=True):
     m.wall(f1, "Bedroom partition", (4, 3), (4, 6), 0.1, h1, material="Gypsum board")
     m.opening(north1, "IFCWINDOW", "Bedroom window", 1.0, 1.5, 1.0, 2.2, t, "elevation")
     if roof:
-        m.storey("Roof", 6.0)
+        r = m.storey("Roof", 6.0)
+        if slabs:
+            m.slab(r, "Roof slab", "ROOF", 0.0, 0.2, roof="Flat roof")
     m.finish()
     return m.f
 
@@ -440,7 +486,7 @@ def main():
         with open(os.path.join(out, name), "w", newline="\n") as fh:
             fh.write(text)
 
-    write("house_ifc4.ifc", house("IFC4").text("house_ifc4.ifc"))
+    write("house_ifc4.ifc", house("IFC4", slabs=True).text("house_ifc4.ifc"))
     write("house_ifc2x3.ifc", house("IFC2X3", roof=False).text("house_ifc2x3.ifc"))
     write("thick_ifc4.ifc", thick().text("thick_ifc4.ifc"))
     write("feet_ifc2x3.ifc", feet().text("feet_ifc2x3.ifc"))

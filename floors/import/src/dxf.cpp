@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -35,11 +36,18 @@ std::string lower(std::string s) {
   return s;
 }
 
+/// An ATTRIB of an insert: its value as drawn and its own handle.
+struct DrawnAttribute {
+  std::string value;
+  int handle = -1;
+};
+
 struct DrawnInsert {
   std::string block, layer;
   Vector2d at;
   double sx = 1.0, sy = 1.0, angle_deg = 0.0;
   int handle = -1;
+  std::map<std::string, DrawnAttribute> attributes{};  ///< by upper-case tag
 };
 
 /// Collects what the importer needs while dxflib reads: lines and polylines of the model
@@ -59,6 +67,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addBlock(const DL_BlockData& data) override {
     end_polyline();
+    attributes_open_ = false;
     block_ = data.name;
   }
   void endBlock() override {
@@ -67,10 +76,12 @@ class Collector : public DL_CreationAdapter {
   }
   void addLine(const DL_LineData& d) override {
     end_polyline();
+    attributes_open_ = false;
     segment({d.x1, d.y1}, {d.x2, d.y2});
   }
   void addPolyline(const DL_PolylineData& d) override {
     end_polyline();
+    attributes_open_ = false;
     polyline_ = Polyline{};
     polyline_->closed = (d.flags & 1) != 0;
     polyline_->handle = attributes.getHandle();
@@ -83,6 +94,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addInsert(const DL_InsertData& d) override {
     end_polyline();
+    attributes_open_ = false;
     if (block_) return;  // nested blocks: not read
     count();
     inserts.push_back({d.name,
@@ -92,11 +104,22 @@ class Collector : public DL_CreationAdapter {
                        d.sy,
                        d.angle,
                        attributes.getHandle()});
+    attributes_open_ = true;  // its ATTRIBs follow, up to a SEQEND
+  }
+  // An ATTRIB belongs to the INSERT just before it (group 66 = 1, ended by a SEQEND).
+  void addAttribute(const DL_AttributeData& d) override {
+    if (block_ || !attributes_open_ || inserts.empty()) return;
+    std::string tag = d.tag;
+    for (char& ch : tag) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    inserts.back().attributes[tag] = {d.text, attributes.getHandle()};
   }
   void endEntity() override {}
   // A POLYLINE's VERTEX entities end at its SEQEND; an LWPOLYLINE's with the next entity
   // (dxflib calls endSection after every entity, so that cannot end one).
-  void endSequence() override { end_polyline(); }
+  void endSequence() override {
+    end_polyline();
+    attributes_open_ = false;
+  }
   void finish() { end_polyline(); }
 
  private:
@@ -107,6 +130,7 @@ class Collector : public DL_CreationAdapter {
     int handle = -1;
     std::string layer;
   };
+  bool attributes_open_ = false;  ///< the last insert's ATTRIBs may follow
   void count() {
     const std::string layer = attributes.getLayer();
     ++entities_per_layer[lower(layer)];
@@ -245,6 +269,45 @@ std::optional<double> unit_metres(const std::string& name) {
   if (n == "in") return 0.0254;
   if (n == "ft") return 0.3048;
   return std::nullopt;
+}
+
+/// An insert's SILL or HEAD attribute (tag in any case) in metres, when it has one: a number
+/// in the drawing's unit (`scale` metres each), or with a unit (mm, cm, m: "900mm"), from 0
+/// to 10 m. Anything else is an InputError naming the insert's handle and the tag.
+std::optional<double> height_attribute(const DrawnInsert& in, const std::string& tag, double scale,
+                                       const std::string& file) {
+  const auto it = in.attributes.find(tag);
+  if (it == in.attributes.end()) return std::nullopt;
+  const std::string& value = it->second.value;
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(file, 0, "entity " + hex_handle(in.handle),
+                     "insert " + hex_handle(in.handle) + " of block " + in.block +
+                         ": its attribute " + tag + " (ATTRIB " + hex_handle(it->second.handle) +
+                         ") is '" + value + "', " + why);
+  };
+  const char* begin = value.c_str();
+  char* end = nullptr;
+  const double number = std::strtod(begin, &end);
+  if (end == begin) refuse("not a number (a height: 900, 900mm, 0.9m)");
+  std::string unit = lower(std::string(end));
+  unit.erase(std::remove_if(unit.begin(), unit.end(),
+                            [](char ch) { return std::isspace(static_cast<unsigned char>(ch)); }),
+             unit.end());
+  double metres_each = scale;
+  if (unit == "mm")
+    metres_each = 0.001;
+  else if (unit == "cm")
+    metres_each = 0.01;
+  else if (unit == "m")
+    metres_each = 1.0;
+  else if (!unit.empty())
+    refuse("not a number with a unit ccbuild knows (mm, cm, m; none: the drawing's unit)");
+  const double metres = number * metres_each;
+  if (!std::isfinite(metres)) refuse("not a finite number");
+  if (metres < 0.0 || metres > 10.0)
+    refuse(printf_string("%.3f m: not a sill or head height above the floor (0 to 10 m; %s)",
+                         metres, unit.empty() ? "in the drawing's unit" : "in the unit given"));
+  return metres;
 }
 
 DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& options) {
@@ -458,6 +521,16 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     o.width_m = std::abs(s1 - s0);
     o.sill_m = door ? 0.0 : options.window_sill_m;
     o.head_m = door ? options.door_head_m : options.window_head_m;
+    const auto sill = height_attribute(in, "SILL", scale, file);
+    const auto head = height_attribute(in, "HEAD", scale, file);
+    if (sill) o.sill_m = *sill;
+    if (head) o.head_m = *head;
+    if ((sill || head) && !(o.sill_m < o.head_m))
+      throw InputError(
+          file, 0, "entity " + hex_handle(in.handle),
+          printf_string("%s: its sill (%.3f m%s) is not below its head (%.3f m%s)", what.c_str(),
+                        o.sill_m, sill ? ", attribute SILL" : ", the floor's default", o.head_m,
+                        head ? ", attribute HEAD" : ", the floor's default"));
     o.source = {file, 0, what};
     if (o.width_m <= 1e-3) {
       out.notes.push_back(what + ": crosses its wall rather than lying along it; left out");

@@ -44,6 +44,9 @@ struct Level {
   std::string name;
   std::vector<const FoundWall*> walls;  ///< its own and those spanning into it
   double height_m = 0.0;
+  bool to_storey = true;  ///< its height runs to a storey above (else from its walls)
+  std::string top_note;   ///< how the top floor's height was found, without a roof slab
+  double slab_m = 0.0;    ///< the slab on its walls (Floor::slab_m)
 };
 
 /// One straight piece of a wall on a floor, while the floor's plan is made.
@@ -354,17 +357,18 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
       next = k + 1;
     } else {
       l.height_m = wall_top(l);
+      l.to_storey = false;
       if (!(l.height_m > 1e-3) || !std::isfinite(l.height_m)) {
         l.height_m = options.default_storey_height_m;
-        out.notes.push_back(
-            printf_string("storey '%s', the top one: no storey above it and no "
-                          "wall height says its height; %.3f m taken",
-                          l.name.c_str(), l.height_m));
+        l.top_note =
+            (printf_string("storey '%s', the top one: no storey above it and no "
+                           "wall height says its height; %.3f m taken",
+                           l.name.c_str(), l.height_m));
       } else {
-        out.notes.push_back(
-            printf_string("storey '%s', the top one: %.3f m high, as its "
-                          "tallest wall (no storey above it)",
-                          l.name.c_str(), l.height_m));
+        l.top_note =
+            (printf_string("storey '%s', the top one: %.3f m high, as its "
+                           "tallest wall (no storey above it)",
+                           l.name.c_str(), l.height_m));
       }
       continue;
     }
@@ -374,6 +378,47 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
           "across storeys without walls",
           l.name.c_str(), levels[next].name.c_str(), levels[next].elevation_m, l.height_m));
   }
+  // Slabs: a floor's walls stop under the slab placed on them. The storey's elevation is
+  // the top of its floor's slab (as Revit and ArchiCAD export it), so the slab over a floor
+  // is one whose underside lies in the floor's upper half, up to the next storey's
+  // elevation: the next storey's floor slab (whichever storey contains it) or a roof slab.
+  // Over the top floor, a roof slab only. The lowest underside sets the height.
+  for (Level& l : kept) {
+    const double h = l.height_m;
+    const ifc::FoundSlab* over = nullptr;
+    for (const auto& slab : model.slabs) {
+      if (!l.to_storey && !slab.roof) continue;
+      if (slab.bottom_m <= l.elevation_m + 0.5 * h) continue;
+      if (l.to_storey && slab.bottom_m > l.elevation_m + h + 1e-3) continue;
+      if (!over || slab.bottom_m < over->bottom_m - 1e-9) over = &slab;
+    }
+    if (!over) {
+      if (!l.top_note.empty()) out.notes.push_back(l.top_note);
+      if (l.to_storey && !model.slabs.empty())
+        out.notes.push_back(printf_string(
+            "floor '%s': no slab found under the storey above (FLOOR, BASESLAB or ROOF, its "
+            "underside between %.3f and %.3f m); its walls run to the storey above, %.3f m",
+            l.name.c_str(), l.elevation_m + 0.5 * h, l.elevation_m + h, h));
+      continue;
+    }
+    l.height_m = std::min(h, over->bottom_m - l.elevation_m);
+    if (!l.to_storey) l.height_m = over->bottom_m - l.elevation_m;
+    l.slab_m = std::max(
+        0.0, l.to_storey ? l.elevation_m + h - over->bottom_m : over->top_m - over->bottom_m);
+    out.notes.push_back(printf_string(
+        "floor '%s': %.3f m high, from its level (%.3f m) to the underside of %s (%s slab, "
+        "%.3f m thick, in storey '%s') at %.3f m; %s",
+        l.name.c_str(), l.height_m, l.elevation_m, over->what.describe().c_str(),
+        over->kind.c_str(), over->thickness_m, over->storey.c_str(), over->bottom_m,
+        !l.to_storey ? printf_string("%.3f m of slab over it (the roof)", l.slab_m).c_str()
+        : l.slab_m > 1e-6
+            ? printf_string("%.3f m of slab up to the next floor's level", l.slab_m).c_str()
+            : "the storey above stands at its underside"));
+  }
+  if (model.slabs.empty())
+    out.notes.push_back(
+        "the model has no slab (IfcSlab FLOOR, BASESLAB or ROOF) in its storeys: each floor's "
+        "walls run up to the storey above (the top one's: its tallest wall)");
   if (kept.empty()) {
     std::string why;
     int shown = 0;
@@ -423,10 +468,11 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
     floor.name = l.name;
     floor.index = static_cast<int>(k);
     floor.height_m = clean(l.height_m);
+    floor.slab_m = clean(l.slab_m);
     floor.base_elevation_m = base_m;
     floor.source = {file, 0, first.what.describe()};
     floor.plan = make_plan(l, file, options, out.notes, left_out);
-    base_m += floor.height_m;
+    base_m += floor.height_m + floor.slab_m;
     if (floor.plan.walls.size() > floors::limits::kMaxWalls)
       throw InputError(file, 0, first.what.describe(),
                        printf_string("%zu walls on one floor; ccbuild takes at most %zu",

@@ -58,6 +58,8 @@
 #include <ifcpp/IFC4/include/IfcSIUnit.h>
 #include <ifcpp/IFC4/include/IfcSIUnitName.h>
 #include <ifcpp/IFC4/include/IfcSite.h>
+#include <ifcpp/IFC4/include/IfcSlab.h>
+#include <ifcpp/IFC4/include/IfcSlabTypeEnum.h>
 #include <ifcpp/IFC4/include/IfcTrimmedCurve.h>
 #include <ifcpp/IFC4/include/IfcTypeObject.h>
 #include <ifcpp/IFC4/include/IfcUnitAssignment.h>
@@ -450,6 +452,94 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
     return skip(u.why);
   }
   storey.walls.push_back(std::move(found));
+}
+
+void Reader::read_slab(const std::shared_ptr<IfcSlab>& slab, bool in_roof, double z_shift_m,
+                       const std::string& storey, ModelContents& out) {
+  FoundSlab found;
+  found.what = element_of(*slab);
+  found.storey = storey;
+  const auto type =
+      slab->m_PredefinedType ? slab->m_PredefinedType->m_enum : IfcSlabTypeEnum::ENUM_NOTDEFINED;
+  switch (type) {
+    case IfcSlabTypeEnum::ENUM_FLOOR:
+      found.kind = "FLOOR";
+      break;
+    case IfcSlabTypeEnum::ENUM_BASESLAB:
+      found.kind = "BASESLAB";
+      break;
+    case IfcSlabTypeEnum::ENUM_ROOF:
+      found.kind = "ROOF";
+      break;
+    default:
+      break;
+  }
+  if (in_roof && found.kind.empty()) found.kind = "ROOF";
+  found.roof = in_roof || found.kind == "ROOF";
+  const auto skip = [&](const std::string& why) {
+    out.notes.push_back(found.what.describe() + ": " + why + "; not used for the floors' heights");
+  };
+  if (found.kind.empty())
+    return skip("a slab neither FLOOR, BASESLAB nor ROOF (a landing, say) and not part of a roof");
+  try {
+    const Isometry3d place = world(slab->m_ObjectPlacement, found.what);
+    const double z0 = place.translation().z() + z_shift_m;
+    // The body: every extruded solid of it, its extent in z (a sloped roof's lowest point).
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo, depth = 0.0;
+    if (slab->m_Representation)
+      for (const auto& rep : slab->m_Representation->m_Representations) {
+        if (!rep || lower(label(rep->m_RepresentationIdentifier)) != "body") continue;
+        for (const auto& item : rep->m_Items) {
+          const auto solid = solid_of(item, 0);
+          if (!solid) continue;
+          const Vector3d along = place.linear() * solid->position.linear() * solid->extrusion;
+          depth = std::max(depth, std::abs(along.z()));
+          for (const Vector2d& p : solid->profile) {
+            const Vector3d base = place * (solid->position * Vector3d(p.x(), p.y(), 0.0));
+            lo = std::min({lo, base.z(), base.z() + along.z()});
+            hi = std::max({hi, base.z(), base.z() + along.z()});
+          }
+        }
+      }
+    // Its layer set (IfcMaterialLayerSetUsage along AXIS3: up from the placement's plane
+    // and its offset, or down with a NEGATIVE sense, as Revit exports floors).
+    std::optional<double> layers;
+    double layers_bottom = z0, layers_top = z0;
+    for (const auto& weak : slab->m_HasAssociations_inverse) {
+      auto rel = as<IfcRelAssociatesMaterial>(weak.lock());
+      auto usage = rel ? as<IfcMaterialLayerSetUsage>(rel->m_RelatingMaterial) : nullptr;
+      if (!usage || !usage->m_ForLayerSet) continue;
+      double total = 0.0;
+      for (const auto& layer : usage->m_ForLayerSet->m_MaterialLayers)
+        if (layer && layer->m_LayerThickness) total += layer->m_LayerThickness->m_value * unit_;
+      if (!(total > 0.0) || !std::isfinite(total)) continue;
+      layers = total;
+      const double ref =
+          z0 + (usage->m_OffsetFromReferenceLine ? usage->m_OffsetFromReferenceLine->m_value * unit_
+                                                 : 0.0);
+      const bool down = usage->m_DirectionSense &&
+                        usage->m_DirectionSense->m_enum == IfcDirectionSenseEnum::ENUM_NEGATIVE;
+      layers_bottom = down ? ref - total : ref;
+      layers_top = down ? ref : ref + total;
+      break;
+    }
+    if (std::isfinite(lo) && hi > lo) {
+      found.bottom_m = lo;
+      found.top_m = hi;
+      found.thickness_m = layers ? *layers : depth;
+    } else if (layers) {
+      found.bottom_m = layers_bottom;
+      found.top_m = layers_top;
+      found.thickness_m = *layers;
+    } else {
+      return skip("neither an extruded body nor a material layer set gives its level");
+    }
+    if (!std::isfinite(found.bottom_m) || !std::isfinite(found.top_m))
+      return skip("its level is not a finite number");
+  } catch (const Unusable& u) {
+    return skip(u.why);
+  }
+  out.slabs.push_back(std::move(found));
 }
 
 }  // namespace ccbuild::import::ifc::detail

@@ -57,11 +57,23 @@ struct FoundStorey {
   std::vector<FoundWall> walls;
 };
 
+/// A slab (IfcSlab of PredefinedType FLOOR, BASESLAB or ROOF, or any slab an IfcRoof is made
+/// of): its extent in z, in the model's frame, metres (z corrected as a wall's).
+struct FoundSlab {
+  Element what;
+  std::string kind;   ///< "FLOOR", "BASESLAB", "ROOF"
+  bool roof = false;  ///< PredefinedType ROOF, or part of an IfcRoof
+  double bottom_m = 0.0, top_m = 0.0;
+  double thickness_m = 0.0;  ///< its layer set's, else its extrusion's depth
+  std::string storey;        ///< the storey containing it (or its roof)
+};
+
 /// What read_model found.
 struct ModelContents {
   double metres_per_unit = 1.0;
   std::string building_name;
   std::vector<FoundStorey> storeys;
+  std::vector<FoundSlab> slabs;    ///< in file order
   std::vector<std::string> notes;  ///< elements left out or ignored, in file order
   int left_out = 0;                ///< elements left out (walls, curtain walls, openings)
 };

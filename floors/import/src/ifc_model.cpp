@@ -55,10 +55,12 @@
 #include <ifcpp/IFC4/include/IfcRelFillsElement.h>
 #include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
 #include <ifcpp/IFC4/include/IfcRepresentation.h>
+#include <ifcpp/IFC4/include/IfcRoof.h>
 #include <ifcpp/IFC4/include/IfcSIPrefix.h>
 #include <ifcpp/IFC4/include/IfcSIUnit.h>
 #include <ifcpp/IFC4/include/IfcSIUnitName.h>
 #include <ifcpp/IFC4/include/IfcSite.h>
+#include <ifcpp/IFC4/include/IfcSlab.h>
 #include <ifcpp/IFC4/include/IfcTrimmedCurve.h>
 #include <ifcpp/IFC4/include/IfcTypeObject.h>
 #include <ifcpp/IFC4/include/IfcUnitAssignment.h>
@@ -387,6 +389,22 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
             continue;
           }
           read_wall(wall, Element{}, z_shift_m, s, out, 0);
+        } else if (auto slab = as<IfcSlab>(product)) {
+          read_slab(slab, false, z_shift_m, s.what.name, out);
+        } else if (auto roof = as<IfcRoof>(product)) {
+          // A roof is made of slabs (IfcRelAggregates), or is one itself in IFC2X3's way.
+          bool parts = false;
+          for (const auto& weak : roof->m_IsDecomposedBy_inverse)
+            if (auto agg = weak.lock())
+              for (const auto& part : agg->m_RelatedObjects)
+                if (auto roof_slab = as<IfcSlab>(part)) {
+                  parts = true;
+                  read_slab(roof_slab, true, z_shift_m, s.what.name, out);
+                }
+          if (!parts)
+            out.notes.push_back(element_of(*roof).describe() +
+                                ": a roof made of no slab (IfcRelAggregates); not used for "
+                                "the floors' heights");
         } else if (as<IfcCurtainWall>(product)) {
           out.notes.push_back(element_of(*product).describe() +
                               ": a curtain wall, not printable; left out");

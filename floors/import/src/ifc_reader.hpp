@@ -16,6 +16,7 @@
 #include <ifcpp/IFC4/include/IfcReal.h>
 #include <ifcpp/IFC4/include/IfcRepresentationItem.h>
 #include <ifcpp/IFC4/include/IfcRoot.h>
+#include <ifcpp/IFC4/include/IfcSlab.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
 #include <ifcpp/model/BuildingModel.h>
 
@@ -90,6 +91,8 @@ class Reader {
   std::optional<std::tuple<double, double>> layer_set(const IfcObjectDefinition& object) const;
   void read_wall(const std::shared_ptr<IfcWall>& wall, const Element& parent, double z_shift_m,
                  FoundStorey& storey, ModelContents& out, int depth);
+  void read_slab(const std::shared_ptr<IfcSlab>& slab, bool in_roof, double z_shift_m,
+                 const std::string& storey, ModelContents& out);
   void read_openings(const IfcElement& wall, const Isometry3d& wall_world, double z_shift_m,
                      FoundWall& into, ModelContents& out);
 

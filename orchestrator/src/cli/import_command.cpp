@@ -131,10 +131,12 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
               "\nmaterial: " + quoted(relative_to(material, folder)) +
               "\nmachine: " + quoted(relative_to(machine, folder)) + "\nfloors:\n";
   for (std::size_t k = 0; k < b.floors.size(); ++k)
-    building += printf_string("  - {name: %s, height: %s, plan: %s}  # %s\n",
-                              quoted(b.floors[k].name).c_str(), exact(b.floors[k].height_m).c_str(),
-                              quoted(plan_paths[plan_of[k]].filename().string()).c_str(),
-                              b.floors[k].source.path.c_str());
+    building += printf_string(
+        "  - {name: %s, height: %s%s, plan: %s}  # %s\n", quoted(b.floors[k].name).c_str(),
+        exact(b.floors[k].height_m).c_str(),
+        b.floors[k].slab_m > 0.0 ? (", slab: " + exact(b.floors[k].slab_m)).c_str() : "",
+        quoted(plan_paths[plan_of[k]].filename().string()).c_str(),
+        b.floors[k].source.path.c_str());
   for (std::size_t d = 0; d < distinct.size(); ++d)
     write_file_atomically(
         plan_paths[d],
@@ -238,7 +240,8 @@ void add_import_command(CLI::App& app, int& exit_code) {
       "schedule: the building file (-o) and, beside it, its plans in ccbuild's own YAML, every "
       "wall and opening commented with the element it came from.\n"
       "IFC (IFC4, IFC2X3; docs/formats.md, \"IFC models\"): every storey with walls is a floor "
-      "(height: to the next storey), one plan file per distinct storey plan "
+      "(height: up to the slab over it, else the next storey), one plan file per distinct storey "
+      "plan "
       "(<name>.1.plan.yaml, ...); walls of the types asked for (--wall-types) whose materials are "
       "printable (--exclude-materials) with their axis, thickness and openings; each keeps its "
       "GlobalId (guid:). Curtain walls, curved or sloped walls and what else cannot be printed is "

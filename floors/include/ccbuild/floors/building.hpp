@@ -25,9 +25,12 @@ struct AnchorPoint {
 
 struct Floor {
   std::string name;
-  int index = 0;                  ///< 0 = ground floor
-  double height_m = 0.0;          ///< floor-to-floor height
-  double base_elevation_m = 0.0;  ///< sum of the heights below
+  int index = 0;          ///< 0 = ground floor
+  double height_m = 0.0;  ///< floor-to-floor height
+  /// The slab placed on its walls: from their top to the next floor's base (`slab` in the
+  /// file, 0 by default). Not printed; the floors above stand on it.
+  double slab_m = 0.0;
+  double base_elevation_m = 0.0;  ///< sum of the heights and slabs below
   FloorPlan plan;                 ///< includes the floor's own openings
   std::vector<AnchorPoint> anchors;
   SourceRef source;

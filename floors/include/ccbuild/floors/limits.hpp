@@ -21,8 +21,10 @@ inline const Range kAlongWall_m = Range::closed(0.0, 200'000.0);
 inline const Range kOpeningWidth_m = Range::above(0.0, 200'000.0);
 /// Sill and head, above the floor's base.
 inline const Range kOpeningHeight_m = Range::closed(0.0, 100.0);
-/// Floor-to-floor height.
+/// A floor's height: of its walls (floor to floor without a slab).
 inline const Range kFloorHeight_m = Range::above(0.0, 100.0);
+/// The slab on a floor's walls, up to the next floor's base.
+inline const Range kSlabThickness_m = Range::closed(0.0, 10.0);
 /// Layer height: printed layers are millimetres to centimetres thick.
 inline const Range kLayerHeight_m = Range::closed(0.001, 1.0);
 /// The slab stage between floors: up to 30 days.
