@@ -111,5 +111,34 @@ TEST(Building, SlabStageInHoursWithItsDefault) {
   std::filesystem::remove_all(dir);
 }
 
+// A floor's `slab:` (from its walls' top to the next floor's base) lifts every floor above
+// it, in the file's unit; out of its range it is refused at its line.
+TEST(Building, AFloorsSlabLiftsTheFloorsAboveIt) {
+  const auto dir = scratch();
+  std::filesystem::copy_file(data("plans/cottage.yaml"), dir / "plan.yaml",
+                             std::filesystem::copy_options::overwrite_existing);
+  auto with =
+      [&](const std::string& units, const std::string& slab) {
+        std::ofstream(dir / "b.yaml")
+            << "units: " << units << "\nlayer_height: 0.5\nmaterial: "
+            << testing::source_path("config/materials/standard-mix.yaml").string()
+            << "\nmachine: " << testing::source_path("config/machines/cc-gantry.yaml").string()
+            << "\nfloors:\n  - {height: 3, slab: " << slab << ", plan: plan.yaml}\n"
+            << "  - {height: 3, plan: plan.yaml}\n  - {height: 3, plan: plan.yaml}\n";
+        return load_building(dir / "b.yaml");
+      };
+  const Building b = with("m", "0.25");
+  EXPECT_DOUBLE_EQ(b.floors[0].slab_m, 0.25);
+  EXPECT_DOUBLE_EQ(b.floors[1].base_elevation_m, 3.25);
+  EXPECT_DOUBLE_EQ(b.floors[2].base_elevation_m, 6.25);
+  EXPECT_DOUBLE_EQ(with("m", "0").floors[1].base_elevation_m, 3.0);
+  const InputError e = testing::expect_input_error([&] { with("m", "-0.1"); });
+  EXPECT_EQ(e.first().field, "floors[0].slab");
+  EXPECT_EQ(e.first().line, 6);
+  EXPECT_EQ(testing::expect_input_error([&] { with("m", "10.5"); }).first().field,
+            "floors[0].slab");
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace ccbuild::floors
