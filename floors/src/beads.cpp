@@ -19,6 +19,7 @@
 #include "beads_internal.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/beads.hpp"
+#include "ccbuild/floors/plane.hpp"
 #include "plan_internal.hpp"
 
 namespace ccbuild::floors {
@@ -91,9 +92,6 @@ BPoint bp(const Vec& v) {
 // about 1e-7 m, which would leave beads that should abut overlapping by that much.
 Vec ev(const BPoint& p) {
   return {std::round(p.x() * 1e6) * 1e-6, std::round(p.y() * 1e6) * 1e-6};
-}
-double cross(const Vec& a, const Vec& b) {
-  return a.x() * b.y() - a.y() * b.x();
 }
 
 // One piece of a wall in this layer, with its thickness and, at each end, how far its

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/floors/plane.hpp"
+
 namespace ccbuild::import::detail {
 
 using Eigen::Vector2d;
@@ -36,7 +38,7 @@ struct FoundWall {
   std::vector<FoundGap> gaps{};
 };
 
-double cross(const Vector2d& u, const Vector2d& v);
+using floors::cross;
 
 /// Face lines (in drawing units, `scale` metres each) facing each other at most
 /// `max_thickness_m` apart become walls along their middle; what pairs with nothing is

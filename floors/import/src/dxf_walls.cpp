@@ -15,10 +15,6 @@ std::string hex_handle(int handle) {
   return handle < 0 ? std::string("(no handle)") : printf_string("%X", handle);
 }
 
-double cross(const Vector2d& u, const Vector2d& v) {
-  return u.x() * v.y() - u.y() * v.x();
-}
-
 /// Face lines that face each other become walls along their middle (see the header).
 std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double scale,
                                   double max_thickness_m, std::vector<std::string>& notes) {
@@ -228,9 +224,8 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
       const Vector2d far = in_end == 0 ? walls[v].b : walls[v].a;
       FoundGap g;
       // To the nanometre: a drawing in millimetres gives 0.8000000000000003 m.
-      const auto nm = [](double v) { return std::round(v * 1e9) / 1e9; };
-      g.offset_m = nm((p - merged.a).norm());
-      g.width_m = nm((q - p).norm());
+      g.offset_m = floors::round_to_nanometre((p - merged.a).norm());
+      g.width_m = floors::round_to_nanometre((q - p).norm());
       g.source = "the gap between " + walls[at].source + " and " + walls[v].source;
       const Vector2d d = (q - p) / g.width_m;
       for (const DrawnLine& l : glazing) {

@@ -14,6 +14,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/limits.hpp"
 #include "ccbuild/floors/limits.hpp"
+#include "ccbuild/floors/plane.hpp"
 #include "ifc_internal.hpp"
 
 namespace ccbuild::import {
@@ -24,14 +25,11 @@ using ifc::FoundOpening;
 using ifc::FoundStorey;
 using ifc::FoundWall;
 
-double cross(const Vector2d& u, const Vector2d& v) {
-  return u.x() * v.y() - u.y() * v.x();
-}
+using floors::cross;
 
-/// Lengths rounded to the nanometre: what the unit conversions and placements leave
-/// beyond that is noise (0.9000000000000004), and plan files are read by people.
+/// Lengths rounded to the nanometre (floors::round_to_nanometre).
 double clean(double value_m) {
-  return std::round(value_m * 1e9) / 1e9;
+  return floors::round_to_nanometre(value_m);
 }
 Vector2d clean(const Vector2d& p) {
   return {clean(p.x()), clean(p.y())};
