@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <unordered_map>
 
 #include "beads_internal.hpp"
@@ -47,6 +48,11 @@ class PointMerger {
   std::unordered_map<std::uint64_t, std::vector<int>> grid_;
 };
 
+// An opening is open in a layer whose mid-height lies in [sill, head).
+bool open_at(const Opening& o, double mid_m) {
+  return mid_m >= o.sill_m && mid_m < o.head_m;
+}
+
 // Cuts every wall at the openings active at height `mid_m` (nullopt: none).
 Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceOptions& options) {
   std::vector<PieceSpec> pieces;
@@ -57,7 +63,7 @@ Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceO
     std::vector<std::pair<double, double>> gaps;
     if (mid_m) {
       for (const auto& o : plan.openings) {
-        if (o.wall_id == wall.id && *mid_m >= o.sill_m && *mid_m < o.head_m)
+        if (o.wall_id == wall.id && open_at(o, *mid_m))
           gaps.emplace_back(std::max(0.0, o.offset_m), std::min(length, o.offset_m + o.width_m));
       }
     }
@@ -163,8 +169,26 @@ std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
   const int count = layer_count(floor.height_m, layer_height_m);
   std::vector<Layer> layers;
   layers.reserve(count);
-  for (int k = 0; k < count; ++k)
-    layers.push_back(slice_floor_layer(floor, layer_height_m, k, options));
+  // A layer's pieces depend only on which openings are open at its mid-height: layers
+  // alike in that are cut (and offset into beads, the costly part) once.
+  std::map<std::vector<bool>, std::size_t> first_with;
+  for (int k = 0; k < count; ++k) {
+    const double z0 = k * layer_height_m;
+    const double mid_m = 0.5 * (z0 + std::min((k + 1) * layer_height_m, floor.height_m));
+    std::vector<bool> open;
+    open.reserve(floor.plan.openings.size());
+    for (const auto& o : floor.plan.openings) open.push_back(open_at(o, mid_m));
+    const auto [it, fresh] = first_with.try_emplace(std::move(open), layers.size());
+    if (fresh) {
+      layers.push_back(slice_floor_layer(floor, layer_height_m, k, options));
+      continue;
+    }
+    Layer layer = layers[it->second];
+    layer.index = k;
+    layer.z_bottom_m = floor.base_elevation_m + z0;
+    layer.z_top_m = floor.base_elevation_m + std::min((k + 1) * layer_height_m, floor.height_m);
+    layers.push_back(std::move(layer));
+  }
   return layers;
 }
 

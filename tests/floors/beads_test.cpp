@@ -407,3 +407,33 @@ TEST(Beads, AtADoorInAPartitionTheReturnsTurnExactly) {
 
 }  // namespace
 }  // namespace ccbuild::floors
+
+namespace ccbuild::floors {
+namespace {
+
+// slice_floor cuts layers alike in their open openings once: each layer it gives is the
+// one slice_floor_layer gives on its own, beads, heights and all.
+TEST(Beads, AFloorSlicedWholeIsItsLayersSlicedOneByOne) {
+  Floor floor;
+  floor.index = 1;
+  floor.height_m = 3.0;
+  floor.base_elevation_m = 3.2;
+  floor.plan = plan_of({{0, 0, 6, 0, 0.3}, {6, 0, 6, 4, 0.45}});
+  floor.plan.openings.push_back({"D", 1, 2.0, 1.0, 0.0, 2.1, {}});
+  floor.plan.openings.push_back({"W", 2, 1.0, 1.2, 0.9, 2.1, {}});
+  const auto layers = slice_floor(floor, 0.4, {});  // the last layer 0.2 m thin
+  ASSERT_EQ(layers.size(), 8u);
+  for (int k = 0; k < 8; ++k) {
+    const Layer one = slice_floor_layer(floor, 0.4, k);
+    EXPECT_TRUE(GeometryKey(layers[k]) == GeometryKey(one)) << "layer " << k;
+    EXPECT_EQ(layers[k].index, k);
+    EXPECT_DOUBLE_EQ(layers[k].z_bottom_m, one.z_bottom_m);
+    EXPECT_DOUBLE_EQ(layers[k].z_top_m, one.z_top_m);
+    EXPECT_EQ(layers[k].floor_index, 1);
+  }
+  EXPECT_FALSE(GeometryKey(layers[0]) == GeometryKey(layers[3]));  // window open at 1.0-1.4
+  EXPECT_FALSE(GeometryKey(layers[0]) == GeometryKey(layers[7]));  // door closed above 2.1
+}
+
+}  // namespace
+}  // namespace ccbuild::floors
