@@ -10,6 +10,7 @@ packages=(
   libeigen3-dev libboost-dev   # Boost.Geometry (header-only): walls as beads
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev libode-dev
   liburdfdom-dev libfcl-dev liblemon-dev
+  liburdfdom-tools             # check_urdf: the fitted climbing machines' URDFs are fed to it
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libdxflib-dev libifcplusplus-dev
   libsqlite3-dev libgtest-dev libgmock-dev libbenchmark-dev

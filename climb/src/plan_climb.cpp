@@ -10,6 +10,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "motion.hpp"
 #include "scene.hpp"
+#include "statics.hpp"
 
 namespace ccbuild::climb {
 
@@ -44,22 +45,8 @@ std::uint64_t mix(std::uint64_t a, std::uint64_t b) {
   return h * 0xBF58476D1CE4E5B9ULL;
 }
 
-// The pin of a unit engaged in (or withdrawn from) an anchor: where its foot is, and how
-// far the pin is out.
-struct PinTarget {
-  Eigen::Vector3d foot = Eigen::Vector3d::Zero();
-  Eigen::Vector2d direction = Eigen::Vector2d::Zero();
-  double engaged_m = 0.0;
-};
-
-PinTarget target(const machine::ClimbingMachine& m, const Anchor& a) {
-  PinTarget t;
-  t.direction = -a.outward;
-  t.foot = a.centre_m;
-  t.foot.head<2>() += a.outward * (0.5 * a.wall_thickness_m + m.pin_gap_m + m.foot_to_pin_m());
-  t.engaged_m = 0.5 * a.wall_thickness_m + m.pin_gap_m + m.pin_past_centre_m;
-  return t;
-}
+using detail::PinTarget;
+using detail::target;
 
 // Every unit's leg following its pin in `pins` (in that order), the platform at
 // `platform`: the units' joints written into `q`. Refused when a leg would leave its
@@ -265,127 +252,15 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
       return fail(blocked(r), "park: " + r.verdict.why);
   }
 
-  // 2. The units change pipes, units_per_transfer at a time. Where each unit goes:
-  std::vector<machine::UnitPose> out_old(units), out_new(units), in_new(units), in_old(units);
-  for (int u = 0; u < units; ++u) {
-    const PinTarget old_t = target(m, holding[u]), new_t = target(m, to.anchors[u]);
-    const auto a = m.unit_ik(u, platform, q, old_t.foot, old_t.direction, 0.0);
-    const auto b = m.unit_ik(u, platform, q, new_t.foot, new_t.direction, 0.0);
-    const auto c = m.unit_ik(u, platform, q, new_t.foot, new_t.direction, new_t.engaged_m);
-    if (!a || !b || !c || !m.unit_within_limits(u, *b) || !m.unit_within_limits(u, *c))
-      return fail(ClimbStatus::Code::kNoAnchor,
-                  "unit " + m.units[u].name + " cannot reach anchor " + to.anchors[u].id +
-                      " from the platform at " + metres(from.platform_z_m, 2));
-    out_old[u] = *a;
-    out_new[u] = *b;
-    in_new[u] = *c;
-    in_old[u] = m.get_unit(u, q);
-  }
-  // The gantry is the counterweight: the centre of mass moves linearly with it, by its
-  // mass (x) and its carriage's (y) over the machine's.
-  double mass_x = 0.0, mass_y = 0.0;
-  const int carriage = robot.link(robot.joint_info(m.gantry_joints[1]).child_link);
-  for (int l : m.gantry_links) {
-    mass_x += robot.link_info(l).mass_kg;
-    if (robot.is_ancestor(carriage, l)) mass_y += robot.link_info(l).mass_kg;
-  }
-  mass_x /= robot.total_mass_kg();
-  mass_y /= robot.total_mass_kg();
-  struct Counterweight {
-    double x = 0.0, y = 0.0, margin = -std::numeric_limits<double>::infinity();
-  };
-  // The best place for the gantry while `group` moves, the units in `moved` already in
-  // their new pipes: the most stable at either end of the group's motion.
-  auto counterweight = [&](const std::vector<int>& group, const std::vector<char>& moved, double x0,
-                           double y0) {
-    std::vector<double> base = q;
-    std::vector<Eigen::Vector2d> support;
-    for (int u = 0; u < units; ++u) {
-      m.set_unit(u, moved[u] ? in_new[u] : in_old[u], base);
-      if (std::find(group.begin(), group.end(), u) == group.end())
-        support.push_back((moved[u] ? to.anchors[u] : from.anchors[u]).centre_m.head<2>());
-    }
-    base[m.gantry_joints[0]] = x0;
-    base[m.gantry_joints[1]] = y0;
-    std::vector<Eigen::Vector2d> coms;
-    for (const auto* poses : {&out_old, &out_new}) {
-      std::vector<double> at = base;
-      for (int u : group) m.set_unit(u, (*poses)[u], at);
-      coms.push_back(robot.centre_of_mass(robot.link_poses(platform, at)).head<2>());
-    }
-    Counterweight best;
-    double best_score = -std::numeric_limits<double>::infinity();
-    for (int ix = 0; ix <= 48; ++ix)
-      for (int iy = 0; iy <= 16; ++iy) {
-        const double x = gx.lower + (gx.upper - gx.lower) * ix / 48.0;
-        const double y = gy.lower + (gy.upper - gy.lower) * iy / 16.0;
-        double worst = std::numeric_limits<double>::infinity();
-        for (const auto& c : coms)
-          worst = std::min(worst,
-                           detail::inside_hull_m(
-                               c + Eigen::Vector2d(mass_x * (x - x0), mass_y * (y - y0)), support));
-        // The stablest; among near-equals, the nearest.
-        const double score = worst - 1e-3 * std::hypot(x - x0, y - y0);
-        if (score > best_score) {
-          best_score = score;
-          best = {x, y, worst};
-        }
-      }
-    return best;
-  };
-  // The order of the units: of all orders, the one whose least stable transfer is the
-  // most stable (ties: the first in the units' own order). Beyond kExhaustiveUnits units
-  // (720 orders) the orders are too many: then each next unit is the one whose transfer is
-  // the most stable, given those before it.
-  constexpr int kExhaustiveUnits = 6;
-  const bool every_order = units <= kExhaustiveUnits;
-  std::vector<int> order(units);
-  for (int u = 0; u < units; ++u) order[u] = u;
-  const double gx0 = q[m.gantry_joints[0]], gy0 = q[m.gantry_joints[1]];
-  if (every_order) {
-    std::vector<int> trial = order, best_order = order;
-    double best_margin = -std::numeric_limits<double>::infinity();
-    do {
-      std::vector<char> moved(units, 0);
-      double worst = std::numeric_limits<double>::infinity();
-      for (int first = 0; first < units && worst > best_margin; first += m.units_per_transfer) {
-        const std::vector<int> group(trial.begin() + first,
-                                     trial.begin() + std::min(units, first + m.units_per_transfer));
-        worst = std::min(worst, counterweight(group, moved, gx0, gy0).margin);
-        for (int u : group) moved[u] = 1;
-      }
-      if (worst > best_margin + 1e-9) {
-        best_margin = worst;
-        best_order = trial;
-      }
-    } while (std::next_permutation(trial.begin(), trial.end()));
-    order = best_order;
-  } else {
-    order.clear();
-    std::vector<char> moved(units, 0), placed(units, 0);
-    std::vector<int> group;
-    while (static_cast<int>(order.size()) < units) {
-      int best = -1;
-      double best_margin = -std::numeric_limits<double>::infinity();
-      for (int u = 0; u < units; ++u) {
-        if (placed[u]) continue;
-        std::vector<int> trial = group;
-        trial.push_back(u);
-        const double margin = counterweight(trial, moved, gx0, gy0).margin;
-        if (best < 0 || margin > best_margin + 1e-9) {
-          best = u;
-          best_margin = margin;
-        }
-      }
-      placed[best] = 1;
-      order.push_back(best);
-      group.push_back(best);
-      if (static_cast<int>(group.size()) == m.units_per_transfer) {
-        for (int u : group) moved[u] = 1;
-        group.clear();
-      }
-    }
-  }
+  // 2. The units change pipes, units_per_transfer at a time, in their most stable order.
+  const detail::Transfers transfers(m, from, to, platform, q);
+  if (!transfers.unreachable.empty())
+    return fail(ClimbStatus::Code::kNoAnchor, transfers.unreachable);
+  const auto& out_old = transfers.out_old;
+  const auto& out_new = transfers.out_new;
+  const auto& in_new = transfers.in_new;
+  const std::vector<int>& order = transfers.order;
+  const bool every_order = transfers.every_order;
   std::vector<char> moved(units, 0);
   for (int first = 0; first < units; first += m.units_per_transfer) {
     const std::vector<int> group(order.begin() + first,
@@ -397,7 +272,8 @@ ClimbPlan plan_climb(const machine::ClimbingMachine& m, const floors::Building& 
     // holding units with the moving ones at either end of their motion.
     {
       const std::vector<int> joints{m.gantry_joints[0], m.gantry_joints[1]};
-      const Counterweight best = counterweight(group, moved, q[joints[0]], q[joints[1]]);
+      const detail::Transfers::Counterweight best =
+          transfers.counterweight(group, moved, q, q[joints[0]], q[joints[1]]);
       if (!std::isfinite(best.margin))
         return fail(ClimbStatus::Code::kUnstable,
                     "moving " + names +

@@ -313,6 +313,86 @@ std::string read_text_file(const std::filesystem::path& path) {
   return text;
 }
 
+namespace {
+
+std::string yaml_scalar(const DocNode& node) {
+  if (node.kind == DocNode::Kind::kNull) return "null";
+  if (!node.quoted) return node.text;
+  std::string out = "\"";
+  for (char c : node.text) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+bool all_scalars(const DocNode& node) {
+  for (const auto& [key, value] : node.entries)
+    if (value.kind == DocNode::Kind::kMap || value.kind == DocNode::Kind::kSequence) return false;
+  return true;
+}
+
+void write_yaml(const DocNode& node, int indent, std::string& out) {
+  const std::string pad(indent, ' ');
+  if (node.kind == DocNode::Kind::kMap) {
+    if (node.entries.empty()) {
+      out += pad + "{}\n";
+      return;
+    }
+    for (const auto& [key, value] : node.entries) {
+      out += pad + key + ":";
+      if (value.kind == DocNode::Kind::kMap && !value.entries.empty()) {
+        out += "\n";
+        write_yaml(value, indent + 2, out);
+      } else if (value.kind == DocNode::Kind::kSequence && !value.items.empty()) {
+        out += "\n";
+        write_yaml(value, indent + 2, out);
+      } else if (value.kind == DocNode::Kind::kSequence) {
+        out += " []\n";
+      } else if (value.kind == DocNode::Kind::kMap) {
+        out += " {}\n";
+      } else {
+        out += " " + yaml_scalar(value) + "\n";
+      }
+    }
+  } else if (node.kind == DocNode::Kind::kSequence) {
+    for (const auto& item : node.items) {
+      if (item.kind == DocNode::Kind::kMap && all_scalars(item)) {
+        std::string line;
+        for (const auto& [key, value] : item.entries)
+          line += (line.empty() ? "" : ", ") + key + ": " + yaml_scalar(value);
+        out += pad + "- {" + line + "}\n";
+      } else if (item.kind == DocNode::Kind::kMap || item.kind == DocNode::Kind::kSequence) {
+        std::string inner;
+        write_yaml(item, indent + 2, inner);
+        out += pad + "- " + inner.substr(indent + 2);
+      } else {
+        out += pad + "- " + yaml_scalar(item) + "\n";
+      }
+    }
+  } else {
+    out += pad + yaml_scalar(node) + "\n";
+  }
+}
+
+}  // namespace
+
+std::string to_yaml(const DocNode& root, const std::string& comment) {
+  std::string out;
+  std::size_t start = 0;
+  while (start < comment.size()) {
+    const std::size_t end = std::min(comment.find('\n', start), comment.size());
+    out += "# " + comment.substr(start, end - start) + "\n";
+    start = end + 1;
+  }
+  write_yaml(root, 0, out);
+  return out;
+}
+
 Document parse_yaml(const std::string& text, const std::string& file) {
   std::vector<YAML::Node> documents;
   try {

@@ -115,7 +115,7 @@ Building building_from_document(const Document& doc, const fs::path& path,
                                 const DrawingReader& drawings) {
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "units", "layer_height", "slab_stage_h", "material",
-                       "machine", "site", "wall_pattern", "floors"});
+                       "machine", "site", "wall_pattern", "climbs", "floors"});
   map.reject_unknown();
   const fs::path base = path.has_parent_path() ? path.parent_path() : fs::path(".");
 
@@ -143,6 +143,15 @@ Building building_from_document(const Document& doc, const fs::path& path,
           "two skins), got '" +
           pattern->as_string() + "'");
     building.wall_pattern = *parsed;
+  }
+  if (auto climbs = map.optional("climbs")) {
+    const std::string where = climbs->as_string();
+    if (where != "between-floors" && where != "within-storey")
+      climbs->fail(
+          "expected between-floors (a climbing machine climbs at floor tops, the default) or "
+          "within-storey (wherever its legs allow), got '" +
+          where + "'");
+    building.climbs_within_storey = where == "within-storey";
   }
 
   const Field floors = map.required("floors");

@@ -100,7 +100,20 @@ MachineModel load_machine(const fs::path& profile_path) {
 }
 
 MachineProfile load_machine_profile(const fs::path& profile_path) {
-  const Document doc = load_document(profile_path);
+  auto doc = std::make_shared<Document>(load_document(profile_path));
+  if (is_climbing_family(*doc)) {
+    MachineProfile profile;
+    profile.family = std::make_shared<const ClimbingFamily>(read_climbing_family(doc));
+    profile.gantry.name = profile.family->name;
+    profile.gantry.source_file = profile_path.string();
+    profile.gantry.files_read.push_back(profile_path);
+    return profile;
+  }
+  return load_machine_profile(*doc, profile_path, nullptr);
+}
+
+MachineProfile load_machine_profile(const Document& doc, const fs::path& profile_path,
+                                    const std::string* urdf_xml) {
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "urdf", "joints", "deposition_speed_m_s",
                        "travel_speed_m_s", "rotate_while_moving", "accel_delay_s", "lift_height_m",
@@ -117,11 +130,12 @@ MachineProfile load_machine_profile(const fs::path& profile_path) {
   const fs::path base = profile_path.has_parent_path() ? profile_path.parent_path() : fs::path(".");
   const fs::path urdf_path = (base / urdf_field.as_string()).lexically_normal();
   std::error_code ec;
-  if (!fs::is_regular_file(urdf_path, ec))
+  if (!urdf_xml && !fs::is_regular_file(urdf_path, ec))
     urdf_field.fail("URDF file '" + urdf_field.as_string() + "' not found (looked for " +
                     urdf_path.string() + ")");
-  const UrdfInfo urdf = read_urdf(urdf_path.string());
-  m.files_read.push_back(urdf_path);
+  const UrdfInfo urdf =
+      urdf_xml ? read_urdf_text(*urdf_xml, urdf_path.string()) : read_urdf(urdf_path.string());
+  if (!urdf_xml) m.files_read.push_back(urdf_path);
 
   MapReader joints(map.required("joints"), {"x", "y", "z", "nozzle"});
   joints.reject_unknown();

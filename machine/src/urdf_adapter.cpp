@@ -163,7 +163,10 @@ std::string joint_type(int type) {
 }  // namespace
 
 UrdfInfo read_urdf(const std::string& path) {
-  const std::string xml = read_text_file(path);
+  return read_urdf_text(read_text_file(path), path);
+}
+
+UrdfInfo read_urdf_text(const std::string& xml, const std::string& path) {
   const ElementLines lines = check_xml_shape(xml, path);
   urdf::ModelInterfaceSharedPtr model;
   CapturingHandler handler;

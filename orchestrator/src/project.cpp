@@ -97,10 +97,35 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     project.machine_origin = "built-in defaults";
   } else {
     machine::MachineProfile profile = machine::load_machine_profile(machine_path);
+    std::string fitted;
+    if (profile.family) {
+      // A family: its member is built around the building where it stands.
+      place(project, false);
+      climb::FitOptions fit;
+      fs::path out = options.fitted_profile;
+      if (out.empty())
+        out = machine_path.parent_path() / (machine_path.stem().string() + "-fitted.yaml");
+      fit.profile_path = out.string();
+      fit.urdf_file = out.stem().string() + ".urdf";
+      auto result = std::make_shared<climb::FitResult>(
+          climb::fit_climbing_machine(project.building, *profile.family, fit));
+      if (!result->status) throw NoFit(std::move(*result));
+      const std::vector<fs::path> family_files = profile.gantry.files_read;
+      profile = result->profile;
+      profile.gantry.files_read = family_files;
+      if (profile.climbing) {
+        auto climber = std::make_shared<machine::ClimbingMachine>(*profile.climbing);
+        climber->files_read = family_files;
+        climber->gantry.files_read = family_files;
+        profile.climbing = climber;
+      }
+      fitted = ", fitted to this building (" + result->summary + ")";
+      project.fit = std::move(result);
+    }
     project.machine = std::make_shared<const machine::MachineModel>(std::move(profile.gantry));
     project.climber = std::move(profile.climbing);
     project.machine_origin =
-        project.machine->name + ", " + machine_path.string() + " " + machine_why;
+        project.machine->name + ", " + machine_path.string() + " " + machine_why + fitted;
   }
   const auto [material_path, material_why] = pick(options.material_profile, b.material_profile,
                                                   "materials/standard-mix.yaml", "--material");
@@ -112,12 +137,17 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     project.material_origin =
         project.material.name + ", " + material_path.string() + " " + material_why;
   }
-  place(project, options.place_centre);
+  if (!project.fit) place(project, options.place_centre);
   for (auto& floor : project.building.floors)
     floor.plan.beads = {project.machine->nozzle_width_m, project.building.wall_pattern};
   check_fit(project);
   return project;
 }
+
+NoFit::NoFit(climb::FitResult result)
+    : std::runtime_error("no member of the machine family climbs the building: " +
+                         result.status.to_string()),
+      fit(std::move(result)) {}
 
 void check_fit(const Project& project) {
   const floors::Building& b = project.building;

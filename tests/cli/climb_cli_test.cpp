@@ -209,8 +209,13 @@ TEST(ClimbCommand, TheApartmentClimbsOnTheClimber) {
   for (const char* climb : {"climb 0 -> 1: feasible", "climb 1 -> 2: feasible",
                             "climb 2 -> 3: feasible", "climb 3 -> 4: feasible"})
     EXPECT_TRUE(contains(r.out, climb)) << climb;
-  // The pipes with the layer they are cast after, the lift with its strokes.
-  EXPECT_TRUE(contains(r.out, "U1->A1 (wall 1, cast after floor 0 layer 3")) << r.out;
+  // Climbs between floors (the default): each stage prints one floor. The pipes with the
+  // layer they are cast after, the lift with its strokes.
+  EXPECT_TRUE(contains(r.out,
+                       "stage 1  platform at 21.55 ft, prints floor 1 layer 0 to floor 1 "
+                       "layer 24 (top 20.00 ft)"))
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "U1->A1 (wall 1, cast after floor 0 layer 2")) << r.out;
   EXPECT_TRUE(contains(r.out, "7 strokes")) << r.out;
 }
 
@@ -224,7 +229,7 @@ TEST(ClimbCommand, JsonListsTheClimbsWithTheirPhases) {
   EXPECT_EQ(doc["stages"].size(), 5u);
   ASSERT_EQ(doc["climbs"].size(), 1u);  // the one made while floor 3 is printed
   const auto& climb = doc["climbs"][0];
-  EXPECT_EQ(climb["from_stage"], 2);
+  EXPECT_EQ(climb["from_stage"], 3);
   ASSERT_EQ(climb["phases"].size(), 18u);
   EXPECT_EQ(climb["phases"][0]["kind"], "park");
   EXPECT_EQ(climb["phases"][17]["kind"], "lift");
@@ -234,9 +239,9 @@ TEST(ClimbCommand, JsonListsTheClimbsWithTheirPhases) {
 
 TEST(ClimbCommand, AFloorWithoutClimbsSaysSo) {
   const auto r = run_ccbuild(
-      "climb config/buildings/apartment.yaml --machine config/machines/cc-climber.yaml --floor 0");
+      "climb config/buildings/apartment.yaml --machine config/machines/cc-climber.yaml --floor 4");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(contains(r.out, "no climb is made while floor 0 is printed")) << r.out;
+  EXPECT_TRUE(contains(r.out, "no climb is made while floor 4 is printed")) << r.out;
   const auto bad = run_ccbuild(
       "climb config/buildings/apartment.yaml --machine config/machines/cc-climber.yaml --floor 5");
   EXPECT_EQ(bad.exit_code, 2);
@@ -249,7 +254,7 @@ TEST(ClimbCommand, AnUnstableMachineIsAnAnswerWithItsReason) {
       "climb config/buildings/apartment.yaml --machine tests/data/machines/tippy-climber.yaml "
       "--floor 2");
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_TRUE(contains(r.out, "climb 1 -> 2: NOT feasible: unstable")) << r.out;
+  EXPECT_TRUE(contains(r.out, "climb 2 -> 3: NOT feasible: unstable")) << r.out;
   EXPECT_TRUE(contains(r.out, "with the gantry as counterweight anywhere on its rails")) << r.out;
 }
 

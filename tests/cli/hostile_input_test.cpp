@@ -170,7 +170,7 @@ TEST(HostileInput, FlagsThatDoNotFitAreRefused) {
        "--gantry-width: must be more than 0 and at most 1000 m"},
       {"plan-layer tests/data/plans/cottage.yaml --lyer 3", "did you mean '--layer'?"},
       {"plan-lyaer tests/data/plans/cottage.yaml", "did you mean 'plan-layer'?"},
-      {"frobnicate", "the commands are: validate, import, layers, plan-layer, sweep, climb"},
+      {"frobnicate", "the commands are: validate, import, layers, plan-layer, sweep, fit, climb"},
       // An empty output name (`-o "$UNSET"`) would otherwise write nothing, silently.
       {"plan-layer tests/data/plans/cottage.yaml --svg ''",
        "--svg: expected a file name, got an empty one"},

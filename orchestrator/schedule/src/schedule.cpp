@@ -130,13 +130,11 @@ void Scheduler::prepare() {
   const int count = static_cast<int>(slices_.size());
   layer_end_s_.assign(count, 0.0);
 
-  // Climbing machine: stages (breaking at floor tops where the reach allows) and their
-  // climbs, planned in parallel with the first layer plans.
+  // Climbing machine: stages (as `ccbuild climb` places them) and their climbs, planned
+  // in parallel with the first layer plans.
   std::vector<double> climb_planning_s;
   if (project_.climber) {
-    climb::StageOptions stage_options;
-    stage_options.at_floor_tops = true;
-    const climb::StagePlan stages = climb::climb_stages(b, *project_.climber, stage_options);
+    const climb::StagePlan stages = climb::climb_stages(b, *project_.climber);
     schedule_.stages = stages.stages;
     if (!stages.status) {
       Infeasibility inf;

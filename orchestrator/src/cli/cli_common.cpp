@@ -113,6 +113,10 @@ void add_input_options(CLI::App& command, InputOptions& options) {
 orchestrator::Project open_input(const std::string& file, const InputOptions& options) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw InputError(file, 0, "", "file not found");
+  return orchestrator::open_project(file, project_options(options));
+}
+
+orchestrator::ProjectOptions project_options(const InputOptions& options) {
   orchestrator::ProjectOptions project;
   project.plan_unit = *floors::parse_length_unit(options.units);  // CLI11 checked it
   const double scale = floors::meters_per(project.plan_unit);
@@ -121,7 +125,7 @@ orchestrator::Project open_input(const std::string& file, const InputOptions& op
   project.machine_profile = options.machine;
   project.material_profile = options.material;
   project.place_centre = !options.place.empty();
-  return orchestrator::open_project(file, project);
+  return project;
 }
 
 double length_flag(const std::string& text, const char* flag, floors::LengthUnit unit,

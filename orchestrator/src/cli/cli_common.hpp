@@ -47,7 +47,10 @@ struct InputOptions {
 /// --material, --place to a command.
 void add_input_options(CLI::App& command, InputOptions& options);
 
-/// Opens FILE through the building-level API with these options. Throws InputError.
+/// The building-level API's options from the flags.
+orchestrator::ProjectOptions project_options(const InputOptions& options);
+/// Opens FILE through the building-level API with these options. Throws InputError, and
+/// orchestrator::NoFit when a machine family fits no member to the building.
 orchestrator::Project open_input(const std::string& file, const InputOptions& options);
 
 /// A length flag: "5ft", "1.5m", or a bare number in `unit`; positive and finite, at

@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
   add_layers_command(app, exit_code);
   add_plan_layer_command(app, exit_code);
   add_sweep_command(app, exit_code);
+  add_fit_command(app, exit_code);
   add_climb_command(app, exit_code);
   add_schedule_command(app, exit_code);
   add_diff_command(app, exit_code);
@@ -162,6 +163,23 @@ int main(int argc, char** argv) {
     }
     if (json) print_json_error("input", kExitBadInput, diagnostics);
     return kExitBadInput;
+  } catch (const ccbuild::orchestrator::NoFit& error) {
+    // An answer, not bad input: no member of the family climbs this building.
+    const auto& fit = error.fit;
+    if (json) {
+      std::vector<ccbuild::Diagnostic> reasons;
+      for (const auto& reason : fit.reasons) reasons.push_back({"", 0, "", reason});
+      if (!fit.nearest_change.empty())
+        reasons.push_back({"", 0, "nearest_change", fit.nearest_change});
+      print_json_error("no-fit", kExitNo, reasons);
+      return kExitNo;
+    }
+    std::cout << "no fit: no member of the machine family climbs the building ("
+              << ccbuild::climb::to_string(fit.status.code()) << ")\n";
+    for (const auto& reason : fit.reasons) std::cout << "  " << reason << "\n";
+    if (!fit.nearest_change.empty())
+      std::cout << "  nearest change: " << fit.nearest_change << "\n";
+    return kExitNo;
   } catch (const ccbuild::InternalError& error) {
     std::cerr << "ccbuild: internal error: " << error.what() << " (a bug in ccbuild)\n";
     if (json) print_json_error("internal", kExitInternal, {{"", 0, "", error.what()}});

@@ -24,8 +24,9 @@ enum class ClimbCode {
   kBlocked,    ///< no collision-free motion found within the phase's budget
   kUnstable,   ///< the centre of mass cannot stay inside the holding units' polygon
   kTimeLimit,  ///< the planning time ran out
+  kTooLarge,   ///< the building is larger than the machine family's largest platform
 };
-/// "feasible", "no-anchor", "blocked", "unstable", "time-limit".
+/// "feasible", "no-anchor", "blocked", "unstable", "time-limit", "too-large".
 std::string to_string(ClimbCode code);
 
 /// The outcome of a climbing question, as a value: true when feasible, and it says why
@@ -66,20 +67,13 @@ struct StagePlan {
 };
 
 /// The stages of a building on a climbing machine: each platform position as high as
-/// the legs allow and the next layer still in the nozzle's reach; each stage's pipes as
-/// low as the legs allow (so they cure while printing goes on), on the building's anchor
-/// points, or where it has none by the default rule (docs/formats.md). Throws nothing for
-/// a valid building: a stage without a reachable anchor is an answer (kNoAnchor).
-struct StageOptions {
-  /// Climb only between floors where the reach allows: a stage that would end part-way
-  /// up a floor ends at the top of the floor below instead (when it still prints
-  /// something). A climb waits for its anchors' strength, hours or days; between floors
-  /// that wait costs no cold joint, since the next floor starts on its slab.
-  bool at_floor_tops = false;
-};
-
-StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& machine,
-                       const StageOptions& options = {});
+/// the legs allow and the next layer still in the nozzle's reach (between floors unless
+/// the building asks for climbs within a storey, Building::climbs_within_storey); each
+/// stage's pipes as low as the legs allow (so they cure while printing goes on), on the
+/// building's anchor points, or where it has none by the default rule (docs/formats.md).
+/// Throws nothing for a valid building: a stage without a reachable anchor is an answer
+/// (kNoAnchor) naming the unit, the stage, the nearest solid wall and what would reach it.
+StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& machine);
 
 struct ClimbOptions {
   std::uint64_t seed = 1;      ///< the same seed and inputs give the same paths

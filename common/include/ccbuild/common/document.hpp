@@ -40,6 +40,10 @@ Document parse_json(const std::string& text, const std::string& file);
 /// Reads a file and parses it as JSON when it ends in `.json`, else as YAML. Throws
 /// InputError when the file cannot be read or does not parse.
 Document load_document(const std::filesystem::path& path);
+/// Writes a document tree as block YAML that parse_yaml reads back to the same tree
+/// (quoted scalars stay quoted; a map of scalars inside a sequence is written on one
+/// line). `comment` (lines without "# ") goes first.
+std::string to_yaml(const DocNode& root, const std::string& comment = "");
 /// Reads a whole file. Throws InputError naming the file when it cannot be read, is not a
 /// regular file (a FIFO, a device), or is larger than limits::kMaxInputFileBytes.
 std::string read_text_file(const std::filesystem::path& path);

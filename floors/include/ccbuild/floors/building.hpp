@@ -64,6 +64,12 @@ struct Building {
   std::optional<Site> site;
   /// Between the two skins of a wall thicker than one bead (`wall_pattern:`).
   WallPattern wall_pattern = WallPattern::kSolid;
+  /// Where a climbing machine climbs (`climbs:`): between floors (`between-floors`, the
+  /// default: a stage that would end part-way up a floor ends at the floor below's top,
+  /// when that still prints something), or wherever its legs and reach allow
+  /// (`within-storey`: fewer climbs, but a climb's wait for its anchors then holds up a
+  /// storey's layers part-way).
+  bool climbs_within_storey = false;
   /// What the importers of drawn plans left out, and why (empty for plans in ccbuild's
   /// own formats).
   std::vector<std::string> import_notes;

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include "ccbuild/common/document.hpp"
+#include "ccbuild/machine/climbing_family.hpp"
 #include "ccbuild/machine/kinematics.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 
@@ -87,10 +89,13 @@ struct ClimbingMachine {
 };
 
 /// A machine profile: the gantry always; the climbing machine when the profile has a
-/// `climbing:` section. Each file (profile, URDF) is read once.
+/// `climbing:` section. Each file (profile, URDF) is read once. A family profile (with a
+/// `family:` section) is not a machine yet: `family` is set, and `gantry` holds only its
+/// name and file until climb::fit_climbing_machine chooses the member for a building.
 struct MachineProfile {
   MachineModel gantry;
   std::shared_ptr<const ClimbingMachine> climbing;  ///< null for a fixed gantry
+  std::shared_ptr<const ClimbingFamily> family;     ///< set for a family profile only
 };
 
 /// Loads a machine profile (YAML or JSON) and its URDF. Throws InputError naming the
@@ -98,5 +103,11 @@ struct MachineProfile {
 /// joint, a joint of the wrong type or axis, limits the wrong way round, a unit's link
 /// without collision geometry, fewer than 3 units, numbers out of range.
 MachineProfile load_machine_profile(const std::filesystem::path& profile_path);
+/// The same for a profile already parsed (`profile_path` is where it is, or would be: its
+/// URDF is looked for beside it), its URDF from `urdf_xml` when not null (then no URDF
+/// file is read). A family profile is not accepted here.
+MachineProfile load_machine_profile(const Document& profile,
+                                    const std::filesystem::path& profile_path,
+                                    const std::string* urdf_xml);
 
 }  // namespace ccbuild::machine

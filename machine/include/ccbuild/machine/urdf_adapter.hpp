@@ -55,5 +55,7 @@ struct UrdfInfo {
 /// Parses a URDF file with urdfdom. Throws InputError naming the file, with urdfdom's own
 /// complaint, when it is missing, not a valid URDF, or nested too deep to parse safely.
 UrdfInfo read_urdf(const std::string& path);
+/// The same for a URDF held in memory; `path` names it in messages.
+UrdfInfo read_urdf_text(const std::string& xml, const std::string& path);
 
 }  // namespace ccbuild::machine

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/climb/fit.hpp"
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/floors/slice.hpp"
@@ -40,17 +41,31 @@ struct ProjectOptions {
   /// --place centre: the building centred on the machine's x and y travel, whatever its
   /// `site:` says (its rotation is kept).
   bool place_centre = false;
+  /// Where a family's fitted profile is written (by `ccbuild fit`) or would be: its URDF
+  /// is named after it. Empty: beside the family, "<family>-fitted.yaml" (not written).
+  std::filesystem::path fitted_profile;
+};
+
+/// No member of a machine family climbs the building: an answer (exit code 1), not bad
+/// input. `fit` says why, per stage, and the nearest change that would fit.
+struct NoFit : std::runtime_error {
+  climb::FitResult fit;
+  explicit NoFit(climb::FitResult result);
 };
 
 /// A user's FILE opened: what a schedule is made for (schedule::Setup), and whether FILE
 /// was a building or a lone plan.
 struct Project : schedule::Setup {
   bool is_building = false;
+  /// Set when the machine was a family, fitted to this building as it was opened.
+  std::shared_ptr<const climb::FitResult> fit;
 };
 
 /// Opens FILE and everything it refers to, each file read and parsed once, and checks
-/// that the machine can build it (check_fit). Throws InputError naming file, line and
-/// field; for the lone-plan heights, field `floor_height` or `layer_height`.
+/// that the machine can build it (check_fit). A machine family is fitted to the building
+/// (climb::fit_climbing_machine; `fit` says how). Throws InputError naming file, line and
+/// field; for the lone-plan heights, field `floor_height` or `layer_height`. Throws NoFit
+/// when no member of a family climbs the building.
 Project open_project(const std::filesystem::path& file, const ProjectOptions& options = {});
 
 /// The checks that the machine can build the building at all, in the building's unit:

@@ -1,0 +1,150 @@
+// ccbuild fit BUILDING --machine FAMILY.yaml -o fitted.yaml: the climbing machine of a
+// family fitted to a building, written as a machine profile and its URDF.
+
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/climbing_family.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace ccbuild::cli {
+namespace {
+
+struct FitCommandOptions {
+  std::string file;
+  InputOptions input;
+  std::string output;
+  bool force = false;
+  bool json = false;
+  bool quiet = false;
+};
+
+nlohmann::ordered_json fit_json(const orchestrator::Project& project, const climb::FitResult& fit,
+                                const std::string& profile, const std::string& urdf) {
+  nlohmann::ordered_json out;
+  out["building"] = project.file.string();
+  out["family"] = fit.profile.gantry.source_file;
+  out["profile"] = profile;
+  out["urdf"] = urdf;
+  const auto& p = fit.platform;
+  out["platform"] = {
+      {"length_m", p.length_m()},
+      {"width_m", p.width_m()},
+      {"beams_m",
+       {{"x_min", p.x_min_m}, {"x_max", p.x_max_m}, {"y_min", p.y_min_m}, {"y_max", p.y_max_m}}},
+      {"gantry_m",
+       {{"x_min", p.gantry_x_min_m},
+        {"x_max", p.gantry_x_max_m},
+        {"y_min", p.gantry_y_min_m},
+        {"y_max", p.gantry_y_max_m}}}};
+  out["units"] = nlohmann::ordered_json::array();
+  for (const auto& u : p.units)
+    out["units"].push_back({{"name", u.name},
+                            {"beam", machine::to_string(u.beam)},
+                            {"x_m", u.position_m.x()},
+                            {"y_m", u.position_m.y()}});
+  out["mass_kg"] = fit.mass_kg;
+  out["least_margin_m"] = fit.least_margin_m;
+  out["stages"] = fit.stages;
+  out["mounts_considered"] = fit.mounts_considered;
+  out["mounts_reaching"] = fit.mounts_reaching;
+  out["members_tried"] = fit.members_tried;
+  out["optimised"] = fit.optimised;
+  return out;
+}
+
+void run_fit(const FitCommandOptions& o, int& exit_code) {
+  InputOptions input = o.input;
+  if (input.machine.empty())
+    input.machine =
+        (std::filesystem::path(CCBUILD_CONFIG_DIR) / "machines/cc-climber-family.yaml").string();
+  const std::filesystem::path profile_path = o.output;
+  const std::filesystem::path urdf_path =
+      profile_path.parent_path() / (profile_path.stem().string() + ".urdf");
+  // Refuse a bad output before the work: both files, never over an input.
+  check_output_path(profile_path, o.force);
+  check_output_path(urdf_path, o.force);
+  orchestrator::ProjectOptions options = project_options(input);
+  options.fitted_profile = profile_path;
+  std::error_code ec;
+  if (!std::filesystem::exists(o.file, ec)) throw InputError(o.file, 0, "", "file not found");
+  const orchestrator::Project project = orchestrator::open_project(o.file, options);
+  if (!project.fit)
+    throw InputError(input.machine, 0, "",
+                     "not a machine family (it has no `family:` section) but one machine: `ccbuild "
+                     "fit` chooses a family's member for a building; give a family, such as "
+                     "config/machines/cc-climber-family.yaml");
+  const auto inputs = project.files_read();
+  OutputClaims claims(inputs);
+  claims.claim_file("-o", profile_path, o.force);
+  claims.claim_file("-o (its URDF)", urdf_path, o.force);
+  const climb::FitResult& fit = *project.fit;
+  // The URDF first: the profile names it.
+  write_file_atomically(urdf_path, fit.urdf_xml, o.force, inputs);
+  write_file_atomically(profile_path, fit.profile_yaml, o.force, inputs);
+  exit_code = kExitOk;
+  if (o.json) {
+    std::cout << fit_json(project, fit, profile_path.string(), urdf_path.string()).dump(2) << "\n";
+    return;
+  }
+  const auto& p = fit.platform;
+  std::cout << printf_string("%s fitted to %s: %s\n", input.machine.c_str(), o.file.c_str(),
+                             fit.summary.c_str());
+  std::cout << printf_string(
+      "  platform  beams at x %.2f to %.2f m, y %.2f to %.2f m; the gantry reaches x %.2f to "
+      "%.2f m, y %.2f to %.2f m\n",
+      p.x_min_m, p.x_max_m, p.y_min_m, p.y_max_m, p.gantry_x_min_m, p.gantry_x_max_m,
+      p.gantry_y_min_m, p.gantry_y_max_m);
+  for (const auto& u : p.units)
+    std::cout << printf_string("  %-4s      under the %s beam at (%.2f, %.2f) m\n", u.name.c_str(),
+                               machine::to_string(u.beam).c_str(), u.position_m.x(),
+                               u.position_m.y());
+  std::cout << printf_string(
+      "  checked   %d stages; %d mount positions on the beams, %d reaching solid wall at every "
+      "stage; %d unit sets tried\n",
+      fit.stages, fit.mounts_considered, fit.mounts_reaching, fit.members_tried);
+  std::cout << "  optimised " << fit.optimised << "\n";
+  std::cout << "wrote " << profile_path.string() << " and " << urdf_path.string()
+            << "; use it with --machine " << profile_path.string() << "\n";
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<FitCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "fit",
+      "Fit a climbing machine to a building: from a machine family (a profile with a "
+      "`family:` section: platform size limits, how many units, where on the beams they may "
+      "hang, the units' reach and stroke), choose the platform (its beams just outside the "
+      "building's outermost walls on every storey) and the fewest units, mounted so that at "
+      "every stage every unit's pin reaches solid wall (clear of wall ends and openings) and "
+      "the platform stays statically stable by the profile's margin while printing and in "
+      "every transfer. Writes the fitted profile and its URDF (for check_urdf, `climb` and "
+      "`schedule`).\n"
+      "`climb`, `schedule` and `validate` given a family fit it the same way on the fly.\n"
+      "Exit code 1 when no member of the family climbs the building (the reason per stage and "
+      "the nearest change that would fit are printed); 2 for bad input.\n"
+      "Examples:\n"
+      "  ccbuild fit config/buildings/house.yaml -o house-climber.yaml\n"
+      "  ccbuild fit tower.yaml --machine config/machines/cc-climber-family.yaml -o tower.yaml "
+      "--force\n"
+      "  ccbuild climb config/buildings/house.yaml --machine house-climber.yaml");
+  command->add_option("BUILDING", o->file, "Building file (or plan, IFC model)")->required();
+  command
+      ->add_option("-o,--output", o->output,
+                   "The fitted profile to write (YAML); its URDF goes beside it, named after it "
+                   "(fitted.yaml -> fitted.urdf)")
+      ->required()
+      ->check(output_path());
+  command->add_flag("--force", o->force, "Overwrite existing output files (never an input)");
+  command->add_flag("--json", o->json, "Print one JSON object (errors too)");
+  add_input_options(*command, o->input);
+  command->callback([o, &exit_code] { run_fit(*o, exit_code); });
+}
+
+}  // namespace ccbuild::cli
