@@ -79,21 +79,30 @@ Eigen::Vector2d around(const machine::FittedPlatform& p, double s) {
 }
 
 // The stability of the platform while it prints from `stage`: every unit holding, the
-// gantry anywhere on its rails (its four corners bound the centre of mass).
-double printing_margin_m(const machine::ClimbingMachine& m, const ClimbStage& stage) {
+// gantry anywhere over the floors it prints (the corners of their footprint, half a metre
+// out, bound the centre of mass).
+double printing_margin_m(const floors::Building& building, const machine::ClimbingMachine& m,
+                         const ClimbStage& stage) {
   std::vector<double> q = detail::parked_on(m, stage);
   if (q.empty()) return -std::numeric_limits<double>::infinity();
   const machine::Kinematics& robot = *m.robot;
   const auto& gx = robot.joint_info(m.gantry_joints[0]);
   const auto& gy = robot.joint_info(m.gantry_joints[1]);
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d high = -low;
+  for (int f = stage.first.floor; f <= stage.last.floor; ++f)
+    for (const auto& v : building.floors[f].plan.vertices) {
+      low = low.cwiseMin(v.position_m);
+      high = high.cwiseMax(v.position_m);
+    }
   std::vector<Eigen::Vector2d> pins;
   for (const auto& a : stage.anchors) pins.push_back(a.centre_m.head<2>());
   const Eigen::Isometry3d platform(Eigen::Translation3d(0, 0, stage.platform_z_m));
   double least = std::numeric_limits<double>::infinity();
-  for (double x : {gx.lower, gx.upper})
-    for (double y : {gy.lower, gy.upper}) {
-      q[m.gantry_joints[0]] = x;
-      q[m.gantry_joints[1]] = y;
+  for (double x : {low.x() - 0.5, high.x() + 0.5})
+    for (double y : {low.y() - 0.5, high.y() + 0.5}) {
+      q[m.gantry_joints[0]] = std::clamp(x, gx.lower, gx.upper);
+      q[m.gantry_joints[1]] = std::clamp(y, gy.lower, gy.upper);
       least =
           std::min(least, detail::inside_hull_m(
                               robot.centre_of_mass(robot.link_poses(platform, q)).head<2>(), pins));
@@ -113,10 +122,10 @@ double least_margin_m(const floors::Building& building, const machine::ClimbingM
   double least = std::numeric_limits<double>::infinity();
   for (std::size_t s = 0; s < stages.stages.size(); ++s) {
     const ClimbStage& from = stages.stages[s];
-    const double printing = printing_margin_m(m, from);
+    const double printing = printing_margin_m(building, m, from);
     if (printing < least) {
       least = printing;
-      why = printf_string("printing from stage %zu, the gantry at a corner of its rails", s);
+      why = printf_string("printing from stage %zu, the gantry over a corner of its floors", s);
     }
     if (s + 1 == stages.stages.size()) break;
     const std::vector<double> q = detail::parked_on(m, from);

@@ -302,9 +302,12 @@ StagePlan climb_stages(const floors::Building& building, const machine::Climbing
   for (const detail::StageFrame& frame : frames.frames) {
     ClimbStage stage = frame.stage;
     std::string why = frame.no_level;
+    // The lowest level first; when none has pipes for every unit, the lowest one's reason.
     for (const auto& level : frame.levels) {
-      stage.anchors = choose(level, frame.platform_zs, previous, why);
+      std::string level_why;
+      stage.anchors = choose(level, frame.platform_zs, previous, level_why);
       if (!stage.anchors.empty()) break;
+      if (&level == &frame.levels.front()) why = level_why;
     }
     if (stage.anchors.empty()) {
       plan.status = {ClimbStatus::Code::kNoAnchor,

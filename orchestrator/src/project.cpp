@@ -107,6 +107,7 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
         out = machine_path.parent_path() / (machine_path.stem().string() + "-fitted.yaml");
       fit.profile_path = out.string();
       fit.urdf_file = out.stem().string() + ".urdf";
+      fit.progress = options.progress;
       auto result = std::make_shared<climb::FitResult>(
           climb::fit_climbing_machine(project.building, *profile.family, fit));
       if (!result->status) throw NoFit(std::move(*result));

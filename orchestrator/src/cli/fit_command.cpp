@@ -70,6 +70,8 @@ void run_fit(const FitCommandOptions& o, int& exit_code) {
   check_output_path(urdf_path, o.force);
   orchestrator::ProjectOptions options = project_options(input);
   options.fitted_profile = profile_path;
+  if (!o.quiet)
+    options.progress = [](const std::string& what) { std::cerr << "fit: " << what << "\n"; };
   std::error_code ec;
   if (!std::filesystem::exists(o.file, ec)) throw InputError(o.file, 0, "", "file not found");
   const orchestrator::Project project = orchestrator::open_project(o.file, options);
@@ -143,6 +145,7 @@ void add_fit_command(CLI::App& app, int& exit_code) {
       ->check(output_path());
   command->add_flag("--force", o->force, "Overwrite existing output files (never an input)");
   command->add_flag("--json", o->json, "Print one JSON object (errors too)");
+  command->add_flag("--quiet", o->quiet, "No progress on stderr");
   add_input_options(*command, o->input);
   command->callback([o, &exit_code] { run_fit(*o, exit_code); });
 }

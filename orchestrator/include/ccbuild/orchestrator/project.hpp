@@ -10,6 +10,7 @@
 // no output is ever written over one.
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,6 +45,8 @@ struct ProjectOptions {
   /// Where a family's fitted profile is written (by `ccbuild fit`) or would be: its URDF
   /// is named after it. Empty: beside the family, "<family>-fitted.yaml" (not written).
   std::filesystem::path fitted_profile;
+  /// Told now and then what fitting a family is doing (may be empty).
+  std::function<void(const std::string&)> progress;
 };
 
 /// No member of a machine family climbs the building: an answer (exit code 1), not bad
