@@ -356,6 +356,16 @@ FitResult fit_climbing_machine(const floors::Building& building,
   // 4. The fewest units, spread around the beams; among as few, the most stable.
   const double perimeter = 2 * (p.length_m() + p.width_m());
   const int fewest = std::max(family.units_min, pm.units_per_transfer + 3);
+  if (fewest > family.units_max) {
+    r.status = {ClimbStatus::Code::kUnstable,
+                printf_string("the family has at most %d units, and %d must hold the platform "
+                              "(3, never in a line) while %d change%s pipes",
+                              family.units_max, fewest - pm.units_per_transfer,
+                              pm.units_per_transfer, pm.units_per_transfer == 1 ? "s" : "")};
+    r.reasons.push_back(r.status.reason());
+    r.nearest_change = printf_string("a family of %d units or more (`family.units.count`)", fewest);
+    return r;
+  }
   std::set<std::vector<int>> tried;
   std::string last_why;
   double last_margin = -std::numeric_limits<double>::infinity();
