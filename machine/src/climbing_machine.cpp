@@ -325,4 +325,12 @@ std::optional<UnitPose> ClimbingMachine::unit_ik(int u, const Eigen::Isometry3d&
   return pose;
 }
 
+std::shared_ptr<const ClimbingMachine> with_longer_legs(const ClimbingMachine& m, double extra_m) {
+  UrdfInfo urdf = m.robot->urdf();
+  for (const auto& unit : m.units) urdf.joints[unit.joints[3]].upper += extra_m;
+  auto longer = std::make_shared<ClimbingMachine>(m);
+  longer->robot = std::make_shared<const Kinematics>(std::move(urdf));
+  return longer;
+}
+
 }  // namespace ccbuild::machine

@@ -207,8 +207,10 @@ void Scheduler::prepare() {
       climb_after_[{st.last.floor, st.last.layer}] = static_cast<int>(s);
   }
 
-  // Per layer: the most pipe time between two layers of its run (consecutive layers of
-  // one floor and geometry), so that the run gets nozzles enough for it.
+  // Per layer: the most pipe time cast just before one of its run's layers (consecutive
+  // layers of one floor and geometry) after a layer of the same floor, so that the run
+  // gets nozzles enough for it. Pipes after a floor's top layer delay no interval: the
+  // next floor starts on its slab.
   run_between_s_.assign(count, 0.0);
   for (int first = 0; first < count;) {
     int last = first;
@@ -216,10 +218,11 @@ void Scheduler::prepare() {
            slices_[last + 1].geometry == slices_[first].geometry)
       ++last;
     double most_s = 0.0;
-    for (int k = first; k <= last; ++k)
-      if (auto it = pipes_after_.find({slices_[k].floor, slices_[k].layer.index});
-          it != pipes_after_.end())
-        most_s = std::max(most_s, it->second.size() * project_.climber->pipe_embed_s);
+    for (int k = std::max(first, 1); k <= last; ++k)
+      if (slices_[k - 1].floor == slices_[k].floor)
+        if (auto it = pipes_after_.find({slices_[k - 1].floor, slices_[k - 1].layer.index});
+            it != pipes_after_.end())
+          most_s = std::max(most_s, it->second.size() * project_.climber->pipe_embed_s);
     std::fill(run_between_s_.begin() + first, run_between_s_.begin() + last + 1, most_s);
     first = last + 1;
   }
@@ -499,7 +502,9 @@ bool Scheduler::after_layer(int i) {
     ce.plan = climbs_[c];
     double ready_s = t;
     const double strength_mpa = project_.climber->anchor_strength_mpa;
-    const double age_needed_s = material_.age_for_strength_s(strength_mpa);
+    const floors::MaterialProfile& anchor_mix =
+        project_.anchor_material ? *project_.anchor_material : material_;
+    const double age_needed_s = anchor_mix.age_for_strength_s(strength_mpa);
     for (const auto& a : to.anchors) {
       const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
       const double cast_s = cast == pipe_done_s_.end() ? 0.0 : cast->second;
@@ -533,7 +538,7 @@ bool Scheduler::after_layer(int i) {
       const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
       const double age_s = ce.start_s - (cast == pipe_done_s_.end() ? 0.0 : cast->second);
       ce.anchors.push_back({a.id, project_.climber->units[a.unit].name, age_s,
-                            material_.strength_at_mpa(age_s), strength_mpa});
+                            anchor_mix.strength_at_mpa(age_s), strength_mpa});
     }
     if (!ce.plan.status) {
       Infeasibility inf;

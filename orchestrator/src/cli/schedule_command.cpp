@@ -10,6 +10,7 @@
 #include "ccbuild/report/report.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "ccbuild/schedule/what_if.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -27,6 +28,7 @@ struct ScheduleCommandOptions {
   double layer_time_limit_s = 60.0;
   bool quiet = false;
   bool path_digests = false;
+  std::string what_if;  ///< "anchors" or empty
 };
 
 std::string duration(double s) {
@@ -101,6 +103,51 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
         c.from_stage, c.to_stage, e.floor, e.layer, duration(e.start_s).c_str(),
         duration(c.wait_before_s).c_str(), duration(c.plan.duration_s).c_str());
   }
+  // The climb critical path: what each climb waited for, and the changes that shorten it.
+  const auto waits = schedule::anchor_waits(project, s);
+  double anchor_wait_s = 0.0;
+  for (const auto& w : waits) anchor_wait_s += w.wait_s;
+  if (!o.what_if.empty() && !waits.empty()) {
+    std::cout << printf_string(
+        "anchors: each climb waits for its latest pipe to reach %.1f MPa (%s after casting)\n",
+        waits.front().required_mpa,
+        duration(waits.front().strong_s - waits.front().cast_s).c_str());
+    for (const auto& w : waits)
+      std::cout << printf_string(
+          "  climb %d -> %d: pipe %s cast at %s (floor %d layer %d), strong at %s; the build "
+          "was ready at %s and waited %s\n",
+          w.from_stage, w.to_stage, w.anchor.c_str(), duration(w.cast_s).c_str(), w.cast_floor,
+          w.cast_layer, duration(w.strong_s).c_str(), duration(w.ready_s).c_str(),
+          duration(w.wait_s).c_str());
+  }
+  if (anchor_wait_s > 0.0 && s.totals.makespan_s > 0.0) {
+    std::cout << printf_string(
+        "anchor waits: %s of the %s (%.0f%%)", duration(anchor_wait_s).c_str(),
+        duration(s.totals.makespan_s).c_str(), 100.0 * anchor_wait_s / s.totals.makespan_s);
+    if (o.what_if.empty())
+      std::cout << "; `--what-if anchors` computes the changes that would shorten them";
+    std::cout << "\n";
+  }
+  if (!o.what_if.empty()) {
+    // The bundled rapid-hardening mix, when the config folder is there.
+    std::optional<floors::MaterialProfile> rapid;
+    const std::filesystem::path rapid_file =
+        std::filesystem::path(CCBUILD_CONFIG_DIR) / "materials/rapid-anchor-mix.yaml";
+    std::error_code ec;
+    if (std::filesystem::exists(rapid_file, ec)) rapid = floors::load_material_profile(rapid_file);
+    const auto changes = schedule::anchor_what_ifs(project, s, options, rapid ? &*rapid : nullptr);
+    if (changes.empty())
+      std::cout << "what-if anchors: no climb waits for its anchors; nothing to shorten\n";
+    else
+      std::cout << "what-if anchors (each change scheduled in full):\n";
+    for (const auto& w : changes)
+      std::cout << printf_string("  %s: %s (%.0f s)%s, %s%s, anchor waits %s\n", w.change.c_str(),
+                                 duration(w.makespan_s).c_str(), w.makespan_s,
+                                 w.feasible ? "" : " NOT feasible",
+                                 w.makespan_s <= s.totals.makespan_s ? "-" : "+",
+                                 duration(std::abs(s.totals.makespan_s - w.makespan_s)).c_str(),
+                                 duration(w.anchor_waits_s).c_str());
+  }
   const auto& t = s.totals;
   std::cout << printf_string(
       "total: %s from the first layer to the last (machine busy %s): deposition %s, airtime "
@@ -172,6 +219,13 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
                     "instead of its waypoints: a schedule a fraction of the size that `diff` "
                     "compares exactly (the regression goldens); report and dry-run need the "
                     "paths and refuse it");
+  command
+      ->add_option("--what-if", o->what_if,
+                   "anchors: print each climb's wait for its pipes to reach the anchor strength "
+                   "(the climb critical path) and the changes that would shorten the waits, each "
+                   "scheduled in full: pipes cast a storey earlier (the legs as much longer as "
+                   "that needs), a lower anchor strength, two more units sharing the load")
+      ->check(CLI::IsMember({"anchors"}));
   add_input_options(*command, o->input);
   command->callback([o, &exit_code] { run_schedule(*o, exit_code); });
 }

@@ -88,6 +88,11 @@ struct ClimbingMachine {
   double foot_to_pin_m_ = 0.15;
 };
 
+/// The same machine with every unit's leg `extra_m` longer: its stroke's upper limit
+/// raised (a what-if: pipes cast lower). m.
+std::shared_ptr<const ClimbingMachine> with_longer_legs(const ClimbingMachine& machine,
+                                                        double extra_m);
+
 /// A machine profile: the gantry always; the climbing machine when the profile has a
 /// `climbing:` section. Each file (profile, URDF) is read once. A family profile (with a
 /// `family:` section) is not a machine yet: `family` is set, and `gantry` holds only its

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct Setup {
   std::string machine_origin;  ///< "config/machines/cc-gantry.yaml (the building's)", ...
   floors::MaterialProfile material;
   std::string material_origin;
+  /// The mix of the layers the anchor pipes are cast in, when not `material` (a what-if
+  /// of anchor_what_ifs; not recorded in the schedule JSON, so never set for a schedule
+  /// that is written).
+  std::optional<floors::MaterialProfile> anchor_material;
   Placement placement;
 
   const machine::MachineModel& machine_model() const { return *machine; }

@@ -1,0 +1,193 @@
+#include "ccbuild/schedule/what_if.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "ccbuild/common/format.hpp"
+
+namespace ccbuild::schedule {
+namespace {
+
+std::string key(const std::string& id, int floor) {
+  return id + "@" + std::to_string(floor);
+}
+
+double anchor_waits_s(const Schedule& s) {
+  double total = 0.0;
+  for (const auto& e : s.events)
+    if (e.climb) total += e.climb->wait_before_s;
+  return total;
+}
+
+AnchorWhatIf scheduled(AnchorWhatIf w, const Setup& variant, const ScheduleOptions& options) {
+  ScheduleOptions quiet = options;
+  quiet.progress = nullptr;
+  const Schedule s = build_schedule(variant, quiet);
+  w.feasible = s.feasible;
+  w.makespan_s = s.totals.makespan_s;
+  w.anchor_waits_s = anchor_waits_s(s);
+  return w;
+}
+
+Setup with_climber(const Setup& setup, std::shared_ptr<const machine::ClimbingMachine> climber) {
+  Setup variant = setup;
+  variant.climber = std::move(climber);
+  return variant;
+}
+
+}  // namespace
+
+std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
+  std::vector<AnchorWait> out;
+  if (!setup.climber) return out;
+  std::map<std::string, const Event*> pipes;
+  for (const auto& e : s.events)
+    if (e.kind == Event::Kind::kPipe && e.anchor) pipes[key(e.anchor->id, e.anchor->floor)] = &e;
+  const double required_mpa = setup.climber->anchor_strength_mpa;
+  const floors::MaterialProfile& mix =
+      setup.anchor_material ? *setup.anchor_material : setup.material;
+  const double age_s = mix.age_for_strength_s(required_mpa);
+  for (const auto& e : s.events) {
+    if (!e.climb) continue;
+    const ClimbEvent& c = *e.climb;
+    AnchorWait w;
+    w.from_stage = c.from_stage;
+    w.to_stage = c.to_stage;
+    w.floor = e.floor;
+    w.layer = e.layer;
+    w.wait_s = c.wait_before_s;
+    w.ready_s = c.start_s - c.wait_before_s;
+    w.required_mpa = required_mpa;
+    w.strong_s = -std::numeric_limits<double>::infinity();
+    for (const auto& a : s.stages[c.to_stage].anchors) {
+      const auto it = pipes.find(key(a.id, a.floor));
+      const double cast_s = it == pipes.end() ? 0.0 : it->second->end_s;
+      if (cast_s + age_s > w.strong_s) {
+        w.strong_s = cast_s + age_s;
+        w.cast_s = cast_s;
+        w.anchor = a.id;
+        w.cast_floor = a.floor;
+        w.cast_layer = a.layer;
+      }
+    }
+    out.push_back(w);
+  }
+  return out;
+}
+
+std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& base,
+                                          const ScheduleOptions& options,
+                                          const floors::MaterialProfile* faster_mix) {
+  std::vector<AnchorWhatIf> out;
+  if (!setup.climber || !base.feasible) return out;
+  const std::vector<AnchorWait> waits = anchor_waits(setup, base);
+  double waited_s = 0.0;
+  for (const auto& w : waits) waited_s += w.wait_s;
+  if (waited_s <= 0.0) return out;
+  const machine::ClimbingMachine& m = *setup.climber;
+
+  // 1. Pipes cast a storey earlier: in the top layer of the floor below the one each
+  // climb's pipes are cast in now. The legs must reach that much lower from the stage
+  // climbed to (the lowest pipe a leg reaches: its foot at the stroke's usable end).
+  {
+    const machine::Kinematics& robot = *m.robot;
+    const auto zero = robot.link_poses(Eigen::Isometry3d::Identity(), robot.zero());
+    double lowest_reach_m = std::numeric_limits<double>::infinity();  // below the platform
+    for (const auto& unit : m.units)
+      lowest_reach_m = std::min(lowest_reach_m, zero[unit.foot_link].translation().z() -
+                                                    m.usable_range(unit.joints[3]).second);
+    std::map<int, double> top_mid_m;  // per floor: its top layer's middle
+    for (const auto& l : base.layers) top_mid_m[l.floor] = 0.5 * (l.z_bottom_m + l.z_top_m);
+    double extra_m = 0.0;
+    for (const auto& w : waits) {
+      const auto below = top_mid_m.find(w.cast_floor - 1);
+      if (w.wait_s <= 0.0 || w.cast_floor < 1 || below == top_mid_m.end()) continue;
+      const double reach_m = base.stages[w.to_stage].platform_z_m + lowest_reach_m;
+      extra_m = std::max(extra_m, reach_m - below->second);
+    }
+    if (extra_m > 0.0) {
+      extra_m = std::ceil(extra_m * 100.0 - 1e-9) / 100.0;  // to the centimetre above
+      const auto [stroke_min_m, stroke_max_m] = m.usable_range(m.units.front().joints[3]);
+      (void)stroke_min_m;
+      AnchorWhatIf w;
+      w.kind = AnchorWhatIf::Kind::kEarlierPipes;
+      w.value = extra_m;
+      w.change = printf_string(
+          "cast each climb's pipes a storey earlier (in the top layers of the floor below), "
+          "which the legs reach %.2f m longer (stroke to %.2f m, the URDF's upper limit +%.2f "
+          "m)",
+          extra_m, stroke_max_m + m.stroke_end_margin_m + extra_m, extra_m);
+      out.push_back(
+          scheduled(w, with_climber(setup, machine::with_longer_legs(m, extra_m)), options));
+    }
+  }
+
+  // 2. A faster-hardening mix for the layers the pipes are cast in.
+  if (faster_mix) {
+    const double now_s = (setup.anchor_material ? *setup.anchor_material : setup.material)
+                             .age_for_strength_s(m.anchor_strength_mpa);
+    const double then_s = faster_mix->age_for_strength_s(m.anchor_strength_mpa);
+    if (then_s < now_s) {
+      Setup variant = setup;
+      variant.anchor_material = *faster_mix;
+      AnchorWhatIf w;
+      w.kind = AnchorWhatIf::Kind::kFasterMix;
+      w.value = then_s;
+      w.change = printf_string(
+          "pour the anchors' layers with %s (%.1f MPa after %.1f h instead of %.1f h)",
+          faster_mix->name.c_str(), m.anchor_strength_mpa, then_s / 3600.0, now_s / 3600.0);
+      out.push_back(scheduled(w, variant, options));
+    }
+  }
+
+  // 3. A lower anchor strength: what the youngest anchor of the worst-held climb has when
+  // the climb is otherwise ready, to the half MPa below.
+  {
+    double lowest_mpa = std::numeric_limits<double>::infinity();
+    for (const auto& w : waits)
+      if (w.wait_s > 0.0)
+        lowest_mpa = std::min(lowest_mpa,
+                              setup.material.strength_at_mpa(std::max(0.0, w.ready_s - w.cast_s)));
+    const double mpa = std::floor(lowest_mpa * 2.0 + 1e-9) / 2.0;
+    if (std::isfinite(mpa) && mpa > 0.0 && mpa < m.anchor_strength_mpa) {
+      auto lower = std::make_shared<machine::ClimbingMachine>(m);
+      lower->anchor_strength_mpa = mpa;
+      AnchorWhatIf w;
+      w.kind = AnchorWhatIf::Kind::kLowerStrength;
+      w.value = mpa;
+      w.change = printf_string(
+          "load the anchors from %.1f MPa instead of %.1f MPa, if the climbing units' maker "
+          "allows it (the strength the youngest anchor has when its climb is otherwise ready)",
+          mpa, m.anchor_strength_mpa);
+      out.push_back(scheduled(w, with_climber(setup, lower), options));
+    }
+  }
+
+  // 4. More units sharing the load: while units_per_transfer change pipes the rest hold
+  // the platform, each anchor its share of the weight; two more units lower that share.
+  {
+    const int units = static_cast<int>(m.units.size());
+    const int more = std::min(units + 2, 16);
+    const int holding_now = units - m.units_per_transfer;
+    const int holding_then = more - m.units_per_transfer;
+    if (more > units && holding_now > 0) {
+      const double mpa = m.anchor_strength_mpa * holding_now / holding_then;
+      auto shared = std::make_shared<machine::ClimbingMachine>(m);
+      shared->anchor_strength_mpa = mpa;
+      AnchorWhatIf w;
+      w.kind = AnchorWhatIf::Kind::kMoreUnits;
+      w.value = more;
+      w.change = printf_string(
+          "%d units instead of %d: %d hold the platform in a transfer instead of %d, each anchor "
+          "carrying %d/%d of today's load, so %.1f MPa suffices (refit the machine for the "
+          "mounts; the climbs' motions here are today's)",
+          more, units, holding_then, holding_now, holding_now, holding_then, mpa);
+      out.push_back(scheduled(w, with_climber(setup, shared), options));
+    }
+  }
+  return out;
+}
+
+}  // namespace ccbuild::schedule
