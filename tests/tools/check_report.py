@@ -14,6 +14,7 @@ Usage: check_report.py REPORT.html [--infeasible] [--min-plans N]
 Exit 0 when every check passes, 1 otherwise.
 """
 import argparse
+import json
 import os
 import re
 import shutil
@@ -118,10 +119,25 @@ def main():
         "x/t charts": len(re.findall(r'class="xt-chart"', dom)),
     }
     for what, n in counts.items():
-        if n == 0:
+        if n == 0 and what != "anchor curves":
             problems.append("no %s in the DOM" % what)
     if counts["plan cards"] < args.min_plans:
         problems.append("%d plan cards, expected at least %d" % (counts["plan cards"], args.min_plans))
+    # A climbing machine's climbs: one anchor strength curve each, from the schedule's data.
+    data = re.search(r'<script id="schedule-data" type="application/json">(.*?)</script>',
+                     open(args.report, encoding="utf-8").read(), re.S)
+    if data:
+        schedule = json.loads(data.group(1).replace("<\\/", "</"))
+        climbs = sum(1 for e in schedule.get("events", []) if e.get("kind") == "climb")
+        curves = len(re.findall(r'class="anchor-curve"', dom))
+        if curves != climbs:
+            problems.append("%d anchor strength curves for %d climbs" % (curves, climbs))
+        what_ifs = len(schedule.get("what_if_anchors", []))
+        rows = re.search(r'<table id="anchor-what-if">(.*?)</table>', dom, re.S)
+        shown = len(re.findall(r"<tr>", rows.group(1))) - 2 if rows else 0
+        if what_ifs and shown != what_ifs:
+            problems.append("%d anchor what-ifs in the data, %d in the table" % (what_ifs, shown))
+        counts["anchor curves"] = curves
     canvas = re.search(r'<canvas id="playback-canvas"([^>]*)>', dom)
     if not canvas:
         problems.append("no playback canvas")

@@ -410,31 +410,78 @@
   section('strength', function (node) {
     var climbs = S.events.filter(function (e) { return e.kind === 'climb'; });
     if (climbs.length) {
-      el('h3', {}, node, 'Anchors at each climb');
-      var W = Math.max(900, node.clientWidth - 40), H = 200, left = 60;
+      // Each climb's youngest anchor: its strength from casting to the climb, on the
+      // material's curve, against the strength the climb requires.
+      el('h3', {}, node, 'Anchors: strength from casting to each climb');
+      var W = Math.max(900, node.clientWidth - 40), H = 240, left = 60;
       var root = svg('svg', { width: W, height: H, id: 'anchor-chart' }, node);
-      var all = [];
-      climbs.forEach(function (c) { c.anchors.forEach(function (a) { all.push({ c: c, a: a }); }); });
-      var ymax = 0;
-      all.forEach(function (p) { ymax = Math.max(ymax, p.a.strength_mpa, p.a.required_mpa); });
-      ymax *= 1.15;
-      var x = scale(0, all.length, left, W - 10), y = scale(0, ymax, H - 30, 10);
+      var youngest = climbs.map(function (c) {
+        var a = c.anchors[0];
+        c.anchors.forEach(function (b) { if (b.age_s < a.age_s) a = b; });
+        return { c: c, a: a, cast: c.start_s - a.age_s };
+      });
+      var tmin = Infinity, tmax = 0, ymax = 0;
+      youngest.forEach(function (p) {
+        tmin = Math.min(tmin, p.cast); tmax = Math.max(tmax, p.c.start_s);
+        ymax = Math.max(ymax, p.a.strength_mpa, p.a.required_mpa);
+      });
+      ymax *= 1.2;
+      var x = scale(tmin, tmax, left, W - 20), y = scale(0, ymax, H - 34, 10);
       ticks(0, ymax, 5).forEach(function (v) {
-        svg('line', { x1: left, x2: W - 10, y1: y(v), y2: y(v), stroke: '#e3e6ea' }, root);
+        svg('line', { x1: left, x2: W - 20, y1: y(v), y2: y(v), stroke: '#e3e6ea' }, root);
         svg('text', { x: 4, y: y(v) + 4 }, root, v + ' MPa');
       });
-      all.forEach(function (p, i) {
+      ticks(tmin / 86400, tmax / 86400, 8).forEach(function (d) {
+        // Days as the rest of the report counts them: the start is day 1.
+        svg('text', { x: x(d * 86400), y: H - 16, 'text-anchor': 'middle' }, root,
+            Math.abs(d - Math.round(d)) < 1e-9 ? 'day ' + (Math.round(d) + 1) : duration(d * 86400));
+      });
+      var req = youngest[0].a.required_mpa;
+      svg('line', { x1: left, x2: W - 20, y1: y(req), y2: y(req), stroke: '#000', 'stroke-width': 1.5,
+                    'stroke-dasharray': '6 4', 'class': 'anchor-required' }, root);
+      svg('text', { x: W - 22, y: y(req) - 4, 'text-anchor': 'end' }, root, 'required ' + req + ' MPa');
+      youngest.forEach(function (p) {
+        var pts = [], n = 60, span = p.c.start_s - p.cast;
+        for (var k = 0; k <= n; k++) {
+          var t = p.cast + span * k / n;
+          pts.push(x(t).toFixed(1) + ',' + y(strengthAt(t - p.cast)).toFixed(1));
+        }
         var ok = p.a.strength_mpa >= p.a.required_mpa - 1e-9;
-        var bar = svg('rect', { 'class': 'anchor-bar', x: x(i) + 1, width: Math.max(1, x(i + 1) - x(i) - 2),
-                                y: y(p.a.strength_mpa), height: y(0) - y(p.a.strength_mpa), fill: ok ? '#2e7d32' : '#c62828' }, root);
-        svg('line', { x1: x(i), x2: x(i + 1), y1: y(p.a.required_mpa), y2: y(p.a.required_mpa), stroke: '#000', 'stroke-width': 2 }, root);
-        hover(bar, 'climb ' + p.c.from_stage + ' -> ' + p.c.to_stage + ', anchor ' + p.a.id + ' (unit ' + p.a.unit + ')\nage ' +
-          duration(p.a.age_s) + ': ' + p.a.strength_mpa.toFixed(2) + ' MPa, required ' + p.a.required_mpa + ' MPa');
+        var line = svg('polyline', { points: pts.join(' '), fill: 'none', stroke: ok ? '#2e7d32' : '#c62828',
+                                     'stroke-width': 2, 'class': 'anchor-curve' }, root);
+        var wait = p.c.wait_before_s;
+        svg('line', { x1: x(p.c.start_s), x2: x(p.c.start_s), y1: y(0), y2: y(p.a.strength_mpa),
+                      stroke: '#555', 'stroke-width': 1 }, root);
+        if (wait > 0)
+          svg('rect', { x: x(p.c.start_s - wait), width: Math.max(1, x(p.c.start_s) - x(p.c.start_s - wait)),
+                        y: H - 34, height: 6, fill: REASON_COLORS['anchor-strength'], 'class': 'anchor-wait' }, root);
+        hover(line, 'climb ' + p.c.from_stage + ' -> ' + p.c.to_stage + ': its youngest anchor ' + p.a.id +
+          ' (unit ' + p.a.unit + '), cast at ' + duration(p.cast) + ', is ' + p.a.strength_mpa.toFixed(2) +
+          ' MPa at the climb (' + duration(p.c.start_s) + ', age ' + duration(p.a.age_s) + '); required ' +
+          p.a.required_mpa + ' MPa' + (wait > 0 ? '. The build waited ' + duration(wait) + ' for it (red tick).' : '.'));
       });
-      climbs.forEach(function (c, k) {
-        var i = all.findIndex(function (p) { return p.c === c; });
-        svg('text', { x: x(i) + 2, y: H - 12 }, root, 'climb ' + c.from_stage + '->' + c.to_stage);
-      });
+      el('p', { 'class': 'hint' }, node, 'Each curve: one climb\'s youngest anchor, its strength on the ' +
+        'material\'s curve from the moment it was cast to the climb (the vertical line). The dashed line: the ' +
+        'strength the climbing units need. Red ticks under the axis: the time the build waited for it.');
+      if (S.what_if_anchors && S.what_if_anchors.length) {
+        el('h3', {}, node, 'What would shorten the anchor waits');
+        var table = el('table', { id: 'anchor-what-if' }, node);
+        var head = el('tr', {}, table);
+        ['change', 'makespan', 'anchor waits'].forEach(function (h) { el('th', {}, head, h); });
+        var baseRow = el('tr', {}, table);
+        el('td', {}, baseRow, 'as scheduled');
+        el('td', {}, baseRow, duration(S.totals.makespan_s));
+        var waited = 0;
+        climbs.forEach(function (c) { waited += c.wait_before_s; });
+        el('td', {}, baseRow, duration(waited));
+        S.what_if_anchors.forEach(function (w) {
+          var r = el('tr', {}, table);
+          el('td', {}, r, w.change);
+          el('td', {}, r, duration(w.makespan_s) + (w.feasible ? '' : ' (NOT feasible)'));
+          el('td', {}, r, duration(w.anchor_waits_s));
+        });
+        el('p', { 'class': 'hint' }, node, 'Each change was scheduled in full (ccbuild schedule --what-if anchors).');
+      }
     }
     el('h3', {}, node, 'Buildability: the layer below against the walls above it');
     var W2 = Math.max(900, node.clientWidth - 40), H2 = 220, left2 = 60;

@@ -40,6 +40,11 @@ std::string schedule_report_html(const schedule::ScheduleDocument& document,
   const std::string name = inputs.name.empty() ? inputs.building : inputs.name;
   nlohmann::ordered_json schedule = schedule::schedule_json(inputs, document.schedule);
   for (const auto& note : options.notes) schedule["warnings"].push_back(note);
+  for (const auto& w : options.anchor_what_ifs)
+    schedule["what_if_anchors"].push_back({{"change", w.change},
+                                           {"feasible", w.feasible},
+                                           {"makespan_s", w.makespan_s},
+                                           {"anchor_waits_s", w.anchor_waits_s}});
   const std::string data = script_safe(schedule.dump());
   schedule = nlohmann::ordered_json();  // only its text is needed from here on
   std::string html;

@@ -50,14 +50,29 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   options.layer_time_limit_s = o.layer_time_limit_s;
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const schedule::Schedule s = schedule::build_schedule(project, options);
+  std::vector<schedule::AnchorWhatIf> changes;
+  if (!o.what_if.empty()) {
+    // The bundled rapid-hardening mix, when the config folder is there.
+    std::optional<floors::MaterialProfile> rapid;
+    const std::filesystem::path rapid_file =
+        std::filesystem::path(CCBUILD_CONFIG_DIR) / "materials/rapid-anchor-mix.yaml";
+    std::error_code ec;
+    if (std::filesystem::exists(rapid_file, ec)) rapid = floors::load_material_profile(rapid_file);
+    if (options.progress) options.progress("what-if anchors: scheduling each change in full");
+    changes = schedule::anchor_what_ifs(project, s, options, rapid ? &*rapid : nullptr);
+  }
   if (!o.output.empty() || !o.report.empty()) {
     const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options), s};
     if (!o.output.empty())
       write_file_atomically(o.output,
                             schedule::schedule_json(doc.inputs, s, {o.path_digests}).dump(1) + "\n",
                             o.force, inputs);
-    if (!o.report.empty())
-      write_file_atomically(o.report, report::schedule_report_html(doc), o.force, inputs);
+    if (!o.report.empty()) {
+      report::ReportOptions report_options;
+      report_options.anchor_what_ifs = changes;
+      write_file_atomically(o.report, report::schedule_report_html(doc, report_options), o.force,
+                            inputs);
+    }
   }
   exit_code = s.feasible ? kExitOk : kExitNo;
 
@@ -129,13 +144,6 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     std::cout << "\n";
   }
   if (!o.what_if.empty()) {
-    // The bundled rapid-hardening mix, when the config folder is there.
-    std::optional<floors::MaterialProfile> rapid;
-    const std::filesystem::path rapid_file =
-        std::filesystem::path(CCBUILD_CONFIG_DIR) / "materials/rapid-anchor-mix.yaml";
-    std::error_code ec;
-    if (std::filesystem::exists(rapid_file, ec)) rapid = floors::load_material_profile(rapid_file);
-    const auto changes = schedule::anchor_what_ifs(project, s, options, rapid ? &*rapid : nullptr);
     if (changes.empty())
       std::cout << "what-if anchors: no climb waits for its anchors; nothing to shorten\n";
     else

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "ccbuild/schedule/what_if.hpp"
 
 namespace ccbuild::report {
 
@@ -22,6 +23,9 @@ struct ReportOptions {
   std::filesystem::path orbit_controls_js;
   /// Said among the schedule's warnings (e.g. an input changed since it was made).
   std::vector<std::string> notes;
+  /// Changes that would shorten the anchor waits, each scheduled (schedule/what_if.hpp):
+  /// shown with the anchors' chart when given.
+  std::vector<schedule::AnchorWhatIf> anchor_what_ifs;
 };
 
 /// The report of `schedule` (as build_schedule with recorded_inputs, or read_schedule,
