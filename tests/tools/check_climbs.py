@@ -155,6 +155,10 @@ def check(doc):
         if doc["stages"] or doc["climbs"]:
             problems.append("a fixed gantry with stages or climbs")
         return problems
+    if machine.get("urdf") is None:
+        return ["the climbs were planned on a machine family fitted on the fly, whose URDF was "
+                "never written: fit it with `ccbuild fit BUILDING --machine FAMILY -o fitted.yaml` "
+                "and plan the climbs on fitted.yaml"]
     urdf = read_urdf(machine["urdf"])
     stages = doc["stages"]
     for k, s in enumerate(stages):

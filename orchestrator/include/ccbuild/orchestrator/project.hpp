@@ -60,8 +60,6 @@ struct NoFit : std::runtime_error {
 /// was a building or a lone plan.
 struct Project : schedule::Setup {
   bool is_building = false;
-  /// Set when the machine was a family, fitted to this building as it was opened.
-  std::shared_ptr<const climb::FitResult> fit;
 };
 
 /// Opens FILE and everything it refers to, each file read and parsed once, and checks

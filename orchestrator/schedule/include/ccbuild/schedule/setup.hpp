@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/climb/fit.hpp"
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/climbing_machine.hpp"
@@ -35,6 +36,9 @@ struct Setup {
   /// gantry. Its gantry is `machine`.
   std::shared_ptr<const machine::ClimbingMachine> climber;
   std::string machine_origin;  ///< "config/machines/cc-gantry.yaml (the building's)", ...
+  /// Set when the machine was a family, fitted to this building as it was opened (its
+  /// URDF then is no file).
+  std::shared_ptr<const climb::FitResult> fit;
   floors::MaterialProfile material;
   std::string material_origin;
   /// The mix of the layers the anchor pipes are cast in, when not `material` (a what-if
