@@ -353,8 +353,6 @@ FitResult fit_climbing_machine(const floors::Building& building,
   r.mounts_reaching = static_cast<int>(ok_sites.size());
   say(printf_string("%d of them reach solid wall at every stage", r.mounts_reaching));
 
-  // 4. The fewest units, spread around the beams; among as few, the most stable.
-  const double perimeter = 2 * (p.length_m() + p.width_m());
   const int fewest = std::max(family.units_min, pm.units_per_transfer + 3);
   if (fewest > family.units_max) {
     r.status = {ClimbStatus::Code::kUnstable,
@@ -366,6 +364,28 @@ FitResult fit_climbing_machine(const floors::Building& building,
     r.nearest_change = printf_string("a family of %d units or more (`family.units.count`)", fewest);
     return r;
   }
+  // A floor that lists its anchor points needs one per unit at least.
+  for (const auto& e : events) {
+    const int fl = std::max(0, e.levels[level_of[&e - events.data()]].floor);
+    const auto& listed = building.floors[fl].anchors;
+    if (!listed.empty() && static_cast<int>(listed.size()) < fewest)
+      r.reasons.push_back(printf_string(
+          "stage %d: floor '%s' lists %zu anchor point%s, and the machine needs one for each "
+          "unit, at least %d",
+          e.stage, building.floors[fl].name.c_str(), listed.size(), listed.size() == 1 ? "" : "s",
+          fewest));
+  }
+  if (!r.reasons.empty()) {
+    r.status = {ClimbStatus::Code::kNoAnchor, r.reasons.front()};
+    r.nearest_change = printf_string(
+        "at least %d anchor points on each floor that lists them (`anchors:`), or none, so that "
+        "the default rule places them on solid wall",
+        fewest);
+    return r;
+  }
+
+  // 4. The fewest units, spread around the beams; among as few, the most stable.
+  const double perimeter = 2 * (p.length_m() + p.width_m());
   std::set<std::vector<int>> tried;
   std::string last_why;
   double last_margin = -std::numeric_limits<double>::infinity();
