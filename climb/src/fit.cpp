@@ -389,10 +389,16 @@ FitResult fit_climbing_machine(const floors::Building& building,
   std::set<std::vector<int>> tried;
   std::string last_why;
   double last_margin = -std::numeric_limits<double>::infinity();
+  std::string blocked_why;
+  int blocked_counts = 0;
   for (int k = fewest; k <= family.units_max; ++k) {
-    bool found = false;
-    double best_margin = -std::numeric_limits<double>::infinity();
-    machine::FittedPlatform best_p;
+    struct Stable {
+      machine::FittedPlatform platform;
+      double margin_m = 0.0;
+      StagePlan stages;
+    };
+    std::vector<Stable> stable;
+    int tried_here = 0;
     for (int j = 0; j < 4; ++j) {
       std::vector<int> chosen;
       // Four units towards the corners (of the beams' rectangle shrunk by 15% more at
@@ -432,6 +438,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
       std::string why;
       const double margin = least_margin_m(building, *member.profile.climbing, stages, why);
       ++r.members_tried;
+      ++tried_here;
       say(printf_string("%d units: least margin %s (%s)", k,
                         std::isfinite(margin) ? printf_string("%.2f m", margin).c_str() : "-",
                         why.c_str()));
@@ -439,13 +446,43 @@ FitResult fit_climbing_machine(const floors::Building& building,
         last_margin = margin;
         last_why = why;
       }
-      if (margin >= pm.stability_margin_m - 1e-9 && margin > best_margin) {
-        found = true;
-        best_margin = margin;
-        best_p = trial;
-      }
+      if (margin >= pm.stability_margin_m - 1e-9)
+        stable.push_back({trial, margin, std::move(stages)});
     }
-    if (!found) continue;
+    // The most stable first; with options.plan_climbs, the first whose every climb plans.
+    std::stable_sort(stable.begin(), stable.end(),
+                     [](const Stable& a, const Stable& b) { return a.margin_m > b.margin_m; });
+    const Stable* chosen_member = nullptr;
+    for (const Stable& candidate : stable) {
+      if (!options.plan_climbs) {
+        chosen_member = &candidate;
+        break;
+      }
+      const Member member = build_member(family, candidate.platform, options, "trial");
+      std::string why;
+      const auto& st = candidate.stages.stages;
+      for (std::size_t c = 0; c + 1 < st.size() && why.empty(); ++c) {
+        const ClimbPlan plan =
+            plan_climb(*member.profile.climbing, building, st[c], st[c + 1], options.climb);
+        if (!plan.status)
+          why = printf_string("climb %zu -> %zu: ", c, c + 1) + plan.status.to_string();
+      }
+      say(printf_string("%d units, least margin %.2f m: %s", k, candidate.margin_m,
+                        why.empty() ? "every climb planned" : why.c_str()));
+      if (why.empty()) {
+        chosen_member = &candidate;
+        break;
+      }
+      blocked_why = why;
+    }
+    if (!chosen_member) {
+      // Stable sets whose climbs cannot be planned at two counts: more units crowd the
+      // beams more; stop there rather than plan every count's climbs.
+      if (!stable.empty() && ++blocked_counts >= 2) break;
+      continue;
+    }
+    const machine::FittedPlatform& best_p = chosen_member->platform;
+    const double best_margin = chosen_member->margin_m;
     r.platform = best_p;
     r.least_margin_m = best_margin;
     r.mass_kg = best_p.mass_kg(family);
@@ -461,10 +498,23 @@ FitResult fit_climbing_machine(const floors::Building& building,
         "the smallest platform around the building (%.2f m x %.2f m, the beams %.2f m outside "
         "its outermost walls), then the fewest units (%d; %d to %d allowed) that reach solid "
         "wall at all %d stages with every transfer and every printing position stable by the "
-        "%.2f m margin, then among %d sets of %d the most stable (least margin %.2f m); %.0f kg",
+        "%.2f m margin%s, then among %d sets of %d the most stable (least margin %.2f m); %.0f kg",
         best_p.length_m() + section, best_p.width_m() + section, clearance, k, family.units_min,
-        family.units_max, r.stages, pm.stability_margin_m, r.members_tried, k, best_margin,
+        family.units_max, r.stages, pm.stability_margin_m,
+        options.plan_climbs ? " and every climb planned (OMPL)" : "", tried_here, k, best_margin,
         r.mass_kg);
+    return r;
+  }
+  if (!blocked_why.empty()) {
+    r.status = {ClimbStatus::Code::kBlocked,
+                "the stable sets of units tried each have a climb that cannot be planned; the "
+                "last: " +
+                    blocked_why};
+    r.reasons.push_back(r.status.reason());
+    r.nearest_change =
+        "walls clear of the units' paths between the storeys' pipes (a setback within the "
+        "booms' reach of the beams), or `anchors:` points the units reach without crossing a "
+        "wall";
     return r;
   }
   r.status = {ClimbStatus::Code::kUnstable,

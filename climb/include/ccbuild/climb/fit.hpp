@@ -4,7 +4,8 @@
 // (its beams the family's clearance outside the outermost walls of every storey), then
 // the units are as few as let every unit reach solid wall at every stage and keep the
 // platform statically stable, by the stability margin, in every transfer; among as few,
-// the mounts whose least stable transfer is the most stable. SI units: m, kg.
+// the mounts whose least stable moment is the most stable and whose every climb plans.
+// SI units: m, kg.
 
 #include <functional>
 #include <string>
@@ -20,6 +21,10 @@ struct FitOptions {
   std::string urdf_file = "fitted.urdf";
   /// Where the fitted profile is (or would be) written: its URDF is looked for beside it.
   std::string profile_path = "fitted.yaml";
+  /// Plan every climb of the chosen member (OMPL, as `climb` does) and take the next most
+  /// stable member when one cannot be planned.
+  bool plan_climbs = true;
+  ClimbOptions climb;  ///< for those plans
   /// Called now and then with what the fit is doing.
   std::function<void(const std::string&)> progress;
 };
