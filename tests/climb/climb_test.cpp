@@ -13,8 +13,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 
+#include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/slice.hpp"
 #include "test_support.hpp"
 
@@ -575,6 +577,64 @@ TEST(Climb, TheDefaultRuleKeepsPipesOnSolidWallAwayFromEnds) {
     }
   }
   EXPECT_EQ(checked, 16);  // 4 climbs, 4 pipes each
+}
+
+}  // namespace
+}  // namespace ccbuild::climb
+
+namespace ccbuild::climb {
+namespace {
+
+// Climbs between floors by default: every stage but the last ends at a floor's top layer;
+// a building asking for climbs within a storey gets stages as high as the legs allow, one
+// of which ends part-way up a floor, and fewer or as many climbs.
+TEST(Stages, BetweenFloorsByDefaultWithinAStoreyWhenAsked) {
+  floors::Building b =
+      floors::load_building(testing::source_path("config/buildings/apartment.yaml"));
+  ASSERT_FALSE(b.climbs_within_storey);
+  const StagePlan between = climb_stages(b, climber());
+  ASSERT_TRUE(between.status) << between.status.to_string();
+  std::map<int, int> top_layer;
+  for (const auto& floor : b.floors)
+    top_layer[floor.index] =
+        static_cast<int>(floors::slice_floor(floor, b.layer_height_m).size()) - 1;
+  for (std::size_t s = 0; s + 1 < between.stages.size(); ++s)
+    EXPECT_EQ(between.stages[s].last.layer, top_layer[between.stages[s].last.floor])
+        << "stage " << s;
+  b.climbs_within_storey = true;
+  const StagePlan within = climb_stages(b, climber());
+  ASSERT_TRUE(within.status) << within.status.to_string();
+  bool part_way = false;
+  for (std::size_t s = 0; s + 1 < within.stages.size(); ++s)
+    part_way |= within.stages[s].last.layer != top_layer[within.stages[s].last.floor];
+  EXPECT_TRUE(part_way);
+  EXPECT_LE(within.stages.size(), between.stages.size());
+}
+
+TEST(Stages, TheClimbsKeyTakesTwoValues) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_climbs_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string config = testing::source_path("config").string();
+  auto building =
+      [&](const std::string& climbs) {
+        std::ofstream(dir / "b.yaml")
+            << "units: m\nlayer_height: 0.5\nclimbs: " << climbs << "\nmaterial: " << config
+            << "/materials/standard-mix.yaml\nmachine: " << config
+            << "/machines/cc-climber.yaml\nfloors:\n  - height: 3\n    plan:\n"
+               "      vertices: [{id: 1, x: 0, y: 0}, {id: 2, x: 4, y: 0}]\n"
+               "      walls: [{id: 1, start: 1, end: 2}]\n";
+        return floors::load_building(dir / "b.yaml");
+      };
+  EXPECT_TRUE(building("within-storey").climbs_within_storey);
+  EXPECT_FALSE(building("between-floors").climbs_within_storey);
+  try {
+    building("whenever");
+    ADD_FAILURE() << "accepted climbs: whenever";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "b.yaml:3")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "expected between-floors")) << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
