@@ -37,6 +37,25 @@ Setup with_climber(const Setup& setup, std::shared_ptr<const machine::ClimbingMa
   return variant;
 }
 
+// The same machine, its anchors loaded from `mpa`.
+Setup with_anchor_strength(const Setup& setup, double mpa) {
+  auto machine = std::make_shared<machine::ClimbingMachine>(*setup.climber);
+  machine->anchor_strength_mpa = mpa;
+  return with_climber(setup, std::move(machine));
+}
+
+AnchorWhatIf what_if(AnchorWhatIf::Kind kind, double value, std::string change) {
+  AnchorWhatIf w;
+  w.kind = kind;
+  w.value = value;
+  w.change = std::move(change);
+  return w;
+}
+
+const floors::MaterialProfile& anchor_mix(const Setup& setup) {
+  return setup.anchor_material ? *setup.anchor_material : setup.material;
+}
+
 }  // namespace
 
 std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
@@ -46,9 +65,7 @@ std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
   for (const auto& e : s.events)
     if (e.kind == Event::Kind::kPipe && e.anchor) pipes[key(e.anchor->id, e.anchor->floor)] = &e;
   const double required_mpa = setup.climber->anchor_strength_mpa;
-  const floors::MaterialProfile& mix =
-      setup.anchor_material ? *setup.anchor_material : setup.material;
-  const double age_s = mix.age_for_strength_s(required_mpa);
+  const double age_s = anchor_mix(setup).age_for_strength_s(required_mpa);
   for (const auto& e : s.events) {
     if (!e.climb) continue;
     const ClimbEvent& c = *e.climb;
@@ -111,14 +128,12 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
       extra_m = std::ceil(extra_m * 100.0 - 1e-9) / 100.0;  // to the centimetre above
       const auto [stroke_min_m, stroke_max_m] = m.usable_range(m.units.front().joints[3]);
       (void)stroke_min_m;
-      AnchorWhatIf w;
-      w.kind = AnchorWhatIf::Kind::kEarlierPipes;
-      w.value = extra_m;
-      w.change = printf_string(
-          "cast each climb's pipes a storey earlier (in the top layers of the floor below), "
-          "which the legs reach %.2f m longer (stroke to %.2f m, the URDF's upper limit +%.2f "
-          "m)",
-          extra_m, stroke_max_m + m.stroke_end_margin_m + extra_m, extra_m);
+      const AnchorWhatIf w = what_if(
+          AnchorWhatIf::Kind::kEarlierPipes, extra_m,
+          printf_string("cast each climb's pipes a storey earlier (in the top layers of the floor "
+                        "below), which the legs reach %.2f m longer (stroke to %.2f m, the "
+                        "URDF's upper limit +%.2f m)",
+                        extra_m, stroke_max_m + m.stroke_end_margin_m + extra_m, extra_m));
       out.push_back(
           scheduled(w, with_climber(setup, machine::with_longer_legs(m, extra_m)), options));
     }
@@ -126,19 +141,18 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
 
   // 2. A faster-hardening mix for the layers the pipes are cast in.
   if (faster_mix) {
-    const double now_s = (setup.anchor_material ? *setup.anchor_material : setup.material)
-                             .age_for_strength_s(m.anchor_strength_mpa);
+    const double now_s = anchor_mix(setup).age_for_strength_s(m.anchor_strength_mpa);
     const double then_s = faster_mix->age_for_strength_s(m.anchor_strength_mpa);
     if (then_s < now_s) {
       Setup variant = setup;
       variant.anchor_material = *faster_mix;
-      AnchorWhatIf w;
-      w.kind = AnchorWhatIf::Kind::kFasterMix;
-      w.value = then_s;
-      w.change = printf_string(
-          "pour the anchors' layers with %s (%.1f MPa after %.1f h instead of %.1f h)",
-          faster_mix->name.c_str(), m.anchor_strength_mpa, then_s / 3600.0, now_s / 3600.0);
-      out.push_back(scheduled(w, variant, options));
+      out.push_back(scheduled(
+          what_if(AnchorWhatIf::Kind::kFasterMix, then_s,
+                  printf_string(
+                      "pour the anchors' layers with %s (%.1f MPa after %.1f h instead of %.1f h)",
+                      faster_mix->name.c_str(), m.anchor_strength_mpa, then_s / 3600.0,
+                      now_s / 3600.0)),
+          variant, options));
     }
   }
 
@@ -148,20 +162,17 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
     double lowest_mpa = std::numeric_limits<double>::infinity();
     for (const auto& w : waits)
       if (w.wait_s > 0.0)
-        lowest_mpa = std::min(lowest_mpa,
-                              setup.material.strength_at_mpa(std::max(0.0, w.ready_s - w.cast_s)));
+        lowest_mpa = std::min(
+            lowest_mpa, anchor_mix(setup).strength_at_mpa(std::max(0.0, w.ready_s - w.cast_s)));
     const double mpa = std::floor(lowest_mpa * 2.0 + 1e-9) / 2.0;
     if (std::isfinite(mpa) && mpa > 0.0 && mpa < m.anchor_strength_mpa) {
-      auto lower = std::make_shared<machine::ClimbingMachine>(m);
-      lower->anchor_strength_mpa = mpa;
-      AnchorWhatIf w;
-      w.kind = AnchorWhatIf::Kind::kLowerStrength;
-      w.value = mpa;
-      w.change = printf_string(
-          "load the anchors from %.1f MPa instead of %.1f MPa, if the climbing units' maker "
-          "allows it (the strength the youngest anchor has when its climb is otherwise ready)",
-          mpa, m.anchor_strength_mpa);
-      out.push_back(scheduled(w, with_climber(setup, lower), options));
+      out.push_back(scheduled(
+          what_if(AnchorWhatIf::Kind::kLowerStrength, mpa,
+                  printf_string("load the anchors from %.1f MPa instead of %.1f MPa, if the "
+                                "climbing units' maker allows it (the strength the youngest "
+                                "anchor has when its climb is otherwise ready)",
+                                mpa, m.anchor_strength_mpa)),
+          with_anchor_strength(setup, mpa), options));
     }
   }
 
@@ -174,17 +185,15 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
     const int holding_then = more - m.units_per_transfer;
     if (more > units && holding_now > 0) {
       const double mpa = m.anchor_strength_mpa * holding_now / holding_then;
-      auto shared = std::make_shared<machine::ClimbingMachine>(m);
-      shared->anchor_strength_mpa = mpa;
-      AnchorWhatIf w;
-      w.kind = AnchorWhatIf::Kind::kMoreUnits;
-      w.value = more;
-      w.change = printf_string(
-          "%d units instead of %d: %d hold the platform in a transfer instead of %d, each anchor "
-          "carrying %d/%d of today's load, so %.1f MPa suffices (refit the machine for the "
-          "mounts; the climbs' motions here are today's)",
-          more, units, holding_then, holding_now, holding_now, holding_then, mpa);
-      out.push_back(scheduled(w, with_climber(setup, shared), options));
+      out.push_back(scheduled(
+          what_if(AnchorWhatIf::Kind::kMoreUnits, more,
+                  printf_string("%d units instead of %d: %d hold the platform in a transfer "
+                                "instead of %d, each anchor carrying %d/%d of today's load, so "
+                                "%.1f MPa suffices (refit the machine for the mounts; the climbs' "
+                                "motions here are today's)",
+                                more, units, holding_then, holding_now, holding_now, holding_then,
+                                mpa)),
+          with_anchor_strength(setup, mpa), options));
     }
   }
   return out;
