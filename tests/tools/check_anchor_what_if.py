@@ -3,7 +3,8 @@
 made by hand, outside ccbuild: the earlier-pipes change is listed with its makespan, and
 scheduling the tower on a copy of the climber whose URDF legs are that much longer (edited
 here with Python's XML parser) gives the same makespan, with each climb's pipes cast in the
-storey below the one they were cast in before; every change listed shortens the build.
+storey below the one they were cast in before; every change listed shortens the build; the
+lower anchor strength leaves no climb waiting.
 
 Usage: check_anchor_what_if.py CCBUILD SOURCE_DIR"""
 
@@ -41,6 +42,11 @@ def main():
             if infeasible or float(makespan) >= base_makespan:
                 sys.exit("a change that does not shorten the build: %s (%s s against %.0f s)"
                          % (text, makespan, base_makespan))
+        # The lower strength is the youngest anchor's when its climb is ready: no climb waits.
+        lower = re.search(r"^  load the anchors from .*, anchor waits (.*)$", out, re.M)
+        if not lower or lower.group(1) != "0.0 s":
+            sys.exit("the lower anchor strength still leaves anchor waits: %s"
+                     % (lower.group(0) if lower else "not listed"))
         earlier = [c for c in changes if "a storey earlier" in c[0]]
         if not earlier:
             sys.exit("the earlier-pipes change is not listed:\n" + out)
