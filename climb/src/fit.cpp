@@ -113,8 +113,8 @@ double printing_margin_m(const floors::Building& building, const machine::Climbi
 // The stages of `m` on the building, and the least stable moment of all: printing from a
 // stage or a transfer of a climb. `why` says what fails.
 double least_margin_m(const floors::Building& building, const machine::ClimbingMachine& m,
-                      StagePlan& stages, std::string& why) {
-  stages = climb_stages(building, m);
+                      const detail::StageFrames& frames, StagePlan& stages, std::string& why) {
+  stages = detail::place_anchors(building, m, frames);
   if (!stages.status) {
     why = stages.status.reason();
     return -std::numeric_limits<double>::infinity();
@@ -274,11 +274,19 @@ FitResult fit_climbing_machine(const floors::Building& building,
     }
     events.push_back(std::move(e));
   }
+  // The probe units' feet at zero, in plan (a site's is its probe's, shifted).
+  std::vector<Eigen::Vector2d> probe_feet;
+  {
+    const auto poses = pm.robot->link_poses(Eigen::Isometry3d::Identity(), pm.robot->zero());
+    for (const auto& unit : pm.units)
+      probe_feet.push_back(poses[unit.foot_link].translation().head<2>());
+  }
   // reaches[site][event]: a bit per level.
   std::vector<std::vector<unsigned>> reaches(sites.size(), std::vector<unsigned>(events.size(), 0));
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const MountSite& site = sites[i];
     const Eigen::Vector2d shift = site.position_m - probe_mounts[site.probe_unit];
+    const Eigen::Vector2d foot_at_zero = probe_feet[site.probe_unit] + shift;
     for (std::size_t e = 0; e < events.size(); ++e) {
       const auto& zs = frames.frames[e].platform_zs;
       for (std::size_t l = 0; l < events[e].levels.size(); ++l)
@@ -289,8 +297,8 @@ FitResult fit_climbing_machine(const floors::Building& building,
           for (double z : zs)
             ok = ok && detail::pin_reaches(
                            pm, site.probe_unit,
-                           Eigen::Isometry3d(Eigen::Translation3d(shift.x(), shift.y(), z)), c,
-                           events[e].levels[l].z_m, n);
+                           Eigen::Isometry3d(Eigen::Translation3d(shift.x(), shift.y(), z)),
+                           foot_at_zero, c, events[e].levels[l].z_m, n);
           if (ok) {
             reaches[i][e] |= 1u << l;
             break;
@@ -396,6 +404,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
       machine::FittedPlatform platform;
       double margin_m = 0.0;
       StagePlan stages;
+      Member member;  ///< its machine, for planning its climbs
     };
     std::vector<Stable> stable;
     int tried_here = 0;
@@ -436,7 +445,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
       const Member member = build_member(family, trial, options, "trial");
       StagePlan stages;
       std::string why;
-      const double margin = least_margin_m(building, *member.profile.climbing, stages, why);
+      const double margin = least_margin_m(building, *member.profile.climbing, frames, stages, why);
       ++r.members_tried;
       ++tried_here;
       say(printf_string("%d units: least margin %s (%s)", k,
@@ -447,7 +456,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
         last_why = why;
       }
       if (margin >= pm.stability_margin_m - 1e-9)
-        stable.push_back({trial, margin, std::move(stages)});
+        stable.push_back({trial, margin, std::move(stages), member});
     }
     // The most stable first; with options.plan_climbs, the first whose every climb plans.
     std::stable_sort(stable.begin(), stable.end(),
@@ -458,7 +467,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
         chosen_member = &candidate;
         break;
       }
-      const Member member = build_member(family, candidate.platform, options, "trial");
+      const Member& member = candidate.member;
       std::string why;
       const auto& st = candidate.stages.stages;
       for (std::size_t c = 0; c + 1 < st.size() && why.empty(); ++c) {

@@ -61,10 +61,17 @@ struct StageFrames {
 /// The stages' heights and layers for a machine whose units all have `machine`'s legs.
 StageFrames stage_frames(const floors::Building& building, const machine::ClimbingMachine& machine);
 
+/// The stages of `frames` (stage_frames of this building, for a machine whose legs and
+/// reach are `machine`'s) with each unit's pipes chosen: climb_stages without slicing again.
+StagePlan place_anchors(const floors::Building& building, const machine::ClimbingMachine& machine,
+                        const StageFrames& frames);
+
 /// True when unit `u`'s pin reaches `c` at height `anchor_z` with the platform (the
-/// robot's root) at `platform`, within the joints' limits; `outward` is then the wall's
-/// normal towards the unit.
+/// robot's root) at `platform`, within the joints' limits; `mount` is the unit's foot at
+/// zero in plan, which picks the wall's side; `outward` is then the wall's normal towards
+/// the unit.
 bool pin_reaches(const machine::ClimbingMachine& machine, int u, const Eigen::Isometry3d& platform,
-                 const Candidate& c, double anchor_z, Eigen::Vector2d& outward);
+                 const Eigen::Vector2d& mount, const Candidate& c, double anchor_z,
+                 Eigen::Vector2d& outward);
 
 }  // namespace ccbuild::climb::detail

@@ -110,10 +110,9 @@ std::vector<Candidate> candidates(const floors::Floor& floor, const floors::Laye
 }
 
 bool pin_reaches(const machine::ClimbingMachine& m, int u, const Eigen::Isometry3d& platform,
-                 const Candidate& c, double anchor_z, Eigen::Vector2d& outward) {
+                 const Eigen::Vector2d& mount, const Candidate& c, double anchor_z,
+                 Eigen::Vector2d& outward) {
   const std::vector<double> q0 = m.robot->zero();
-  const auto poses = m.robot->link_poses(platform, q0);
-  const Eigen::Vector2d mount = poses[m.units[u].foot_link].translation().head<2>();
   Eigen::Vector2d n(-c.along.y(), c.along.x());
   if (n.dot(mount - c.point) < 0) n = -n;  // the unit is on this side of the wall
   outward = n;
@@ -200,19 +199,19 @@ StageFrames stage_frames(const floors::Building& building, const machine::Climbi
   return out;
 }
 
-}  // namespace detail
-
-StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& m) {
+StagePlan place_anchors(const floors::Building& building, const machine::ClimbingMachine& m,
+                        const StageFrames& frames) {
   StagePlan plan;
   const int units = static_cast<int>(m.units.size());
-  const detail::StageFrames frames = detail::stage_frames(building, m);
   const double thickness = m.gantry.nozzle_width_m;
   const std::vector<double> q0 = m.robot->zero();
-  const auto mount_of = [&](int u) -> Eigen::Vector2d {
-    return m.robot->link_poses(Eigen::Isometry3d::Identity(), q0)[m.units[u].foot_link]
-        .translation()
-        .head<2>();
-  };
+  // Each unit's foot at zero, in plan: the platform only rises, so it stays there.
+  std::vector<Eigen::Vector2d> mounts;
+  {
+    const auto poses = m.robot->link_poses(Eigen::Isometry3d::Identity(), q0);
+    for (const auto& unit : m.units)
+      mounts.push_back(poses[unit.foot_link].translation().head<2>());
+  }
 
   // Picks one pipe per unit at `level`, reachable with the platform at each of
   // `platform_zs`, nearest each unit's previous pin; empty with `why` when some unit has
@@ -230,7 +229,7 @@ StagePlan climb_stages(const floors::Building& building, const machine::Climbing
       int best = -1;
       Eigen::Vector2d best_n = Eigen::Vector2d::Zero();
       const Eigen::Vector2d home =
-          previous.empty() ? mount_of(u) : Eigen::Vector2d(previous[u].centre_m.head<2>());
+          previous.empty() ? mounts[u] : Eigen::Vector2d(previous[u].centre_m.head<2>());
       // Nearest first: the first one the unit reaches is the one.
       std::vector<std::size_t> order(cands.size());
       for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -243,7 +242,7 @@ StagePlan climb_stages(const floors::Building& building, const machine::Climbing
         bool ok = true;
         for (double z : platform_zs)
           ok = ok && detail::pin_reaches(m, u, Eigen::Isometry3d(Eigen::Translation3d(0, 0, z)),
-                                         cands[k], level.z_m, n);
+                                         mounts[u], cands[k], level.z_m, n);
         if (!ok) continue;
         best = static_cast<int>(k);
         best_n = n;
@@ -258,7 +257,7 @@ StagePlan climb_stages(const floors::Building& building, const machine::Climbing
                          : " (floor " + std::to_string(floor) + " layer " +
                                std::to_string(level.layer) + ")");
         // The nearest solid wall to the unit's mount, and how far the unit reaches.
-        const Eigen::Vector2d mount = mount_of(u);
+        const Eigen::Vector2d mount = mounts[u];
         const detail::Candidate* nearest = nullptr;
         for (const auto& c : cands)
           if (!nearest || (c.point - mount).norm() < (nearest->point - mount).norm()) nearest = &c;
@@ -321,6 +320,12 @@ StagePlan climb_stages(const floors::Building& building, const machine::Climbing
   }
   if (!frames.status) plan.status = frames.status;
   return plan;
+}
+
+}  // namespace detail
+
+StagePlan climb_stages(const floors::Building& building, const machine::ClimbingMachine& m) {
+  return detail::place_anchors(building, m, detail::stage_frames(building, m));
 }
 
 }  // namespace ccbuild::climb
