@@ -44,6 +44,10 @@ find_package(urdfdom QUIET)
 ccbuild_require(urdfdom_FOUND "urdfdom" "liburdfdom-dev")
 
 # --- Everything else the product uses ---------------------------------------------
+# Howard Hinnant's date library with its time-zone part built on the system's tzdata
+# (USE_OS_TZDB): GCC 12's <chrono> has no time zones yet.
+find_package(date QUIET CONFIG)
+ccbuild_require(date_FOUND "the date library (date::date-tz)" "libhowardhinnant-date-dev tzdata")
 find_package(fcl QUIET)
 ccbuild_require(fcl_FOUND "FCL" "libfcl-dev")
 

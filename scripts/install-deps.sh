@@ -13,6 +13,7 @@ packages=(
   liburdfdom-tools             # check_urdf: the fitted climbing machines' URDFs are fed to it
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libdxflib-dev libifcplusplus-dev
+  libhowardhinnant-date-dev tzdata   # site calendars: time zones and daylight saving
   libsqlite3-dev libgtest-dev libgmock-dev libbenchmark-dev
   iproute2 util-linux
   python3

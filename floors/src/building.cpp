@@ -85,10 +85,20 @@ void check_layer_budget(const Building& building, const std::string& file, int l
 }
 
 Site read_site(const Field& field, LengthUnit unit) {
-  MapReader map(field, {"origin", "rotation_deg", "place"});
-  map.reject_unknown();
+  MapReader map(field, kSitePlacementKeys);
   Site site;
   site.source = source_of(field);
+  if (!field.is_map()) field.fail("expected a map (origin, rotation_deg, place, start, ...)");
+  // Every other key is the site's programme, which the schedule reads (and checks).
+  DocNode programme;
+  programme.kind = DocNode::Kind::kMap;
+  programme.line = field.line();
+  for (const auto& entry : field.node().entries)
+    if (std::find(kSitePlacementKeys.begin(), kSitePlacementKeys.end(), entry.first) ==
+        kSitePlacementKeys.end())
+      programme.entries.push_back(entry);
+  if (!programme.entries.empty()) site.programme = Document{field.file(), std::move(programme)};
+  site.places = programme.entries.size() < field.node().entries.size();
   if (auto origin = map.optional("origin")) {
     const auto xy = origin->items();
     if (xy.size() != 2)

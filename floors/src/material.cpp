@@ -18,6 +18,8 @@ const Range kAge_s = Range::closed(0.0, 365 * 86'400.0);
 const Range kStrength_mpa = Range::closed(0.0, 200.0);
 constexpr std::size_t kMaxStrengthPoints = 1000;
 const Range kSafetyFactor = Range::closed(1.0, 10.0);
+const Range kJointTreatment_s = Range::closed(0.0, 86'400.0);
+const Range kJointAge_s = Range::closed(0.0, 90 * 86'400.0);
 }  // namespace
 
 double MaterialProfile::strength_at_mpa(double age_s) const {
@@ -54,7 +56,7 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
   const Document doc = load_document(path);
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "density_kg_m3", "min_layer_interval_s",
-                       "max_layer_interval_s", "strength_curve", "safety_factor"});
+                       "max_layer_interval_s", "strength_curve", "safety_factor", "planned_joint"});
   map.reject_unknown();
   MaterialProfile m;
   m.source_file = path.string();
@@ -88,6 +90,19 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
   if (m.strength_curve.size() < 2) curve.fail("needs at least two points");
   if (auto factor = map.optional("safety_factor"))
     m.safety_factor = factor->as_number_in(kSafetyFactor, "");
+  if (auto joint = map.optional("planned_joint")) {
+    MapReader j(*joint, {"treatment_min", "min_age_h", "max_age_h"});
+    j.reject_unknown();
+    PlannedJoint& p = m.planned_joint;
+    if (auto t = j.optional("treatment_min"))
+      p.treatment_s = t->as_number_in(kJointTreatment_s, "min", 60.0);
+    if (auto a = j.optional("min_age_h")) p.min_age_s = a->as_number_in(kJointAge_s, "h", 3600.0);
+    if (auto a = j.optional("max_age_h")) {
+      p.max_age_s = a->as_number_in(kJointAge_s, "h", 3600.0);
+      if (p.max_age_s <= p.min_age_s)
+        a->fail("must be greater than min_age_h (" + plain_number(p.min_age_s / 3600.0) + " h)");
+    }
+  }
   return m;
 }
 

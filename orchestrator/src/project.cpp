@@ -46,7 +46,7 @@ void place(Project& project, bool centre) {
     const Eigen::Vector2d middle_m(0.5 * (m.x.min_m + m.x.max_m), 0.5 * (m.y.min_m + m.y.max_m));
     placed.origin_m = middle_m - 0.5 * (space.min_m + space.max_m);
     placed.how = "centred";
-  } else if (b.site) {
+  } else if (b.site && b.site->places) {
     placed.origin_m = site.origin_m.value_or(Eigen::Vector2d::Zero());
     placed.how = "site";
   }
@@ -139,6 +139,18 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
         project.material.name + ", " + material_path.string() + " " + material_why;
   }
   if (!project.fit) place(project, options.place_centre);
+  // The site's programme: --site FILE, else the building's `site:`.
+  std::optional<schedule::SiteProgramme> programme;
+  if (!options.site_file.empty()) {
+    programme = schedule::load_site_programme(options.site_file.string());
+    project.site_file = options.site_file;
+  } else if (b.site && b.site->programme) {
+    const Document& doc = *b.site->programme;
+    programme =
+        schedule::read_site_programme(Field(doc, doc.root, "site"), floors::kSitePlacementKeys);
+  }
+  if (programme)
+    project.calendar = std::make_shared<const schedule::SiteCalendar>(std::move(*programme));
   for (auto& floor : project.building.floors)
     floor.plan.beads = {project.machine->nozzle_width_m, project.building.wall_pattern};
   check_fit(project);
@@ -166,8 +178,9 @@ void check_fit(const Project& project) {
                          " (its x and y joints' ranges)");
   // Where it stands: every vertex within each axis's travel.
   DiagnosticSink outside;
-  const char* hint = b.site && !b.site->centre ? "`site: {origin: [x, y]}` in the building file"
-                                               : "with `site: {origin: [x, y]}` in a building file";
+  const char* hint = b.site && b.site->places && !b.site->centre
+                         ? "`site: {origin: [x, y]}` in the building file"
+                         : "with `site: {origin: [x, y]}` in a building file";
   for (int axis = 0; axis < 2; ++axis) {
     const machine::AxisLimits& travel = axis == 0 ? m.x : m.y;
     const char* name = axis == 0 ? "x" : "y";

@@ -46,7 +46,13 @@ ones, never used to compute them. It checks:
      side) overlap, except beads that meet end to end, which must not double back along
      each other;
  10. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
-     slabs and machine time are what the layers and events add up to.
+     slabs, joints and machine time are what the layers and events add up to.
+ 11. site calendar (inputs.site): the working windows recomputed with Python's zoneinfo;
+     every timestamp the local time of its seconds; attended printing, climbs, joints'
+     treatments and crew-placed pipes each within one working window; an off-shift wait
+     ending at the earliest window that holds the work; a planned joint only after
+     off-shift hours, treated (a joint event) within the material's ages, and every
+     layer over the maximum interval a planned joint; the days as the layers make them.
 
 Usage: check_schedule.py SCHEDULE.json              exit 0 when sound, 1 with the problems
        check_schedule.py SCHEDULE.json --self-test  corrupts the document in many ways
@@ -60,6 +66,7 @@ Exit 2: not a schedule (unreadable, not JSON, another format or schema version).
 
 import argparse
 import bisect
+import datetime
 import json
 import math
 import sys
@@ -73,8 +80,8 @@ ROUND_P = 2e-6     # m: two coordinates, each rounded to micrometres
 ROUND_T = 2e-6     # s: two times, each rounded to microseconds
 ROUND_A = 2e-6     # rad: two headings, each rounded to microradians
 INTERVAL = 2.5e-6  # s: an interval from four times rounded to microseconds, against the bounds
-WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab")
-EVENT_KINDS = ("pipe", "slab", "purge", "climb")
+WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab", "off-shift", "joint")
+EVENT_KINDS = ("pipe", "slab", "purge", "climb", "joint")
 MAX_SHOWN = 20
 
 
@@ -127,6 +134,15 @@ CLIMB = {"from_stage": INT, "to_stage": INT, "wait_before_s": NUM, "wait_reasons
 CLIMB_ANCHOR = {"id": STR, "age_s": NUM, "strength_mpa": NUM, "required_mpa": NUM}
 CLIMB_BODY = {"duration_s": NUM, "phases": LIST}
 STAGE = {"stage": INT, "anchors": LIST}
+# With a site calendar (inputs.site): timestamps beside the seconds, planned joints, days.
+SITE = {"start": STR, "start_local": STR, "time_zone": STR, "working_hours": OBJ,
+        "holidays": LIST, "printing": STR, "pipes": STR}
+SITE_LAYER = {"start_time": STR, "end_time": STR, "planned_joint": BOOL}
+SITE_EVENT = {"start_time": STR, "end_time": STR}
+SITE_TOTALS = {"joints_s": NUM, "start_time": STR, "finish_time": STR}
+JOINT = {"treatment_s": NUM, "min_age_s": NUM, "max_age_s": NUM}
+DAY = {"date": STR, "layers": INT, "first": LIST, "last": LIST, "printing_s": NUM, "stop": STR,
+       "detail": STR}
 
 
 def type_ok(v, t):
@@ -178,8 +194,25 @@ def check_structure(doc, problems):
                         type_ok(curve[i - 1], OBJ) and p["age_s"] <= curve[i - 1].get("age_s", -math.inf):
                     problems.append("strength_curve[%d]: ages not increasing" % i)
     keys_ok(doc["totals"], TOTALS, "totals", problems)
+    site = inputs.get("site") if isinstance(inputs, dict) else None
+    if site is not None:
+        if keys_ok(site, SITE, "inputs.site", problems):
+            keys_ok(site["working_hours"], {d: LIST for d in WEEKDAYS}, "inputs.site.working_hours",
+                    problems)
+        keys_ok(inputs["material"], {"planned_joint": OBJ}, "inputs.material", problems) and \
+            keys_ok(inputs["material"]["planned_joint"], JOINT, "inputs.material.planned_joint", problems)
+        keys_ok(doc["totals"], SITE_TOTALS, "totals", problems)
+        if keys_ok(doc, {"days": LIST}, "document", problems):
+            for i, d in enumerate(doc["days"]):
+                keys_ok(d, DAY, "days[%d]" % i, problems)
+    else:
+        for i, e in enumerate(doc["events"]):
+            if isinstance(e, dict) and e.get("kind") == "joint":
+                problems.append("event %d: a joint without a site calendar (inputs.site)" % i)
     for i, layer in enumerate(doc["layers"]):
         where = "layers[%d]" % i
+        if site is not None:
+            keys_ok(layer, SITE_LAYER, where, problems)
         if keys_ok(layer, LAYER, where, problems):
             where = "floor %d layer %d" % (layer["floor"], layer["layer"])
             for j, r in enumerate(layer["wait_reasons"]):
@@ -211,6 +244,8 @@ def check_structure(doc, problems):
         where = "event %d" % i
         if not keys_ok(e, EVENT, where, problems):
             continue
+        if site is not None:
+            keys_ok(e, SITE_EVENT, where, problems)
         where = "event %d (%s)" % (i, e["kind"])
         if e["kind"] not in EVENT_KINDS:
             problems.append("%s: unknown kind" % where)
@@ -676,11 +711,19 @@ def layer_below(layers, i):
     return None
 
 
-def earliest_start(layer, purge_s):
+def earliest_start(layer, purge_s, joint_s=0.0):
     """When the layer could have started had nothing held it back: its start less its
-    wait and, when the nozzle was purged before it, less the purge, which follows the
-    wait (docs/schedule.md, Waits). Every wait reason is counted from there."""
-    return layer["start_s"] - layer["wait_before_s"] - (purge_s if layer["purge_before"] else 0.0)
+    wait and, when the nozzle was purged before it, less the purge, and, on a planned
+    joint, less the joint's treatment (`joint_s`), both of which follow the wait
+    (docs/schedule.md, Waits). Every wait reason is counted from there."""
+    return layer["start_s"] - layer["wait_before_s"] - (purge_s if layer["purge_before"] else 0.0) - \
+        (joint_s if layer.get("planned_joint") else 0.0)
+
+
+def joint_treatment_s(doc):
+    """The planned joint's treatment, s (0 without a site calendar)."""
+    joint = doc["inputs"]["material"].get("planned_joint")
+    return joint["treatment_s"] if doc["inputs"].get("site") is not None and joint else 0.0
 
 
 def older_layers(layers, i, has_below, curve, rho_g_sf, earliest, feasible, where, problems, notes):
@@ -782,6 +825,7 @@ def check_intervals(doc, infos, problems, notes, stats):
     lo_bound, hi_bound = material["min_layer_interval_s"], material["max_layer_interval_s"]
     rho_g_sf = material["density_kg_m3"] * G * material["safety_factor"] * 1e-6
     purge_s = doc["inputs"]["machine"]["purge_s"]
+    joint_s = joint_treatment_s(doc)
     feasible = doc["feasible"]
     cache = {}
     overs = []                  # (layer, interval) over the maximum, when infeasible
@@ -792,7 +836,7 @@ def check_intervals(doc, infos, problems, notes, stats):
     for i, layer in enumerate(layers):
         where = "floor %d layer %d" % (layer["floor"], layer["layer"])
         below = layer_below(layers, i)
-        earliest = earliest_start(layer, purge_s)
+        earliest = earliest_start(layer, purge_s, joint_s)
         older, never = older_layers(layers, i, below is not None, curve, rho_g_sf, earliest,
                                     feasible, where, problems, notes)
         if never and first_never is None:
@@ -832,7 +876,10 @@ def check_intervals(doc, infos, problems, notes, stats):
         if smallest < lo_bound - INTERVAL:
             problems.append("%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer "
                             "below, under the minimum interval %g s" % ((where,) + low[1:] + (smallest, lo_bound)))
-        if largest > hi_bound + INTERVAL:
+        stats.setdefault("largest", {})[i] = largest
+        if largest > hi_bound + INTERVAL and layer.get("planned_joint"):
+            pass                # a planned joint: checked with the site's calendar (11)
+        elif largest > hi_bound + INTERVAL:
             text = "%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer below, " \
                    "over the maximum interval %g s" % ((where,) + high[1:] + (largest, hi_bound))
             if feasible:
@@ -911,7 +958,7 @@ def check_events(doc, problems, stats):
     starts = [l["start_s"] for l in layers]
     index = {(l["floor"], l["layer"]): i for i, l in enumerate(layers)}
     duration = {"purge": machine["purge_s"], "slab": doc["inputs"]["slab_stage_s"],
-                "pipe": machine.get("pipe_embed_s")}
+                "pipe": machine.get("pipe_embed_s"), "joint": joint_treatment_s(doc)}
     purges_end = []
     for i, e in enumerate(events):
         where = "event %d (%s)" % (i, e["kind"])
@@ -1096,6 +1143,8 @@ def check_totals(doc, infos, problems):
         "pipes_s": span("pipe"), "purges_s": span("purge"), "climbs_s": span("climb"),
         "slabs_s": span("slab"),
     }
+    if doc["inputs"].get("site") is not None:
+        pieces["joints_s"] = span("joint")
     pieces["machine_s"] = sum(infos[l["plan"]].end_t for l in layers) + pieces["moves_s"] + \
         pieces["pipes_s"] + pieces["purges_s"] + pieces["climbs_s"]
     if totals["layers"] != len(layers):
@@ -1103,6 +1152,205 @@ def check_totals(doc, infos, problems):
     for name, value in pieces.items():
         if abs(totals[name] - value) > T_DOC + 1e-9 * abs(value):
             problems.append("totals: %s %.6f, the layers and events add up to %.6f" % (name, totals[name], value))
+
+
+# ---------------------------------------------------------------- 11. the site's calendar
+
+WEEKDAYS = ("mon", "tue", "wed", "thu", "fri", "sat", "sun")
+
+
+class Calendar:
+    """The site's working windows in the schedule's seconds, computed here from the
+    programme with Python's zoneinfo (the system's tzdata): a local time that does not
+    exist (spring forward) is the moment of the change, one that occurs twice is the
+    first."""
+
+    def __init__(self, site, until_s):
+        from zoneinfo import ZoneInfo
+        self.zone = ZoneInfo(site["time_zone"])
+        text = site["start_local"].replace("T", " ")
+        start_local = datetime.datetime.strptime(text, "%Y-%m-%d %H:%M:%S" if text.count(":") == 2
+                                                 else "%Y-%m-%d %H:%M")
+        self.start = self.utc(start_local)
+        holidays = {datetime.date.fromisoformat(h) for h in site["holidays"]}
+        hours = {d: [tuple(self.minutes(t) for t in span.split("-")) for span in site["working_hours"][d]]
+                 for d in WEEKDAYS}
+        self.windows = []
+        day = start_local.date()
+        last = (self.start + datetime.timedelta(seconds=until_s + 3 * 86400)).astimezone(self.zone).date()
+        while day <= last:
+            if day not in holidays:
+                for lo, hi in hours[WEEKDAYS[day.weekday()]]:
+                    midnight = datetime.datetime.combine(day, datetime.time())
+                    a = self.seconds(self.utc(midnight + datetime.timedelta(minutes=lo)))
+                    b = self.seconds(self.utc(midnight + datetime.timedelta(minutes=hi)))
+                    if b <= 0 or b <= a:
+                        continue
+                    a = max(a, 0.0)
+                    if self.windows and self.windows[-1][1] >= a:
+                        self.windows[-1][1] = max(self.windows[-1][1], b)
+                    else:
+                        self.windows.append([a, b])
+            day += datetime.timedelta(days=1)
+        self.ends = [w[1] for w in self.windows]
+
+    @staticmethod
+    def minutes(text):
+        h, m = text.split(":")
+        return int(h) * 60 + int(m)
+
+    def utc(self, local):
+        aware = local.replace(tzinfo=self.zone, fold=0)
+        at = aware.astimezone(datetime.timezone.utc)
+        if at.astimezone(self.zone).replace(tzinfo=None) == local:
+            return at
+        # In a spring-forward gap: the first instant with the later offset.
+        lo = local.replace(tzinfo=self.zone, fold=1).astimezone(datetime.timezone.utc)
+        later = lo.astimezone(self.zone).utcoffset()
+        hi = at
+        while (hi - lo).total_seconds() > 1:
+            mid = lo + (hi - lo) / 2
+            if mid.astimezone(self.zone).utcoffset() == later:
+                hi = mid
+            else:
+                lo = mid
+        return hi.replace(microsecond=0)
+
+    def seconds(self, utc):
+        return (utc - self.start).total_seconds()
+
+    def timestamp(self, t_s):
+        at = self.start + datetime.timedelta(seconds=math.floor(t_s + 0.5))
+        return at.astimezone(self.zone).isoformat()
+
+    def date(self, t_s):
+        return self.timestamp(t_s)[:10]
+
+    def within(self, a, b):
+        k = bisect.bisect_left(self.ends, a + 1e-6)
+        return k < len(self.windows) and self.windows[k][0] <= a + 1e-6 and b <= self.windows[k][1] + 1e-6
+
+    def fit(self, t, length):
+        """The earliest start from t at which `length` seconds fit in one window."""
+        k = bisect.bisect_right(self.ends, t + 1e-6)
+        for a, b in self.windows[k:]:
+            start = max(t, a)
+            if start + length <= b + 1e-6:
+                return start
+        return math.inf
+
+
+def check_site(doc, problems, stats):
+    """On a site calendar: the timestamps are the seconds' local times; attended printing,
+    climbs, joints' treatments and (when the crew places them) pipes lie within one
+    working window each; an off-shift wait ends at the earliest window that holds the
+    work; a planned joint only where off-shift hours passed since the layer below ended,
+    treated within the material's ages, and every layer over the maximum interval is
+    one; the days sum up the layers as they are."""
+    site = doc["inputs"].get("site")
+    if site is None:
+        return
+    layers, events = doc["layers"], doc["events"]
+    machine, material = doc["inputs"]["machine"], doc["inputs"]["material"]
+    joint = material["planned_joint"]
+    cal = Calendar(site, doc["totals"]["makespan_s"])
+    stats["windows"] = len(cal.windows)
+    if cal.timestamp(0.0) != site["start"]:
+        problems.append("inputs.site.start %s, but %s in %s is %s" % (
+            site["start"], site["start_local"], site["time_zone"], cal.timestamp(0.0)))
+    stamped = [("totals", doc["totals"], 0.0, "start_time"),
+               ("totals", doc["totals"], doc["totals"]["makespan_s"], "finish_time")]
+    for l in layers:
+        name = "floor %d layer %d" % (l["floor"], l["layer"])
+        stamped += [(name, l, l["start_s"], "start_time"), (name, l, l["end_s"], "end_time")]
+    for i, e in enumerate(events):
+        name = "event %d (%s)" % (i, e["kind"])
+        stamped += [(name, e, e["start_s"], "start_time"), (name, e, e["end_s"], "end_time")]
+    for name, obj, t, key in stamped:
+        if obj[key] != cal.timestamp(t):
+            problems.append("%s: %s %s, but %.6f s from the start is %s" % (name, key, obj[key], t, cal.timestamp(t)))
+    attended = site["printing"] == "attended"
+    purge_s = machine["purge_s"]
+    largest = stats.get("largest", {})
+    joints = {(e["floor"], e["after_layer"], round(e["start_s"], 3)) for e in events if e["kind"] == "joint"}
+    for i, l in enumerate(layers):
+        where = "floor %d layer %d" % (l["floor"], l["layer"])
+        treat = joint["treatment_s"] if l["planned_joint"] else 0.0
+        block = l["start_s"] - (purge_s if l["purge_before"] else 0.0) - treat
+        length = l["end_s"] - block
+        if attended and not cal.within(block, l["end_s"]):
+            problems.append("%s: printing is attended, but it (with its purge and joint) runs %s to %s, "
+                            "outside one working window" % (where, cal.timestamp(block), cal.timestamp(l["end_s"])))
+        earliest = block - l["wait_before_s"]
+        rules = earliest + max([r["required_s"] for r in l["wait_reasons"]
+                                if r["kind"] not in ("off-shift", "joint")], default=0.0)
+        for r in l["wait_reasons"]:
+            if r["kind"] == "off-shift":
+                crew = length if attended else treat
+                want = cal.fit(rules, crew)
+                if abs(want - block) > T_DOC:
+                    problems.append("%s: waits off-shift until %s; the earliest working window that holds "
+                                    "its %.1f s from %s starts the work at %s" % (
+                                        where, cal.timestamp(block), crew, cal.timestamp(rules), cal.timestamp(want)))
+                if abs(r["required_s"] - (block - earliest)) > T_DOC:
+                    problems.append("%s: off-shift reason requires %.6f s, the wait to %s is %.6f s" % (
+                        where, r["required_s"], cal.timestamp(block), block - earliest))
+        below = layers[i - 1] if i and layers[i - 1]["floor"] == l["floor"] else None
+        if l["planned_joint"]:
+            if below is None:
+                problems.append("%s: a planned joint on a floor's first layer, which stands on its slab" % where)
+                continue
+            if cal.within(below["end_s"], block):
+                problems.append("%s: a planned joint, but no off-shift hours lie between the layer below's end "
+                                "(%s) and the joint (%s)" % (where, cal.timestamp(below["end_s"]), cal.timestamp(block)))
+            age = block - below["end_s"]
+            if age < joint["min_age_s"] - T_DOC or (doc["feasible"] and age > joint["max_age_s"] + T_DOC):
+                problems.append("%s: the joint is treated %.1f s after the layer below ended, outside the "
+                                "material's %g..%g s" % (where, age, joint["min_age_s"], joint["max_age_s"]))
+            if (below["floor"], below["layer"], round(block, 3)) not in joints:
+                problems.append("%s: a planned joint, and no joint event after floor %d layer %d at %.6f s" % (
+                    where, below["floor"], below["layer"], block))
+            stats["joints"] = stats.get("joints", 0) + 1
+        elif i in largest and largest[i] > material["max_layer_interval_s"] + INTERVAL and doc["feasible"]:
+            problems.append("%s: covered %.6f s after the layer below, over the maximum interval %g s, "
+                            "and not a planned joint" % (where, largest[i], material["max_layer_interval_s"]))
+    for i, e in enumerate(events):
+        crew = e["kind"] in ("climb", "joint") or (e["kind"] == "pipe" and site["pipes"] == "crew")
+        if crew and not cal.within(e["start_s"], e["end_s"]):
+            problems.append("event %d (%s): needs a crew, but runs %s to %s, outside one working window" % (
+                i, e["kind"], cal.timestamp(e["start_s"]), cal.timestamp(e["end_s"])))
+        for r in e.get("wait_reasons", []):
+            if r["kind"] == "off-shift":
+                ready = e["start_s"] - e["wait_before_s"] + max(
+                    [q["required_s"] for q in e["wait_reasons"] if q["kind"] != "off-shift"], default=0.0)
+                want = cal.fit(ready, e["end_s"] - e["start_s"])
+                if abs(want - e["start_s"]) > T_DOC:
+                    problems.append("event %d (%s): starts %s; the earliest working window that holds it from "
+                                    "%s starts it at %s" % (i, e["kind"], cal.timestamp(e["start_s"]),
+                                                            cal.timestamp(ready), cal.timestamp(want)))
+    # The days: layers grouped by the local date they start on.
+    days = []
+    for i, l in enumerate(layers):
+        date = cal.date(l["start_s"])
+        if not days or days[-1]["date"] != date:
+            days.append({"date": date, "layers": 0, "first": [l["floor"], l["layer"]], "printing_s": 0.0})
+        d = days[-1]
+        d["layers"] += 1
+        d["last"] = [l["floor"], l["layer"]]
+        d["printing_s"] += l["end_s"] - l["start_s"]
+        nxt = layers[i + 1] if i + 1 < len(layers) else None
+        d["stop"] = "finished" if nxt is None else "floor-top" if nxt["floor"] != l["floor"] else \
+            "planned-joint" if nxt["planned_joint"] else "continues"
+    if len(days) != len(doc["days"]):
+        problems.append("days: %d listed, the layers start on %d local days" % (len(doc["days"]), len(days)))
+    for want, got in zip(days, doc["days"]):
+        for key in ("date", "layers", "first", "last", "stop"):
+            if want[key] != got[key]:
+                problems.append("days %s: %s %r, recomputed %r" % (got["date"], key, got[key], want[key]))
+        if abs(want["printing_s"] - got["printing_s"]) > T_DOC:
+            problems.append("days %s: printing_s %.6f, its layers last %.6f s" % (
+                got["date"], got["printing_s"], want["printing_s"]))
+    stats["days"] = len(days)
 
 
 # ---------------------------------------------------------------- driver
@@ -1143,6 +1391,7 @@ def check(doc):
     guarded("interval", check_intervals, problems, doc, infos, problems, notes, stats)
     guarded("event", check_events, problems, doc, problems, stats)
     guarded("totals", check_totals, problems, doc, infos, problems)
+    guarded("site calendar", check_site, problems, doc, problems, stats)
     return problems, notes, stats
 
 
@@ -1159,7 +1408,10 @@ def summary(doc, stats):
                 len(infos), pieces, sum(i.waypoints for i in infos.values()),
                 sum(i.breakpoints for i in multi), len(multi), stats["layers"], stats["ends"],
                 stats["pairs"], "bounds" if doc["feasible"] else "minimum", len(doc["events"]),
-                stats["climbs"], stats["anchors"]))
+                stats["climbs"], stats["anchors"])) + (
+        "; site calendar (%s): %d working windows, %d days, %d planned joints, timestamps agree" % (
+            doc["inputs"]["site"]["time_zone"], stats.get("windows", 0), stats.get("days", 0),
+            stats.get("joints", 0)) if doc["inputs"].get("site") is not None else "")
 
 
 # ---------------------------------------------------------------- self-test
@@ -1448,7 +1700,43 @@ def corruptions(doc):
                 {"kind": "anchor-strength", "required_s": 1.0, "detail": "x"}))
         add("a pipe without its anchor", "no `anchor`")(
             lambda d: next(e for e in d["events"] if e["kind"] == "pipe").pop("anchor"))
+    site_corruptions(doc, add)
     return out
+
+
+def site_corruptions(doc, add):
+    """On a site calendar: a timestamp an hour off, the shifts starting an hour later, a
+    working day made a holiday, a planned joint unflagged or its treatment left out, a
+    climb moved to the night, a day miscounted."""
+    site = doc["inputs"].get("site")
+    if site is None:
+        return
+    layers, events = doc["layers"], doc["events"]
+    add("a layer's timestamp an hour off", "start_time")(
+        lambda d: d["layers"][1].update(start_time=d["layers"][2]["start_time"]))
+    add("shifts an hour later", "outside one working window")(
+        lambda d: d["inputs"]["site"]["working_hours"].update(
+            {k: [s.replace("07:00", "08:00") for s in v] for k, v in site["working_hours"].items()}))
+    last_day = doc["days"][-1]["date"]
+    add("a working day made a holiday", "outside one working window")(
+        lambda d: d["inputs"]["site"]["holidays"].append(last_day))
+    add("a day miscounted", "days")(lambda d: d["days"][0].update(layers=d["days"][0]["layers"] + 1))
+    joints = [i for i, l in enumerate(layers) if l["planned_joint"]]
+    if joints:
+        j = joints[0]
+        add("a planned joint unflagged", "not a planned joint")(
+            lambda d: d["layers"][j].update(planned_joint=False))
+        add("a planned joint's treatment left out", "no joint event")(
+            lambda d: d.update(events=[e for e in d["events"] if e["kind"] != "joint"]))
+    climbs = [i for i, e in enumerate(events) if e["kind"] == "climb"]
+    if climbs:
+        c = climbs[0]
+
+        @add("a climb in the night", "outside one working window")
+        def night(d):
+            e = d["events"][c]
+            e["start_s"] -= 3 * 3600.0
+            e["end_s"] -= 3 * 3600.0
 
 
 def self_test(text, doc):

@@ -91,9 +91,61 @@ RecordedMachine read_machine(const JsonAt& m) {
   return r;
 }
 
+std::shared_ptr<const SiteCalendar> read_site(const JsonAt& j) {
+  j.only_keys({"start", "start_local", "time_zone", "tzdb", "working_hours", "holidays", "printing",
+               "pipes"});
+  SiteProgramme p;
+  p.source = "the schedule's /inputs/site";
+  const auto start = parse_local_start(j.at("start_local").string(40));
+  if (!start) j.at("start_local").refuse("expected a local date and time as YYYY-MM-DD HH:MM[:SS]");
+  p.start_local_s = *start;
+  p.time_zone = j.at("time_zone").string(100);
+  const JsonAt week = j.at("working_hours");
+  week.only_keys({"mon", "tue", "wed", "thu", "fri", "sat", "sun"});
+  for (int d = 0; d < 7; ++d)
+    for (const auto& span : week.at(weekday_keys()[d]).elements(8)) {
+      const auto hours = parse_working_hours(span.string(20));
+      if (!hours) span.refuse("expected working hours as HH:MM-HH:MM");
+      if (!p.week[d].empty() && hours->from_min < p.week[d].back().to_min)
+        span.refuse("spans must follow each other without overlapping");
+      p.week[d].push_back(*hours);
+    }
+  for (const auto& h : j.at("holidays").elements(2000)) {
+    const auto day = parse_local_date(h.string(20));
+    if (!day) h.refuse("expected a date as YYYY-MM-DD");
+    if (!p.holidays.empty() && *day <= p.holidays.back()) h.refuse("holidays are listed in order");
+    p.holidays.push_back(*day);
+  }
+  const std::string printing = j.at("printing").string(20), pipes = j.at("pipes").string(20);
+  if (printing != "attended" && printing != "unattended")
+    j.at("printing").refuse("expected \"attended\" or \"unattended\"");
+  if (pipes != "crew" && pipes != "unattended")
+    j.at("pipes").refuse("expected \"crew\" or \"unattended\"");
+  p.printing_attended = printing == "attended";
+  p.pipes_need_crew = pipes == "crew";
+  std::shared_ptr<const SiteCalendar> calendar;
+  try {
+    calendar = std::make_shared<const SiteCalendar>(std::move(p));
+  } catch (const InputError&) {
+    j.at("time_zone").refuse("not a time zone of this system's tzdata");
+  }
+  if (calendar->timestamp(0.0) != j.at("start").string(40))
+    j.at("start").refuse("expected " + calendar->timestamp(0.0) + ", start_local in " +
+                         calendar->programme().time_zone + " (tzdata " + calendar->tzdb_version() +
+                         "; the schedule's was " + j.at("tzdb").string(40) + ")");
+  return calendar;
+}
+
 void read_material(const JsonAt& m, RecordedInputs& in) {
   m.only_keys({"name", "density_kg_m3", "min_layer_interval_s", "max_layer_interval_s",
-               "safety_factor", "strength_curve", "origin"});
+               "safety_factor", "strength_curve", "planned_joint", "origin"});
+  if (const auto joint = m.maybe("planned_joint")) {
+    joint->only_keys({"treatment_s", "min_age_s", "max_age_s"});
+    floors::PlannedJoint& pj = in.material.planned_joint;
+    pj.treatment_s = joint->at("treatment_s").number(kDuration_s, "s");
+    pj.min_age_s = joint->at("min_age_s").number(kDuration_s, "s");
+    pj.max_age_s = joint->at("max_age_s").number(kDuration_s, "s");
+  }
   floors::MaterialProfile& p = in.material;
   p.name = m.at("name").string(1000);
   p.density_kg_m3 = m.at("density_kg_m3").number(Range::above(0, 1e5), "kg/m3");
@@ -123,7 +175,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   in.ccbuild_version = root.at("ccbuild_version").string(100);
   const JsonAt i = root.at("inputs");
   i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
-               "files", "machine", "material", "provenance"});
+               "files", "machine", "material", "provenance", "site"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -179,6 +231,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   }
   in.machine = read_machine(i.at("machine"));
   read_material(i.at("material"), in);
+  if (const auto site = i.maybe("site")) in.calendar = read_site(*site);
   return in;
 }
 

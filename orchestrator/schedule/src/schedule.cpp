@@ -282,7 +282,9 @@ bool Scheduler::schedule_layer(int i) {
     const Planned* planned = nullptr;
     double start_s = 0.0, move_s = 0.0, wait_s = 0.0;
     std::vector<WaitReason> reasons;
-    bool purge = false;
+    bool purge = false, joint = false;
+    double block_s = 0.0;       ///< where the joint (or the purge, or the layer) starts
+    std::string calendar_fail;  ///< no working window holds it
     IntervalOffsets offsets;
     double local_max_s = -kInf;
     bool ok = false;
@@ -326,16 +328,81 @@ bool Scheduler::schedule_layer(int i) {
       strength.required_s = 0.0;
       if (strong_s > earliest_s + 1e-9) require(strong_s, WaitKind::kStrength, strength.detail);
     }
-    c.wait_s = start_s - earliest_s;
-    // The nozzle idles from the previous layer's end: past the limit it is purged.
-    if (!previous_key_.empty() && start_s - previous_end_s_ > machine_.nozzle_idle_limit_s + 1e-9) {
-      c.purge = true;
-      start_s += machine_.purge_s;
+    // The block that starts the layer: the planned joint's treatment (crew), the purge,
+    // the layer. Work that needs a crew waits for working hours; a layer pushed past
+    // off-shift hours with an interval over the maximum starts on a planned joint.
+    const double rules_s = start_s;
+    double block_s = start_s;
+    const floors::PlannedJoint& pj = material_.planned_joint;
+    bool moved = off_shift_since_below_;
+    WaitKind pushed_by = WaitKind::kOffShift;
+    for (int pass = 0; pass < 8; ++pass) {
+      c.purge =
+          !previous_key_.empty() && block_s + (c.joint ? pj.treatment_s : 0.0) - previous_end_s_ >
+                                        machine_.nozzle_idle_limit_s + 1e-9;
+      const double joint_s = c.joint ? pj.treatment_s : 0.0;
+      const double crew_s = printing_attended()
+                                ? joint_s + (c.purge ? machine_.purge_s : 0.0) + p.layer_time_s
+                                : joint_s;
+      if (calendar_ && crew_s > 0.0) {
+        const double fit_s = calendar_->fit_s(block_s, crew_s);
+        if (!std::isfinite(fit_s)) {
+          c.calendar_fail = printf_string(
+              "%s: %.2f h of work that needs a crew (%s) fits in no working window from %s (the "
+              "longest is %.2f h)",
+              where_text(slice.floor, slice.layer.index).c_str(), crew_s / 3600.0,
+              printing_attended() ? "attended printing, with its purge and joint"
+                                  : "the planned joint's treatment",
+              calendar_->local_text(block_s).c_str(), calendar_->longest_window_s() / 3600.0);
+          break;
+        }
+        if (fit_s > block_s + 1e-9) {
+          moved = true;
+          block_s = fit_s;
+          pushed_by = WaitKind::kOffShift;
+          continue;
+        }
+      }
+      const double layer_start_s = block_s + joint_s + (c.purge ? machine_.purge_s : 0.0);
+      const bool over_max = below && c.offsets.ends > 0 &&
+                            layer_start_s - below->start_s + c.offsets.max_offset_s >
+                                material_.max_layer_interval_s + 1e-9;
+      if (moved && over_max && !c.joint) {
+        c.joint = true;
+        if (below->end_s + pj.min_age_s > block_s + 1e-9) {
+          block_s = below->end_s + pj.min_age_s;
+          pushed_by = WaitKind::kJoint;
+        }
+        continue;
+      }
+      break;
     }
+    if (!c.calendar_fail.empty()) {
+      c.local_max_s = kInf;
+      refusals.push_back(c.calendar_fail);
+      if (!best) best = std::move(c);
+      return false;
+    }
+    if (block_s > rules_s + 1e-9)
+      c.reasons.push_back(
+          {pushed_by, block_s - earliest_s,
+           pushed_by == WaitKind::kJoint
+               ? printf_string("the planned joint on floor %d layer %d may be treated once it is "
+                               "%.1f h old",
+                               below->floor, below->layer, pj.min_age_s / 3600.0)
+               : printf_string(
+                     "%s needs a crew: %s is off-shift; the next working hours that "
+                     "hold it start %s",
+                     printing_attended() ? "printing (attended)" : "the joint's treatment",
+                     calendar_->local_text(rules_s).c_str(),
+                     calendar_->local_text(block_s).c_str())});
+    c.wait_s = block_s - earliest_s;
+    c.block_s = block_s;
+    start_s = block_s + (c.joint ? pj.treatment_s : 0.0) + (c.purge ? machine_.purge_s : 0.0);
     c.start_s = start_s;
     if (below && c.offsets.ends > 0) {
       c.local_max_s = start_s - below->start_s + c.offsets.max_offset_s;
-      c.ok = c.local_max_s <= material_.max_layer_interval_s + 1e-9;
+      c.ok = c.joint || c.local_max_s <= material_.max_layer_interval_s + 1e-9;
       if (!c.ok)
         refusals.push_back(printf_string(
             "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
@@ -392,6 +459,16 @@ bool Scheduler::schedule_layer(int i) {
     fail(inf);
     return false;
   }
+  if (!best->calendar_fail.empty()) {
+    Infeasibility inf;
+    inf.kind = InfeasibilityKind::kCalendar;
+    inf.floor = slice.floor;
+    inf.layer = slice.layer.index;
+    inf.message = best->calendar_fail;
+    inf.fix = "longer working hours, unattended printing, or more nozzles";
+    fail(inf);
+    return false;
+  }
   if (!best->ok) {
     Infeasibility inf;
     inf.kind = InfeasibilityKind::kMaxInterval;
@@ -427,6 +504,7 @@ bool Scheduler::schedule_layer(int i) {
   out.wait_before_s = best->wait_s;
   out.wait_reasons = best->reasons;
   out.purge_before = best->purge;
+  out.planned_joint = best->joint;
   if (below) {
     out.interval_s = out.start_s - below->start_s;
     if (best->offsets.ends > 0) {
@@ -435,6 +513,37 @@ bool Scheduler::schedule_layer(int i) {
       out.local_min_at = best->offsets.min_at;
       out.local_max_at = best->offsets.max_at;
       out.piece_ends_checked = best->offsets.ends;
+    }
+  }
+  if (best->joint) {
+    const floors::PlannedJoint& pj = material_.planned_joint;
+    const double age_s = best->block_s - below->end_s;
+    Event e;
+    e.kind = Event::Kind::kJoint;
+    e.start_s = best->block_s;
+    e.end_s = best->block_s + pj.treatment_s;
+    e.floor = below->floor;
+    e.layer = below->layer;
+    e.detail = printf_string(
+        "planned joint: the top of floor %d layer %d treated (%.1f h old) before floor %d layer %d",
+        below->floor, below->layer, age_s / 3600.0, out.floor, out.layer);
+    schedule_.events.push_back(e);
+    if (age_s > pj.max_age_s + 1e-9) {
+      Infeasibility inf;
+      inf.kind = InfeasibilityKind::kJoint;
+      inf.floor = slice.floor;
+      inf.layer = slice.layer.index;
+      inf.required_s = pj.max_age_s;
+      inf.achieved_s = age_s;
+      inf.message = printf_string(
+          "%s: the planned joint on floor %d layer %d is %.1f h old when treated, over the "
+          "material's %.1f h",
+          where_text(slice.floor, slice.layer.index).c_str(), below->floor, below->layer,
+          age_s / 3600.0, pj.max_age_s / 3600.0);
+      inf.fix =
+          "a joint treatment that allows older joints (planned_joint: max_age_h), fewer "
+          "holidays in a row, or a stop at a floor's top";
+      fail(inf);
     }
   }
   if (best->purge) {
@@ -455,6 +564,7 @@ bool Scheduler::schedule_layer(int i) {
   previous_key_ = out.plan;
   schedule_.layers.push_back(out);
   ready_extra_s_ = 0.0;
+  off_shift_since_below_ = false;
 
   return true;
 }
@@ -468,6 +578,11 @@ bool Scheduler::after_layer(int i) {
   pipes_before_s_ = 0.0;
   if (auto it = pipes_after_.find({out.floor, out.layer}); it != pipes_after_.end())
     for (const auto& a : it->second) {
+      if (calendar_ && calendar_->programme().pipes_need_crew) {
+        const double fit_s = calendar_->fit_s(t, project_.climber->pipe_embed_s);
+        off_shift_since_below_ = off_shift_since_below_ || fit_s > t + 1e-9;
+        t = fit_s;  // a pipe is far shorter than any window: finite
+      }
       Event e;
       e.kind = Event::Kind::kPipe;
       e.start_s = t;
@@ -531,6 +646,34 @@ bool Scheduler::after_layer(int i) {
       fail(inf);
       return false;
     }
+    if (calendar_) {
+      // A climb is supervised: it starts and ends in one working window.
+      const double fit_s = calendar_->fit_s(ready_s, ce.plan.duration_s);
+      if (!std::isfinite(fit_s)) {
+        Infeasibility inf;
+        inf.kind = InfeasibilityKind::kCalendar;
+        inf.floor = out.floor;
+        inf.layer = out.layer;
+        inf.message = printf_string(
+            "climb %d -> %d takes %.2f h, and no working window from %s holds it (the longest "
+            "is %.2f h)",
+            c, c + 1, ce.plan.duration_s / 3600.0, calendar_->local_text(ready_s).c_str(),
+            calendar_->longest_window_s() / 3600.0);
+        inf.fix = "longer working hours";
+        fail(inf);
+        return false;
+      }
+      if (fit_s > ready_s + 1e-9) {
+        ce.wait_reasons.push_back(
+            {WaitKind::kOffShift, fit_s - t,
+             printf_string("a climb is supervised: %s is off-shift; the next working hours "
+                           "that hold its %.1f min start %s",
+                           calendar_->local_text(ready_s).c_str(), ce.plan.duration_s / 60.0,
+                           calendar_->local_text(fit_s).c_str())});
+        ready_s = fit_s;
+        off_shift_since_below_ = true;
+      }
+    }
     ce.wait_before_s = ready_s - t;
     ce.start_s = ready_s;
     ce.end_s = ready_s + ce.plan.duration_s;
@@ -574,6 +717,7 @@ Schedule Scheduler::run() {
   std::stable_sort(schedule_.events.begin(), schedule_.events.end(),
                    [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
   schedule_.totals = totals_of(schedule_.layers, schedule_.events);
+  if (calendar_) schedule_.days = work_days(schedule_.layers, *calendar_);
   schedule_.bookkeeping_s =
       seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
   return std::move(schedule_);
@@ -591,13 +735,17 @@ std::string to_string(WaitKind kind) {
       return "anchor-strength";
     case WaitKind::kSlab:
       return "slab";
+    case WaitKind::kOffShift:
+      return "off-shift";
+    case WaitKind::kJoint:
+      return "joint";
   }
   return "?";
 }
 
 std::optional<WaitKind> wait_kind_named(const std::string& name) {
-  for (WaitKind k :
-       {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab})
+  for (WaitKind k : {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength,
+                     WaitKind::kSlab, WaitKind::kOffShift, WaitKind::kJoint})
     if (to_string(k) == name) return k;
   return std::nullopt;
 }
@@ -612,13 +760,18 @@ std::string to_string(InfeasibilityKind kind) {
       return "strength";
     case InfeasibilityKind::kClimb:
       return "climb";
+    case InfeasibilityKind::kCalendar:
+      return "calendar";
+    case InfeasibilityKind::kJoint:
+      return "joint";
   }
   return "?";
 }
 
 std::optional<InfeasibilityKind> infeasibility_kind_named(const std::string& name) {
-  for (InfeasibilityKind k : {InfeasibilityKind::kMaxInterval, InfeasibilityKind::kNoPlan,
-                              InfeasibilityKind::kStrength, InfeasibilityKind::kClimb})
+  for (InfeasibilityKind k :
+       {InfeasibilityKind::kMaxInterval, InfeasibilityKind::kNoPlan, InfeasibilityKind::kStrength,
+        InfeasibilityKind::kClimb, InfeasibilityKind::kCalendar, InfeasibilityKind::kJoint})
     if (to_string(k) == name) return k;
   return std::nullopt;
 }
@@ -640,6 +793,8 @@ std::string to_string(Event::Kind kind) {
       return "slab";
     case Event::Kind::kPurge:
       return "purge";
+    case Event::Kind::kJoint:
+      return "joint";
   }
   return "?";
 }
@@ -670,6 +825,9 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
         tot.purges_s += d;
         tot.machine_s += d;
         break;
+      case Event::Kind::kJoint:
+        tot.joints_s += d;
+        break;
       case Event::Kind::kClimb:
         tot.climbs_s += d;
         tot.machine_s += d;
@@ -678,6 +836,48 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
     }
   }
   return tot;
+}
+
+std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const SiteCalendar& calendar) {
+  std::vector<WorkDay> days;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const ScheduledLayer& l = layers[i];
+    const std::string date = calendar.local_date(l.start_s);
+    if (days.empty() || days.back().date != date) {
+      WorkDay d;
+      d.date = date;
+      d.first_floor = l.floor;
+      d.first_layer = l.layer;
+      days.push_back(d);
+    }
+    WorkDay& d = days.back();
+    ++d.layers;
+    d.last_floor = l.floor;
+    d.last_layer = l.layer;
+    d.printing_s += l.end_s - l.start_s;
+    const ScheduledLayer* next = i + 1 < layers.size() ? &layers[i + 1] : nullptr;
+    if (next && calendar.local_date(next->start_s) == date) continue;
+    const std::string at = printf_string("floor %d layer %d", l.floor, l.layer);
+    if (!next) {
+      d.stop = "finished";
+      d.detail = "the building's walls are finished with " + at;
+    } else if (next->floor != l.floor) {
+      d.stop = "floor-top";
+      d.detail = printf_string("stopped at the top of floor %d (%s); floor %d starts on its slab",
+                               l.floor, at.c_str(), next->floor);
+    } else if (next->planned_joint) {
+      d.stop = "planned-joint";
+      d.detail =
+          printf_string("stopped at the end of %s; floor %d layer %d starts on a planned joint",
+                        at.c_str(), next->floor, next->layer);
+    } else {
+      d.stop = "continues";
+      d.detail = printf_string("%s ends the day; floor %d layer %d follows within its interval",
+                               at.c_str(), next->floor, next->layer);
+    }
+  }
+  return days;
 }
 
 Schedule build_schedule(const Setup& project, const ScheduleOptions& options) {

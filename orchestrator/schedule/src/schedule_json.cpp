@@ -41,6 +41,26 @@ json recorded_machine_json(const RecordedMachine& m) {
   return out;
 }
 
+json site_json(const SiteCalendar& calendar) {
+  const SiteProgramme& p = calendar.programme();
+  json week = json::object();
+  for (int d = 0; d < 7; ++d) {
+    json spans = json::array();
+    for (const auto& h : p.week[d]) spans.push_back(to_string(h));
+    week[weekday_keys()[d]] = spans;
+  }
+  json holidays = json::array();
+  for (const auto day : p.holidays) holidays.push_back(local_date_text(day));
+  return {{"start", calendar.timestamp(0.0)},
+          {"start_local", local_start_text(p.start_local_s)},
+          {"time_zone", p.time_zone},
+          {"tzdb", calendar.tzdb_version()},
+          {"working_hours", week},
+          {"holidays", holidays},
+          {"printing", p.printing_attended ? "attended" : "unattended"},
+          {"pipes", p.pipes_need_crew ? "crew" : "unattended"}};
+}
+
 json material_json(const floors::MaterialProfile& m) {
   json curve = json::array();
   for (const auto& p : m.strength_curve)
@@ -82,6 +102,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   }
   in.material = project.material;
   in.material_origin = project.material_origin;
+  in.calendar = project.calendar;
   in.unit_names = project.unit_names();
   for (const auto& floor : b.floors) {
     FloorProvenance p;
@@ -110,7 +131,18 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   json files = json::array();
   for (const auto& f : in.files) files.push_back({{"path", f.path}, {"sha256", f.sha256}});
   json material = material_json(in.material);
+  if (in.calendar) {
+    const floors::PlannedJoint& j = in.material.planned_joint;
+    material["planned_joint"] = {{"treatment_s", rounded(j.treatment_s)},
+                                 {"min_age_s", rounded(j.min_age_s)},
+                                 {"max_age_s", rounded(j.max_age_s)}};
+  }
   material["origin"] = in.material_origin;
+  const SiteCalendar* calendar = in.calendar.get();
+  // Seconds, with their local timestamp beside them when there is a calendar.
+  const auto times = [calendar](json& j, const char* key, double t_s) {
+    j[key] = calendar->timestamp(t_s);
+  };
   out["inputs"] = {
       {"building", in.building},
       {"name", in.name},
@@ -137,6 +169,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     }
     out["inputs"]["provenance"] = floors_json;
   }
+  if (calendar) out["inputs"]["site"] = site_json(*calendar);
 
   out["feasible"] = schedule.feasible;
   if (schedule.infeasibility) {
@@ -164,6 +197,21 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
                    {"pipes_s", rounded(t.pipes_s)},           {"purges_s", rounded(t.purges_s)},
                    {"climbs_s", rounded(t.climbs_s)},         {"slabs_s", rounded(t.slabs_s)},
                    {"machine_s", rounded(t.machine_s)}};
+  if (calendar) {
+    out["totals"]["joints_s"] = rounded(t.joints_s);
+    times(out["totals"], "start_time", 0.0);
+    times(out["totals"], "finish_time", t.makespan_s);
+    json days = json::array();
+    for (const auto& d : schedule.days)
+      days.push_back({{"date", d.date},
+                      {"layers", d.layers},
+                      {"first", {d.first_floor, d.first_layer}},
+                      {"last", {d.last_floor, d.last_layer}},
+                      {"printing_s", rounded(d.printing_s)},
+                      {"stop", d.stop},
+                      {"detail", d.detail}});
+    out["days"] = days;
+  }
 
   json layers = json::array();
   for (const auto& l : schedule.layers) {
@@ -178,6 +226,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     j["method"] = l.method;
     j["start_s"] = rounded(l.start_s);
     j["end_s"] = rounded(l.end_s);
+    if (calendar) times(j, "start_time", l.start_s), times(j, "end_time", l.end_s);
     j["deposition_s"] = rounded(l.deposition_s);
     j["airtime_s"] = rounded(l.airtime_s);
     j["max_idle_s"] = rounded(l.max_idle_s);
@@ -186,6 +235,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     j["wait_before_s"] = rounded(l.wait_before_s);
     j["wait_reasons"] = reasons_json(l.wait_reasons);
     j["purge_before"] = l.purge_before;
+    if (calendar) j["planned_joint"] = l.planned_joint;
     j["interval_s"] = optional_number(l.interval_s);
     j["local_interval_min_s"] = optional_number(l.local_interval_min_s);
     j["local_interval_max_s"] = optional_number(l.local_interval_max_s);
@@ -234,6 +284,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     json j = {{"kind", to_string(e.kind)}, {"start_s", rounded(e.start_s)},
               {"end_s", rounded(e.end_s)}, {"floor", e.floor},
               {"after_layer", e.layer},    {"detail", e.detail}};
+    if (calendar) times(j, "start_time", e.start_s), times(j, "end_time", e.end_s);
     if (e.anchor) j["anchor"] = anchor_json(in.unit_names, *e.anchor);
     if (e.climb) {
       const ClimbEvent& c = *e.climb;

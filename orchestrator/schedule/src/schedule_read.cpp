@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <tuple>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -34,6 +35,26 @@ int unit_index(RecordedInputs& in, const JsonAt& at) {
   return static_cast<int>(in.unit_names.size()) - 1;
 }
 
+/// With a calendar: the timestamps beside `start_s` and `end_s` must be theirs.
+void check_times(const JsonAt& j, const SiteCalendar* calendar, double start_s, double end_s,
+                 const char* start_key = "start_time", const char* end_key = "end_time") {
+  if (!calendar) return;
+  for (const auto& [key, t_s] :
+       {std::pair<const char*, double>{start_key, start_s}, {end_key, end_s}}) {
+    const std::string want = calendar->timestamp(t_s);
+    if (j.at(key).string(40) != want)
+      j.at(key).refuse("expected " + want + ", the local time of " + printf_string("%.6f s", t_s) +
+                       " on the site's calendar");
+  }
+}
+
+/// The keys of an object, with the calendar's where there is one.
+std::vector<std::string> keys_with(std::vector<std::string> keys, const SiteCalendar* calendar,
+                                   const std::vector<std::string>& calendar_keys) {
+  if (calendar) keys.insert(keys.end(), calendar_keys.begin(), calendar_keys.end());
+  return keys;
+}
+
 std::vector<WaitReason> read_reasons(const JsonAt& list) {
   std::vector<WaitReason> out;
   for (const auto& r : list.elements(kMaxSmall)) {
@@ -42,8 +63,9 @@ std::vector<WaitReason> read_reasons(const JsonAt& list) {
     const std::string kind = r.at("kind").string(100);
     const auto named = wait_kind_named(kind);
     if (!named)
-      r.at("kind").refuse("expected min-interval, strength, anchor-strength or slab, got \"" +
-                          kind + "\"");
+      r.at("kind").refuse(
+          "expected min-interval, strength, anchor-strength, slab, off-shift or joint, got \"" +
+          kind + "\"");
     w.kind = *named;
     w.required_s = r.at("required_s").number(kDuration_s, "s");
     w.detail = r.at("detail").string(kMaxText);
@@ -62,31 +84,32 @@ PieceEnd read_piece_end(const JsonAt& e) {
   return p;
 }
 
-ScheduledLayer read_layer(const JsonAt& j) {
-  j.only_keys({"floor",
-               "layer",
-               "z_m",
-               "z_bottom_m",
-               "geometry",
-               "plan",
-               "nozzles",
-               "method",
-               "start_s",
-               "end_s",
-               "deposition_s",
-               "airtime_s",
-               "max_idle_s",
-               "move_before_s",
-               "pipes_before_s",
-               "wait_before_s",
-               "wait_reasons",
-               "purge_before",
-               "interval_s",
-               "local_interval_min_s",
-               "local_interval_max_s",
-               "local_interval_min_at",
-               "local_interval_max_at",
-               "piece_ends_checked"});
+ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar) {
+  j.only_keys(keys_with({"floor",
+                         "layer",
+                         "z_m",
+                         "z_bottom_m",
+                         "geometry",
+                         "plan",
+                         "nozzles",
+                         "method",
+                         "start_s",
+                         "end_s",
+                         "deposition_s",
+                         "airtime_s",
+                         "max_idle_s",
+                         "move_before_s",
+                         "pipes_before_s",
+                         "wait_before_s",
+                         "wait_reasons",
+                         "purge_before",
+                         "interval_s",
+                         "local_interval_min_s",
+                         "local_interval_max_s",
+                         "local_interval_min_at",
+                         "local_interval_max_at",
+                         "piece_ends_checked"},
+                        calendar, {"start_time", "end_time", "planned_joint"}));
   ScheduledLayer l;
   l.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   l.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
@@ -108,6 +131,8 @@ ScheduledLayer read_layer(const JsonAt& j) {
   l.wait_before_s = j.at("wait_before_s").number(kDuration_s, "s");
   l.wait_reasons = read_reasons(j.at("wait_reasons"));
   l.purge_before = j.at("purge_before").boolean();
+  check_times(j, calendar, l.start_s, l.end_s);
+  if (calendar) l.planned_joint = j.at("planned_joint").boolean();
   l.interval_s = j.at("interval_s").number_or_null(kDuration_s, "s");
   l.local_interval_min_s =
       j.at("local_interval_min_s").number_or_null(Range::closed(-1e10, 1e10), "s");
@@ -351,18 +376,24 @@ climb::ClimbPlan read_climb_plan(const JsonAt& c, RecordedInputs& in) {
 
 Event read_event(const JsonAt& j, RecordedInputs& in) {
   Event e;
+  const SiteCalendar* calendar = in.calendar.get();
+  const auto only = [&](std::vector<std::string> keys) {
+    j.only_keys(keys_with(std::move(keys), calendar, {"start_time", "end_time"}));
+  };
   const std::string kind = j.at("kind").string(20);
   if (kind == "pipe") {
     e.kind = Event::Kind::kPipe;
-    j.only_keys({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "anchor"});
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "anchor"});
     e.anchor = read_anchor(j.at("anchor"), in);
-  } else if (kind == "slab" || kind == "purge") {
-    e.kind = kind == "slab" ? Event::Kind::kSlab : Event::Kind::kPurge;
-    j.only_keys({"kind", "start_s", "end_s", "floor", "after_layer", "detail"});
+  } else if (kind == "slab" || kind == "purge" || (kind == "joint" && calendar)) {
+    e.kind = kind == "slab"    ? Event::Kind::kSlab
+             : kind == "purge" ? Event::Kind::kPurge
+                               : Event::Kind::kJoint;
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "detail"});
   } else if (kind == "climb") {
     e.kind = Event::Kind::kClimb;
-    j.only_keys({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "from_stage",
-                 "to_stage", "wait_before_s", "wait_reasons", "anchors", "climb"});
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "from_stage", "to_stage",
+          "wait_before_s", "wait_reasons", "anchors", "climb"});
     ClimbEvent c;
     c.from_stage = static_cast<int>(j.at("from_stage").integer(0, kMaxLayer));
     c.to_stage = static_cast<int>(j.at("to_stage").integer(0, kMaxLayer));
@@ -381,11 +412,14 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     c.plan = read_climb_plan(j.at("climb"), in);
     e.climb = std::move(c);
   } else {
-    j.at("kind").refuse("expected pipe, climb, slab or purge, got \"" + kind + "\"");
+    j.at("kind").refuse(std::string("expected pipe, climb, slab, purge") +
+                        (calendar ? " or joint" : " (or joint, on a site calendar)") + ", got \"" +
+                        kind + "\"");
   }
   e.start_s = j.at("start_s").number(kTime_s, "s");
   e.end_s = j.at("end_s").number(kTime_s, "s");
   if (e.end_s < e.start_s) j.at("end_s").refuse("must not be before start_s");
+  check_times(j, calendar, e.start_s, e.end_s);
   e.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   e.layer = static_cast<int>(j.at("after_layer").integer(0, kMaxLayer));
   e.detail = j.at("detail").string(kMaxText);
@@ -402,7 +436,8 @@ Infeasibility read_infeasibility(const JsonAt& j) {
   const std::string kind = j.at("kind").string(100);
   const auto named = infeasibility_kind_named(kind);
   if (!named)
-    j.at("kind").refuse("expected max-interval, no-plan, strength or climb, got \"" + kind + "\"");
+    j.at("kind").refuse(
+        "expected max-interval, no-plan, strength, climb, calendar or joint, got \"" + kind + "\"");
   inf.kind = *named;
   inf.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   inf.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
@@ -420,9 +455,10 @@ Infeasibility read_infeasibility(const JsonAt& j) {
   return inf;
 }
 
-ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers) {
-  t.only_keys({"makespan_s", "layers", "deposition_s", "airtime_s", "moves_s", "waits_s", "pipes_s",
-               "purges_s", "climbs_s", "slabs_s", "machine_s"});
+ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers, const SiteCalendar* calendar) {
+  t.only_keys(keys_with({"makespan_s", "layers", "deposition_s", "airtime_s", "moves_s", "waits_s",
+                         "pipes_s", "purges_s", "climbs_s", "slabs_s", "machine_s"},
+                        calendar, {"joints_s", "start_time", "finish_time"}));
   ScheduleTotals out;
   out.makespan_s = t.at("makespan_s").number(kTime_s, "s");
   layers = static_cast<std::size_t>(t.at("layers").integer(0, kMaxLayers));
@@ -435,7 +471,31 @@ ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers) {
   out.climbs_s = t.at("climbs_s").number(kDuration_s, "s");
   out.slabs_s = t.at("slabs_s").number(kDuration_s, "s");
   out.machine_s = t.at("machine_s").number(kDuration_s, "s");
+  if (calendar) {
+    out.joints_s = t.at("joints_s").number(kDuration_s, "s");
+    check_times(t, calendar, 0.0, out.makespan_s, "start_time", "finish_time");
+  }
   return out;
+}
+
+WorkDay read_day(const JsonAt& j) {
+  j.only_keys({"date", "layers", "first", "last", "printing_s", "stop", "detail"});
+  WorkDay d;
+  d.date = j.at("date").string(20);
+  if (!parse_local_date(d.date)) j.at("date").refuse("expected a date as YYYY-MM-DD");
+  d.layers = static_cast<int>(j.at("layers").integer(1, kMaxLayers));
+  for (const auto& [key, floor, layer] :
+       {std::tuple<const char*, int*, int*>{"first", &d.first_floor, &d.first_layer},
+        {"last", &d.last_floor, &d.last_layer}}) {
+    const auto pair = j.at(key).elements(2);
+    if (pair.size() != 2) j.at(key).refuse("expected [floor, layer]");
+    *floor = static_cast<int>(pair[0].integer(0, kMaxFloor));
+    *layer = static_cast<int>(pair[1].integer(0, kMaxLayer));
+  }
+  d.printing_s = j.at("printing_s").number(kDuration_s, "s");
+  d.stop = j.at("stop").string(20);
+  d.detail = j.at("detail").string(kMaxText);
+  return d;
 }
 
 }  // namespace
@@ -458,17 +518,23 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
       root.at("schema_version")
           .refuse("expected schema_version " + std::to_string(kScheduleSchemaVersion) + ", got " +
                   version.dump());
-    root.only_keys({"format", "schema_version", "ccbuild_version", "inputs", "feasible",
-                    "infeasibility", "totals", "layers", "plans", "stages", "events", "warnings"});
     RecordedInputs& in = doc.inputs;
     in = detail::read_inputs(root);
+    const SiteCalendar* calendar = in.calendar.get();
+    root.only_keys(
+        keys_with({"format", "schema_version", "ccbuild_version", "inputs", "feasible",
+                   "infeasibility", "totals", "layers", "plans", "stages", "events", "warnings"},
+                  calendar, {"days"}));
     Schedule& s = doc.schedule;
     s.feasible = root.at("feasible").boolean();
     if (!root.at("infeasibility").is_null())
       s.infeasibility = read_infeasibility(root.at("infeasibility"));
     std::size_t layer_count = 0;
-    s.totals = read_totals(root.at("totals"), layer_count);
-    for (const auto& l : root.at("layers").elements(kMaxLayers)) s.layers.push_back(read_layer(l));
+    s.totals = read_totals(root.at("totals"), layer_count, calendar);
+    for (const auto& l : root.at("layers").elements(kMaxLayers))
+      s.layers.push_back(read_layer(l, calendar));
+    if (calendar)
+      for (const auto& d : root.at("days").elements(kMaxLayers)) s.days.push_back(read_day(d));
     if (layer_count != s.layers.size())
       root.at("totals").at("layers").refuse(
           printf_string("says %zu layers; the schedule has %zu", layer_count, s.layers.size()));

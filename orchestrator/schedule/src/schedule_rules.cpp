@@ -36,6 +36,7 @@ class Rules {
     check_events();
     check_stages();
     check_totals();
+    check_days();
     if (found_.empty()) return;
     if (count_ > found_.size())
       found_.push_back({text_.file(), 0, "", printf_string("... %zu broken rules in all", count_)});
@@ -363,17 +364,21 @@ class Rules {
                    std::lower_bound(s.events.begin(), s.events.end(), previous->end_s - kStated_s,
                                     [](const Event&x, double t) { return x.start_s < t; });
                e != s.events.end() && e->start_s <= l.start_s + kStated_s; ++e)
-            if (e->kind != Event::Kind::kPurge && e->end_s <= l.start_s + kStated_s)
+            if (e->kind != Event::Kind::kPurge && e->kind != Event::Kind::kJoint &&
+                e->end_s <= l.start_s + kStated_s)
               ready_s = std::max(ready_s, e->end_s);
         const double expected_s = ready_s + l.move_before_s + l.wait_before_s +
+                                  (l.planned_joint ? material.planned_joint.treatment_s : 0.0) +
                                   (l.purge_before ? doc_.inputs.machine.purge_s : 0.0);
         if (std::abs(l.start_s - expected_s) > kStated_s)
           broken(at + "/start_s", "one layer at a time",
                  printf_string("%.6f s; after the layer below (and the events between) at "
-                               "%.6f s, the move %.6f s, the wait %.6f s%s it starts at %.6f s",
+                               "%.6f s, the move %.6f s, the wait %.6f s%s%s it starts at %.6f s",
                                l.start_s, ready_s, l.move_before_s, l.wait_before_s,
+                               l.planned_joint ? ", the joint's treatment" : "",
                                l.purge_before ? " and the purge" : "", expected_s));
       }
+      check_calendar(at, l, first_of_floor ? nullptr : previous);
       // The interval and the local intervals, recomputed from the paths.
       if (first_of_floor) {
         if (l.interval_s || l.local_interval_min_s || l.piece_ends_checked != 0)
@@ -436,11 +441,92 @@ class Rules {
                printf_string("a piece is covered %.6f s after it was deposited, under the "
                              "material's minimum %.6f s",
                              min_s, material.min_layer_interval_s));
-      if (s.feasible && max_s > material.max_layer_interval_s + kStated_s)
+      if (s.feasible && !l.planned_joint && max_s > material.max_layer_interval_s + kStated_s)
         broken(at + "/local_interval_max_s", "interval window",
                printf_string("a piece is covered %.6f s after it was deposited, over the "
                              "material's maximum %.6f s, in a schedule marked feasible",
                              max_s, material.max_layer_interval_s));
+    }
+  }
+
+  // ---------------------------------------------------------------- the site's calendar
+  /// When the layer's block (the joint's treatment, the purge, the layer) starts.
+  double block_start_s(const ScheduledLayer& l) const {
+    return l.start_s - (l.purge_before ? doc_.inputs.machine.purge_s : 0.0) -
+           (l.planned_joint ? doc_.inputs.material.planned_joint.treatment_s : 0.0);
+  }
+
+  /// Attended printing within working hours; a planned joint only after off-shift hours,
+  /// on a floor's layer above another, treated within its ages.
+  void check_calendar(const std::string& at, const ScheduledLayer& l, const ScheduledLayer* below) {
+    const SiteCalendar* calendar = doc_.inputs.calendar.get();
+    if (!calendar) return;
+    const double block_s = block_start_s(l);
+    if (calendar->programme().printing_attended &&
+        !calendar->within_one_window(block_s, l.end_s - kStated_s))
+      broken(at + "/start_time", "working hours",
+             printf_string("printing is attended, but floor %d layer %d (with its purge and "
+                           "joint) runs from %s to %s, outside one working window",
+                           l.floor, l.layer, calendar->local_text(block_s).c_str(),
+                           calendar->local_text(l.end_s).c_str()));
+    if (!l.planned_joint) return;
+    if (!below) {
+      broken(at + "/planned_joint", "planned joints",
+             "the first layer of a floor stands on its slab, not on a joint");
+      return;
+    }
+    if (calendar->within_one_window(below->end_s, block_s))
+      broken(at + "/planned_joint", "planned joints",
+             printf_string("no off-shift hours lie between floor %d layer %d's end (%s) and this "
+                           "joint (%s): a joint is planned only where work stops for them",
+                           below->floor, below->layer, calendar->local_text(below->end_s).c_str(),
+                           calendar->local_text(block_s).c_str()));
+    const floors::PlannedJoint& pj = doc_.inputs.material.planned_joint;
+    const double age_s = block_s - below->end_s;
+    if (age_s < pj.min_age_s - kStated_s)
+      broken(at + "/planned_joint", "planned joints",
+             printf_string("treated when the layer below is %.6f s old, under the material's "
+                           "%.6f s",
+                           age_s, pj.min_age_s));
+    if (doc_.schedule.feasible && age_s > pj.max_age_s + kStated_s)
+      broken(at + "/planned_joint", "planned joints",
+             printf_string("treated when the layer below is %.6f s old, over the material's "
+                           "%.6f s, in a schedule marked feasible",
+                           age_s, pj.max_age_s));
+    const bool treated =
+        std::any_of(doc_.schedule.events.begin(), doc_.schedule.events.end(), [&](const Event& e) {
+          return e.kind == Event::Kind::kJoint && e.floor == below->floor &&
+                 e.layer == below->layer && std::abs(e.start_s - block_s) <= kStated_s &&
+                 std::abs(e.end_s - e.start_s - pj.treatment_s) <= kStated_s;
+        });
+    if (!treated)
+      broken(at + "/planned_joint", "planned joints",
+             printf_string("no joint event of %.6f s after floor %d layer %d starts at %.6f s",
+                           pj.treatment_s, below->floor, below->layer, block_s));
+  }
+
+  void check_days() {
+    const SiteCalendar* calendar = doc_.inputs.calendar.get();
+    if (!calendar) return;
+    const auto want = work_days(doc_.schedule.layers, *calendar);
+    const auto& got = doc_.schedule.days;
+    if (want.size() != got.size()) {
+      broken("/days", "days",
+             printf_string("%zu days, but the layers start on %zu local days", got.size(),
+                           want.size()));
+      return;
+    }
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      const WorkDay &a = got[k], &b = want[k];
+      if (a.date != b.date || a.layers != b.layers || a.first_floor != b.first_floor ||
+          a.first_layer != b.first_layer || a.last_floor != b.last_floor ||
+          a.last_layer != b.last_layer || a.stop != b.stop || a.detail != b.detail ||
+          std::abs(a.printing_s - b.printing_s) > kStated_s * (b.layers + 1))
+        broken(pointer_to("/days", k), "days",
+               printf_string("%s: expected %d layers, floor %d layer %d to floor %d layer %d, "
+                             "%.6f s printing, stop \"%s\"",
+                             b.date.c_str(), b.layers, b.first_floor, b.first_layer, b.last_floor,
+                             b.last_layer, b.printing_s, b.stop.c_str()));
     }
   }
 
@@ -481,6 +567,16 @@ class Rules {
       }
       if (e.kind == Event::Kind::kPipe && !e.anchor)
         broken(at, "events", "a pipe names its anchor");
+      if (const SiteCalendar* calendar = doc_.inputs.calendar.get()) {
+        const bool crew = e.kind == Event::Kind::kClimb || e.kind == Event::Kind::kJoint ||
+                          (e.kind == Event::Kind::kPipe && calendar->programme().pipes_need_crew);
+        if (crew && !calendar->within_one_window(e.start_s, e.end_s - kStated_s))
+          broken(at + "/start_time", "working hours",
+                 printf_string("the %s needs a crew, but runs from %s to %s, outside one working "
+                               "window",
+                               to_string(e.kind).c_str(), calendar->local_text(e.start_s).c_str(),
+                               calendar->local_text(e.end_s).c_str()));
+      }
       if (e.kind == Event::Kind::kClimb && e.climb) {
         const ClimbEvent& c = *e.climb;
         double phases_s = 0.0;
@@ -550,6 +646,7 @@ class Rules {
         {"purges_s", {got.purges_s, want.purges_s}},
         {"climbs_s", {got.climbs_s, want.climbs_s}},
         {"slabs_s", {got.slabs_s, want.slabs_s}},
+        {"joints_s", {got.joints_s, want.joints_s}},
         {"machine_s", {got.machine_s, want.machine_s}}};
     for (const auto& [key, values] : totals)
       if (std::abs(values.first - values.second) > slack_s + 1e-9 * std::abs(values.second))

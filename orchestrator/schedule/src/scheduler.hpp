@@ -63,6 +63,7 @@ class Scheduler {
         options_(options),
         machine_(*project.machine),
         material_(project.material),
+        calendar_(project.calendar.get()),
         stress_per_m_mpa_(project.material.density_kg_m3 * kGravity_m_s2 * 1e-6),
         jobs_(options.jobs > 0
                   ? options.jobs
@@ -133,6 +134,9 @@ class Scheduler {
   const ScheduleOptions& options_;
   const machine::MachineModel& machine_;
   const floors::MaterialProfile& material_;
+  /// The site's calendar; null: around the clock.
+  const SiteCalendar* calendar_;
+  bool printing_attended() const { return calendar_ && calendar_->programme().printing_attended; }
   /// The stress of a metre of wall on what carries it, MPa.
   const double stress_per_m_mpa_;
   /// The strength a layer needs to carry `height_m` of wall above its bottom, with the
@@ -171,6 +175,9 @@ class Scheduler {
   double previous_end_s_ = 0.0;                ///< the machine is free from here
   double ready_extra_s_ = 0.0;                 ///< pipes, slab and climb after the previous layer
   double pipes_before_s_ = 0.0;                ///< cast after the previous layer
+  /// Work after the previous layer (pipes, a climb) waited for working hours: the next
+  /// layer may start on a planned joint.
+  bool off_shift_since_below_ = false;
   std::string previous_key_;
 };
 

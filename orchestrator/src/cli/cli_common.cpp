@@ -108,6 +108,11 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                   "middle of the x and y travel (default: the building's `site:`, else its plan "
                   "coordinates are the machine's)")
       ->check(CLI::IsMember({"centre", "center"}));
+  command.add_option("--site", options.site,
+                     "The site's programme (YAML): `start` (local date and time), `time_zone`, "
+                     "`working_hours`, `holidays`, `printing: attended|unattended`, `pipes` "
+                     "(default: the building's `site:`, else around the clock from day 1 00:00; "
+                     "docs/formats.md, Site programme)");
 }
 
 orchestrator::Project open_input(const std::string& file, const InputOptions& options) {
@@ -125,6 +130,7 @@ orchestrator::ProjectOptions project_options(const InputOptions& options) {
   project.machine_profile = options.machine;
   project.material_profile = options.material;
   project.place_centre = !options.place.empty();
+  project.site_file = options.site;
   return project;
 }
 

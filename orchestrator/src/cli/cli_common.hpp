@@ -41,6 +41,7 @@ struct InputOptions {
   std::string machine;                 ///< --machine: overrides the building's
   std::string material;                ///< --material: overrides the building's
   std::string place;                   ///< --place: "centre", or empty (the site's)
+  std::string site;                    ///< --site: the site's programme file
 };
 
 /// Adds --units, --floor-height, --layer-height (for plan files) and --machine,

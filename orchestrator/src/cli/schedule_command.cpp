@@ -31,6 +31,9 @@ struct ScheduleCommandOptions {
   std::string what_if;  ///< "anchors" or empty
 };
 
+// 1970-01-01, day 0, was a Thursday.
+constexpr const char* kWeekdays[7] = {"Mon", "Tue", "Wed", "Thu", "Fri", "Sat", "Sun"};
+
 std::string duration(double s) {
   if (s >= 2 * 86400.0) return printf_string("%.2f d", s / 86400.0);
   if (s >= 2 * 3600.0) return printf_string("%.2f h", s / 3600.0);
@@ -80,6 +83,21 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
                              project.machine_origin.c_str(), s.layers.size(), s.plans.size(),
                              s.feasible ? "feasible" : "NOT feasible");
   if (!s.feasible) std::cout << "not feasible: " << s.infeasibility->message << "\n";
+  // Times of day on a site calendar, else time from the start.
+  const schedule::SiteCalendar* calendar = project.calendar.get();
+  const auto when = [calendar](double t_s) {
+    return calendar ? calendar->local_text(t_s) : duration(t_s);
+  };
+  if (calendar) {
+    const schedule::SiteProgramme& p = calendar->programme();
+    std::cout << printf_string(
+        "site: from %s (%s, %s); working hours %s; %zu holiday%s; printing %s, pipes %s\n",
+        calendar->local_text(0.0).c_str(), p.time_zone.c_str(),
+        calendar->timestamp(0.0).substr(19).c_str(), calendar->week_text().c_str(),
+        p.holidays.size(), p.holidays.size() == 1 ? "" : "s",
+        p.printing_attended ? "attended" : "unattended",
+        p.pipes_need_crew ? "by the crew" : "unattended");
+  }
   struct FloorLine {
     int layers = 0, max_nozzles = 0, waits = 0;
     double start_s = 1e300, end_s = 0, wait_s = 0;
@@ -98,25 +116,40 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       for (const auto& r : l.wait_reasons) f.reasons[schedule::to_string(r.kind)] += 1;
     }
   }
-  std::cout << "floor  layers  nozzles  start       end         waits\n";
+  const int width = calendar ? 20 : 10;
+  std::cout << printf_string("floor  layers  nozzles  %-*s  %-*s  waits\n", width, "start", width,
+                             "end");
   for (const auto& [floor, f] : floors) {
     std::string why;
     for (const auto& [kind, n] : f.reasons)
       why += (why.empty() ? " (" : ", ") + printf_string("%s x%.0f", kind.c_str(), n);
     if (!why.empty()) why += ")";
-    std::cout << printf_string("%5d  %6d  %7d  %-10s  %-10s  %d, %s%s\n", floor, f.layers,
-                               f.max_nozzles, duration(f.start_s).c_str(),
-                               duration(f.end_s).c_str(), f.waits, duration(f.wait_s).c_str(),
+    std::cout << printf_string("%5d  %6d  %7d  %-*s  %-*s  %d, %s%s\n", floor, f.layers,
+                               f.max_nozzles, width, when(f.start_s).c_str(), width,
+                               when(f.end_s).c_str(), f.waits, duration(f.wait_s).c_str(),
                                why.c_str());
+  }
+  if (!s.days.empty()) {
+    std::cout << printf_string("%zu working days with printing:\n", s.days.size());
+    for (const auto& d : s.days)
+      std::cout << printf_string("  %s %s  %3d layer%s, %s printing: %s\n",
+                                 kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7],
+                                 d.date.c_str(), d.layers, d.layers == 1 ? " " : "s",
+                                 duration(d.printing_s).c_str(), d.detail.c_str());
   }
   for (const auto& e : s.events) {
     if (e.kind != schedule::Event::Kind::kClimb) continue;
     const auto& c = *e.climb;
+    std::string why;
+    for (const auto& r : c.wait_reasons)
+      if (why.find(schedule::to_string(r.kind)) == std::string::npos)
+        why += (why.empty() ? "" : ", ") + schedule::to_string(r.kind);
     std::cout << printf_string(
-        "climb %d -> %d after floor %d layer %d: starts at %s after a "
-        "wait of %s for its anchors, %s of motion\n",
-        c.from_stage, c.to_stage, e.floor, e.layer, duration(e.start_s).c_str(),
-        duration(c.wait_before_s).c_str(), duration(c.plan.duration_s).c_str());
+        "climb %d -> %d after floor %d layer %d: starts at %s after a wait of %s%s, %s of "
+        "motion\n",
+        c.from_stage, c.to_stage, e.floor, e.layer, when(e.start_s).c_str(),
+        duration(c.wait_before_s).c_str(), why.empty() ? "" : (" (" + why + ")").c_str(),
+        duration(c.plan.duration_s).c_str());
   }
   // The climb critical path: what each climb waited for, and the changes that shorten it.
   const auto waits = schedule::anchor_waits(project, s);
@@ -158,12 +191,13 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   }
   const auto& t = s.totals;
   std::cout << printf_string(
-      "total: %s from the first layer to the last (machine busy %s): deposition %s, airtime "
+      "total: %s from the first layer to the last%s (machine busy %s): deposition %s, airtime "
       "%s, waits %s, climbs %s, slabs %s, pipes %s, purges %s\n",
-      duration(t.makespan_s).c_str(), duration(t.machine_s).c_str(),
-      duration(t.deposition_s).c_str(), duration(t.airtime_s).c_str(), duration(t.waits_s).c_str(),
-      duration(t.climbs_s).c_str(), duration(t.slabs_s).c_str(), duration(t.pipes_s).c_str(),
-      duration(t.purges_s).c_str());
+      duration(t.makespan_s).c_str(),
+      calendar ? (", finished " + calendar->local_text(t.makespan_s)).c_str() : "",
+      duration(t.machine_s).c_str(), duration(t.deposition_s).c_str(),
+      duration(t.airtime_s).c_str(), duration(t.waits_s).c_str(), duration(t.climbs_s).c_str(),
+      duration(t.slabs_s).c_str(), duration(t.pipes_s).c_str(), duration(t.purges_s).c_str());
   for (const auto& w : s.warnings) std::cout << "warning: " << w << "\n";
   std::cout << printf_string(
       "computed in %.1f s: %.1f s planning %d layer plans, %.1f s planning climbs, %.1f s the "

@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "ccbuild/common/document.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "ccbuild/floors/units.hpp"
 
@@ -46,7 +48,14 @@ struct Site {
   double rotation_rad = 0.0;                ///< `rotation_deg`, in degrees in the file
   bool centre = false;                      ///< `place: centre`
   SourceRef source;
+  /// Whether any placement key was given (a site may hold only its programme).
+  bool places = false;
+  /// The site's other keys (its programme: start, calendar, crews, weather), with their
+  /// lines, for the schedule to read; unset when there are none.
+  std::optional<Document> programme;
 };
+/// The keys of `site:` that place the building.
+inline const std::vector<std::string> kSitePlacementKeys = {"origin", "rotation_deg", "place"};
 
 struct Building {
   std::string name;

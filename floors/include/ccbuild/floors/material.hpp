@@ -14,6 +14,18 @@ struct StrengthPoint {
   double strength_mpa = 0.0;
 };
 
+/// A planned construction joint (EN 13670 §8.4: a joint surface cleaned, roughened and
+/// wetted before new concrete goes on it): where printing stops for off-shift hours at a
+/// layer's end, the next layer waits for the joint's treatment, which may begin once the
+/// layer below is `min_age_s` old and no later than `max_age_s`. `planned_joint:` in the
+/// file, `treatment_min`, `min_age_h`, `max_age_h`.
+struct PlannedJoint {
+  double treatment_s = 1800.0;
+  double min_age_s = 0.0;
+  double max_age_s = 7 * 86400.0;
+  bool operator==(const PlannedJoint&) const = default;
+};
+
 struct MaterialProfile {
   std::string name;
   std::string source_file;
@@ -26,6 +38,7 @@ struct MaterialProfile {
   std::vector<StrengthPoint> strength_curve;
   /// A layer must be this many times stronger than the stress of the walls above it.
   double safety_factor = 1.5;
+  PlannedJoint planned_joint;
 
   /// Strength at `age_s`, linear between points, flat outside them.
   double strength_at_mpa(double age_s) const;

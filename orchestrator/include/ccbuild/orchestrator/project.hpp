@@ -45,6 +45,8 @@ struct ProjectOptions {
   /// Where a family's fitted profile is written (by `ccbuild fit`) or would be: its URDF
   /// is named after it. Empty: beside the family, "<family>-fitted.yaml" (not written).
   std::filesystem::path fitted_profile;
+  /// --site FILE: the site's programme (start, calendar, crews), instead of the building's.
+  std::filesystem::path site_file;
   /// Told now and then what fitting a family is doing (may be empty).
   std::function<void(const std::string&)> progress;
 };

@@ -53,6 +53,8 @@ enum class WaitKind {
   kStrength,        ///< "strength": a layer below could not yet carry the walls above it
   kAnchorStrength,  ///< "anchor-strength": a climb's anchor is younger than it must be
   kSlab,            ///< "slab": the slab stage between floors
+  kOffShift,        ///< "off-shift": work that needs a crew waits for working hours
+  kJoint,           ///< "joint": a planned joint's treatment waits for the layer below's age
 };
 /// The name the JSON and the messages use ("min-interval", ...).
 std::string to_string(WaitKind kind);
@@ -90,6 +92,10 @@ struct ScheduledLayer {
   double wait_before_s = 0.0;
   std::vector<WaitReason> wait_reasons;
   bool purge_before = false;
+  /// The layer starts on a planned construction joint: printing stopped at the end of the
+  /// layer below for off-shift hours, and the joint was treated (a `joint` event) before
+  /// this layer; its interval to the layer below is then not bound by the maximum.
+  bool planned_joint = false;
   /// Start to start from the layer below on the same floor; unset on a floor's first.
   std::optional<double> interval_s;
   /// Over every wall piece end of this layer above a wall of the layer below.
@@ -154,7 +160,8 @@ struct ClimbEvent {
 };
 
 struct Event {
-  enum class Kind { kPipe, kClimb, kSlab, kPurge };
+  /// kJoint: a planned joint's treatment, by the crew, before the layer above it.
+  enum class Kind { kPipe, kClimb, kSlab, kPurge, kJoint };
   Kind kind = Kind::kPipe;
   double start_s = 0.0, end_s = 0.0;
   int floor = 0, layer = 0;  ///< pipes: cast after this layer; slab: over this floor
@@ -170,6 +177,8 @@ enum class InfeasibilityKind {
   kNoPlan,       ///< "no-plan": no nozzle count has a usable plan
   kStrength,     ///< "strength": the material never gets strong enough to carry the walls
   kClimb,        ///< "climb": a climb cannot be planned, or its anchors never get strong
+  kCalendar,     ///< "calendar": a task longer than any working window, or none left
+  kJoint,        ///< "joint": a planned joint older than its material allows when treated
 };
 std::string to_string(InfeasibilityKind kind);
 std::optional<InfeasibilityKind> infeasibility_kind_named(const std::string& name);
@@ -191,7 +200,21 @@ struct ScheduleTotals {
   double makespan_s = 0.0;
   double deposition_s = 0.0, airtime_s = 0.0;  ///< nozzle time
   double waits_s = 0.0, climbs_s = 0.0, slabs_s = 0.0, pipes_s = 0.0, purges_s = 0.0, moves_s = 0.0;
+  double joints_s = 0.0;   ///< planned joints' treatments (crew time, not the machine's)
   double machine_s = 0.0;  ///< the machine busy: layers, moves, pipes, purges, climbs
+};
+
+/// What was printed on one local day of a site calendar, and where printing stopped.
+struct WorkDay {
+  std::string date;  ///< local, "2027-03-01"
+  int layers = 0;    ///< layers started that day
+  int first_floor = 0, first_layer = 0, last_floor = 0, last_layer = 0;
+  double printing_s = 0.0;  ///< those layers' time
+  /// How the day's printing ended: "planned-joint" (the next layer starts on one),
+  /// "floor-top" (the floor's walls are done; its slab follows), "finished" (the building's
+  /// walls are), "continues" (the next layer follows within its interval).
+  std::string stop;
+  std::string detail;  ///< the same, in words
 };
 
 struct Schedule {
@@ -202,6 +225,8 @@ struct Schedule {
   std::vector<Event> events;              ///< by start time
   std::vector<climb::ClimbStage> stages;  ///< climbing machine only
   ScheduleTotals totals;
+  /// Per local day with printing, when the site has a calendar (else empty).
+  std::vector<WorkDay> days;
   std::vector<std::string> warnings;
   /// Wall-clock seconds spent planning layers, planning climbs, and on the rest (not in
   /// the JSON, which stays byte-identical).
@@ -213,6 +238,11 @@ struct Schedule {
 /// pipes, purges, climbs; waits include the climbs' waits).
 ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
                          const std::vector<Event>& events);
+
+/// The days of `layers` and `events` on `calendar`: what was printed each day and how it
+/// stopped.
+std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const SiteCalendar& calendar);
 
 /// Schedules the whole building. Throws InputError for a project that cannot be
 /// scheduled at all (a fixed gantry's building taller than its reach is caught by

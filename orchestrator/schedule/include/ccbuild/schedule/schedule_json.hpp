@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -83,6 +84,9 @@ struct RecordedInputs {
   std::vector<std::string> unit_names;
   /// Empty unless the building came from a model whose elements have GlobalIds.
   std::vector<FloorProvenance> provenance;
+  /// The site's calendar, when the schedule has one: times then have ISO 8601 timestamps
+  /// beside their seconds, and the days are summed up (`days`).
+  std::shared_ptr<const SiteCalendar> calendar;
 };
 
 /// A schedule with what it was made from, as its JSON holds it.

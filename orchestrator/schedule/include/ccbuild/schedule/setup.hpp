@@ -15,6 +15,7 @@
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/climbing_machine.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/schedule/site.hpp"
 
 namespace ccbuild::schedule {
 
@@ -46,6 +47,10 @@ struct Setup {
   /// that is written).
   std::optional<floors::MaterialProfile> anchor_material;
   Placement placement;
+  /// The site's programme (calendar, crews), from `--site FILE` or the building's `site:`;
+  /// null: work runs around the clock from "day 1 00:00".
+  std::shared_ptr<const SiteCalendar> calendar;
+  std::filesystem::path site_file;  ///< the `--site` file, when one was given
 
   const machine::MachineModel& machine_model() const { return *machine; }
   /// Every file read: the FILE, its plans, the profiles, the URDF.

@@ -1,0 +1,362 @@
+#include "ccbuild/schedule/site.hpp"
+
+#include <date/tz.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+
+namespace ccbuild::schedule {
+namespace {
+
+using std::chrono::minutes;
+using std::chrono::seconds;
+
+constexpr std::array<const char*, 7> kDayNames = {"mon", "tue", "wed", "thu", "fri", "sat", "sun"};
+constexpr std::size_t kMostHolidays = 2000;
+constexpr std::size_t kMostSpansPerDay = 8;
+/// A task may end this much after its window does (rounding of the schedule's seconds).
+constexpr double kWindowSlack_s = 1e-6;
+
+const std::vector<std::string> kProgrammeKeys = {"start",    "time_zone", "working_hours",
+                                                 "holidays", "printing",  "pipes"};
+
+/// Days since 1970-01-01 of a valid "YYYY-MM-DD", or nothing.
+std::optional<std::int32_t> parse_date(const std::string& text, std::size_t& used) {
+  int y = 0, m = 0, d = 0, n = 0;
+  if (std::sscanf(text.c_str(), "%4d-%2d-%2d%n", &y, &m, &d, &n) != 3 || n != 10)
+    return std::nullopt;
+  const date::year_month_day ymd{date::year(y), date::month(static_cast<unsigned>(m)),
+                                 date::day(static_cast<unsigned>(d))};
+  if (!ymd.ok() || y < 1971 || y > 2200) return std::nullopt;
+  used = static_cast<std::size_t>(n);
+  return static_cast<std::int32_t>(date::sys_days(ymd).time_since_epoch().count());
+}
+
+/// Minutes after midnight of "HH:MM" (00:00 to 24:00), or nothing.
+std::optional<int> parse_clock(const std::string& text) {
+  int h = 0, m = 0, n = 0;
+  if (std::sscanf(text.c_str(), "%2d:%2d%n", &h, &m, &n) != 2 || n != static_cast<int>(text.size()))
+    return std::nullopt;
+  if (h < 0 || m < 0 || m > 59 || h > 24 || (h == 24 && m != 0)) return std::nullopt;
+  return h * 60 + m;
+}
+
+std::string clock_text(int minutes_of_day) {
+  return printf_string("%02d:%02d", minutes_of_day / 60, minutes_of_day % 60);
+}
+
+WorkingHours read_span(const Field& f) {
+  const std::string text = f.as_string();
+  const auto dash = text.find('-');
+  const auto from = dash == std::string::npos ? std::nullopt : parse_clock(text.substr(0, dash));
+  const auto to = dash == std::string::npos ? std::nullopt : parse_clock(text.substr(dash + 1));
+  if (!from || !to)
+    f.fail("expected working hours as HH:MM-HH:MM (e.g. 07:00-17:00), got '" + text + "'");
+  if (*to <= *from)
+    f.fail("'" + text +
+           "' ends before it starts; a span lies within one day (a night shift is "
+           "22:00-24:00 on one day and 00:00-06:00 on the next, which join)");
+  return {*from, *to};
+}
+
+/// The weekdays a `working_hours` key names: "mon", "mon-fri", "sat-sun".
+std::vector<int> read_days(const Field& where, const std::string& key) {
+  const auto index = [](const std::string& name) {
+    for (int d = 0; d < 7; ++d)
+      if (name == kDayNames[d]) return d;
+    return -1;
+  };
+  const auto dash = key.find('-');
+  const int first = index(key.substr(0, dash));
+  const int last = dash == std::string::npos ? first : index(key.substr(dash + 1));
+  if (first < 0 || last < 0 || last < first)
+    where.fail("'" + key +
+               "' is not a weekday or a range of them: expected mon, tue, wed, thu, fri, sat, "
+               "sun or a range such as mon-fri");
+  std::vector<int> days;
+  for (int d = first; d <= last; ++d) days.push_back(d);
+  return days;
+}
+
+void read_week(const Field& f, SiteProgramme& p) {
+  if (!f.is_map())
+    f.fail("expected a map of weekdays to working hours, e.g. {mon-fri: 07:00-17:00, sat: off}");
+  std::array<bool, 7> named{};
+  for (const auto& [key, node] : f.node().entries) {
+    const Field value = f.child(node, join_path(f.path(), key));
+    std::vector<WorkingHours> spans;
+    if (value.is_scalar() && value.as_string() == "off") {
+    } else if (value.is_sequence()) {
+      const auto items = value.items();
+      if (items.size() > kMostSpansPerDay)
+        value.fail(printf_string("at most %zu spans a day", kMostSpansPerDay));
+      for (const auto& item : items) spans.push_back(read_span(item));
+    } else {
+      spans.push_back(read_span(value));
+    }
+    std::sort(spans.begin(), spans.end(),
+              [](const WorkingHours& a, const WorkingHours& b) { return a.from_min < b.from_min; });
+    for (std::size_t k = 1; k < spans.size(); ++k)
+      if (spans[k].from_min < spans[k - 1].to_min)
+        value.fail("spans " + to_string(spans[k - 1]) + " and " + to_string(spans[k]) + " overlap");
+    for (int d : read_days(value, key)) {
+      if (named[d]) value.fail(std::string(kDayNames[d]) + " is given working hours twice");
+      named[d] = true;
+      p.week[d] = spans;
+    }
+  }
+  if (std::all_of(p.week.begin(), p.week.end(), [](const auto& day) { return day.empty(); }))
+    f.fail("no working hours on any day of the week: nothing could ever be built");
+}
+
+}  // namespace
+
+std::string to_string(const WorkingHours& hours) {
+  return clock_text(hours.from_min) + "-" + clock_text(hours.to_min);
+}
+
+std::optional<WorkingHours> parse_working_hours(const std::string& text) {
+  const auto dash = text.find('-');
+  if (dash == std::string::npos) return std::nullopt;
+  const auto from = parse_clock(text.substr(0, dash)), to = parse_clock(text.substr(dash + 1));
+  if (!from || !to || *to <= *from) return std::nullopt;
+  return WorkingHours{*from, *to};
+}
+
+std::optional<std::int64_t> parse_local_start(const std::string& text) {
+  std::size_t used = 0;
+  const auto day = parse_date(text, used);
+  if (!day || used >= text.size() || (text[used] != ' ' && text[used] != 'T')) return std::nullopt;
+  std::string rest = text.substr(used + 1);
+  int second = 0;
+  if (rest.size() == 8) {  // HH:MM:SS
+    int n = 0;
+    if (rest[5] != ':' || std::sscanf(rest.c_str() + 6, "%2d%n", &second, &n) != 1 || n != 2 ||
+        second < 0 || second > 59)
+      return std::nullopt;
+    rest.resize(5);
+  }
+  const auto clock = parse_clock(rest);
+  if (!clock || *clock >= 24 * 60) return std::nullopt;
+  return (static_cast<std::int64_t>(*day) * 1440 + *clock) * 60 + second;
+}
+
+std::optional<std::int32_t> parse_local_date(const std::string& text) {
+  std::size_t used = 0;
+  const auto day = parse_date(text, used);
+  if (!day || used != text.size()) return std::nullopt;
+  return day;
+}
+
+std::string local_date_text(std::int32_t day) {
+  return date::format("%F", date::sys_days{date::days{day}});
+}
+
+std::string local_start_text(std::int64_t local_s) {
+  const auto day = static_cast<std::int32_t>(local_s / 86400);  // from 1971 on: positive
+  const auto in_day = static_cast<int>(local_s - day * 86400LL);
+  const std::string text = local_date_text(day) + " " + clock_text(in_day / 60);
+  return in_day % 60 == 0 ? text : text + printf_string(":%02d", in_day % 60);
+}
+
+const std::array<const char*, 7>& weekday_keys() {
+  return kDayNames;
+}
+
+std::optional<SiteProgramme> read_site_programme(const Field& site,
+                                                 const std::vector<std::string>& placement_keys) {
+  std::vector<std::string> allowed = kProgrammeKeys;
+  allowed.insert(allowed.end(), placement_keys.begin(), placement_keys.end());
+  MapReader map(site, allowed);
+  map.reject_unknown();
+  bool any = false;
+  for (const auto& key : kProgrammeKeys) any = any || map.has(key);
+  if (!any) return std::nullopt;
+
+  SiteProgramme p;
+  p.source = site.file() + ":" + std::to_string(site.line());
+  const Field start = map.required("start");
+  const auto local = parse_local_start(start.as_string());
+  if (!local)
+    start.fail(
+        "expected the local date and time work starts, as YYYY-MM-DD HH:MM[:SS] (e.g. "
+        "2027-03-01 07:00; the zone is time_zone's), got '" +
+        start.as_string() + "'");
+  p.start_local_s = *local;
+  const Field zone = map.required("time_zone");
+  p.time_zone = zone.as_string();
+  try {
+    date::locate_zone(p.time_zone);
+  } catch (const std::exception&) {
+    zone.fail("'" + p.time_zone +
+              "' is not a time zone of the system's tzdata: expected an IANA name such as "
+              "Europe/Berlin or America/New_York (see /usr/share/zoneinfo)");
+  }
+  if (auto week = map.optional("working_hours")) {
+    read_week(*week, p);
+  } else {
+    for (int d = 0; d < 5; ++d) p.week[d] = {{7 * 60, 17 * 60}};  // Mon-Fri 07:00-17:00
+  }
+  if (auto holidays = map.optional("holidays")) {
+    const auto items = holidays->items();
+    if (items.size() > kMostHolidays)
+      holidays->fail(printf_string("at most %zu holidays, got %zu", kMostHolidays, items.size()));
+    for (const auto& item : items) {
+      const auto day = parse_local_date(item.as_string());
+      if (!day) item.fail("expected a date as YYYY-MM-DD, got '" + item.as_string() + "'");
+      p.holidays.push_back(*day);
+    }
+    std::sort(p.holidays.begin(), p.holidays.end());
+    p.holidays.erase(std::unique(p.holidays.begin(), p.holidays.end()), p.holidays.end());
+  }
+  if (auto printing = map.optional("printing")) {
+    const std::string how = printing->as_string();
+    if (how != "attended" && how != "unattended")
+      printing->fail(
+          "expected attended (a crew present: printing only in working hours, the default) or "
+          "unattended (printing runs on through the night), got '" +
+          how + "'");
+    p.printing_attended = how == "attended";
+  }
+  if (auto pipes = map.optional("pipes")) {
+    const std::string how = pipes->as_string();
+    if (how != "crew" && how != "unattended")
+      pipes->fail(
+          "expected crew (pipes placed in working hours, the default) or unattended (by the "
+          "machine's arm, at any hour), got '" +
+          how + "'");
+    p.pipes_need_crew = how == "crew";
+  }
+  return p;
+}
+
+SiteProgramme load_site_programme(const std::string& path) {
+  const Document doc = load_document(path);
+  const Field root = Field::root(doc);
+  if (!root.is_map()) root.fail("expected a map: start, time_zone, working_hours, ...");
+  auto p = read_site_programme(root, {});
+  if (!p) root.fail("a site file needs at least `start` and `time_zone`");
+  return *p;
+}
+
+SiteCalendar::SiteCalendar(SiteProgramme programme, int horizon_days)
+    : programme_(std::move(programme)) {
+  const date::time_zone* zone = nullptr;
+  try {
+    zone = date::locate_zone(programme_.time_zone);
+  } catch (const std::exception&) {
+    throw InputError(programme_.source, 0, "time_zone",
+                     "'" + programme_.time_zone + "' is not a time zone of the system's tzdata");
+  }
+  zone_ = zone;
+  const auto to_utc_s = [zone](std::int64_t local_s) {
+    const date::local_seconds local{seconds(local_s)};
+    // A local time in a spring-forward gap is the moment of the change; one that occurs
+    // twice in autumn is its first occurrence.
+    return zone->to_sys(local, date::choose::earliest).time_since_epoch().count();
+  };
+  start_utc_s_ = to_utc_s(programme_.start_local_s);
+  const std::int64_t first_day = programme_.start_local_s / 86400;
+  for (std::int64_t day = first_day; day < first_day + horizon_days; ++day) {
+    if (std::binary_search(programme_.holidays.begin(), programme_.holidays.end(),
+                           static_cast<std::int32_t>(day)))
+      continue;
+    // 1970-01-01 was a Thursday (index 3, Monday first).
+    const int weekday = static_cast<int>(((day % 7) + 7 + 3) % 7);
+    for (const WorkingHours& h : programme_.week[weekday]) {
+      const double from_s =
+          static_cast<double>(to_utc_s((day * 1440 + h.from_min) * 60) - start_utc_s_);
+      const double to_s =
+          static_cast<double>(to_utc_s((day * 1440 + h.to_min) * 60) - start_utc_s_);
+      if (to_s <= 0.0 || to_s <= from_s) continue;
+      const WorkingWindow w{std::max(0.0, from_s), to_s};
+      if (!windows_.empty() && windows_.back().to_s >= w.from_s)
+        windows_.back().to_s = std::max(windows_.back().to_s, w.to_s);
+      else
+        windows_.push_back(w);
+    }
+  }
+  for (const auto& w : windows_) longest_window_s_ = std::max(longest_window_s_, w.to_s - w.from_s);
+}
+
+double SiteCalendar::fit_s(double from_s, double duration_s) const {
+  if (duration_s > longest_window_s_ + kWindowSlack_s)
+    return std::numeric_limits<double>::infinity();
+  auto it = std::upper_bound(windows_.begin(), windows_.end(), from_s - kWindowSlack_s,
+                             [](double t, const WorkingWindow& w) { return t < w.to_s; });
+  for (; it != windows_.end(); ++it) {
+    const double t = std::max(from_s, it->from_s);
+    if (t + duration_s <= it->to_s + kWindowSlack_s) return t;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+bool SiteCalendar::within_one_window(double from_s, double to_s) const {
+  return fit_s(from_s, to_s - from_s) <= from_s + kWindowSlack_s;
+}
+
+namespace {
+date::sys_seconds sys_at(std::int64_t start_utc_s, double t_s) {
+  return date::sys_seconds{seconds(start_utc_s + std::llround(t_s))};
+}
+}  // namespace
+
+std::string SiteCalendar::timestamp(double t_s) const {
+  const auto* zone = static_cast<const date::time_zone*>(zone_);
+  return date::format("%FT%T%Ez", date::make_zoned(zone, sys_at(start_utc_s_, t_s)));
+}
+
+std::string SiteCalendar::local_date(double t_s) const {
+  const auto* zone = static_cast<const date::time_zone*>(zone_);
+  return date::format("%F", date::make_zoned(zone, sys_at(start_utc_s_, t_s)));
+}
+
+std::string SiteCalendar::local_text(double t_s) const {
+  const auto* zone = static_cast<const date::time_zone*>(zone_);
+  return date::format("%a %F %H:%M", date::make_zoned(zone, sys_at(start_utc_s_, t_s)));
+}
+
+std::int32_t SiteCalendar::local_day(double t_s) const {
+  const auto* zone = static_cast<const date::time_zone*>(zone_);
+  const auto local = date::make_zoned(zone, sys_at(start_utc_s_, t_s)).get_local_time();
+  return static_cast<std::int32_t>(date::floor<date::days>(local).time_since_epoch().count());
+}
+
+std::string SiteCalendar::tzdb_version() const {
+  std::string version = date::get_tzdb().version;
+  if (version != "unknown") return version;
+  // Debian's tzdata has no +VERSION file; its tzdata.zi starts "# version 2025b".
+  std::FILE* zi = std::fopen("/usr/share/zoneinfo/tzdata.zi", "r");
+  if (!zi) return version;
+  char line[64] = {};
+  char found[32] = {};
+  if (std::fgets(line, sizeof line, zi) && std::sscanf(line, "# version %31s", found) == 1)
+    version = found;
+  std::fclose(zi);
+  return version;
+}
+
+std::string SiteCalendar::week_text() const {
+  // Runs of consecutive days with the same hours: "Mon-Fri 07:00-17:00, Sat 07:00-12:00".
+  static constexpr const char* kNames[7] = {"Mon", "Tue", "Wed", "Thu", "Fri", "Sat", "Sun"};
+  std::string out;
+  for (int d = 0; d < 7;) {
+    int last = d;
+    while (last + 1 < 7 && programme_.week[last + 1] == programme_.week[d]) ++last;
+    if (!programme_.week[d].empty()) {
+      std::string hours;
+      for (const auto& h : programme_.week[d]) hours += (hours.empty() ? "" : ", ") + to_string(h);
+      out += (out.empty() ? "" : "; ") + std::string(kNames[d]) +
+             (last > d ? std::string("-") + kNames[last] : "") + " " + hours;
+    }
+    d = last + 1;
+  }
+  return out;
+}
+
+}  // namespace ccbuild::schedule

@@ -1,0 +1,318 @@
+// The site's programme: its calendar's working windows (holidays, daylight-saving changes,
+// back-to-back spans), timestamps, and the scheduler on it at the boundaries: a shift that
+// ends exactly at a layer's end, one second before it, a holiday, a DST weekend, a joint
+// older than its material allows, a layer longer than any shift. On one straight wall
+// whose layers end at known seconds (tests/data/plans/one_wall.yaml).
+
+#include "ccbuild/schedule/site.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::schedule {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+
+constexpr double kTol_s = 1e-6;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_site_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// A programme read from YAML text, as a building's `site:` holds it.
+SiteProgramme programme(const std::string& yaml) {
+  const Document doc = parse_yaml(yaml, "site.yaml");
+  return *read_site_programme(Field::root(doc), {});
+}
+
+InputError programme_error(const std::string& yaml) {
+  try {
+    programme(yaml);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted: " << yaml;
+  return InputError("", 0, "", "");
+}
+
+TEST(SiteProgramme, DefaultsToMondayToFridaySevenToFive) {
+  const SiteProgramme p = programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n");
+  for (int d = 0; d < 5; ++d) EXPECT_EQ(p.week[d], (std::vector<WorkingHours>{{420, 1020}}));
+  EXPECT_TRUE(p.week[5].empty());
+  EXPECT_TRUE(p.week[6].empty());
+  EXPECT_TRUE(p.printing_attended);
+  EXPECT_TRUE(p.pipes_need_crew);
+  EXPECT_EQ(local_start_text(p.start_local_s), "2027-03-01 07:00");
+}
+
+TEST(SiteProgramme, RefusesWhatCannotBeACalendarNamingTheKey) {
+  const std::string head = "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n";
+  struct Case {
+    std::string yaml, field, says;
+  };
+  const Case cases[] = {
+      {"start: 2027-02-30 07:00\ntime_zone: Europe/Berlin\n", "start", "YYYY-MM-DD HH:MM"},
+      {"start: 2027-03-01 25:00\ntime_zone: Europe/Berlin\n", "start", "YYYY-MM-DD HH:MM"},
+      {"start: 2027-03-01 07:00\ntime_zone: Europe/Atlantis\n", "time_zone", "IANA"},
+      {"time_zone: Europe/Berlin\n", "", "required key 'start'"},
+      {head + "working_hours: {mon-fri: 17:00-07:00}\n", "working_hours.mon-fri", "ends before"},
+      {head + "working_hours: {mon: [07:00-12:00, 11:00-17:00]}\n", "working_hours.mon", "overlap"},
+      {head + "working_hours: {mon-fri: 07:00-17:00, fri: 07:00-12:00}\n", "working_hours.fri",
+       "twice"},
+      {head + "working_hours: {weekdays: 07:00-17:00}\n", "working_hours.weekdays", "weekday"},
+      {head + "working_hours: {mon-sun: off}\n", "working_hours", "no working hours"},
+      {head + "working_hours: {mon: 7-17}\n", "working_hours.mon", "HH:MM-HH:MM"},
+      {head + "holidays: [2027-13-01]\n", "holidays[0]", "YYYY-MM-DD"},
+      {head + "printing: sometimes\n", "printing", "attended"},
+      {head + "pipes: robot\n", "pipes", "crew"},
+      {head + "shifts: 2\n", "shifts", "unknown"},
+  };
+  for (const auto& c : cases) {
+    const InputError e = programme_error(c.yaml);
+    EXPECT_EQ(e.first().field, c.field) << c.yaml << ": " << e.what();
+    EXPECT_TRUE(contains(e.what(), c.says)) << c.yaml << ": " << e.what();
+    EXPECT_GT(e.first().line, 0) << c.yaml;
+  }
+}
+
+TEST(SiteCalendar, WindowsSkipWeekendsAndHolidaysInTheZonesSeconds) {
+  // Mon 2027-03-01 07:00 CET; Wednesday a holiday.
+  const SiteCalendar c(
+      programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\nholidays: [2027-03-03]\n"));
+  const auto& w = c.windows();
+  ASSERT_GE(w.size(), 5u);
+  EXPECT_DOUBLE_EQ(w[0].from_s, 0.0);
+  EXPECT_DOUBLE_EQ(w[0].to_s, 36000.0);
+  EXPECT_DOUBLE_EQ(w[1].from_s, 86400.0);      // Tuesday
+  EXPECT_DOUBLE_EQ(w[2].from_s, 3 * 86400.0);  // Thursday: Wednesday is a holiday
+  EXPECT_DOUBLE_EQ(w[4].from_s, 7 * 86400.0);  // the next Monday
+  EXPECT_EQ(c.timestamp(0.0), "2027-03-01T07:00:00+01:00");
+  EXPECT_EQ(c.timestamp(36000.0), "2027-03-01T17:00:00+01:00");
+  EXPECT_EQ(c.local_text(3 * 86400.0), "Thu 2027-03-04 07:00");
+  EXPECT_EQ(c.week_text(), "Mon-Fri 07:00-17:00");
+}
+
+TEST(SiteCalendar, DaylightSavingChangesMoveTheWindowsByAnHour) {
+  // Fri 2027-03-26 16:00 CET; clocks go forward on Sunday 28 March: Monday 07:00 CEST is
+  // 05:00 UTC, 2 days 14 h after Friday 15:00 UTC (not 2 days 15 h).
+  const SiteCalendar spring(programme("start: 2027-03-26 16:00\ntime_zone: Europe/Berlin\n"));
+  ASSERT_GE(spring.windows().size(), 2u);
+  EXPECT_DOUBLE_EQ(spring.windows()[1].from_s, 2 * 86400.0 + 14 * 3600.0);
+  EXPECT_EQ(spring.timestamp(spring.windows()[1].from_s), "2027-03-29T07:00:00+02:00");
+  // Around the clock on the change days: 23 h on 28 March, 25 h on 31 October, one window.
+  const SiteCalendar around(programme(
+      "start: 2027-03-28 00:00\ntime_zone: Europe/Berlin\nworking_hours: {sun: 00:00-24:00}\n"));
+  EXPECT_DOUBLE_EQ(around.windows()[0].to_s - around.windows()[0].from_s, 23 * 3600.0);
+  const SiteCalendar autumn(programme(
+      "start: 2027-10-31 00:00\ntime_zone: Europe/Berlin\nworking_hours: {sun: 00:00-24:00}\n"));
+  EXPECT_DOUBLE_EQ(autumn.windows()[0].to_s - autumn.windows()[0].from_s, 25 * 3600.0);
+  // A shift starting in the hour that does not exist starts at the change.
+  const SiteCalendar gap(programme(
+      "start: 2027-03-27 12:00\ntime_zone: Europe/Berlin\nworking_hours: {sun: 02:30-06:00}\n"));
+  EXPECT_EQ(gap.timestamp(gap.windows()[0].from_s), "2027-03-28T03:00:00+02:00");
+}
+
+TEST(SiteCalendar, SpansThatMeetAtMidnightAreOneWindow) {
+  const SiteCalendar c(
+      programme("start: 2027-03-01 22:00\ntime_zone: UTC\nworking_hours: {mon: [22:00-24:00], tue: "
+                "[00:00-06:00]}\n"));
+  ASSERT_FALSE(c.windows().empty());
+  EXPECT_DOUBLE_EQ(c.windows()[0].from_s, 0.0);
+  EXPECT_DOUBLE_EQ(c.windows()[0].to_s, 8 * 3600.0);
+  EXPECT_DOUBLE_EQ(c.longest_window_s(), 8 * 3600.0);
+}
+
+TEST(SiteCalendar, WorkThatFillsTheRestOfAShiftFitsAndOneSecondMoreWaits) {
+  const SiteCalendar c(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
+  EXPECT_DOUBLE_EQ(c.fit_s(30000.0, 6000.0), 30000.0);                  // ends at 17:00 exactly
+  EXPECT_DOUBLE_EQ(c.fit_s(30000.0, 6001.0), 86400.0);                  // Tuesday 07:00
+  EXPECT_DOUBLE_EQ(c.fit_s(36000.0, 0.0), 36000.0);                     // at the very end
+  EXPECT_DOUBLE_EQ(c.fit_s(-5.0, 10.0), 0.0);                           // before the start
+  EXPECT_TRUE(std::isinf(c.fit_s(0.0, 36001.0)));                       // longer than any shift
+  EXPECT_DOUBLE_EQ(c.fit_s(4 * 86400.0 + 36000.0, 60.0), 7 * 86400.0);  // Friday 17:00: Monday
+  EXPECT_TRUE(c.within_one_window(0.0, 36000.0));
+  EXPECT_FALSE(c.within_one_window(0.0, 36000.5));
+}
+
+// ------------------------------------------------------------------ the scheduler on it
+
+/// The one-wall building (20 layers of 94 s, one every 96.5 s) with `site` as its site.
+Schedule one_wall(const fs::path& dir, const std::string& site, const std::string& extra = "",
+                  Setup* setup_out = nullptr) {
+  const fs::path plan = fs::absolute("tests/data/plans/one_wall.yaml");
+  const fs::path mix = fs::absolute("tests/data/materials/quick-bond-mix.yaml");
+  const fs::path machine = fs::absolute("config/machines/cc-gantry.yaml");
+  std::ofstream(dir / "b.yaml") << "name: One wall\nunits: m\nlayer_height: 0.1\nmaterial: "
+                                << mix.string() << "\nmachine: " << machine.string() << "\n"
+                                << extra << "site:\n"
+                                << site << "floors:\n  - {name: ground, height: 2.0, plan: "
+                                << plan.string() << "}\n";
+  const orchestrator::Project project = orchestrator::open_project(dir / "b.yaml");
+  ScheduleOptions o;
+  o.jobs = 1;
+  Schedule s = build_schedule(project, o);
+  if (setup_out) *setup_out = project;
+  // Whatever it says, its JSON reads back under every rule (read_schedule's own checks).
+  const RecordedInputs in = recorded_inputs(project, o);
+  EXPECT_NO_THROW(parse_schedule(schedule_json(in, s).dump(1), "one_wall.json"));
+  return s;
+}
+
+const Event* joint_before(const Schedule& s, const ScheduledLayer& l) {
+  for (const auto& e : s.events)
+    if (e.kind == Event::Kind::kJoint && e.floor == l.floor && e.layer == l.layer - 1) return &e;
+  return nullptr;
+}
+
+TEST(SiteSchedule, AShiftEndingExactlyAtALayersEndKeepsThatLayer) {
+  const fs::path dir = scratch("exact");
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  working_hours: {mon-fri: [07:00-07:08, 08:00-17:00]}\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  ASSERT_EQ(s.layers.size(), 20u);
+  EXPECT_NEAR(s.layers[4].end_s, 480.0, kTol_s);  // ends with the first span
+  EXPECT_FALSE(s.layers[4].planned_joint);
+  const ScheduledLayer& next = s.layers[5];
+  EXPECT_TRUE(next.planned_joint);
+  const Event* joint = joint_before(s, next);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 3600.0, kTol_s);  // 08:00: the treatment first
+  EXPECT_NEAR(joint->end_s, 3600.0 + 1800.0, kTol_s);
+  EXPECT_TRUE(next.purge_before);  // the nozzle idled over its 300 s limit
+  EXPECT_NEAR(next.start_s, 3600.0 + 1800.0 + 120.0, kTol_s);
+  ASSERT_FALSE(next.wait_reasons.empty());
+  EXPECT_EQ(next.wait_reasons.back().kind, WaitKind::kOffShift);
+  EXPECT_GT(*next.local_interval_max_s, 200.0);  // over the maximum: a joint, not a failure
+  for (std::size_t i = 6; i < s.layers.size(); ++i) EXPECT_FALSE(s.layers[i].planned_joint);
+  ASSERT_EQ(s.days.size(), 1u);
+  EXPECT_EQ(s.days[0].stop, "finished");
+}
+
+TEST(SiteSchedule, AShiftEndingOneSecondBeforeALayersEndStopsTheLayerBefore) {
+  const fs::path dir = scratch("second");
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00:01\n  time_zone: Europe/Berlin\n"
+                              "  working_hours: {mon-fri: [07:00-07:08, 08:00-17:00]}\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  // Layer 4 would end at 07:08:01: it waits for 08:00 on a planned joint.
+  EXPECT_NEAR(s.layers[3].end_s, 480.0 - 96.5, kTol_s);
+  EXPECT_TRUE(s.layers[4].planned_joint);
+  const Event* joint = joint_before(s, s.layers[4]);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 3599.0, kTol_s);  // 08:00:00 is 3599 s after 07:00:01
+  EXPECT_FALSE(s.layers[5].planned_joint);
+}
+
+TEST(SiteSchedule, AHolidayAndAWeekendAreSkippedAndTheJointTreatedAfterThem) {
+  const fs::path dir = scratch("holiday");
+  // Friday 16:50: 6 layers fit before 17:00 (the seventh would end at 17:01:13).
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-05 16:50\n  time_zone: Europe/Berlin\n"
+                              "  holidays: [2027-03-08]\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  int stopped = -1;
+  for (std::size_t i = 0; i < s.layers.size(); ++i)
+    if (s.layers[i].planned_joint) stopped = static_cast<int>(i);
+  ASSERT_EQ(stopped, 6);
+  const Event* joint = joint_before(s, s.layers[6]);
+  ASSERT_NE(joint, nullptr);
+  // Tuesday 07:00: 3 days 14 h 10 min after Friday 16:50 (no DST change in between).
+  EXPECT_NEAR(joint->start_s, 3 * 86400.0 + 14 * 3600.0 + 600.0, kTol_s);
+  const auto& cal = *orchestrator::open_project(dir / "b.yaml").calendar;
+  EXPECT_EQ(cal.local_text(joint->start_s), "Tue 2027-03-09 07:00");
+  ASSERT_EQ(s.days.size(), 2u);
+  EXPECT_EQ(s.days[0].date, "2027-03-05");
+  EXPECT_EQ(s.days[0].layers, 6);
+  EXPECT_EQ(s.days[0].stop, "planned-joint");
+  EXPECT_EQ(s.days[1].date, "2027-03-09");
+}
+
+TEST(SiteSchedule, ADaylightSavingWeekendResumesAtSevenLocalTime) {
+  const fs::path dir = scratch("dst");
+  const Schedule s = one_wall(dir, "  start: 2027-03-26 16:50\n  time_zone: Europe/Berlin\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const Event* joint = joint_before(s, s.layers[6]);
+  ASSERT_NE(joint, nullptr);
+  // Monday 07:00 CEST is 2 days 13 h 10 min after Friday 16:50 CET, an hour less than the
+  // wall clock says.
+  EXPECT_NEAR(joint->start_s, 2 * 86400.0 + 13 * 3600.0 + 600.0, kTol_s);
+}
+
+TEST(SiteSchedule, AJointOlderThanItsMaterialAllowsIsInfeasible) {
+  const fs::path dir = scratch("old_joint");
+  // A week of holidays after Friday: the joint would be 11 days old, over 7.
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-05 16:50\n  time_zone: Europe/Berlin\n"
+                              "  holidays: [2027-03-08, 2027-03-09, 2027-03-10, 2027-03-11, "
+                              "2027-03-12]\n");
+  ASSERT_FALSE(s.feasible);
+  EXPECT_EQ(s.infeasibility->kind, InfeasibilityKind::kJoint);
+  EXPECT_TRUE(contains(s.infeasibility->message, "over the material's 168.0 h"))
+      << s.infeasibility->message;
+}
+
+TEST(SiteSchedule, UnattendedPrintingRunsThroughTheNight) {
+  const fs::path dir = scratch("unattended");
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-05 16:50\n  time_zone: Europe/Berlin\n"
+                              "  printing: unattended\n");
+  ASSERT_TRUE(s.feasible);
+  for (const auto& l : s.layers) EXPECT_FALSE(l.planned_joint);
+  EXPECT_NEAR(s.layers.back().end_s, 19 * 96.5 + 94.0, kTol_s);
+}
+
+TEST(SiteSchedule, ALayerLongerThanAnyShiftIsInfeasibleWithTheLongestShift) {
+  const fs::path dir = scratch("short_shift");
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  working_hours: {mon-fri: 07:00-07:01}\n");
+  ASSERT_FALSE(s.feasible);
+  EXPECT_EQ(s.infeasibility->kind, InfeasibilityKind::kCalendar);
+  EXPECT_TRUE(contains(s.infeasibility->message, "the longest is 0.02 h"))
+      << s.infeasibility->message;
+}
+
+TEST(SiteSchedule, TheJsonCarriesTimestampsAndTheProgrammeAndReadsBackToTheSameBytes) {
+  const fs::path dir = scratch("json");
+  schedule::Setup setup;
+  const Schedule s =
+      one_wall(dir, "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n", "", &setup);
+  ScheduleOptions o;
+  const RecordedInputs in = recorded_inputs(setup, o);
+  const std::string text = schedule_json(in, s).dump(1);
+  const auto j = nlohmann::json::parse(text);
+  EXPECT_EQ(j["inputs"]["site"]["start"], "2027-03-01T07:00:00+01:00");
+  EXPECT_EQ(j["inputs"]["site"]["working_hours"]["mon"][0], "07:00-17:00");
+  EXPECT_EQ(j["layers"][0]["start_time"], "2027-03-01T07:00:00+01:00");
+  EXPECT_EQ(j["totals"]["finish_time"], j["layers"][19]["end_time"]);
+  const ScheduleDocument back = parse_schedule(text, "s.json");
+  EXPECT_EQ(schedule_json(back.inputs, back.schedule).dump(1), text);
+  // A timestamp that is not its seconds' is refused, at its pointer.
+  auto bad = nlohmann::ordered_json::parse(text);
+  bad["layers"][0]["start_time"] = "2027-03-01T08:00:00+01:00";
+  try {
+    parse_schedule(bad.dump(1), "bad.json");
+    ADD_FAILURE() << "a wrong timestamp was accepted";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "/layers/0/start_time")) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule
