@@ -1,6 +1,7 @@
 #include "ccbuild/floors/material.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "ccbuild/common/document.hpp"
@@ -20,29 +21,61 @@ constexpr std::size_t kMaxStrengthPoints = 1000;
 const Range kSafetyFactor = Range::closed(1.0, 10.0);
 const Range kJointTreatment_s = Range::closed(0.0, 86'400.0);
 const Range kJointAge_s = Range::closed(0.0, 90 * 86'400.0);
+const Range kFcm_mpa = Range::closed(1.0, 200.0);
+const Range kActivation_j_mol = Range::closed(10'000.0, 100'000.0);
+const Range kDatum_c = Range::closed(-30.0, 10.0);
+const Range kAirTemperature_c = Range::closed(-60.0, 60.0);
 }  // namespace
 
-double MaterialProfile::strength_at_mpa(double age_s) const {
-  if (strength_curve.empty()) return 0.0;
-  if (age_s <= strength_curve.front().age_s) return strength_curve.front().strength_mpa;
-  for (std::size_t i = 1; i < strength_curve.size(); ++i) {
-    const auto& p = strength_curve[i - 1];
-    const auto& q = strength_curve[i];
+double En1992Strength::strength_at_mpa(double age_s) const {
+  if (age_s <= 0.0) return 0.0;
+  return std::exp(s * (1.0 - std::sqrt(28.0 * 86'400.0 / age_s))) * fcm_mpa;
+}
+
+double En1992Strength::age_for_strength_s(double strength_mpa) const {
+  if (strength_mpa <= 0.0) return 0.0;
+  const double ratio = std::log(strength_mpa / fcm_mpa) / s;  // 1 - sqrt(28 / t)
+  if (ratio >= 1.0) return std::numeric_limits<double>::infinity();
+  return 28.0 * 86'400.0 / ((1.0 - ratio) * (1.0 - ratio));
+}
+
+double MaturityFunction::rate(double temperature_c) const {
+  if (kind == Kind::kNurseSaul)
+    return std::max(0.0, temperature_c - datum_temperature_c) / (20.0 - datum_temperature_c);
+  constexpr double kGas_j_mol_k = 8.314462618, kReference_k = 293.15;
+  return std::exp(-activation_energy_j_mol / kGas_j_mol_k *
+                  (1.0 / (temperature_c + 273.15) - 1.0 / kReference_k));
+}
+
+double MaterialProfile::final_strength_mpa() const {
+  const double curve = strength_curve.empty() ? 0.0 : strength_curve.back().strength_mpa;
+  return en1992 ? std::max(curve, en1992->fcm_mpa * std::exp(en1992->s)) : curve;
+}
+
+namespace {
+
+// The table: linear between points, flat outside them.
+double curve_strength_at(const std::vector<StrengthPoint>& curve, double age_s) {
+  if (curve.empty()) return 0.0;
+  if (age_s <= curve.front().age_s) return curve.front().strength_mpa;
+  for (std::size_t i = 1; i < curve.size(); ++i) {
+    const auto& p = curve[i - 1];
+    const auto& q = curve[i];
     if (age_s <= q.age_s) {
       const double t = (age_s - p.age_s) / (q.age_s - p.age_s);
       return p.strength_mpa + t * (q.strength_mpa - p.strength_mpa);
     }
   }
-  return strength_curve.back().strength_mpa;
+  return curve.back().strength_mpa;
 }
 
-double MaterialProfile::age_for_strength_s(double strength_mpa) const {
-  if (strength_curve.empty() || strength_curve.back().strength_mpa < strength_mpa)
+double curve_age_for(const std::vector<StrengthPoint>& curve, double strength_mpa) {
+  if (curve.empty() || curve.back().strength_mpa < strength_mpa)
     return std::numeric_limits<double>::infinity();
-  if (strength_curve.front().strength_mpa >= strength_mpa) return 0.0;
-  for (std::size_t i = 1; i < strength_curve.size(); ++i) {
-    const auto& p = strength_curve[i - 1];
-    const auto& q = strength_curve[i];
+  if (curve.front().strength_mpa >= strength_mpa) return 0.0;
+  for (std::size_t i = 1; i < curve.size(); ++i) {
+    const auto& p = curve[i - 1];
+    const auto& q = curve[i];
     if (q.strength_mpa >= strength_mpa) {
       // p is below the strength and q reaches it, so q is strictly above p here.
       const double t = (strength_mpa - p.strength_mpa) / (q.strength_mpa - p.strength_mpa);
@@ -52,11 +85,24 @@ double MaterialProfile::age_for_strength_s(double strength_mpa) const {
   return std::numeric_limits<double>::infinity();
 }
 
+}  // namespace
+
+double MaterialProfile::strength_at_mpa(double age_s) const {
+  const double table = curve_strength_at(strength_curve, age_s);
+  return en1992 ? std::max(table, en1992->strength_at_mpa(age_s)) : table;
+}
+
+double MaterialProfile::age_for_strength_s(double strength_mpa) const {
+  const double table_s = curve_age_for(strength_curve, strength_mpa);
+  return en1992 ? std::min(table_s, en1992->age_for_strength_s(strength_mpa)) : table_s;
+}
+
 MaterialProfile load_material_profile(const std::filesystem::path& path) {
   const Document doc = load_document(path);
   const Field root = Field::root(doc);
   MapReader map(root, {"name", "description", "density_kg_m3", "min_layer_interval_s",
-                       "max_layer_interval_s", "strength_curve", "safety_factor", "planned_joint"});
+                       "max_layer_interval_s", "strength_curve", "safety_factor", "planned_joint",
+                       "strength_en1992", "maturity", "placing_temperature_c"});
   map.reject_unknown();
   MaterialProfile m;
   m.source_file = path.string();
@@ -102,6 +148,58 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
       if (p.max_age_s <= p.min_age_s)
         a->fail("must be greater than min_age_h (" + plain_number(p.min_age_s / 3600.0) + " h)");
     }
+  }
+  if (auto eurocode = map.optional("strength_en1992")) {
+    MapReader e(*eurocode, {"fcm_mpa", "cement_class"});
+    e.reject_unknown();
+    En1992Strength en;
+    en.fcm_mpa = e.required("fcm_mpa").as_number_in(kFcm_mpa, "MPa");
+    if (auto c = e.optional("cement_class")) {
+      en.cement_class = c->as_string();
+      if (en.cement_class == "R")
+        en.s = 0.20;
+      else if (en.cement_class == "N")
+        en.s = 0.25;
+      else if (en.cement_class == "S")
+        en.s = 0.38;
+      else
+        c->fail("expected R, N or S (EN 1992-1-1 §3.1.2: s = 0.20, 0.25, 0.38), got '" +
+                en.cement_class + "'");
+    }
+    m.en1992 = en;
+  }
+  if (auto maturity = map.optional("maturity")) {
+    MapReader r(*maturity, {"function", "activation_energy_kj_mol", "datum_temperature_c"});
+    r.reject_unknown();
+    const Field function = r.required("function");
+    const std::string name = function.as_string();
+    if (name == "arrhenius") {
+      m.maturity.kind = MaturityFunction::Kind::kArrhenius;
+      if (r.has("datum_temperature_c"))
+        r.required("datum_temperature_c").fail("the Arrhenius function has no datum temperature");
+      if (auto e = r.optional("activation_energy_kj_mol"))
+        m.maturity.activation_energy_j_mol = e->as_number_in(kActivation_j_mol, "kJ/mol", 1000.0);
+    } else if (name == "nurse-saul") {
+      m.maturity.kind = MaturityFunction::Kind::kNurseSaul;
+      if (r.has("activation_energy_kj_mol"))
+        r.required("activation_energy_kj_mol")
+            .fail("the Nurse-Saul function has no activation energy");
+      if (auto t = r.optional("datum_temperature_c"))
+        m.maturity.datum_temperature_c = t->as_number_in(kDatum_c, "°C");
+    } else {
+      function.fail(
+          "expected arrhenius or nurse-saul (the maturity method's age functions, ASTM "
+          "C1074), got '" +
+          name + "'");
+    }
+  }
+  if (auto placing = map.optional("placing_temperature_c")) {
+    const auto range = placing->items();
+    if (range.size() != 2)
+      placing->fail("expected [min, max], the air temperatures printing needs");
+    m.placing_min_c = range[0].as_number_in(kAirTemperature_c, "°C");
+    m.placing_max_c = range[1].as_number_in(kAirTemperature_c, "°C");
+    if (m.placing_max_c <= m.placing_min_c) range[1].fail("must be above the minimum");
   }
   return m;
 }

@@ -83,11 +83,11 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
     const Field& field, const UrdfInfo& urdf, const MachineModel& gantry,
     const std::array<std::string, 4>& gantry_joints) {
   MapReader map(
-      field,
-      {"platform", "units", "units_per_transfer", "nozzle_reach_below_m", "nozzle_reach_above_m",
-       "stroke_end_margin_m", "stroke_speed_loaded_m_s", "lift_per_stroke_m", "stroke_reset_s",
-       "pin_insert_s", "pin_release_s", "pin_gap_m", "pin_past_centre_m", "anchor_strength_mpa",
-       "anchor_clearance_m", "pipe_embed_s", "foundation_anchor_depth_m", "stability_margin_m"});
+      field, {"platform", "units", "units_per_transfer", "nozzle_reach_below_m",
+              "nozzle_reach_above_m", "stroke_end_margin_m", "stroke_speed_loaded_m_s",
+              "lift_per_stroke_m", "stroke_reset_s", "pin_insert_s", "pin_release_s", "pin_gap_m",
+              "pin_past_centre_m", "anchor_strength_mpa", "anchor_clearance_m", "pipe_embed_s",
+              "foundation_anchor_depth_m", "stability_margin_m", "climb_wind_limit_m_s"});
   map.reject_unknown();
   auto machine = std::make_shared<ClimbingMachine>();
   ClimbingMachine& m = *machine;
@@ -227,6 +227,7 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
   number("pipe_embed_s", m.pipe_embed_s, kTime_s, "s");
   number("foundation_anchor_depth_m", m.foundation_anchor_depth_m, kShort_m, "m");
   number("stability_margin_m", m.stability_margin_m, kMargin_m, "m");
+  number("climb_wind_limit_m_s", m.climb_wind_limit_m_s, Range::above(0.0, 60.0), "m/s");
 
   // Every unit's chain must solve: a round trip through its inverse kinematics at a pose
   // within its limits proves the chain is the shape ccbuild assumes.

@@ -149,8 +149,16 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     programme =
         schedule::read_site_programme(Field(doc, doc.root, "site"), floors::kSitePlacementKeys);
   }
-  if (programme)
+  if (programme) {
     project.calendar = std::make_shared<const schedule::SiteCalendar>(std::move(*programme));
+    const schedule::SiteProgramme& p = project.calendar->programme();
+    if (!p.weather_file.empty())
+      project.conditions = std::make_shared<const schedule::SiteConditions>(
+          schedule::read_weather_csv(p.weather_file, *project.calendar));
+    else if (p.temperature_c || p.wind_m_s)
+      project.conditions = std::make_shared<const schedule::SiteConditions>(
+          schedule::constant_conditions(p.temperature_c.value_or(20.0), p.wind_m_s.value_or(0.0)));
+  }
   for (auto& floor : project.building.floors)
     floor.plan.beads = {project.machine->nozzle_width_m, project.building.wall_pattern};
   check_fit(project);

@@ -157,8 +157,11 @@ Schedule one_wall(const fs::path& dir, const std::string& site, const std::strin
   const fs::path plan = fs::absolute("tests/data/plans/one_wall.yaml");
   const fs::path mix = fs::absolute("tests/data/materials/quick-bond-mix.yaml");
   const fs::path machine = fs::absolute("config/machines/cc-gantry.yaml");
-  std::ofstream(dir / "b.yaml") << "name: One wall\nunits: m\nlayer_height: 0.1\nmaterial: "
-                                << mix.string() << "\nmachine: " << machine.string() << "\n"
+  // `extra` may name another material.
+  const std::string material =
+      extra.rfind("material:", 0) == 0 ? "" : "material: " + mix.string() + "\n";
+  std::ofstream(dir / "b.yaml") << "name: One wall\nunits: m\nlayer_height: 0.1\n"
+                                << material << "machine: " << machine.string() << "\n"
                                 << extra << "site:\n"
                                 << site << "floors:\n  - {name: ground, height: 2.0, plan: "
                                 << plan.string() << "}\n";
@@ -169,7 +172,11 @@ Schedule one_wall(const fs::path& dir, const std::string& site, const std::strin
   if (setup_out) *setup_out = project;
   // Whatever it says, its JSON reads back under every rule (read_schedule's own checks).
   const RecordedInputs in = recorded_inputs(project, o);
-  EXPECT_NO_THROW(parse_schedule(schedule_json(in, s).dump(1), "one_wall.json"));
+  try {
+    parse_schedule(schedule_json(in, s).dump(1), "one_wall.json");
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "its JSON does not read back: " << e.what();
+  }
   return s;
 }
 
@@ -312,6 +319,207 @@ TEST(SiteSchedule, TheJsonCarriesTimestampsAndTheProgrammeAndReadsBackToTheSameB
   } catch (const InputError& e) {
     EXPECT_TRUE(contains(e.what(), "/layers/0/start_time")) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule
+
+namespace ccbuild::schedule {
+namespace {
+
+// ------------------------------------------------------------------ weather and maturity
+
+SiteConditions readings(std::vector<WeatherReading> r) {
+  SiteConditions c;
+  c.readings = std::move(r);
+  return c;
+}
+
+TEST(EquivalentAge, NurseSaulAgesByHandComputedRates) {
+  // 20 °C for an hour, 0 °C for an hour, then 30 °C; datum -10 °C: rates 1, 1/3, 4/3.
+  const SiteConditions c = readings({{0.0, 20.0, 0.0}, {3600.0, 0.0, 0.0}, {7200.0, 30.0, 0.0}});
+  floors::MaturityFunction f;
+  f.kind = floors::MaturityFunction::Kind::kNurseSaul;
+  f.datum_temperature_c = -10.0;
+  const EquivalentAge e(c, f);
+  EXPECT_NEAR(e.at(3600.0), 3600.0, 1e-9);
+  EXPECT_NEAR(e.at(7200.0), 4800.0, 1e-9);
+  EXPECT_NEAR(e.at(9000.0), 7200.0, 1e-9);
+  EXPECT_NEAR(e.after(0.0, 4800.0), 7200.0, 1e-9);
+  EXPECT_NEAR(e.after(3600.0, 1200.0), 7200.0, 1e-9);  // the cold hour ages it 20 min
+  EXPECT_NEAR(e.after(5400.0, 1000.0), 7200.0 + 400.0 / (4.0 / 3.0), 1e-9);
+  // Below the datum it does not age at all.
+  const SiteConditions frost = readings({{0.0, -15.0, 0.0}, {3600.0, 20.0, 0.0}});
+  const EquivalentAge f2(frost, f);
+  EXPECT_NEAR(f2.at(3600.0), 0.0, 1e-9);
+  EXPECT_NEAR(f2.after(0.0, 60.0), 3660.0, 1e-9);
+}
+
+TEST(EquivalentAge, ArrheniusAgesByHandComputedRates) {
+  // E = 40 kJ/mol: exp(-E/R (1/T - 1/293.15 K)) is 0.300709 at 0 °C, 1.718325 at 30 °C.
+  const SiteConditions c = readings({{0.0, 0.0, 0.0}, {3600.0, 30.0, 0.0}});
+  const EquivalentAge e(c, floors::MaturityFunction{});
+  EXPECT_NEAR(e.at(3600.0), 3600.0 * 0.300709, 0.01);
+  EXPECT_NEAR(e.at(7200.0), 3600.0 * (0.300709 + 1.718325), 0.01);
+  // At 20 °C the rate is exactly 1: equivalent age is age.
+  const SiteConditions twenty = readings({{0.0, 20.0, 0.0}});
+  const EquivalentAge t(twenty, floors::MaturityFunction{});
+  EXPECT_DOUBLE_EQ(t.after(123.0, 456.0), 579.0);
+}
+
+TEST(EquivalentAge, WeatherFitsFindTheFirstSpellThatHoldsTheWork) {
+  const SiteConditions c =
+      readings({{0.0, 10.0, 5.0}, {3600.0, 10.0, 20.0}, {7200.0, 10.0, 5.0}, {10800.0, 4.0, 5.0}});
+  const EquivalentAge e(c, floors::MaturityFunction{});
+  const auto calm = [](const WeatherReading& r) { return r.wind_m_s <= 15.0; };
+  EXPECT_DOUBLE_EQ(e.fit_s(0.0, 3600.0, calm), 0.0);     // ends as the gale starts
+  EXPECT_DOUBLE_EQ(e.fit_s(0.0, 3601.0, calm), 7200.0);  // one second into it: after it
+  const auto warm = [](const WeatherReading& r) { return r.temperature_c >= 5.0; };
+  EXPECT_TRUE(std::isinf(e.fit_s(9000.0, 3600.0, warm)));  // the cold holds for ever
+  const auto at_limit = [](const WeatherReading& r) { return r.temperature_c >= 10.0; };
+  EXPECT_DOUBLE_EQ(e.fit_s(0.0, 600.0, at_limit), 0.0);  // exactly at the limit is allowed
+}
+
+TEST(Weather, ReadsAnHourlyCsvAndRefusesBadRowsByLineAndColumn) {
+  const fs::path dir = scratch("weather");
+  const SiteCalendar cal(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
+  std::ofstream(dir / "ok.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01T06:00:00Z,4,3\n"
+                                   "2027-03-01 08:00,6.5,12\n";
+  const SiteConditions c = read_weather_csv(dir / "ok.csv", cal);
+  ASSERT_EQ(c.readings.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.readings[0].t_s, 0.0);  // 06:00 UTC is 07:00 in Berlin
+  EXPECT_DOUBLE_EQ(c.readings[1].t_s, 3600.0);
+  EXPECT_DOUBLE_EQ(c.readings[1].wind_m_s, 12.0);
+  struct Case {
+    std::string body, column, says;
+    int line;
+  };
+  const Case cases[] = {
+      {"time,t,w\n", "header", "timestamp,temperature_c,wind_m_s", 1},
+      {"timestamp,temperature_c,wind_m_s\nyesterday,4,3\n", "timestamp", "ISO 8601", 2},
+      {"timestamp,temperature_c,wind_m_s\n2027-03-01 08:00,95,3\n", "temperature_c", "95", 2},
+      {"timestamp,temperature_c,wind_m_s\n2027-03-01 08:00,5,-1\n", "wind_m_s", "-1", 2},
+      {"timestamp,temperature_c,wind_m_s\n2027-03-01 08:00,5,1\n2027-03-01 07:00,5,1\n",
+       "timestamp", "increase", 3},
+      {"timestamp,temperature_c,wind_m_s\n2027-03-01 08:00,5\n", "", "3 values", 2},
+  };
+  for (const auto& k : cases) {
+    std::ofstream(dir / "bad.csv") << k.body;
+    try {
+      read_weather_csv(dir / "bad.csv", cal);
+      ADD_FAILURE() << "accepted: " << k.body;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.first().field, k.column) << e.what();
+      EXPECT_EQ(e.first().line, k.line) << e.what();
+      EXPECT_TRUE(contains(e.what(), k.says)) << e.what();
+    }
+  }
+}
+
+/// A mix like the quick-bond one whose window is in equivalent age (Nurse-Saul, datum
+/// -10 °C: rate (T + 10) / 30).
+fs::path nurse_saul_mix(const fs::path& dir, double min_s, double max_s) {
+  std::ofstream(dir / "mix.yaml") << "name: Nurse-Saul test mix\ndensity_kg_m3: 2200\n"
+                                  << "min_layer_interval_s: " << min_s
+                                  << "\nmax_layer_interval_s: " << max_s
+                                  << "\nstrength_curve:\n  - {age_min: 0, strength_mpa: 0.1}\n"
+                                     "  - {age_min: 1440, strength_mpa: 8.0}\n"
+                                     "maturity: {function: nurse-saul, datum_temperature_c: -10}\n";
+  return dir / "mix.yaml";
+}
+
+TEST(SiteSchedule, ACold5DegreeSiteHalvesTheAgeAndTheLayersWaitForTheMinimum) {
+  // At 5 °C the rate is 0.5: a 60 s minimum in equivalent age takes 120 s, where the
+  // layers follow each other every 96.5 s at 20 °C.
+  const fs::path dir = scratch("cold_site");
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  printing: unattended\n  temperature_c: 5\n",
+                              "material: " + nurse_saul_mix(dir, 60, 600).string() + "\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  for (std::size_t i = 1; i < s.layers.size(); ++i) {
+    const ScheduledLayer& l = s.layers[i];
+    EXPECT_NEAR(l.start_s - s.layers[i - 1].start_s, 120.0, kTol_s) << i;
+    ASSERT_TRUE(l.equivalent_interval_min_s.has_value());
+    EXPECT_NEAR(*l.equivalent_interval_min_s, 60.0, kTol_s) << i;
+    EXPECT_NEAR(*l.equivalent_interval_max_s, 0.5 * *l.local_interval_max_s, kTol_s) << i;
+    ASSERT_FALSE(l.wait_reasons.empty());
+    EXPECT_EQ(l.wait_reasons[0].kind, WaitKind::kMinInterval);
+    EXPECT_NEAR(l.wait_reasons[0].required_s, 23.5, kTol_s) << i;
+  }
+}
+
+TEST(SiteSchedule, AHotSiteShortensTheWindowBeyondWhatTheLayersKeep) {
+  // At 35 °C the rate is 1.5: 96.5 s between layers is 144.75 s of equivalent age, over a
+  // 120 s maximum that 20 °C keeps.
+  const fs::path dir = scratch("hot_site");
+  const std::string site =
+      "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n  printing: unattended\n";
+  const std::string mix = "material: " + nurse_saul_mix(dir, 30, 120).string() + "\n";
+  EXPECT_TRUE(one_wall(dir, site + "  temperature_c: 20\n", mix).feasible);
+  const Schedule hot = one_wall(dir, site + "  temperature_c: 35\n", mix);
+  ASSERT_FALSE(hot.feasible);
+  EXPECT_EQ(hot.infeasibility->kind, InfeasibilityKind::kMaxInterval);
+  ASSERT_GE(hot.layers.size(), 2u);
+  EXPECT_NEAR(*hot.layers[1].equivalent_interval_max_s, 1.5 * *hot.layers[1].local_interval_max_s,
+              kTol_s);
+}
+
+TEST(SiteSchedule, PrintingStopsInTheColdAndResumesAtThePlacingLimit) {
+  const fs::path dir = scratch("frost");
+  // 07:00 start; from 07:05 to 08:00 it is 4.9 °C, from 08:00 exactly 5.0 °C (the limit).
+  std::ofstream(dir / "w.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01 07:00,8,1\n"
+                                  "2027-03-01 07:05,4.9,1\n2027-03-01 08:00,5.0,1\n";
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  weather: " +
+                                  (dir / "w.csv").string() + "\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  // Layers 0-2 end by 07:05 (layer 2 at 287 s); layer 3 would run into the frost.
+  EXPECT_LE(s.layers[2].end_s, 300.0 + kTol_s);
+  EXPECT_TRUE(s.layers[3].planned_joint);
+  const Event* joint = joint_before(s, s.layers[3]);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 3600.0, kTol_s);  // at 08:00, 5.0 °C
+  EXPECT_EQ(s.layers[3].wait_reasons.back().kind, WaitKind::kCold);
+}
+
+TEST(SiteSchedule, AClimbWaitsForTheWindToDropUnderTheMachinesLimit) {
+  // The tower at a constant 20 °C: where its first climb starts; then a gale over that
+  // hour: the climb waits until it has passed, and climbs in calm air.
+  const fs::path dir = scratch("gale");
+  std::ofstream(dir / "site.yaml") << "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"
+                                      "printing: unattended\npipes: unattended\n"
+                                      "working_hours: {mon-sun: 00:00-24:00}\n";
+  orchestrator::ProjectOptions po;
+  po.site_file = dir / "site.yaml";
+  ScheduleOptions o;
+  o.jobs = 2;
+  const auto first_climb = [](const Schedule& s) -> const Event* {
+    for (const auto& e : s.events)
+      if (e.kind == Event::Kind::kClimb) return &e;
+    return nullptr;
+  };
+  std::ofstream(dir / "calm.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01 07:00,20,2\n";
+  std::ofstream(dir / "site.yaml", std::ios::app) << "weather: calm.csv\n";
+  const Schedule calm =
+      build_schedule(orchestrator::open_project("config/buildings/tower.yaml", po), o);
+  const Event* c0 = first_climb(calm);
+  ASSERT_NE(c0, nullptr);
+  const double gale_from_s = std::floor(c0->start_s / 3600.0) * 3600.0;
+  const SiteCalendar& cal = *orchestrator::open_project("config/buildings/tower.yaml", po).calendar;
+  const auto local = [&](double t_s) { return cal.timestamp(t_s); };
+  std::ofstream(dir / "calm.csv") << "timestamp,temperature_c,wind_m_s\n"
+                                  << local(0.0) << ",20,2\n"
+                                  << local(gale_from_s) << ",20,22\n"
+                                  << local(gale_from_s + 3 * 3600.0) << ",20,2\n";
+  const Schedule windy =
+      build_schedule(orchestrator::open_project("config/buildings/tower.yaml", po), o);
+  const Event* c1 = first_climb(windy);
+  ASSERT_NE(c1, nullptr);
+  EXPECT_NEAR(c1->start_s, gale_from_s + 3 * 3600.0, kTol_s);
+  ASSERT_TRUE(c1->climb.has_value());
+  EXPECT_EQ(c1->climb->wait_reasons.back().kind, WaitKind::kWind);
 }
 
 }  // namespace

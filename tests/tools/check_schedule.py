@@ -80,7 +80,8 @@ ROUND_P = 2e-6     # m: two coordinates, each rounded to micrometres
 ROUND_T = 2e-6     # s: two times, each rounded to microseconds
 ROUND_A = 2e-6     # rad: two headings, each rounded to microradians
 INTERVAL = 2.5e-6  # s: an interval from four times rounded to microseconds, against the bounds
-WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab", "off-shift", "joint")
+WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab", "off-shift", "joint", "cold",
+              "wind")
 EVENT_KINDS = ("pipe", "slab", "purge", "climb", "joint")
 MAX_SHOWN = 20
 
@@ -697,6 +698,82 @@ def pair_intervals(this, below):
     return count, ends, low, high
 
 
+class Maturity:
+    """Equivalent age at 20 °C from the site's readings (each holds until the next) and the
+    material's age function (ASTM C1074: Nurse-Saul or Arrhenius), counted from 0 s."""
+
+    def __init__(self, doc):
+        fn = doc["inputs"]["material"]["maturity"]
+        readings = doc["inputs"]["site"]["conditions"]["readings"]
+        if fn["function"] == "arrhenius":
+            e = fn["activation_energy_j_mol"]
+
+            def rate(T):
+                return math.exp(-e / 8.314462618 * (1.0 / (T + 273.15) - 1.0 / 293.15))
+        else:
+            t0 = fn["datum_temperature_c"]
+
+            def rate(T):
+                return max(0.0, T - t0) / (20.0 - t0)
+        self.readings = readings
+        self.t = [r[0] for r in readings]
+        self.rate = [rate(r[1]) for r in readings]
+        f = [0.0]
+        for i in range(1, len(self.t)):
+            f.append(f[-1] + self.rate[i - 1] * (self.t[i] - self.t[i - 1]))
+        self.f = f
+        zero = self.at(0.0)
+        self.f = [v - zero for v in f]
+
+    def index(self, t):
+        return max(bisect.bisect_right(self.t, t) - 1, 0)
+
+    def at(self, t):
+        i = self.index(t)
+        return self.f[i] + self.rate[i] * (t - self.t[i])
+
+    def age(self, a, b):
+        return self.at(b) - self.at(a)
+
+    def after(self, start, age):
+        if age <= 0:
+            return start
+        if math.isinf(age):
+            return math.inf
+        target = self.at(start) + age
+        i = bisect.bisect_left(self.f, target)
+        seg = max(i - 1, 0)
+        if self.rate[seg] <= 0:
+            return start if i == 0 else math.inf
+        return max(start, self.t[seg] + (target - self.f[seg]) / self.rate[seg])
+
+    def all_ok(self, a, b, ok):
+        """Whether every reading in force over [a, b) is ok."""
+        i = self.index(a)
+        while i < len(self.t) and (i == self.index(a) or self.t[i] < b - 1e-9):
+            if not ok(self.readings[i]):
+                return False
+            i += 1
+        return True
+
+
+def maturity_of(doc):
+    site = doc["inputs"].get("site")
+    return Maturity(doc) if site is not None and site.get("conditions") is not None else None
+
+
+def raw_ends(this, below):
+    """Per piece end of this plan on a wall the plan below deposits: (this plan's earliest
+    and latest time there, the plan below's earliest and latest), each in its own plan's
+    time."""
+    out = []
+    for wall, piece, x, y, own in this.ends:
+        under = below.times_at(wall, x, y)
+        if under and own:
+            out.append((min(own), max(own), min(under), max(under)))
+    return out
+
+
 def index_of(layers, floor, layer):
     """The index of floor `floor` layer `layer` in layers, or None."""
     return next((i for i, l in enumerate(layers) if (l["floor"], l["layer"]) == (floor, layer)), None)
@@ -726,7 +803,8 @@ def joint_treatment_s(doc):
     return joint["treatment_s"] if doc["inputs"].get("site") is not None and joint else 0.0
 
 
-def older_layers(layers, i, has_below, curve, rho_g_sf, earliest, feasible, where, problems, notes):
+def older_layers(layers, i, has_below, curve, rho_g_sf, earliest, feasible, where, problems, notes,
+                 mat=None):
     """Every layer under layers[i] but the one just below it (that one is checked piece
     by piece), on its floor and on the floors below, must carry the walls from its
     bottom to this layer's top at its age counted from its end, at this layer's start.
@@ -743,11 +821,11 @@ def older_layers(layers, i, has_below, curve, rho_g_sf, earliest, feasible, wher
         load = rho_g_sf * (layer["z_m"] - old["z_bottom_m"])
         age = age_reaching(curve, load)
         never = never or math.isinf(age)
-        if layer["start_s"] - old["end_s"] < age - T_DOC:
+        old_age = mat.age(old["end_s"], layer["start_s"]) if mat else layer["start_s"] - old["end_s"]
+        if old_age < age - T_DOC:
             short.append("%s: floor %d layer %d is %.6f s old at its start, it needs %.6f s to "
-                         "carry %.6f MPa" % (where, old["floor"], old["layer"],
-                                             layer["start_s"] - old["end_s"], age, load))
-        need = age - (earliest - old["end_s"])
+                         "carry %.6f MPa" % (where, old["floor"], old["layer"], old_age, age, load))
+        need = (mat.after(old["end_s"], age) - earliest) if mat else age - (earliest - old["end_s"])
         if worst is None or need > worst[0]:
             worst = (need, old)
     if never and not feasible:
@@ -826,8 +904,9 @@ def check_intervals(doc, infos, problems, notes, stats):
     rho_g_sf = material["density_kg_m3"] * G * material["safety_factor"] * 1e-6
     purge_s = doc["inputs"]["machine"]["purge_s"]
     joint_s = joint_treatment_s(doc)
+    mat = maturity_of(doc)
     feasible = doc["feasible"]
-    cache = {}
+    cache, raw_cache = {}, {}
     overs = []                  # (layer, interval) over the maximum, when infeasible
     first_never = None          # the first layer some layer under it can never carry
     # Where a layer waits for strength (layer index -> the wait and what needs it), for
@@ -838,7 +917,7 @@ def check_intervals(doc, infos, problems, notes, stats):
         below = layer_below(layers, i)
         earliest = earliest_start(layer, purge_s, joint_s)
         older, never = older_layers(layers, i, below is not None, curve, rho_g_sf, earliest,
-                                    feasible, where, problems, notes)
+                                    feasible, where, problems, notes, mat)
         if never and first_never is None:
             first_never = i
         if older is not None and older[0] > T_DOC:
@@ -873,6 +952,20 @@ def check_intervals(doc, infos, problems, notes, stats):
                 problems.append("%s: local_interval_%s_s %s, recomputed %.6f s (wall %d piece %d at "
                                 "(%.4f, %.4f) m)" % ((where, name, said, value) + at[1:]))
             check_at(where, layer, name, value, shift, ends, problems)
+        if mat is not None:
+            # With the site's weather the window and the strength are in equivalent age,
+            # piece end by piece end.
+            if pair not in raw_cache:
+                raw_cache[pair] = raw_ends(infos[pair[0]], infos[pair[1]])
+            raw = raw_cache[pair]
+            s0, b0 = layer["start_s"], below["start_s"]
+            smallest = min(mat.age(b0 + r[3], s0 + r[0]) for r in raw)
+            largest = max(mat.age(b0 + r[2], s0 + r[1]) for r in raw)
+            for name, value in (("min", smallest), ("max", largest)):
+                said = layer.get("equivalent_interval_%s_s" % name)
+                if said is None or abs(said - value) > T_DOC:
+                    problems.append("%s: equivalent_interval_%s_s %s, recomputed %.6f s from the paths "
+                                    "and the weather" % (where, name, said, value))
         if smallest < lo_bound - INTERVAL:
             problems.append("%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer "
                             "below, under the minimum interval %g s" % ((where,) + low[1:] + (smallest, lo_bound)))
@@ -901,7 +994,14 @@ def check_intervals(doc, infos, problems, notes, stats):
         if math.isinf(age) and first_never is None:
             first_never = i
         below_need = None if math.isinf(age) and not feasible else age - early
-        check_reasons(where, layer, lo_bound - early, below_need, older, problems)
+        min_need = lo_bound - early
+        if mat is not None:
+            # Each end may be covered once the concrete deposited there last is old enough.
+            b0 = below["start_s"]
+            min_need = max(mat.after(b0 + r[3], lo_bound) - r[0] for r in raw) - earliest
+            if below_need is not None:
+                below_need = max(mat.after(b0 + r[3], age) - r[0] for r in raw) - earliest
+        check_reasons(where, layer, min_need, below_need, older, problems)
         if below_need is not None and below_need > T_DOC and (
                 i not in stats["strength_waits"] or below_need > stats["strength_waits"][i][0]):
             stats["strength_waits"][i] = (below_need, below)
@@ -1094,18 +1194,24 @@ def check_climb(doc, i, e, curve, problems, stats):
             problems.append("%s: no pipe event places it before the climb" % at)
             continue
         age = e["start_s"] - cast
-        mpa = strength_at(curve, age)
+        mat = maturity_of(doc)
+        equivalent = mat.age(cast, e["start_s"]) if mat else age
+        mpa = strength_at(curve, equivalent)
         if required is not None:
-            needs.append(age_reaching(curve, required) - (earliest - cast))
+            needs.append((mat.after(cast, age_reaching(curve, required)) if mat else
+                          cast + age_reaching(curve, required)) - earliest)
         if abs(a["age_s"] - age) > T_DOC:
             problems.append("%s: age_s %.6f, the climb starts %.6f s after its pipe's placement" % (
                 at, a["age_s"], age))
+        if mat and abs(a.get("equivalent_age_s", math.nan) - equivalent) > T_DOC:
+            problems.append("%s: equivalent_age_s %s, recomputed %.6f s from the weather" % (
+                at, a.get("equivalent_age_s"), equivalent))
         if abs(a["strength_mpa"] - mpa) > 1e-5:
             problems.append("%s: strength_mpa %.6f, the curve gives %.6f at %.6f s" % (
-                at, a["strength_mpa"], mpa, age))
+                at, a["strength_mpa"], mpa, equivalent))
         if mpa < (required if required is not None else a["required_mpa"]) - 1e-6:
             problems.append("%s: %.6f MPa at %.6f s, under the anchor strength %g MPa (needs %.6f s)" % (
-                at, mpa, age, required, age_reaching(curve, required)))
+                at, mpa, equivalent, required, age_reaching(curve, required)))
     longest = max([r["required_s"] for r in e["wait_reasons"]], default=0.0)
     if abs(e["wait_before_s"] - longest) > T_DOC:
         problems.append("%s: wait_before_s %.6f, its reasons need %.6f s" % (where, e["wait_before_s"], longest))
@@ -1271,6 +1377,27 @@ def check_site(doc, problems, stats):
             problems.append("%s: %s %s, but %.6f s from the start is %s" % (name, key, obj[key], t, cal.timestamp(t)))
     attended = site["printing"] == "attended"
     purge_s = machine["purge_s"]
+    mat = maturity_of(doc)
+    lo_c, hi_c = material.get("placing_temperature_c", [-math.inf, math.inf])
+
+    def warm(r):
+        return lo_c - 1e-9 <= r[1] <= hi_c + 1e-9
+
+    def fit(t, crew, whole, ok):
+        """The earliest start from t at which `crew` s lie in one working window and the
+        weather is ok over `whole` s (the calendar and the weather each as strict as the
+        work needs)."""
+        for _ in range(10000):
+            u = cal.fit(t, crew) if crew > 0 else t
+            if mat is not None and math.isfinite(u) and not mat.all_ok(u, u + whole, ok):
+                k = mat.index(u)
+                while k < len(mat.t) and (k == mat.index(u) or mat.t[k] < u + whole) and ok(mat.readings[k]):
+                    k += 1
+                u = mat.t[k + 1] if k + 1 < len(mat.t) else math.inf
+            if not math.isfinite(u) or abs(u - t) <= 1e-9:
+                return u
+            t = u
+        return math.inf
     largest = stats.get("largest", {})
     joints = {(e["floor"], e["after_layer"], round(e["start_s"], 3)) for e in events if e["kind"] == "joint"}
     for i, l in enumerate(layers):
@@ -1281,13 +1408,16 @@ def check_site(doc, problems, stats):
         if attended and not cal.within(block, l["end_s"]):
             problems.append("%s: printing is attended, but it (with its purge and joint) runs %s to %s, "
                             "outside one working window" % (where, cal.timestamp(block), cal.timestamp(l["end_s"])))
+        if mat is not None and not mat.all_ok(block, l["end_s"], warm):
+            problems.append("%s: printed from %s to %s, when the air was outside the material's placing "
+                            "range %g..%g °C" % (where, cal.timestamp(block), cal.timestamp(l["end_s"]), lo_c, hi_c))
         earliest = block - l["wait_before_s"]
         rules = earliest + max([r["required_s"] for r in l["wait_reasons"]
-                                if r["kind"] not in ("off-shift", "joint")], default=0.0)
+                                if r["kind"] not in ("off-shift", "joint", "cold")], default=0.0)
         for r in l["wait_reasons"]:
-            if r["kind"] == "off-shift":
+            if r["kind"] in ("off-shift", "cold"):
                 crew = length if attended else treat
-                want = cal.fit(rules, crew)
+                want = fit(rules, crew, length, warm)
                 if abs(want - block) > T_DOC:
                     problems.append("%s: waits off-shift until %s; the earliest working window that holds "
                                     "its %.1f s from %s starts the work at %s" % (
@@ -1300,8 +1430,9 @@ def check_site(doc, problems, stats):
             if below is None:
                 problems.append("%s: a planned joint on a floor's first layer, which stands on its slab" % where)
                 continue
-            if cal.within(below["end_s"], block):
-                problems.append("%s: a planned joint, but no off-shift hours lie between the layer below's end "
+            if cal.within(below["end_s"], block) and \
+                    (mat is None or mat.all_ok(below["end_s"], block, warm)):
+                problems.append("%s: a planned joint, but no off-shift hours (or cold) lie between the layer below's end "
                                 "(%s) and the joint (%s)" % (where, cal.timestamp(below["end_s"]), cal.timestamp(block)))
             age = block - below["end_s"]
             if age < joint["min_age_s"] - T_DOC or (doc["feasible"] and age > joint["max_age_s"] + T_DOC):
@@ -1319,11 +1450,20 @@ def check_site(doc, problems, stats):
         if crew and not cal.within(e["start_s"], e["end_s"]):
             problems.append("event %d (%s): needs a crew, but runs %s to %s, outside one working window" % (
                 i, e["kind"], cal.timestamp(e["start_s"]), cal.timestamp(e["end_s"])))
+        limit = machine.get("climb_wind_limit_m_s", math.inf)
+
+        def calm(r):
+            return r[2] <= limit + 1e-9
+        if e["kind"] == "climb" and mat is not None and not mat.all_ok(e["start_s"], e["end_s"], calm):
+            problems.append("event %d (climb): from %s to %s the wind exceeds the machine's climbing "
+                            "limit %g m/s" % (i, cal.timestamp(e["start_s"]), cal.timestamp(e["end_s"]), limit))
         for r in e.get("wait_reasons", []):
-            if r["kind"] == "off-shift":
+            if r["kind"] in ("off-shift", "wind"):
                 ready = e["start_s"] - e["wait_before_s"] + max(
-                    [q["required_s"] for q in e["wait_reasons"] if q["kind"] != "off-shift"], default=0.0)
-                want = cal.fit(ready, e["end_s"] - e["start_s"])
+                    [q["required_s"] for q in e["wait_reasons"] if q["kind"] not in ("off-shift", "wind")],
+                    default=0.0)
+                span = e["end_s"] - e["start_s"]
+                want = fit(ready, span, span, calm)
                 if abs(want - e["start_s"]) > T_DOC:
                     problems.append("event %d (%s): starts %s; the earliest working window that holds it from "
                                     "%s starts it at %s" % (i, e["kind"], cal.timestamp(e["start_s"]),
@@ -1714,9 +1854,12 @@ def site_corruptions(doc, add):
     layers, events = doc["layers"], doc["events"]
     add("a layer's timestamp an hour off", "start_time")(
         lambda d: d["layers"][1].update(start_time=d["layers"][2]["start_time"]))
-    add("shifts an hour later", "outside one working window")(
+    # Every shift starting an hour after the hour the first layer starts in.
+    later = "%02d:00" % min(int(layers[0]["start_time"][11:13]) + 1, 23)
+    add("shifts starting later", "outside one working window")(
         lambda d: d["inputs"]["site"]["working_hours"].update(
-            {k: [s.replace("07:00", "08:00") for s in v] for k, v in site["working_hours"].items()}))
+            {k: [later + s[5:] if s[:5] < later < s[6:] else s for s in v]
+             for k, v in site["working_hours"].items()}))
     last_day = doc["days"][-1]["date"]
     add("a working day made a holiday", "outside one working window")(
         lambda d: d["inputs"]["site"]["holidays"].append(last_day))
@@ -1728,6 +1871,23 @@ def site_corruptions(doc, add):
             lambda d: d["layers"][j].update(planned_joint=False))
         add("a planned joint's treatment left out", "no joint event")(
             lambda d: d.update(events=[e for e in d["events"] if e["kind"] != "joint"]))
+    if site.get("conditions") is not None:
+        readings = site["conditions"]["readings"]
+        times = [r[0] for r in readings]
+
+        def in_force(t):
+            return max(bisect.bisect_right(times, t) - 1, 0)
+        mid = layers[len(layers) // 2]
+        k = in_force(mid["start_s"])
+        add("a frost while a layer prints", "placing range")(
+            lambda d: d["inputs"]["site"]["conditions"]["readings"][k].__setitem__(1, -5.0))
+        add("a warmer site", "equivalent_interval")(
+            lambda d: [r.__setitem__(1, r[1] + 10.0) for r in d["inputs"]["site"]["conditions"]["readings"]])
+        climbing = [e for e in events if e["kind"] == "climb"]
+        if climbing:
+            g = in_force(climbing[-1]["start_s"])
+            add("a gale while the machine climbs", "climbing limit")(
+                lambda d: d["inputs"]["site"]["conditions"]["readings"][g].__setitem__(2, 40.0))
     climbs = [i for i, e in enumerate(events) if e["kind"] == "climb"]
     if climbs:
         c = climbs[0]

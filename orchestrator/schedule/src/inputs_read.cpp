@@ -39,7 +39,8 @@ RecordedMachine read_machine(const JsonAt& m) {
                "purge_s",
                "kind",
                "anchor_strength_mpa",
-               "pipe_embed_s"});
+               "pipe_embed_s",
+               "climb_wind_limit_m_s"});
   RecordedMachine r;
   r.name = m.at("name").string(1000);
   r.deposition_speed_m_s = m.at("deposition_speed_m_s").number(kSpeed, "m/s");
@@ -85,6 +86,8 @@ RecordedMachine read_machine(const JsonAt& m) {
   if (r.climbing) {
     r.anchor_strength_mpa = m.at("anchor_strength_mpa").number(kStrength_mpa, "MPa");
     r.pipe_embed_s = m.at("pipe_embed_s").number(kDuration_s, "s");
+    if (const auto wind = m.maybe("climb_wind_limit_m_s"))
+      r.climb_wind_limit_m_s = wind->number(Range::above(0.0, 100.0), "m/s");
   } else if (m.maybe("anchor_strength_mpa") || m.maybe("pipe_embed_s")) {
     m.refuse("a fixed gantry has no anchor_strength_mpa or pipe_embed_s");
   }
@@ -93,7 +96,7 @@ RecordedMachine read_machine(const JsonAt& m) {
 
 std::shared_ptr<const SiteCalendar> read_site(const JsonAt& j) {
   j.only_keys({"start", "start_local", "time_zone", "tzdb", "working_hours", "holidays", "printing",
-               "pipes"});
+               "pipes", "conditions"});
   SiteProgramme p;
   p.source = "the schedule's /inputs/site";
   const auto start = parse_local_start(j.at("start_local").string(40));
@@ -138,7 +141,38 @@ std::shared_ptr<const SiteCalendar> read_site(const JsonAt& j) {
 
 void read_material(const JsonAt& m, RecordedInputs& in) {
   m.only_keys({"name", "density_kg_m3", "min_layer_interval_s", "max_layer_interval_s",
-               "safety_factor", "strength_curve", "planned_joint", "origin"});
+               "safety_factor", "strength_curve", "planned_joint", "strength_en1992", "maturity",
+               "placing_temperature_c", "origin"});
+  if (const auto en = m.maybe("strength_en1992")) {
+    en->only_keys({"fcm_mpa", "cement_class", "s"});
+    floors::En1992Strength e;
+    e.fcm_mpa = en->at("fcm_mpa").number(Range::above(0.0, 500.0), "MPa");
+    e.cement_class = en->at("cement_class").string(2);
+    e.s = en->at("s").number(Range::above(0.0, 1.0), "");
+    in.material.en1992 = e;
+  }
+  if (const auto maturity = m.maybe("maturity")) {
+    maturity->only_keys({"function", "activation_energy_j_mol", "datum_temperature_c"});
+    floors::MaturityFunction& f = in.material.maturity;
+    const std::string name = maturity->at("function").string(20);
+    if (name == "arrhenius") {
+      f.kind = floors::MaturityFunction::Kind::kArrhenius;
+      f.activation_energy_j_mol =
+          maturity->at("activation_energy_j_mol").number(Range::above(0.0, 1e6), "J/mol");
+    } else if (name == "nurse-saul") {
+      f.kind = floors::MaturityFunction::Kind::kNurseSaul;
+      f.datum_temperature_c =
+          maturity->at("datum_temperature_c").number(Range::closed(-60, 19), "°C");
+    } else {
+      maturity->at("function").refuse("expected \"arrhenius\" or \"nurse-saul\"");
+    }
+  }
+  if (const auto placing = m.maybe("placing_temperature_c")) {
+    const auto range = placing->elements(2);
+    if (range.size() != 2) placing->refuse("expected [min, max]");
+    in.material.placing_min_c = range[0].number(Range::closed(-60.0, 60.0), "°C");
+    in.material.placing_max_c = range[1].number(Range::closed(-60.0, 60.0), "°C");
+  }
   if (const auto joint = m.maybe("planned_joint")) {
     joint->only_keys({"treatment_s", "min_age_s", "max_age_s"});
     floors::PlannedJoint& pj = in.material.planned_joint;
@@ -231,7 +265,26 @@ RecordedInputs read_inputs(const JsonAt& root) {
   }
   in.machine = read_machine(i.at("machine"));
   read_material(i.at("material"), in);
-  if (const auto site = i.maybe("site")) in.calendar = read_site(*site);
+  if (const auto site = i.maybe("site")) {
+    in.calendar = read_site(*site);
+    if (const auto c = site->maybe("conditions")) {
+      c->only_keys({"source", "readings"});
+      auto conditions = std::make_shared<SiteConditions>();
+      conditions->source = c->at("source").string(10'000);
+      for (const auto& r : c->at("readings").elements(kMaxWeatherReadings)) {
+        const auto v = r.elements(3);
+        if (v.size() != 3) r.refuse("expected [t_s, temperature_c, wind_m_s]");
+        const WeatherReading w{v[0].number(Range::closed(-1e10, 1e10), "s"),
+                               v[1].number(Range::closed(-60.0, 60.0), "°C"),
+                               v[2].number(Range::closed(0.0, 80.0), "m/s")};
+        if (!conditions->readings.empty() && w.t_s <= conditions->readings.back().t_s)
+          r.refuse("readings are listed in time order");
+        conditions->readings.push_back(w);
+      }
+      if (conditions->readings.empty()) c->at("readings").refuse("expected at least one reading");
+      in.conditions = std::move(conditions);
+    }
+  }
   return in;
 }
 

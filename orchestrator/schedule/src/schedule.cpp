@@ -20,6 +20,24 @@ double Scheduler::move_between(const std::string& from_key, const std::string& t
                                  project_.building.layer_height_m);
 }
 
+double Scheduler::largest_interval_s(const IntervalOffsets& o, double below_start_s,
+                                     double start_s) const {
+  if (!maturity_) return start_s - below_start_s + o.max_offset_s;
+  double most_s = -kInf;
+  for (const auto& e : o.each)
+    most_s = std::max(most_s, maturity_->age(below_start_s + e.low_lo_s, start_s + e.up_hi_s));
+  return most_s;
+}
+
+double Scheduler::smallest_interval_s(const IntervalOffsets& o, double below_start_s,
+                                      double start_s) const {
+  if (!maturity_) return start_s - below_start_s + o.min_offset_s;
+  double least_s = kInf;
+  for (const auto& e : o.each)
+    least_s = std::min(least_s, maturity_->age(below_start_s + e.low_hi_s, start_s + e.up_lo_s));
+  return least_s;
+}
+
 const IntervalOffsets& Scheduler::offsets(const Slice& upper, const std::string& upper_key,
                                           const std::string& lower_key) {
   const auto key = std::make_pair(upper_key, lower_key);
@@ -41,7 +59,7 @@ double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, 
   double ready_s = -kInf;
   for (int j = first_checked - 1; j >= 0; --j) {
     // Older layers carry at most the whole height; once that is within their age, stop.
-    if (std::isfinite(worst_age_s) && layer_end_s_[j] + worst_age_s <= earliest_s) break;
+    if (std::isfinite(worst_age_s) && aged_s(layer_end_s_[j], worst_age_s) <= earliest_s) break;
     const double required_mpa = required_strength_mpa(top_m - slices_[j].layer.z_bottom_m);
     const double age_s = material_.age_for_strength_s(required_mpa);
     if (!std::isfinite(age_s)) {
@@ -55,8 +73,8 @@ double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, 
           material_.strength_curve.back().strength_mpa);
       return kInf;
     }
-    if (layer_end_s_[j] + age_s > ready_s) {
-      ready_s = layer_end_s_[j] + age_s;
+    if (aged_s(layer_end_s_[j], age_s) > ready_s) {
+      ready_s = aged_s(layer_end_s_[j], age_s);
       reason.kind = WaitKind::kStrength;
       reason.detail = printf_string(
           "%s carries %.3f m of wall above its bottom: %.4f MPa with the safety factor %.2f; "
@@ -287,6 +305,8 @@ bool Scheduler::schedule_layer(int i) {
     std::string calendar_fail;  ///< no working window holds it
     IntervalOffsets offsets;
     double local_max_s = -kInf;
+    /// In equivalent age, with site temperatures (else unset).
+    std::optional<double> equivalent_min_s, equivalent_max_s;
     bool ok = false;
   };
   std::optional<Choice> best;
@@ -306,7 +326,7 @@ bool Scheduler::schedule_layer(int i) {
     };
     if (below) {
       c.offsets = offsets(slice, c.key, below->plan);
-      if (c.offsets.ends > 0) {
+      if (c.offsets.ends > 0 && !maturity_) {
         const double earliest_local_s = earliest_s - below->start_s + c.offsets.min_offset_s;
         require(below->start_s + material_.min_layer_interval_s - c.offsets.min_offset_s,
                 WaitKind::kMinInterval,
@@ -322,6 +342,31 @@ bool Scheduler::schedule_layer(int i) {
                                 piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
                                 slice.layer.z_top_m - below->z_bottom_m, earliest_local_s,
                                 material_.safety_factor, below_age_s));
+      } else if (c.offsets.ends > 0) {
+        // In equivalent age, piece end by piece end: each may be covered once the concrete
+        // deposited there last is old enough.
+        double min_need_s = -kInf, strength_need_s = -kInf;
+        PieceEnd min_at, strength_at;
+        for (const auto& e : c.offsets.each) {
+          const double deposited_s = below->start_s + e.low_hi_s;
+          const double min_s =
+              maturity_->after(deposited_s, material_.min_layer_interval_s) - e.up_lo_s;
+          if (min_s > min_need_s) min_need_s = min_s, min_at = e.at;
+          if (!std::isfinite(below_age_s)) continue;
+          const double strong_end_s = maturity_->after(deposited_s, below_age_s) - e.up_lo_s;
+          if (strong_end_s > strength_need_s) strength_need_s = strong_end_s, strength_at = e.at;
+        }
+        require(min_need_s, WaitKind::kMinInterval,
+                printf_string("%s would be covered before its concrete is %.1f s old in "
+                              "equivalent age at 20 °C, the minimum interval",
+                              piece_text(min_at).c_str(), material_.min_layer_interval_s));
+        if (std::isfinite(below_age_s))
+          require(strength_need_s, WaitKind::kStrength,
+                  printf_string("%s (floor %d layer %d) would carry %.3f m of wall; with the "
+                                "safety factor %.2f its concrete needs %.1f s of equivalent age",
+                                piece_text(strength_at).c_str(), below->floor, below->layer,
+                                slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor,
+                                below_age_s));
       }
     }
     if (!impossible && std::isfinite(strong_s)) {
@@ -363,9 +408,31 @@ bool Scheduler::schedule_layer(int i) {
           continue;
         }
       }
+      // Printing needs an air temperature within the material's placing range.
+      if (maturity_) {
+        const double print_s = joint_s + (c.purge ? machine_.purge_s : 0.0) + p.layer_time_s;
+        const double warm_s = maturity_->fit_s(block_s, print_s, [this](const WeatherReading& r) {
+          return r.temperature_c >= material_.placing_min_c - 1e-9 &&
+                 r.temperature_c <= material_.placing_max_c + 1e-9;
+        });
+        if (!std::isfinite(warm_s)) {
+          c.calendar_fail = printf_string(
+              "%s: the air is never again within the material's placing range of %.1f to %.1f "
+              "°C (the weather's last reading holds)",
+              where_text(slice.floor, slice.layer.index).c_str(), material_.placing_min_c,
+              material_.placing_max_c);
+          break;
+        }
+        if (warm_s > block_s + 1e-9) {
+          moved = true;
+          block_s = warm_s;
+          pushed_by = WaitKind::kCold;
+          continue;
+        }
+      }
       const double layer_start_s = block_s + joint_s + (c.purge ? machine_.purge_s : 0.0);
       const bool over_max = below && c.offsets.ends > 0 &&
-                            layer_start_s - below->start_s + c.offsets.max_offset_s >
+                            largest_interval_s(c.offsets, below->start_s, layer_start_s) >
                                 material_.max_layer_interval_s + 1e-9;
       if (moved && over_max && !c.joint) {
         c.joint = true;
@@ -383,26 +450,37 @@ bool Scheduler::schedule_layer(int i) {
       if (!best) best = std::move(c);
       return false;
     }
-    if (block_s > rules_s + 1e-9)
-      c.reasons.push_back(
-          {pushed_by, block_s - earliest_s,
-           pushed_by == WaitKind::kJoint
-               ? printf_string("the planned joint on floor %d layer %d may be treated once it is "
-                               "%.1f h old",
-                               below->floor, below->layer, pj.min_age_s / 3600.0)
-               : printf_string(
-                     "%s needs a crew: %s is off-shift; the next working hours that "
-                     "hold it start %s",
-                     printing_attended() ? "printing (attended)" : "the joint's treatment",
-                     calendar_->local_text(rules_s).c_str(),
-                     calendar_->local_text(block_s).c_str())});
+    if (block_s > rules_s + 1e-9) {
+      std::string detail;
+      if (pushed_by == WaitKind::kJoint)
+        detail = printf_string(
+            "the planned joint on floor %d layer %d may be treated once it is %.1f h old",
+            below->floor, below->layer, pj.min_age_s / 3600.0);
+      else if (pushed_by == WaitKind::kCold)
+        detail = printf_string(
+            "the air is outside the material's placing range of %.1f to %.1f °C from %s; "
+            "printing resumes at %s",
+            material_.placing_min_c, material_.placing_max_c, when_text(rules_s).c_str(),
+            when_text(block_s).c_str());
+      else
+        detail = printf_string(
+            "%s needs a crew: %s is off-shift; the next working hours that hold it start %s",
+            printing_attended() ? "printing (attended)" : "the joint's treatment",
+            calendar_->local_text(rules_s).c_str(), calendar_->local_text(block_s).c_str());
+      c.reasons.push_back({pushed_by, block_s - earliest_s, detail});
+    }
     c.wait_s = block_s - earliest_s;
     c.block_s = block_s;
     start_s = block_s + (c.joint ? pj.treatment_s : 0.0) + (c.purge ? machine_.purge_s : 0.0);
     c.start_s = start_s;
     if (below && c.offsets.ends > 0) {
       c.local_max_s = start_s - below->start_s + c.offsets.max_offset_s;
-      c.ok = c.joint || c.local_max_s <= material_.max_layer_interval_s + 1e-9;
+      if (maturity_) {
+        c.equivalent_max_s = largest_interval_s(c.offsets, below->start_s, start_s);
+        c.equivalent_min_s = smallest_interval_s(c.offsets, below->start_s, start_s);
+      }
+      c.ok = c.joint ||
+             c.equivalent_max_s.value_or(c.local_max_s) <= material_.max_layer_interval_s + 1e-9;
       if (!c.ok)
         refusals.push_back(printf_string(
             "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
@@ -505,6 +583,8 @@ bool Scheduler::schedule_layer(int i) {
   out.wait_reasons = best->reasons;
   out.purge_before = best->purge;
   out.planned_joint = best->joint;
+  out.equivalent_interval_min_s = best->equivalent_min_s;
+  out.equivalent_interval_max_s = best->equivalent_max_s;
   if (below) {
     out.interval_s = out.start_s - below->start_s;
     if (best->offsets.ends > 0) {
@@ -623,15 +703,17 @@ bool Scheduler::after_layer(int i) {
     for (const auto& a : to.anchors) {
       const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
       const double cast_s = cast == pipe_done_s_.end() ? 0.0 : cast->second;
-      if (cast_s + age_needed_s > ready_s + 1e-9) {
+      const double strong_s =
+          anchor_maturity_ ? anchor_maturity_->after(cast_s, age_needed_s) : cast_s + age_needed_s;
+      if (strong_s > ready_s + 1e-9) {
         ce.wait_reasons.push_back(
-            {WaitKind::kAnchorStrength, cast_s + age_needed_s - t,
+            {WaitKind::kAnchorStrength, strong_s - t,
              printf_string("anchor %s (unit %s, cast %s) reaches %.1f MPa %.1f h after it "
                            "was cast",
                            a.id.c_str(), project_.climber->units[a.unit].name.c_str(),
                            where_text(a.floor, a.layer).c_str(), strength_mpa,
                            age_needed_s / 3600.0)});
-        ready_s = cast_s + age_needed_s;
+        ready_s = strong_s;
       }
     }
     if (!std::isfinite(age_needed_s)) {
@@ -646,42 +728,66 @@ bool Scheduler::after_layer(int i) {
       fail(inf);
       return false;
     }
-    if (calendar_) {
-      // A climb is supervised: it starts and ends in one working window.
-      const double fit_s = calendar_->fit_s(ready_s, ce.plan.duration_s);
+    // A climb is supervised (in working hours) and waits for calm air.
+    const double wind_limit = project_.climber->climb_wind_limit_m_s;
+    for (int pass = 0; pass < 1000 && (calendar_ || maturity_); ++pass) {
+      double fit_s = ready_s;
+      WaitKind kind = WaitKind::kOffShift;
+      if (calendar_) fit_s = calendar_->fit_s(ready_s, ce.plan.duration_s);
+      if (maturity_ && std::isfinite(fit_s) && fit_s <= ready_s + 1e-9) {
+        fit_s = maturity_->fit_s(
+            ready_s, ce.plan.duration_s,
+            [wind_limit](const WeatherReading& r) { return r.wind_m_s <= wind_limit + 1e-9; });
+        kind = WaitKind::kWind;
+      }
       if (!std::isfinite(fit_s)) {
         Infeasibility inf;
         inf.kind = InfeasibilityKind::kCalendar;
         inf.floor = out.floor;
         inf.layer = out.layer;
-        inf.message = printf_string(
-            "climb %d -> %d takes %.2f h, and no working window from %s holds it (the longest "
-            "is %.2f h)",
-            c, c + 1, ce.plan.duration_s / 3600.0, calendar_->local_text(ready_s).c_str(),
-            calendar_->longest_window_s() / 3600.0);
-        inf.fix = "longer working hours";
+        inf.message =
+            kind == WaitKind::kWind
+                ? printf_string(
+                      "climb %d -> %d: the wind never again stays at or under the "
+                      "machine's limit of %.1f m/s for its %.1f min",
+                      c, c + 1, wind_limit, ce.plan.duration_s / 60.0)
+                : printf_string(
+                      "climb %d -> %d takes %.2f h, and no working window from %s "
+                      "holds it (the longest is %.2f h)",
+                      c, c + 1, ce.plan.duration_s / 3600.0, calendar_->local_text(ready_s).c_str(),
+                      calendar_->longest_window_s() / 3600.0);
+        inf.fix = kind == WaitKind::kWind ? "a weather forecast with calm spells, or a higher "
+                                            "climb_wind_limit_m_s if the machine allows"
+                                          : "longer working hours";
         fail(inf);
         return false;
       }
-      if (fit_s > ready_s + 1e-9) {
-        ce.wait_reasons.push_back(
-            {WaitKind::kOffShift, fit_s - t,
-             printf_string("a climb is supervised: %s is off-shift; the next working hours "
-                           "that hold its %.1f min start %s",
-                           calendar_->local_text(ready_s).c_str(), ce.plan.duration_s / 60.0,
-                           calendar_->local_text(fit_s).c_str())});
-        ready_s = fit_s;
-        off_shift_since_below_ = true;
-      }
+      if (fit_s <= ready_s + 1e-9) break;
+      ce.wait_reasons.push_back(
+          {kind, fit_s - t,
+           kind == WaitKind::kWind
+               ? printf_string("the wind exceeds the machine's climbing limit of %.1f m/s within "
+                               "%.1f min of %s; calm from %s",
+                               wind_limit, ce.plan.duration_s / 60.0, when_text(ready_s).c_str(),
+                               when_text(fit_s).c_str())
+               : printf_string("a climb is supervised: %s is off-shift; the next working hours "
+                               "that hold its %.1f min start %s",
+                               calendar_->local_text(ready_s).c_str(), ce.plan.duration_s / 60.0,
+                               calendar_->local_text(fit_s).c_str())});
+      ready_s = fit_s;
+      off_shift_since_below_ = true;
     }
     ce.wait_before_s = ready_s - t;
     ce.start_s = ready_s;
     ce.end_s = ready_s + ce.plan.duration_s;
     for (const auto& a : to.anchors) {
       const auto cast = pipe_done_s_.find(a.id + "@" + std::to_string(a.floor));
-      const double age_s = ce.start_s - (cast == pipe_done_s_.end() ? 0.0 : cast->second);
+      const double cast_s = cast == pipe_done_s_.end() ? 0.0 : cast->second;
+      const double age_s = ce.start_s - cast_s;
+      const double equivalent_s =
+          anchor_maturity_ ? anchor_maturity_->age(cast_s, ce.start_s) : age_s;
       ce.anchors.push_back({a.id, project_.climber->units[a.unit].name, age_s,
-                            anchor_mix.strength_at_mpa(age_s), strength_mpa});
+                            anchor_mix.strength_at_mpa(equivalent_s), strength_mpa, equivalent_s});
     }
     if (!ce.plan.status) {
       Infeasibility inf;
@@ -739,13 +845,18 @@ std::string to_string(WaitKind kind) {
       return "off-shift";
     case WaitKind::kJoint:
       return "joint";
+    case WaitKind::kCold:
+      return "cold";
+    case WaitKind::kWind:
+      return "wind";
   }
   return "?";
 }
 
 std::optional<WaitKind> wait_kind_named(const std::string& name) {
-  for (WaitKind k : {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength,
-                     WaitKind::kSlab, WaitKind::kOffShift, WaitKind::kJoint})
+  for (WaitKind k :
+       {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab,
+        WaitKind::kOffShift, WaitKind::kJoint, WaitKind::kCold, WaitKind::kWind})
     if (to_string(k) == name) return k;
   return std::nullopt;
 }

@@ -58,6 +58,7 @@ IntervalOffsets interval_offsets(const floors::Layer& upper, const DepositIndex&
       if (!lower_index.times_at(seg.wall_id, p, low_lo, low_hi)) continue;  // over an opening
       ++out.ends;
       const PieceEnd where{seg.wall_id, seg.piece + 1, p.x(), p.y()};
+      out.each.push_back({up_lo, up_hi, low_lo, low_hi, where});
       if (up_lo - low_hi < out.min_offset_s) {
         out.min_offset_s = up_lo - low_hi;
         out.min_at = where;

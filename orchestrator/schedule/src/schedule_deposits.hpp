@@ -58,7 +58,14 @@ DepositIndex index_of(const std::vector<std::vector<planner::Waypoint>>& nozzles
 /// The local intervals between a layer and the one it is deposited on, less the
 /// difference of their starts: interval at an end = start_above - start_below + offset.
 struct IntervalOffsets {
-  int ends = 0;  ///< piece ends of the upper layer over a wall of the lower one
+  /// One piece end: when the upper plan passes it (earliest, latest) and when the lower
+  /// one did, each from its own layer's start.
+  struct End {
+    double up_lo_s = 0.0, up_hi_s = 0.0, low_lo_s = 0.0, low_hi_s = 0.0;
+    PieceEnd at;
+  };
+  std::vector<End> each;  ///< every end counted in `ends`
+  int ends = 0;           ///< piece ends of the upper layer over a wall of the lower one
   double min_offset_s = std::numeric_limits<double>::infinity();
   double max_offset_s = -std::numeric_limits<double>::infinity();
   PieceEnd min_at, max_at;

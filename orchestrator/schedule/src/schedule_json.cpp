@@ -65,12 +65,33 @@ json material_json(const floors::MaterialProfile& m) {
   json curve = json::array();
   for (const auto& p : m.strength_curve)
     curve.push_back({{"age_s", rounded(p.age_s)}, {"strength_mpa", rounded(p.strength_mpa)}});
-  return {{"name", m.name},
-          {"density_kg_m3", rounded(m.density_kg_m3)},
-          {"min_layer_interval_s", rounded(m.min_layer_interval_s)},
-          {"max_layer_interval_s", rounded(m.max_layer_interval_s)},
-          {"safety_factor", rounded(m.safety_factor)},
-          {"strength_curve", curve}};
+  json out = {{"name", m.name},
+              {"density_kg_m3", rounded(m.density_kg_m3)},
+              {"min_layer_interval_s", rounded(m.min_layer_interval_s)},
+              {"max_layer_interval_s", rounded(m.max_layer_interval_s)},
+              {"safety_factor", rounded(m.safety_factor)},
+              {"strength_curve", curve}};
+  if (m.en1992)
+    out["strength_en1992"] = {{"fcm_mpa", rounded(m.en1992->fcm_mpa)},
+                              {"cement_class", m.en1992->cement_class},
+                              {"s", rounded(m.en1992->s)}};
+  return out;
+}
+
+json conditions_json(const SiteConditions& c) {
+  json readings = json::array();
+  for (const auto& r : c.readings)
+    readings.push_back({rounded(r.t_s), rounded(r.temperature_c), rounded(r.wind_m_s)});
+  return {{"source", c.source}, {"readings", readings}};
+}
+
+json maturity_json(const floors::MaterialProfile& m) {
+  json out = {{"function", m.maturity.name()}};
+  if (m.maturity.kind == floors::MaturityFunction::Kind::kArrhenius)
+    out["activation_energy_j_mol"] = rounded(m.maturity.activation_energy_j_mol);
+  else
+    out["datum_temperature_c"] = rounded(m.maturity.datum_temperature_c);
+  return out;
 }
 
 }  // namespace
@@ -99,10 +120,12 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   if (project.climber) {
     r.anchor_strength_mpa = project.climber->anchor_strength_mpa;
     r.pipe_embed_s = project.climber->pipe_embed_s;
+    r.climb_wind_limit_m_s = project.climber->climb_wind_limit_m_s;
   }
   in.material = project.material;
   in.material_origin = project.material_origin;
   in.calendar = project.calendar;
+  in.conditions = project.conditions;
   in.unit_names = project.unit_names();
   for (const auto& floor : b.floors) {
     FloorProvenance p;
@@ -137,6 +160,11 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
                                  {"min_age_s", rounded(j.min_age_s)},
                                  {"max_age_s", rounded(j.max_age_s)}};
   }
+  if (in.conditions) {
+    material["maturity"] = maturity_json(in.material);
+    material["placing_temperature_c"] = {rounded(in.material.placing_min_c),
+                                         rounded(in.material.placing_max_c)};
+  }
   material["origin"] = in.material_origin;
   const SiteCalendar* calendar = in.calendar.get();
   // Seconds, with their local timestamp beside them when there is a calendar.
@@ -170,6 +198,10 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     out["inputs"]["provenance"] = floors_json;
   }
   if (calendar) out["inputs"]["site"] = site_json(*calendar);
+  if (calendar && in.conditions)
+    out["inputs"]["site"]["conditions"] = conditions_json(*in.conditions);
+  if (in.conditions && in.machine.climbing)
+    out["inputs"]["machine"]["climb_wind_limit_m_s"] = rounded(in.machine.climb_wind_limit_m_s);
 
   out["feasible"] = schedule.feasible;
   if (schedule.infeasibility) {
@@ -244,6 +276,10 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     j["local_interval_max_at"] =
         l.local_interval_max_s ? piece_end_json(l.local_max_at) : json(nullptr);
     j["piece_ends_checked"] = l.piece_ends_checked;
+    if (in.conditions) {
+      j["equivalent_interval_min_s"] = optional_number(l.equivalent_interval_min_s);
+      j["equivalent_interval_max_s"] = optional_number(l.equivalent_interval_max_s);
+    }
     layers.push_back(j);
   }
   out["layers"] = layers;
@@ -295,6 +331,9 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
                            {"age_s", rounded(a.age_s)},
                            {"strength_mpa", rounded(a.strength_mpa)},
                            {"required_mpa", rounded(a.required_mpa)}});
+      if (in.conditions)
+        for (std::size_t k = 0; k < c.anchors.size(); ++k)
+          anchors[k]["equivalent_age_s"] = rounded(c.anchors[k].equivalent_age_s);
       j["from_stage"] = c.from_stage;
       j["to_stage"] = c.to_stage;
       j["wait_before_s"] = rounded(c.wait_before_s);

@@ -84,32 +84,38 @@ PieceEnd read_piece_end(const JsonAt& e) {
   return p;
 }
 
-ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar) {
-  j.only_keys(keys_with({"floor",
-                         "layer",
-                         "z_m",
-                         "z_bottom_m",
-                         "geometry",
-                         "plan",
-                         "nozzles",
-                         "method",
-                         "start_s",
-                         "end_s",
-                         "deposition_s",
-                         "airtime_s",
-                         "max_idle_s",
-                         "move_before_s",
-                         "pipes_before_s",
-                         "wait_before_s",
-                         "wait_reasons",
-                         "purge_before",
-                         "interval_s",
-                         "local_interval_min_s",
-                         "local_interval_max_s",
-                         "local_interval_min_at",
-                         "local_interval_max_at",
-                         "piece_ends_checked"},
-                        calendar, {"start_time", "end_time", "planned_joint"}));
+ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
+                          const SiteConditions* conditions) {
+  j.only_keys(keys_with(
+      {"floor",
+       "layer",
+       "z_m",
+       "z_bottom_m",
+       "geometry",
+       "plan",
+       "nozzles",
+       "method",
+       "start_s",
+       "end_s",
+       "deposition_s",
+       "airtime_s",
+       "max_idle_s",
+       "move_before_s",
+       "pipes_before_s",
+       "wait_before_s",
+       "wait_reasons",
+       "purge_before",
+       "interval_s",
+       "local_interval_min_s",
+       "local_interval_max_s",
+       "local_interval_min_at",
+       "local_interval_max_at",
+       "piece_ends_checked"},
+      calendar,
+      conditions
+          ? std::vector<std::string>{"start_time", "end_time", "planned_joint",
+                                     "equivalent_interval_min_s", "equivalent_interval_max_s"}
+          : std::vector<std::string>{"start_time", "end_time", "planned_joint"}));
   ScheduledLayer l;
   l.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   l.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
@@ -133,6 +139,11 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar) {
   l.purge_before = j.at("purge_before").boolean();
   check_times(j, calendar, l.start_s, l.end_s);
   if (calendar) l.planned_joint = j.at("planned_joint").boolean();
+  if (conditions) {
+    const Range any = Range::closed(-1e10, 1e10);
+    l.equivalent_interval_min_s = j.at("equivalent_interval_min_s").number_or_null(any, "s");
+    l.equivalent_interval_max_s = j.at("equivalent_interval_max_s").number_or_null(any, "s");
+  }
   l.interval_s = j.at("interval_s").number_or_null(kDuration_s, "s");
   l.local_interval_min_s =
       j.at("local_interval_min_s").number_or_null(Range::closed(-1e10, 1e10), "s");
@@ -400,13 +411,18 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     c.wait_before_s = j.at("wait_before_s").number(kDuration_s, "s");
     c.wait_reasons = read_reasons(j.at("wait_reasons"));
     for (const auto& a : j.at("anchors").elements(kMaxSmall)) {
-      a.only_keys({"id", "unit", "age_s", "strength_mpa", "required_mpa"});
+      if (in.conditions)
+        a.only_keys({"id", "unit", "age_s", "strength_mpa", "required_mpa", "equivalent_age_s"});
+      else
+        a.only_keys({"id", "unit", "age_s", "strength_mpa", "required_mpa"});
       ClimbEvent::AnchorLoad load;
       load.id = a.at("id").string(200);
       load.unit = a.at("unit").string(200);
       load.age_s = a.at("age_s").number(kDuration_s, "s");
       load.strength_mpa = a.at("strength_mpa").number(kStrength_mpa, "MPa");
       load.required_mpa = a.at("required_mpa").number(kStrength_mpa, "MPa");
+      load.equivalent_age_s =
+          in.conditions ? a.at("equivalent_age_s").number(kDuration_s, "s") : load.age_s;
       c.anchors.push_back(std::move(load));
     }
     c.plan = read_climb_plan(j.at("climb"), in);
@@ -532,7 +548,7 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
     std::size_t layer_count = 0;
     s.totals = read_totals(root.at("totals"), layer_count, calendar);
     for (const auto& l : root.at("layers").elements(kMaxLayers))
-      s.layers.push_back(read_layer(l, calendar));
+      s.layers.push_back(read_layer(l, calendar, in.conditions.get()));
     if (calendar)
       for (const auto& d : root.at("days").elements(kMaxLayers)) s.days.push_back(read_day(d));
     if (layer_count != s.layers.size())

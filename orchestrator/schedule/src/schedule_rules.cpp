@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <tuple>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -24,7 +26,10 @@ constexpr std::size_t kMostReported = 20;
 
 class Rules {
  public:
-  Rules(const ScheduleDocument& doc, const JsonText& text) : doc_(doc), text_(text) {}
+  Rules(const ScheduleDocument& doc, const JsonText& text) : doc_(doc), text_(text) {
+    if (doc.inputs.conditions)
+      maturity_.emplace(*doc.inputs.conditions, doc.inputs.material.maturity);
+  }
 
   void check() {
     const auto& events = doc_.schedule.events;
@@ -436,16 +441,37 @@ class Rules {
                                      static_cast<long long>(named.wall), named.piece, named.x_m,
                                      named.y_m));
       }
-      if (s.feasible && min_s < material.min_layer_interval_s - kStated_s)
+      // With site weather the window bounds equivalent age, piece end by piece end.
+      double window_min_s = min_s, window_max_s = max_s;
+      if (maturity_) {
+        window_min_s = INFINITY, window_max_s = -INFINITY;
+        for (const auto& e : offsets.each) {
+          window_min_s = std::min(
+              window_min_s, maturity_->age(previous->start_s + e.low_hi_s, l.start_s + e.up_lo_s));
+          window_max_s = std::max(
+              window_max_s, maturity_->age(previous->start_s + e.low_lo_s, l.start_s + e.up_hi_s));
+        }
+        for (const auto& [key, stated, want] :
+             {std::tuple<const char*, std::optional<double>, double>{
+                  "/equivalent_interval_min_s", l.equivalent_interval_min_s, window_min_s},
+              {"/equivalent_interval_max_s", l.equivalent_interval_max_s, window_max_s}})
+          if (!stated || std::abs(*stated - want) > kStated_s)
+            broken(at + key, "local intervals",
+                   printf_string("expected %.6f s of equivalent age, recomputed from the paths and "
+                                 "the site's temperatures",
+                                 want));
+      }
+      if (s.feasible && window_min_s < material.min_layer_interval_s - kStated_s)
         broken(at + "/local_interval_min_s", "interval window",
                printf_string("a piece is covered %.6f s after it was deposited, under the "
                              "material's minimum %.6f s",
-                             min_s, material.min_layer_interval_s));
-      if (s.feasible && !l.planned_joint && max_s > material.max_layer_interval_s + kStated_s)
+                             window_min_s, material.min_layer_interval_s));
+      if (s.feasible && !l.planned_joint &&
+          window_max_s > material.max_layer_interval_s + kStated_s)
         broken(at + "/local_interval_max_s", "interval window",
                printf_string("a piece is covered %.6f s after it was deposited, over the "
                              "material's maximum %.6f s, in a schedule marked feasible",
-                             max_s, material.max_layer_interval_s));
+                             window_max_s, material.max_layer_interval_s));
     }
   }
 
@@ -475,12 +501,20 @@ class Rules {
              "the first layer of a floor stands on its slab, not on a joint");
       return;
     }
-    if (calendar->within_one_window(below->end_s, block_s))
+    const floors::MaterialProfile& mix = doc_.inputs.material;
+    const bool cold_between =
+        maturity_ &&
+        maturity_->fit_s(below->end_s, block_s - below->end_s, [&mix](const WeatherReading& r) {
+          return r.temperature_c >= mix.placing_min_c - 1e-9 &&
+                 r.temperature_c <= mix.placing_max_c + 1e-9;
+        }) > below->end_s + kStated_s;
+    if (calendar->within_one_window(below->end_s, block_s) && !cold_between)
       broken(at + "/planned_joint", "planned joints",
-             printf_string("no off-shift hours lie between floor %d layer %d's end (%s) and this "
-                           "joint (%s): a joint is planned only where work stops for them",
-                           below->floor, below->layer, calendar->local_text(below->end_s).c_str(),
-                           calendar->local_text(block_s).c_str()));
+             printf_string(
+                 "no off-shift hours (or cold) lie between floor %d layer %d's end (%s) and this "
+                 "joint (%s): a joint is planned only where work stops for them",
+                 below->floor, below->layer, calendar->local_text(below->end_s).c_str(),
+                 calendar->local_text(block_s).c_str()));
     const floors::PlannedJoint& pj = doc_.inputs.material.planned_joint;
     const double age_s = block_s - below->end_s;
     if (age_s < pj.min_age_s - kStated_s)
@@ -661,6 +695,7 @@ class Rules {
   std::size_t count_ = 0;
   bool events_sorted_ = true;
   std::map<std::string, DepositIndex> indexes_;
+  std::optional<EquivalentAge> maturity_;  ///< with site weather
 };
 
 }  // namespace

@@ -67,7 +67,14 @@ class Scheduler {
         stress_per_m_mpa_(project.material.density_kg_m3 * kGravity_m_s2 * 1e-6),
         jobs_(options.jobs > 0
                   ? options.jobs
-                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {}
+                  : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {
+    if (project.conditions) {
+      maturity_.emplace(*project.conditions, project.material.maturity);
+      anchor_maturity_.emplace(
+          *project.conditions,
+          (project.anchor_material ? *project.anchor_material : project.material).maturity);
+    }
+  }
 
   Schedule run();
 
@@ -137,6 +144,21 @@ class Scheduler {
   /// The site's calendar; null: around the clock.
   const SiteCalendar* calendar_;
   bool printing_attended() const { return calendar_ && calendar_->programme().printing_attended; }
+  /// Equivalent age on site (the material's, the anchor mix's), with site weather; unset:
+  /// ages are real ages (20 °C).
+  std::optional<EquivalentAge> maturity_, anchor_maturity_;
+  /// When concrete placed at `from_s` is `age_s` old (equivalent age with weather).
+  double aged_s(double from_s, double age_s) const {
+    return maturity_ ? maturity_->after(from_s, age_s) : from_s + age_s;
+  }
+  /// The largest and smallest local interval (equivalent age with weather) of a layer
+  /// starting at `start_s` on one that started at `below_start_s`.
+  double largest_interval_s(const IntervalOffsets& o, double below_start_s, double start_s) const;
+  double smallest_interval_s(const IntervalOffsets& o, double below_start_s, double start_s) const;
+  /// A time for messages: a date and time of day on a calendar, else seconds.
+  std::string when_text(double t_s) const {
+    return calendar_ ? calendar_->local_text(t_s) : printf_string("%.1f s", t_s);
+  }
   /// The stress of a metre of wall on what carries it, MPa.
   const double stress_per_m_mpa_;
   /// The strength a layer needs to carry `height_m` of wall above its bottom, with the

@@ -12,6 +12,7 @@ std::vector<fs::path> Setup::files_read() const {
   if (machine) out.insert(out.end(), machine->files_read.begin(), machine->files_read.end());
   if (!material.source_file.empty()) out.emplace_back(material.source_file);
   if (!site_file.empty()) out.push_back(site_file);
+  if (conditions && !conditions->file.empty()) out.push_back(conditions->file);
   if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
   return out;
 }

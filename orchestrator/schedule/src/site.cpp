@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
 
 #include "ccbuild/common/format.hpp"
@@ -22,8 +23,9 @@ constexpr std::size_t kMostSpansPerDay = 8;
 /// A task may end this much after its window does (rounding of the schedule's seconds).
 constexpr double kWindowSlack_s = 1e-6;
 
-const std::vector<std::string> kProgrammeKeys = {"start",    "time_zone", "working_hours",
-                                                 "holidays", "printing",  "pipes"};
+const std::vector<std::string> kProgrammeKeys = {"start",         "time_zone", "working_hours",
+                                                 "holidays",      "printing",  "pipes",
+                                                 "temperature_c", "wind_m_s",  "weather"};
 
 /// Days since 1970-01-01 of a valid "YYYY-MM-DD", or nothing.
 std::optional<std::int32_t> parse_date(const std::string& text, std::size_t& used) {
@@ -232,6 +234,19 @@ std::optional<SiteProgramme> read_site_programme(const Field& site,
           how + "'");
     p.pipes_need_crew = how == "crew";
   }
+  if (auto t = map.optional("temperature_c"))
+    p.temperature_c = t->as_number_in(Range::closed(-60.0, 60.0), "°C");
+  if (auto w = map.optional("wind_m_s"))
+    p.wind_m_s = w->as_number_in(Range::closed(0.0, 80.0), "m/s");
+  if (auto weather = map.optional("weather")) {
+    if (p.temperature_c || p.wind_m_s)
+      weather->fail(
+          "give either an hourly `weather` file or constant `temperature_c` and "
+          "`wind_m_s`, not both");
+    const std::filesystem::path file = weather->as_string();
+    const std::filesystem::path base = std::filesystem::path(site.file()).parent_path();
+    p.weather_file = (file.is_absolute() || base.empty() ? file : base / file).string();
+  }
   return p;
 }
 
@@ -305,6 +320,13 @@ date::sys_seconds sys_at(std::int64_t start_utc_s, double t_s) {
   return date::sys_seconds{seconds(start_utc_s + std::llround(t_s))};
 }
 }  // namespace
+
+std::int64_t SiteCalendar::utc_of_local(std::int64_t local_s) const {
+  const auto* zone = static_cast<const date::time_zone*>(zone_);
+  return zone->to_sys(date::local_seconds{seconds(local_s)}, date::choose::earliest)
+      .time_since_epoch()
+      .count();
+}
 
 std::string SiteCalendar::timestamp(double t_s) const {
   const auto* zone = static_cast<const date::time_zone*>(zone_);

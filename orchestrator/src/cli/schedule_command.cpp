@@ -97,6 +97,9 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
         p.holidays.size(), p.holidays.size() == 1 ? "" : "s",
         p.printing_attended ? "attended" : "unattended",
         p.pipes_need_crew ? "by the crew" : "unattended");
+    if (project.conditions)
+      std::cout << "weather: " << project.conditions->source << "; concrete ages are equivalent "
+                << "ages at 20 °C (" << project.material.maturity.name() << ")\n";
   }
   struct FloorLine {
     int layers = 0, max_nozzles = 0, waits = 0;
@@ -222,6 +225,11 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       "and a nozzle idle past its limit is purged. On a climbing machine: pipes cast between "
       "layers, climbs between floors once their anchors are strong enough. Between floors: the "
       "slab stage (`slab_stage_h`, 8 h by default).\n"
+      "On a site programme (--site FILE or the building's `site:`): times in dates from its "
+      "start in its time zone; attended printing, joint treatments, climbs and crew pipes in "
+      "working hours (reason off-shift); printing stops at a layer's end and resumes on a "
+      "planned joint; with weather, concrete ages in equivalent age at 20 degrees C, printing "
+      "waits out the cold and climbs the wind. A summary per day follows the floors.\n"
       "Prints a summary per floor; -o writes the schedule JSON (docs/schedule.md), the same "
       "bytes for the same inputs and seed whatever --jobs. Progress goes to stderr.\n"
       "Exit code 1 when the building cannot be built within its constraints: the summary (and "
@@ -230,7 +238,9 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       "  ccbuild schedule config/buildings/house.yaml -o house-schedule.json\n"
       "  ccbuild schedule config/buildings/tower.yaml -o tower.json --jobs 2\n"
       "  ccbuild schedule config/buildings/apartment.yaml --machine "
-      "config/machines/cc-climber.yaml");
+      "config/machines/cc-climber.yaml\n"
+      "  ccbuild schedule config/buildings/tower.yaml --site "
+      "config/sites/weekdays-berlin-2027-weather.yaml");
   command->add_option("BUILDING", o->file, "Building file (or a lone plan)")->required();
   command->add_option("-o,--output", o->output, "Write the schedule JSON here")
       ->check(output_path());

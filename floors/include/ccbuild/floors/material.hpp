@@ -4,6 +4,7 @@
 // in their key names (`_s`, `_min`, `_mpa`, `_kg_m3`).
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,31 @@ struct PlannedJoint {
   bool operator==(const PlannedJoint&) const = default;
 };
 
+/// Strength with age as EN 1992-1-1 §3.1.2 (3.1)-(3.2) gives it at 20 °C: fcm(t) =
+/// βcc(t) fcm, βcc(t) = exp(s (1 - sqrt(28 / t))), t in days; s by the cement's class:
+/// 0.20 (R: CEM 42.5 R, 52.5 N and R), 0.25 (N: CEM 32.5 R, 42.5 N), 0.38 (S: CEM 32.5 N).
+struct En1992Strength {
+  double fcm_mpa = 0.0;  ///< mean compressive strength at 28 days
+  double s = 0.20;
+  std::string cement_class = "R";
+  double strength_at_mpa(double age_s) const;
+  /// +infinity when it never reaches `strength_mpa` (fcm e^s is its limit).
+  double age_for_strength_s(double strength_mpa) const;
+};
+
+/// How temperature speeds or slows hydration: the age function of the maturity method
+/// (ASTM C1074): the rate at which equivalent age at 20 °C accrues per second at T.
+///   Nurse-Saul: (T - T0) / (20 °C - T0), none below the datum temperature T0;
+///   Arrhenius (Freiesleben Hansen and Pedersen): exp(-E/R (1/T - 1/293.15 K)).
+struct MaturityFunction {
+  enum class Kind { kArrhenius, kNurseSaul };
+  Kind kind = Kind::kArrhenius;
+  double activation_energy_j_mol = 40'000.0;  ///< E (Arrhenius)
+  double datum_temperature_c = -10.0;         ///< T0 (Nurse-Saul)
+  double rate(double temperature_c) const;
+  std::string name() const { return kind == Kind::kArrhenius ? "arrhenius" : "nurse-saul"; }
+};
+
 struct MaterialProfile {
   std::string name;
   std::string source_file;
@@ -39,12 +65,22 @@ struct MaterialProfile {
   /// A layer must be this many times stronger than the stress of the walls above it.
   double safety_factor = 1.5;
   PlannedJoint planned_joint;
+  /// `strength_en1992:`: the strength is then the larger of the curve's (early age, green
+  /// strength) and the Eurocode's (hardened concrete).
+  std::optional<En1992Strength> en1992;
+  /// `maturity:`: the age function used with site temperatures.
+  MaturityFunction maturity;
+  /// `placing_temperature_c: [min, max]`: the air temperature printing needs.
+  double placing_min_c = 5.0, placing_max_c = 35.0;
 
-  /// Strength at `age_s`, linear between points, flat outside them.
+  /// Strength at `age_s` (equivalent age at 20 °C): the curve's, linear between points,
+  /// flat outside them, or the Eurocode's where that is larger.
   double strength_at_mpa(double age_s) const;
   /// The youngest age at which the strength reaches `strength_mpa` (0 when it does from
-  /// the start); +infinity when the curve never reaches it.
+  /// the start); +infinity when it never does.
   double age_for_strength_s(double strength_mpa) const;
+  /// The strength it reaches at the most, MPa.
+  double final_strength_mpa() const;
 };
 
 /// Loads and validates a material profile (YAML or JSON).

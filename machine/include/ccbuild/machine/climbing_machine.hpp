@@ -62,6 +62,10 @@ struct ClimbingMachine {
   double pipe_embed_s = 120.0;
   double foundation_anchor_depth_m = 0.3;
   double stability_margin_m = 0.3;
+  /// A climb starts only when the wind forecast stays at or under this for its whole
+  /// duration (`climb_wind_limit_m_s`): climbing formwork is moved in calm weather only,
+  /// and cranes design for 20 m/s in service (EN 13001-2); 15 m/s keeps a margin.
+  double climb_wind_limit_m_s = 15.0;
 
   std::vector<std::filesystem::path> files_read;
 

@@ -55,6 +55,8 @@ enum class WaitKind {
   kSlab,            ///< "slab": the slab stage between floors
   kOffShift,        ///< "off-shift": work that needs a crew waits for working hours
   kJoint,           ///< "joint": a planned joint's treatment waits for the layer below's age
+  kCold,            ///< "cold": the air is outside the material's placing range
+  kWind,            ///< "wind": a climb waits for the wind to stay under the machine's limit
 };
 /// The name the JSON and the messages use ("min-interval", ...).
 std::string to_string(WaitKind kind);
@@ -100,6 +102,9 @@ struct ScheduledLayer {
   std::optional<double> interval_s;
   /// Over every wall piece end of this layer above a wall of the layer below.
   std::optional<double> local_interval_min_s, local_interval_max_s;
+  /// The same in equivalent age at 20 °C, when the site has weather (what the material's
+  /// window bounds then).
+  std::optional<double> equivalent_interval_min_s, equivalent_interval_max_s;
   PieceEnd local_min_at, local_max_at;
   int piece_ends_checked = 0;
 };
@@ -154,6 +159,7 @@ struct ClimbEvent {
     double age_s = 0.0;
     double strength_mpa = 0.0;
     double required_mpa = 0.0;
+    double equivalent_age_s = 0.0;  ///< at 20 °C (age_s without site weather)
   };
   std::vector<AnchorLoad> anchors;  ///< the pins of the stage climbed to
   climb::ClimbPlan plan;

@@ -51,6 +51,7 @@ struct RecordedMachine {
   bool climbing = false;
   /// Climbing machines only.
   double anchor_strength_mpa = 0.0, pipe_embed_s = 0.0;
+  double climb_wind_limit_m_s = 0.0;  ///< written with site weather only
   /// The speed of the rail axis, m/s.
   double rail_speed_m_s() const {
     return machine::rail_coordinate(x_speed_m_s, y_speed_m_s, rail_axis);
@@ -87,6 +88,8 @@ struct RecordedInputs {
   /// The site's calendar, when the schedule has one: times then have ISO 8601 timestamps
   /// beside their seconds, and the days are summed up (`days`).
   std::shared_ptr<const SiteCalendar> calendar;
+  /// The weather, when the site has it: ages are then equivalent ages at 20 °C.
+  std::shared_ptr<const SiteConditions> conditions;
 };
 
 /// A schedule with what it was made from, as its JSON holds it.

@@ -15,6 +15,7 @@
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/climbing_machine.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/schedule/conditions.hpp"
 #include "ccbuild/schedule/site.hpp"
 
 namespace ccbuild::schedule {
@@ -51,6 +52,9 @@ struct Setup {
   /// null: work runs around the clock from "day 1 00:00".
   std::shared_ptr<const SiteCalendar> calendar;
   std::filesystem::path site_file;  ///< the `--site` file, when one was given
+  /// The weather (the programme's constants or hourly file); null: 20 °C and calm, ages
+  /// are real ages.
+  std::shared_ptr<const SiteConditions> conditions;
 
   const machine::MachineModel& machine_model() const { return *machine; }
   /// Every file read: the FILE, its plans, the profiles, the URDF.

@@ -35,14 +35,18 @@ struct SiteProgramme {
   bool printing_attended = true;
   /// Pipe placing needs a crew (the machine's arm places them unattended otherwise).
   bool pipes_need_crew = true;
+  /// The weather: constants (`temperature_c`, `wind_m_s`), or an hourly CSV (`weather`,
+  /// resolved against the file that names it); none: 20 °C and calm.
+  std::optional<double> temperature_c, wind_m_s;
+  std::string weather_file;
   std::string source;  ///< "file:line" of the programme, for messages
 };
 
 /// Reads the programme keys of a site map (`start`, `time_zone`, `working_hours`,
-/// `holidays`, `printing`, `pipes`); `placement_keys` are the ones the building's reader
-/// has already taken (and are refused where the map is a `--site` file). Returns nothing
-/// when the map has no programme key. Throws InputError naming the file, line and key:
-/// an unknown time zone, a time that is not HH:MM, spans that overlap, a week without
+/// `holidays`, `printing`, `pipes`, `temperature_c`, `wind_m_s`, `weather`); `placement_keys` are
+/// the ones the building's reader has already taken (and are refused where the map is a `--site`
+/// file). Returns nothing when the map has no programme key. Throws InputError naming the file,
+/// line and key: an unknown time zone, a time that is not HH:MM, spans that overlap, a week without
 /// working hours.
 std::optional<SiteProgramme> read_site_programme(const Field& site,
                                                  const std::vector<std::string>& placement_keys);
@@ -82,6 +86,13 @@ class SiteCalendar {
   std::string local_text(double t_s) const;
   /// Days since 1970-01-01 of the local date at `t_s`.
   std::int32_t local_day(double t_s) const;
+  /// Schedule seconds of a UTC time (seconds since the epoch).
+  double seconds_of_utc(std::int64_t utc_s) const {
+    return static_cast<double>(utc_s - start_utc_s_);
+  }
+  /// The UTC time (seconds since the epoch) of a local time in the zone (a time in a
+  /// spring-forward gap is the change; one that occurs twice, its first).
+  std::int64_t utc_of_local(std::int64_t local_s) const;
   /// The version of the tzdata the windows were computed with ("2025b").
   std::string tzdb_version() const;
   /// "Mon-Fri 07:00-17:00", the week in words.
