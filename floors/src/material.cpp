@@ -28,7 +28,7 @@ const Range kAirTemperature_c = Range::closed(-60.0, 60.0);
 }  // namespace
 
 double En1992Strength::strength_at_mpa(double age_s) const {
-  if (age_s <= 0.0) return 0.0;
+  if (age_s <= 0.0 || age_s < from_s) return 0.0;
   return std::exp(s * (1.0 - std::sqrt(28.0 * 86'400.0 / age_s))) * fcm_mpa;
 }
 
@@ -36,7 +36,7 @@ double En1992Strength::age_for_strength_s(double strength_mpa) const {
   if (strength_mpa <= 0.0) return 0.0;
   const double ratio = std::log(strength_mpa / fcm_mpa) / s;  // 1 - sqrt(28 / t)
   if (ratio >= 1.0) return std::numeric_limits<double>::infinity();
-  return 28.0 * 86'400.0 / ((1.0 - ratio) * (1.0 - ratio));
+  return std::max(from_s, 28.0 * 86'400.0 / ((1.0 - ratio) * (1.0 - ratio)));
 }
 
 double MaturityFunction::rate(double temperature_c) const {
@@ -150,7 +150,7 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
     }
   }
   if (auto eurocode = map.optional("strength_en1992")) {
-    MapReader e(*eurocode, {"fcm_mpa", "cement_class"});
+    MapReader e(*eurocode, {"fcm_mpa", "cement_class", "from_h"});
     e.reject_unknown();
     En1992Strength en;
     en.fcm_mpa = e.required("fcm_mpa").as_number_in(kFcm_mpa, "MPa");
@@ -166,6 +166,7 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
         c->fail("expected R, N or S (EN 1992-1-1 §3.1.2: s = 0.20, 0.25, 0.38), got '" +
                 en.cement_class + "'");
     }
+    if (auto from = e.optional("from_h")) en.from_s = from->as_number_in(kJointAge_s, "h", 3600.0);
     m.en1992 = en;
   }
   if (auto maturity = map.optional("maturity")) {

@@ -1,7 +1,9 @@
 #include "ccbuild/floors/building.hpp"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <cmath>
 
 #include <filesystem>
 #include <fstream>
@@ -53,7 +55,17 @@ TEST(Material, StandardMixLoadsAndInterpolates) {
   EXPECT_LT(m.min_layer_interval_s, m.max_layer_interval_s);
   EXPECT_DOUBLE_EQ(m.strength_at_mpa(0.0), 0.005);
   EXPECT_NEAR(m.strength_at_mpa(7.5 * 60), 0.0125, 1e-12);  // half way to 15 min
-  EXPECT_DOUBLE_EQ(m.strength_at_mpa(1e9), 20.0);
+  // From 6 h on, EN 1992-1-1's curve for fcm 43 MPa, class R (s = 0.20), where larger.
+  ASSERT_TRUE(m.en1992.has_value());
+  EXPECT_NEAR(m.strength_at_mpa(5.9 * 3600.0), 0.4 + (2.5 - 0.4) * (5.9 * 60 - 180) / 540, 1e-9);
+  EXPECT_NEAR(m.strength_at_mpa(28 * 86400.0), 43.0, 1e-9);  // beta_cc(28 d) = 1
+  EXPECT_NEAR(m.strength_at_mpa(6 * 3600.0), 43.0 * std::exp(0.2 * (1 - std::sqrt(112.0))), 1e-9);
+  // 10 MPa: 28 d / (1 - ln(10/43) / 0.2)^2 = 9.77 h.
+  const double ten_s = 28 * 86400.0 / std::pow(1 - std::log(10.0 / 43.0) / 0.2, 2);
+  EXPECT_NEAR(m.age_for_strength_s(10.0), ten_s, 1e-6);
+  EXPECT_NEAR(ten_s / 3600.0, 9.77, 0.01);
+  EXPECT_NEAR(m.strength_at_mpa(ten_s), 10.0, 1e-9);
+  EXPECT_NEAR(m.final_strength_mpa(), 43.0 * std::exp(0.2), 1e-9);
 }
 
 std::filesystem::path scratch() {

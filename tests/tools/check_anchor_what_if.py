@@ -29,8 +29,10 @@ def main():
         sys.exit(__doc__)
     ccbuild, source = sys.argv[1], sys.argv[2]
     tower = os.path.join(source, "config/buildings/tower.yaml")
+    # A mix whose anchors are slow to strengthen: every climb then waits for them.
+    mix = ["--material", os.path.join(source, "tests/data/materials/slow-anchor-mix.yaml")]
     with tempfile.TemporaryDirectory() as tmp:
-        base = run([ccbuild, "schedule", tower, "--quiet", "--what-if", "anchors",
+        base = run([ccbuild, "schedule", tower, "--quiet", "--what-if", "anchors"] + mix + [
                     "-o", os.path.join(tmp, "base.json")], tmp)
         out = base.stdout
         base_doc = json.load(open(os.path.join(tmp, "base.json")))
@@ -69,7 +71,7 @@ def main():
         profile = profile.replace("urdf: cc_climber.urdf", "urdf: longer.urdf")
         open(os.path.join(tmp, "longer.yaml"), "w").write(profile)
         run([ccbuild, "schedule", tower, "--quiet", "--machine", os.path.join(tmp, "longer.yaml"),
-             "-o", os.path.join(tmp, "longer.json")], tmp)
+             "-o", os.path.join(tmp, "longer.json")] + mix, tmp)
         doc = json.load(open(os.path.join(tmp, "longer.json")))
         if not doc["feasible"]:
             sys.exit("the tower on the longer legs is not feasible")

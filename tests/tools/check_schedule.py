@@ -589,8 +589,36 @@ def check_gantries(key, plan, machine, info, problems):
 
 # ---------------------------------------------------------------- layers (5, 6, 7)
 
+class StrengthModel:
+    """The material's strength against (equivalent) age: its curve, and where it states
+    `strength_en1992`, the larger of that and EN 1992-1-1 §3.1.2's
+    fcm exp(s (1 - sqrt(28 days / t))) from its `from_s` on."""
+
+    def __init__(self, material):
+        self.points = [(p["age_s"], p["strength_mpa"]) for p in material["strength_curve"]]
+        self.en = material.get("strength_en1992")
+
+    def eurocode(self, age):
+        en = self.en
+        if en is None or age <= 0 or age < en["from_s"]:
+            return 0.0
+        return en["fcm_mpa"] * math.exp(en["s"] * (1 - math.sqrt(28 * 86400.0 / age)))
+
+    def eurocode_age(self, mpa):
+        en = self.en
+        if en is None:
+            return math.inf
+        if mpa <= 0:
+            return 0.0
+        ratio = math.log(mpa / en["fcm_mpa"]) / en["s"]
+        return math.inf if ratio >= 1 else max(en["from_s"], 28 * 86400.0 / (1 - ratio) ** 2)
+
+
 def strength_at(curve, age):
-    """The strength curve at an age: linear between its points, flat outside them."""
+    """The strength curve at an age: linear between its points, flat outside them (and
+    the Eurocode's, where the material states it and it is larger)."""
+    if isinstance(curve, StrengthModel):
+        return max(strength_at(curve.points, age), curve.eurocode(age))
     if age <= curve[0][0]:
         return curve[0][1]
     for (a0, s0), (a1, s1) in zip(curve, curve[1:]):
@@ -601,6 +629,8 @@ def strength_at(curve, age):
 
 def age_reaching(curve, mpa):
     """The first age at which the curve reaches `mpa` (inf when it never does)."""
+    if isinstance(curve, StrengthModel):
+        return min(age_reaching(curve.points, mpa), curve.eurocode_age(mpa))
     if curve[0][1] >= mpa:
         return 0.0
     for (a0, s0), (a1, s1) in zip(curve, curve[1:]):
@@ -899,7 +929,7 @@ def check_intervals(doc, infos, problems, notes, stats):
     """Local intervals per piece end, against the document and the material; strength."""
     layers = doc["layers"]
     material = doc["inputs"]["material"]
-    curve = [(p["age_s"], p["strength_mpa"]) for p in material["strength_curve"]]
+    curve = StrengthModel(material)
     lo_bound, hi_bound = material["min_layer_interval_s"], material["max_layer_interval_s"]
     rho_g_sf = material["density_kg_m3"] * G * material["safety_factor"] * 1e-6
     purge_s = doc["inputs"]["machine"]["purge_s"]
@@ -1054,7 +1084,7 @@ def check_intervals(doc, infos, problems, notes, stats):
 def check_events(doc, problems, stats):
     layers, events = doc["layers"], doc["events"]
     machine = doc["inputs"]["machine"]
-    curve = [(p["age_s"], p["strength_mpa"]) for p in doc["inputs"]["material"]["strength_curve"]]
+    curve = StrengthModel(doc["inputs"]["material"])
     starts = [l["start_s"] for l in layers]
     index = {(l["floor"], l["layer"]): i for i, l in enumerate(layers)}
     duration = {"purge": machine["purge_s"], "slab": doc["inputs"]["slab_stage_s"],

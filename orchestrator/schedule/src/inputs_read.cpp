@@ -144,11 +144,12 @@ void read_material(const JsonAt& m, RecordedInputs& in) {
                "safety_factor", "strength_curve", "planned_joint", "strength_en1992", "maturity",
                "placing_temperature_c", "origin"});
   if (const auto en = m.maybe("strength_en1992")) {
-    en->only_keys({"fcm_mpa", "cement_class", "s"});
+    en->only_keys({"fcm_mpa", "cement_class", "s", "from_s"});
     floors::En1992Strength e;
     e.fcm_mpa = en->at("fcm_mpa").number(Range::above(0.0, 500.0), "MPa");
     e.cement_class = en->at("cement_class").string(2);
     e.s = en->at("s").number(Range::above(0.0, 1.0), "");
+    e.from_s = en->at("from_s").number(kDuration_s, "s");
     in.material.en1992 = e;
   }
   if (const auto maturity = m.maybe("maturity")) {

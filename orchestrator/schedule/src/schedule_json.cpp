@@ -74,7 +74,8 @@ json material_json(const floors::MaterialProfile& m) {
   if (m.en1992)
     out["strength_en1992"] = {{"fcm_mpa", rounded(m.en1992->fcm_mpa)},
                               {"cement_class", m.en1992->cement_class},
-                              {"s", rounded(m.en1992->s)}};
+                              {"s", rounded(m.en1992->s)},
+                              {"from_s", rounded(m.en1992->from_s)}};
   return out;
 }
 

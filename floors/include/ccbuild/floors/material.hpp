@@ -34,6 +34,9 @@ struct En1992Strength {
   double fcm_mpa = 0.0;  ///< mean compressive strength at 28 days
   double s = 0.20;
   std::string cement_class = "R";
+  /// The age from which it holds (`from_h`): before it, a printable mix's green strength
+  /// is the curve's alone (the Eurocode's expression is meant for hardened concrete).
+  double from_s = 0.0;
   double strength_at_mpa(double age_s) const;
   /// +infinity when it never reaches `strength_mpa` (fcm e^s is its limit).
   double age_for_strength_s(double strength_mpa) const;
