@@ -100,9 +100,10 @@ double MaterialProfile::age_for_strength_s(double strength_mpa) const {
 MaterialProfile load_material_profile(const std::filesystem::path& path) {
   const Document doc = load_document(path);
   const Field root = Field::root(doc);
-  MapReader map(root, {"name", "description", "density_kg_m3", "min_layer_interval_s",
-                       "max_layer_interval_s", "strength_curve", "safety_factor", "planned_joint",
-                       "strength_en1992", "maturity", "placing_temperature_c"});
+  MapReader map(
+      root, {"name", "description", "density_kg_m3", "min_layer_interval_s", "max_layer_interval_s",
+             "strength_curve", "safety_factor", "planned_joint", "strength_en1992", "maturity",
+             "placing_temperature_c", "delivery_batch_m3"});
   map.reject_unknown();
   MaterialProfile m;
   m.source_file = path.string();
@@ -194,6 +195,8 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
           name + "'");
     }
   }
+  if (auto batch = map.optional("delivery_batch_m3"))
+    m.delivery_batch_m3 = batch->as_number_in(Range::above(0.0, 100.0), "m3");
   if (auto placing = map.optional("placing_temperature_c")) {
     const auto range = placing->items();
     if (range.size() != 2)

@@ -115,10 +115,11 @@ MachineProfile load_machine_profile(const fs::path& profile_path) {
 MachineProfile load_machine_profile(const Document& doc, const fs::path& profile_path,
                                     const std::string* urdf_xml) {
   const Field root = Field::root(doc);
-  MapReader map(root, {"name", "description", "urdf", "joints", "deposition_speed_m_s",
-                       "travel_speed_m_s", "rotate_while_moving", "accel_delay_s", "lift_height_m",
-                       "lift_time_s", "lower_time_s", "nozzle_idle_limit_s", "nozzle_width_m",
-                       "nozzles", "gantry_width_m", "rail_axis", "purge_s", "climbing"});
+  MapReader map(
+      root, {"name", "description", "urdf", "joints", "deposition_speed_m_s", "travel_speed_m_s",
+             "rotate_while_moving", "accel_delay_s", "lift_height_m", "lift_time_s", "lower_time_s",
+             "nozzle_idle_limit_s", "nozzle_width_m", "nozzles", "gantry_width_m", "rail_axis",
+             "purge_s", "climbing", "pump_capacity_m3_h"});
   map.reject_unknown();
 
   MachineModel m;
@@ -190,6 +191,8 @@ MachineProfile load_machine_profile(const Document& doc, const fs::path& profile
     m.rail_axis = *named;
   }
   if (auto purge = map.optional("purge_s")) m.purge_s = purge->as_number_in(kPurge_s, "s");
+  if (auto pump = map.optional("pump_capacity_m3_h"))
+    m.pump_capacity_m3_s = pump->as_number_in(Range::above(0.0, 1000.0), "m3/h") / 3600.0;
 
   // Lift either from a height (the z joint's speed gives the time) or from two times.
   const auto height = map.optional("lift_height_m");

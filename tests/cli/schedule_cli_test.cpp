@@ -223,6 +223,7 @@ TEST(DiffCommand, NamesWhatChangedAndHonoursTheTolerance) {
     for (const char* key : {"start_s", "end_s"}) l[key] = l[key].get<double>() + 10.0;
   for (auto& e : doc["events"])
     for (const char* key : {"start_s", "end_s"}) e[key] = e[key].get<double>() + 10.0;
+  for (auto& d : doc["deliveries"]) d["due_s"] = d["due_s"].get<double>() + 10.0;
   doc["totals"]["makespan_s"] = doc["totals"]["makespan_s"].get<double>() + 10.0;
   std::ofstream(dir / "later.json") << doc.dump(1) << "\n";
   const std::string files = old_json + " " + (dir / "later.json").string();

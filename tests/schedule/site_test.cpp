@@ -15,6 +15,7 @@
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/quantities.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "test_support.hpp"
@@ -520,6 +521,69 @@ TEST(SiteSchedule, AClimbWaitsForTheWindToDropUnderTheMachinesLimit) {
   EXPECT_NEAR(c1->start_s, gale_from_s + 3 * 3600.0, kTol_s);
   ASSERT_TRUE(c1->climb.has_value());
   EXPECT_EQ(c1->climb->wait_reasons.back().kind, WaitKind::kWind);
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule
+
+namespace ccbuild::schedule {
+namespace {
+
+TEST(Quantities, APumpTooSmallForANozzleRefusesItsPlanSayingSo) {
+  // One nozzle draws 0.2 m/s x 0.15 m x 0.1 m = 10.8 m³/h; a 5 m³/h pump cannot feed it.
+  const fs::path dir = scratch("pump");
+  std::ifstream in("config/machines/cc-gantry.yaml");
+  std::string profile((std::istreambuf_iterator<char>(in)), {});
+  const std::string urdf = "urdf: cc_gantry.urdf";
+  profile.replace(profile.find(urdf), urdf.size(),
+                  "urdf: " + fs::absolute("config/machines/cc_gantry.urdf").string());
+  for (const double pump_m3_h : {5.0, 10.8, 11.0}) {
+    std::ofstream(dir / "m.yaml") << profile << "pump_capacity_m3_h: " << pump_m3_h << "\n";
+    std::ofstream(dir / "b.yaml")
+        << "units: m\nlayer_height: 0.1\nmaterial: "
+        << fs::absolute("tests/data/materials/quick-bond-mix.yaml").string()
+        << "\nmachine: " << (dir / "m.yaml").string()
+        << "\nfloors:\n  - {name: g, height: 0.5, plan: "
+        << fs::absolute("tests/data/plans/one_wall.yaml").string() << "}\n";
+    const Schedule s = build_schedule(orchestrator::open_project(dir / "b.yaml"));
+    ASSERT_FALSE(s.layers.empty() && pump_m3_h > 10.0);
+    if (pump_m3_h < 10.8) {
+      ASSERT_FALSE(s.feasible);
+      EXPECT_EQ(s.infeasibility->kind, InfeasibilityKind::kNoPlan);
+      EXPECT_TRUE(contains(s.infeasibility->message, "more than the pump's 5.00 m³/h"))
+          << s.infeasibility->message;
+    } else {  // exactly the nozzle's flow is enough
+      EXPECT_TRUE(s.feasible) << pump_m3_h;
+      EXPECT_NEAR(s.layers[0].peak_flow_m3_s * 3600.0, 10.8, 1e-9);
+      EXPECT_NEAR(s.layers[0].concrete_m3, 12.5 * 0.15 * 0.1, 1e-6);
+    }
+  }
+}
+
+TEST(Quantities, DeliveriesAreDueWhenTheConcreteUsedReachesEachBatch) {
+  // Three layers of 3 m³ over 100 s each, batches of 4 m³: 9 m³ need three trucks, due at
+  // 0 m³ (the start), at 4 m³ (a third into the second layer) and at 8 m³ (two thirds
+  // into the third); the last brings the 1 m³ left.
+  std::vector<ScheduledLayer> layers(3);
+  for (int k = 0; k < 3; ++k) {
+    layers[k].layer = k;
+    layers[k].start_s = 200.0 * k;
+    layers[k].end_s = 200.0 * k + 100.0;
+    layers[k].concrete_m3 = 3.0;
+  }
+  const auto d = deliveries_of(layers, 4.0);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_DOUBLE_EQ(d[0].due_s, 0.0);
+  EXPECT_NEAR(d[1].due_s, 200.0 + 100.0 / 3.0, 1e-9);
+  EXPECT_EQ(d[1].layer, 1);
+  EXPECT_NEAR(d[2].due_s, 400.0 + 200.0 / 3.0, 1e-9);
+  EXPECT_DOUBLE_EQ(d[2].m3, 1.0);
+  // A batch boundary exactly at a layer's end: due then, with that layer.
+  const auto even = deliveries_of(layers, 3.0);
+  ASSERT_EQ(even.size(), 3u);
+  EXPECT_DOUBLE_EQ(even[1].due_s, 100.0);
+  EXPECT_EQ(even[1].layer, 0);
+  EXPECT_DOUBLE_EQ(even[2].m3, 3.0);
 }
 
 }  // namespace

@@ -1503,9 +1503,11 @@ def check_site(doc, problems, stats):
     for i, l in enumerate(layers):
         date = cal.date(l["start_s"])
         if not days or days[-1]["date"] != date:
-            days.append({"date": date, "layers": 0, "first": [l["floor"], l["layer"]], "printing_s": 0.0})
+            days.append({"date": date, "layers": 0, "first": [l["floor"], l["layer"]], "printing_s": 0.0,
+                         "concrete_m3": 0.0})
         d = days[-1]
         d["layers"] += 1
+        d["concrete_m3"] += l.get("concrete_m3", 0.0)
         d["last"] = [l["floor"], l["layer"]]
         d["printing_s"] += l["end_s"] - l["start_s"]
         nxt = layers[i + 1] if i + 1 < len(layers) else None
@@ -1517,10 +1519,83 @@ def check_site(doc, problems, stats):
         for key in ("date", "layers", "first", "last", "stop"):
             if want[key] != got[key]:
                 problems.append("days %s: %s %r, recomputed %r" % (got["date"], key, got[key], want[key]))
+        if "concrete_m3" in got and abs(want["concrete_m3"] - got["concrete_m3"]) > 1e-5:
+            problems.append("days %s: concrete_m3 %.6f, its layers hold %.6f" % (
+                got["date"], got["concrete_m3"], want["concrete_m3"]))
+        if "deliveries" in got:
+            due = sum(1 for t in doc.get("deliveries", []) if cal.date(t["due_s"]) == got["date"])
+            if due != got["deliveries"]:
+                problems.append("days %s: deliveries %d, %d are due that day" % (got["date"], got["deliveries"], due))
         if abs(want["printing_s"] - got["printing_s"]) > T_DOC:
             problems.append("days %s: printing_s %.6f, its layers last %.6f s" % (
                 got["date"], got["printing_s"], want["printing_s"]))
     stats["days"] = len(days)
+
+
+# ---------------------------------------------------------------- 12. quantities
+
+def check_quantities(doc, problems, stats):
+    """Each layer's concrete is its plan's pieces' length x bead width (the nozzle's for a
+    one-pass wall) x its height; its peak flow the most its nozzles deposit at once (swept
+    over the extruding spans); the total their sum; the deliveries the material's batches,
+    truck k due when the concrete used (evenly over each layer) reaches k batches; each
+    day's concrete and deliveries. Schedules written before quantities have none."""
+    if "deliveries" not in doc:
+        return
+    layers, plans = doc["layers"], doc["plans"]
+    nozzle_w = doc["inputs"]["machine"]["nozzle_width_m"]
+    flows = {}
+    for l in layers:
+        where = "floor %d layer %d" % (l["floor"], l["layer"])
+        plan = plans[l["plan"]]
+        height = l["z_m"] - l["z_bottom_m"]
+        width = {(p["wall"], p["piece"]): p.get("width_m") or nozzle_w for p in plan["pieces"]}
+        volume = sum(p["length_m"] * width[(p["wall"], p["piece"])] * height for p in plan["pieces"])
+        if abs(l["concrete_m3"] - volume) > 2e-6 + 1e-6 * volume:
+            problems.append("%s: concrete_m3 %.6f, its pieces hold %.6f m3" % (where, l["concrete_m3"], volume))
+        if l["plan"] not in flows and all("waypoints" in n for n in plan["nozzles"]):
+            changes = []
+            for n in plan["nozzles"]:
+                w = n["waypoints"]
+                for a, b in zip(w, w[1:]):
+                    dt = b["t_s"] - a["t_s"]
+                    if a["extruding"] and dt > 0:
+                        f = math.hypot(b["x_m"] - a["x_m"], b["y_m"] - a["y_m"]) / dt * \
+                            width.get((a["wall"], a["piece"]), nozzle_w) * height
+                        changes += [(a["t_s"], f), (b["t_s"], -f)]
+            flow = peak = 0.0
+            for _, d in sorted(changes):
+                flow += d
+                peak = max(peak, flow)
+            flows[l["plan"]] = peak * 3600.0
+        if l["plan"] in flows and abs(l["peak_flow_m3_h"] - flows[l["plan"]]) > 1e-4 * max(1.0, flows[l["plan"]]):
+            problems.append("%s: peak_flow_m3_h %.6f, its nozzles draw at most %.6f m3/h" % (
+                where, l["peak_flow_m3_h"], flows[l["plan"]]))
+        cap = doc["inputs"]["machine"].get("pump_capacity_m3_h")
+        if cap is not None and l["peak_flow_m3_h"] > cap * (1 + 1e-6):
+            problems.append("%s: its nozzles draw %.3f m3/h, more than the pump's %g m3/h" % (
+                where, l["peak_flow_m3_h"], cap))
+    total = sum(l["concrete_m3"] for l in layers)
+    if abs(doc["totals"]["concrete_m3"] - total) > 1e-5:
+        problems.append("totals: concrete_m3 %.6f, the layers hold %.6f" % (doc["totals"]["concrete_m3"], total))
+    batch = doc["inputs"]["material"]["delivery_batch_m3"]
+    want, used = [], 0.0
+    count = math.ceil(total / batch - 1e-9) if total > 0 else 0
+    for l in layers:
+        while len(want) < count and len(want) * batch <= used + l["concrete_m3"] + 1e-12:
+            k = len(want)
+            share = min(max((k * batch - used) / l["concrete_m3"], 0.0), 1.0) if l["concrete_m3"] > 0 else 0.0
+            want.append((l["start_s"] + share * (l["end_s"] - l["start_s"]), min(batch, total - k * batch)))
+        used += l["concrete_m3"]
+    got = doc["deliveries"]
+    if len(got) != len(want):
+        problems.append("deliveries: %d listed; %.6f m3 in batches of %g m3 make %d" % (len(got), total, batch, len(want)))
+    for k, ((due, m3), d) in enumerate(zip(want, got)):
+        if abs(d["due_s"] - due) > T_DOC or abs(d["m3"] - m3) > 1e-5:
+            problems.append("delivery %d: %.6f m3 due at %.6f s, recomputed %.6f m3 at %.6f s" % (
+                k, d["m3"], d["due_s"], m3, due))
+    stats["concrete_m3"] = total
+    stats["deliveries"] = len(got)
 
 
 # ---------------------------------------------------------------- driver
@@ -1562,6 +1637,7 @@ def check(doc):
     guarded("event", check_events, problems, doc, problems, stats)
     guarded("totals", check_totals, problems, doc, infos, problems)
     guarded("site calendar", check_site, problems, doc, problems, stats)
+    guarded("quantities", check_quantities, problems, doc, problems, stats)
     return problems, notes, stats
 
 
@@ -1581,7 +1657,9 @@ def summary(doc, stats):
                 stats["climbs"], stats["anchors"])) + (
         "; site calendar (%s): %d working windows, %d days, %d planned joints, timestamps agree" % (
             doc["inputs"]["site"]["time_zone"], stats.get("windows", 0), stats.get("days", 0),
-            stats.get("joints", 0)) if doc["inputs"].get("site") is not None else "")
+            stats.get("joints", 0)) if doc["inputs"].get("site") is not None else "") + (
+        "; %.3f m3 of concrete in %d deliveries" % (stats["concrete_m3"], stats["deliveries"])
+        if "concrete_m3" in stats else "")
 
 
 # ---------------------------------------------------------------- self-test
@@ -1871,6 +1949,13 @@ def corruptions(doc):
         add("a pipe without its anchor", "no `anchor`")(
             lambda d: next(e for e in d["events"] if e["kind"] == "pipe").pop("anchor"))
     site_corruptions(doc, add)
+    if "deliveries" in doc and doc["deliveries"]:
+        add("a layer's concrete", "concrete_m3")(
+            lambda d: d["layers"][0].update(concrete_m3=d["layers"][0]["concrete_m3"] * 1.01))
+        add("a delivery late", "delivery")(
+            lambda d: d["deliveries"][-1].update(due_s=d["deliveries"][-1]["due_s"] + 60.0))
+        add("a layer's peak flow", "peak_flow_m3_h")(
+            lambda d: d["layers"][-1].update(peak_flow_m3_h=d["layers"][-1]["peak_flow_m3_h"] * 0.5))
     return out
 
 

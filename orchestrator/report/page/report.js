@@ -60,7 +60,21 @@
     if (a >= 120) return (s / 60).toFixed(1) + ' min';
     return s.toFixed(1) + ' s';
   }
-  function clock(s) {  // day and time of day from the schedule's start
+  // On a site calendar: the local date and time of day in the site's time zone (the
+  // browser's time-zone data); else the day and time of day from the schedule's start.
+  var site = S.inputs.site || null;
+  var siteStartMs = site ? Date.parse(site.start) : NaN;
+  var siteFormat = site && isFinite(siteStartMs) ? new Intl.DateTimeFormat('en-GB', {
+    timeZone: site.time_zone, weekday: 'short', year: 'numeric', month: '2-digit',
+    day: '2-digit', hour: '2-digit', minute: '2-digit', hourCycle: 'h23' }) : null;
+  function clock(s) {
+    if (siteFormat) {
+      var p = {};
+      siteFormat.formatToParts(new Date(siteStartMs + Math.round(s) * 1000)).forEach(function (x) {
+        p[x.type] = x.value;
+      });
+      return p.weekday + ' ' + p.year + '-' + p.month + '-' + p.day + ' ' + p.hour + ':' + p.minute;
+    }
     var d = Math.floor(s / 86400), r = s - 86400 * d;
     var h = Math.floor(r / 3600), m = Math.floor((r - 3600 * h) / 60);
     return 'day ' + (d + 1) + ' ' + (h < 10 ? '0' : '') + h + ':' + (m < 10 ? '0' : '') + m;
@@ -434,7 +448,7 @@
       ticks(tmin / 86400, tmax / 86400, 8).forEach(function (d) {
         // Days as the rest of the report counts them: the start is day 1.
         svg('text', { x: x(d * 86400), y: H - 16, 'text-anchor': 'middle' }, root,
-            Math.abs(d - Math.round(d)) < 1e-9 ? 'day ' + (Math.round(d) + 1) : duration(d * 86400));
+            Math.abs(d - Math.round(d)) < 1e-9 ? (siteFormat ? clock(d * 86400).slice(0, 14) : "day " + (Math.round(d) + 1)) : duration(d * 86400));
       });
       var req = youngest[0].a.required_mpa;
       svg('line', { x1: left, x2: W - 20, y1: y(req), y2: y(req), stroke: '#000', 'stroke-width': 1.5,

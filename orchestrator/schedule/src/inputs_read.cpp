@@ -37,6 +37,7 @@ RecordedMachine read_machine(const JsonAt& m) {
                "gantry_width_m",
                "rail_axis",
                "purge_s",
+               "pump_capacity_m3_h",
                "kind",
                "anchor_strength_mpa",
                "pipe_embed_s",
@@ -79,6 +80,8 @@ RecordedMachine read_machine(const JsonAt& m) {
   if (!named) m.at("rail_axis").refuse("expected \"x\" or \"y\", got \"" + axis + "\"");
   r.rail_axis = *named;
   r.purge_s = m.at("purge_s").number(Range::closed(0, 1e6), "s");
+  if (const auto pump = m.maybe("pump_capacity_m3_h"))
+    r.pump_capacity_m3_s = pump->number(Range::above(0.0, 1e4), "m3/h") / 3600.0;
   const std::string kind = m.at("kind").string(100);
   if (kind != "climbing" && kind != "fixed gantry")
     m.at("kind").refuse("expected \"climbing\" or \"fixed gantry\", got \"" + kind + "\"");
@@ -142,7 +145,9 @@ std::shared_ptr<const SiteCalendar> read_site(const JsonAt& j) {
 void read_material(const JsonAt& m, RecordedInputs& in) {
   m.only_keys({"name", "density_kg_m3", "min_layer_interval_s", "max_layer_interval_s",
                "safety_factor", "strength_curve", "planned_joint", "strength_en1992", "maturity",
-               "placing_temperature_c", "origin"});
+               "delivery_batch_m3", "placing_temperature_c", "origin"});
+  if (const auto batch = m.maybe("delivery_batch_m3"))
+    in.material.delivery_batch_m3 = batch->number(Range::above(0.0, 1e4), "m3");
   if (const auto en = m.maybe("strength_en1992")) {
     en->only_keys({"fcm_mpa", "cement_class", "s", "from_s"});
     floors::En1992Strength e;

@@ -9,6 +9,8 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/schedule/json_blocks.hpp"
+#include "ccbuild/schedule/quantities.hpp"
 #include "scheduler.hpp"
 
 namespace ccbuild::schedule {
@@ -18,6 +20,18 @@ double Scheduler::move_between(const std::string& from_key, const std::string& t
   return planner::layer_change_s(machine_, schedule_.plans.at(from_key).waypoints,
                                  schedule_.plans.at(to_key).waypoints,
                                  project_.building.layer_height_m);
+}
+
+double Scheduler::peak_flow_of(const std::string& key) {
+  auto it = peak_flow_.find(key);
+  if (it == peak_flow_.end()) {
+    const SchedulePlan& plan = schedule_.plans.at(key);
+    it = peak_flow_
+             .emplace(key, peak_flow_m3_s(plan.waypoints, plan.layer, machine_.nozzle_width_m,
+                                          project_.building.layer_height_m))
+             .first;
+  }
+  return it->second;
 }
 
 double Scheduler::largest_interval_s(const IntervalOffsets& o, double below_start_s,
@@ -316,6 +330,13 @@ bool Scheduler::schedule_layer(int i) {
     c.nozzles = n;
     c.key = key;
     c.planned = &p;
+    if (machine_.pump_capacity_m3_s &&
+        peak_flow_of(c.key) > *machine_.pump_capacity_m3_s * (1 + 1e-9)) {
+      refusals.push_back(printf_string(
+          "%d nozzle%s: together they draw %.2f m³/h, more than the pump's %.2f m³/h", n,
+          n == 1 ? "" : "s", peak_flow_of(c.key) * 3600.0, *machine_.pump_capacity_m3_s * 3600.0));
+      return false;
+    }
     c.move_s = previous_key_.empty() ? 0.0 : move_between(previous_key_, c.key);
     const double earliest_s = previous_end_s_ + ready_extra_s_ + c.move_s;
     double start_s = earliest_s;
@@ -822,8 +843,16 @@ Schedule Scheduler::run() {
   }
   std::stable_sort(schedule_.events.begin(), schedule_.events.end(),
                    [](const Event& a, const Event& b) { return a.start_s < b.start_s; });
+  // Quantities: each layer's concrete and peak flow, the deliveries of the material's batch.
+  for (auto& l : schedule_.layers) {
+    // As the JSON writes it, so that the deliveries recomputed from the JSON are these.
+    l.concrete_m3 = rounded(layer_volume_m3(schedule_.plans.at(l.plan).layer,
+                                            machine_.nozzle_width_m, l.z_top_m - l.z_bottom_m));
+    l.peak_flow_m3_s = peak_flow_of(l.plan);
+  }
+  schedule_.deliveries = deliveries_of(schedule_.layers, material_.delivery_batch_m3);
   schedule_.totals = totals_of(schedule_.layers, schedule_.events);
-  if (calendar_) schedule_.days = work_days(schedule_.layers, *calendar_);
+  if (calendar_) schedule_.days = work_days(schedule_.layers, schedule_.deliveries, *calendar_);
   schedule_.bookkeeping_s =
       seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
   return std::move(schedule_);
@@ -920,6 +949,7 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
     tot.waits_s += l.wait_before_s;
     tot.moves_s += l.move_before_s;
     tot.machine_s += l.end_s - l.start_s + l.move_before_s;
+    tot.concrete_m3 += l.concrete_m3;
   }
   for (const auto& e : events) {
     tot.makespan_s = std::max(tot.makespan_s, e.end_s);
@@ -950,6 +980,7 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
 }
 
 std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const std::vector<Delivery>& deliveries,
                                const SiteCalendar& calendar) {
   std::vector<WorkDay> days;
   for (std::size_t i = 0; i < layers.size(); ++i) {
@@ -967,6 +998,7 @@ std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
     d.last_floor = l.floor;
     d.last_layer = l.layer;
     d.printing_s += l.end_s - l.start_s;
+    d.concrete_m3 += l.concrete_m3;
     const ScheduledLayer* next = i + 1 < layers.size() ? &layers[i + 1] : nullptr;
     if (next && calendar.local_date(next->start_s) == date) continue;
     const std::string at = printf_string("floor %d layer %d", l.floor, l.layer);
@@ -987,6 +1019,12 @@ std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
       d.detail = printf_string("%s ends the day; floor %d layer %d follows within its interval",
                                at.c_str(), next->floor, next->layer);
     }
+  }
+  // Each delivery on the day it is due (a day with printing: it feeds a layer that day).
+  for (const auto& delivery : deliveries) {
+    const std::string date = calendar.local_date(delivery.due_s);
+    for (auto& d : days)
+      if (d.date == date) ++d.deliveries;
   }
   return days;
 }

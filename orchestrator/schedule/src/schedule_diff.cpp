@@ -126,6 +126,14 @@ ScheduleDiff diff_schedules(const ScheduleDocument& old_doc, const ScheduleDocum
   total("climbs_s", ta.climbs_s, tb.climbs_s);
   total("slabs_s", ta.slabs_s, tb.slabs_s);
   total("machine_s", ta.machine_s, tb.machine_s);
+  total("joints_s", ta.joints_s, tb.joints_s);
+  // Concrete is no time: any change is one.
+  if (std::abs(ta.concrete_m3 - tb.concrete_m3) > 1e-6)
+    out.changes.push_back(
+        printf_string("totals.concrete_m3: %.3f -> %.3f", ta.concrete_m3, tb.concrete_m3));
+  if (a.deliveries.size() != b.deliveries.size())
+    out.changes.push_back(
+        printf_string("deliveries: %zu -> %zu", a.deliveries.size(), b.deliveries.size()));
 
   // Per floor: its span, nozzles and waits.
   struct FloorSummary {

@@ -33,6 +33,7 @@ json recorded_machine_json(const RecordedMachine& m) {
   out["gantry_width_m"] = rounded(m.gantry_width_m);
   out["rail_axis"] = machine::to_string(m.rail_axis);
   out["purge_s"] = rounded(m.purge_s);
+  if (m.pump_capacity_m3_s) out["pump_capacity_m3_h"] = rounded(*m.pump_capacity_m3_s * 3600.0);
   out["kind"] = m.climbing ? "climbing" : "fixed gantry";
   if (m.climbing) {
     out["anchor_strength_mpa"] = rounded(m.anchor_strength_mpa);
@@ -70,6 +71,7 @@ json material_json(const floors::MaterialProfile& m) {
               {"min_layer_interval_s", rounded(m.min_layer_interval_s)},
               {"max_layer_interval_s", rounded(m.max_layer_interval_s)},
               {"safety_factor", rounded(m.safety_factor)},
+              {"delivery_batch_m3", rounded(m.delivery_batch_m3)},
               {"strength_curve", curve}};
   if (m.en1992)
     out["strength_en1992"] = {{"fcm_mpa", rounded(m.en1992->fcm_mpa)},
@@ -117,6 +119,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   r.gantry_width_m = m.gantry_width_m;
   r.rail_axis = m.rail_axis;
   r.purge_s = m.purge_s;
+  r.pump_capacity_m3_s = m.pump_capacity_m3_s;
   r.climbing = project.climber != nullptr;
   if (project.climber) {
     r.anchor_strength_mpa = project.climber->anchor_strength_mpa;
@@ -224,12 +227,13 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   }
 
   const ScheduleTotals& t = schedule.totals;
-  out["totals"] = {{"makespan_s", rounded(t.makespan_s)},     {"layers", schedule.layers.size()},
-                   {"deposition_s", rounded(t.deposition_s)}, {"airtime_s", rounded(t.airtime_s)},
-                   {"moves_s", rounded(t.moves_s)},           {"waits_s", rounded(t.waits_s)},
-                   {"pipes_s", rounded(t.pipes_s)},           {"purges_s", rounded(t.purges_s)},
-                   {"climbs_s", rounded(t.climbs_s)},         {"slabs_s", rounded(t.slabs_s)},
-                   {"machine_s", rounded(t.machine_s)}};
+  out["totals"] = {
+      {"makespan_s", rounded(t.makespan_s)},     {"layers", schedule.layers.size()},
+      {"deposition_s", rounded(t.deposition_s)}, {"airtime_s", rounded(t.airtime_s)},
+      {"moves_s", rounded(t.moves_s)},           {"waits_s", rounded(t.waits_s)},
+      {"pipes_s", rounded(t.pipes_s)},           {"purges_s", rounded(t.purges_s)},
+      {"climbs_s", rounded(t.climbs_s)},         {"slabs_s", rounded(t.slabs_s)},
+      {"machine_s", rounded(t.machine_s)},       {"concrete_m3", rounded(t.concrete_m3)}};
   if (calendar) {
     out["totals"]["joints_s"] = rounded(t.joints_s);
     times(out["totals"], "start_time", 0.0);
@@ -241,6 +245,8 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
                       {"first", {d.first_floor, d.first_layer}},
                       {"last", {d.last_floor, d.last_layer}},
                       {"printing_s", rounded(d.printing_s)},
+                      {"concrete_m3", rounded(d.concrete_m3)},
+                      {"deliveries", d.deliveries},
                       {"stop", d.stop},
                       {"detail", d.detail}});
     out["days"] = days;
@@ -277,6 +283,8 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     j["local_interval_max_at"] =
         l.local_interval_max_s ? piece_end_json(l.local_max_at) : json(nullptr);
     j["piece_ends_checked"] = l.piece_ends_checked;
+    j["concrete_m3"] = rounded(l.concrete_m3);
+    j["peak_flow_m3_h"] = rounded(l.peak_flow_m3_s * 3600.0);
     if (in.conditions) {
       j["equivalent_interval_min_s"] = optional_number(l.equivalent_interval_min_s);
       j["equivalent_interval_max_s"] = optional_number(l.equivalent_interval_max_s);
@@ -345,6 +353,16 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     events.push_back(j);
   }
   out["events"] = events;
+  json deliveries = json::array();
+  for (const auto& d : schedule.deliveries) {
+    json j = {{"due_s", rounded(d.due_s)}};
+    if (calendar) times(j, "due_time", d.due_s);
+    j["m3"] = rounded(d.m3);
+    j["floor"] = d.floor;
+    j["layer"] = d.layer;
+    deliveries.push_back(j);
+  }
+  out["deliveries"] = deliveries;
   out["warnings"] = schedule.warnings;
   return out;
 }

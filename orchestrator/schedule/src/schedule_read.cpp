@@ -110,7 +110,9 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
        "local_interval_max_s",
        "local_interval_min_at",
        "local_interval_max_at",
-       "piece_ends_checked"},
+       "piece_ends_checked",
+       "concrete_m3",
+       "peak_flow_m3_h"},
       calendar,
       conditions
           ? std::vector<std::string>{"start_time", "end_time", "planned_joint",
@@ -160,6 +162,10 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
   if (!min_at.is_null()) l.local_min_at = read_piece_end(min_at);
   if (!max_at.is_null()) l.local_max_at = read_piece_end(max_at);
   l.piece_ends_checked = static_cast<int>(j.at("piece_ends_checked").integer(0, 100'000'000));
+  // Quantities (absent in schedules written before them).
+  if (const auto v = j.maybe("concrete_m3")) l.concrete_m3 = v->number(Range::closed(0, 1e6), "m3");
+  if (const auto f = j.maybe("peak_flow_m3_h"))
+    l.peak_flow_m3_s = f->number(Range::closed(0, 1e6), "m3/h") / 3600.0;
   return l;
 }
 
@@ -473,7 +479,7 @@ Infeasibility read_infeasibility(const JsonAt& j) {
 
 ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers, const SiteCalendar* calendar) {
   t.only_keys(keys_with({"makespan_s", "layers", "deposition_s", "airtime_s", "moves_s", "waits_s",
-                         "pipes_s", "purges_s", "climbs_s", "slabs_s", "machine_s"},
+                         "pipes_s", "purges_s", "climbs_s", "slabs_s", "machine_s", "concrete_m3"},
                         calendar, {"joints_s", "start_time", "finish_time"}));
   ScheduleTotals out;
   out.makespan_s = t.at("makespan_s").number(kTime_s, "s");
@@ -487,6 +493,8 @@ ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers, const SiteCalen
   out.climbs_s = t.at("climbs_s").number(kDuration_s, "s");
   out.slabs_s = t.at("slabs_s").number(kDuration_s, "s");
   out.machine_s = t.at("machine_s").number(kDuration_s, "s");
+  if (const auto v = t.maybe("concrete_m3"))
+    out.concrete_m3 = v->number(Range::closed(0, 1e9), "m3");
   if (calendar) {
     out.joints_s = t.at("joints_s").number(kDuration_s, "s");
     check_times(t, calendar, 0.0, out.makespan_s, "start_time", "finish_time");
@@ -495,7 +503,8 @@ ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers, const SiteCalen
 }
 
 WorkDay read_day(const JsonAt& j) {
-  j.only_keys({"date", "layers", "first", "last", "printing_s", "stop", "detail"});
+  j.only_keys({"date", "layers", "first", "last", "printing_s", "concrete_m3", "deliveries", "stop",
+               "detail"});
   WorkDay d;
   d.date = j.at("date").string(20);
   if (!parse_local_date(d.date)) j.at("date").refuse("expected a date as YYYY-MM-DD");
@@ -509,6 +518,8 @@ WorkDay read_day(const JsonAt& j) {
     *layer = static_cast<int>(pair[1].integer(0, kMaxLayer));
   }
   d.printing_s = j.at("printing_s").number(kDuration_s, "s");
+  d.concrete_m3 = j.at("concrete_m3").number(Range::closed(0, 1e9), "m3");
+  d.deliveries = static_cast<int>(j.at("deliveries").integer(0, 10'000'000));
   d.stop = j.at("stop").string(20);
   d.detail = j.at("detail").string(kMaxText);
   return d;
@@ -537,10 +548,10 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
     RecordedInputs& in = doc.inputs;
     in = detail::read_inputs(root);
     const SiteCalendar* calendar = in.calendar.get();
-    root.only_keys(
-        keys_with({"format", "schema_version", "ccbuild_version", "inputs", "feasible",
-                   "infeasibility", "totals", "layers", "plans", "stages", "events", "warnings"},
-                  calendar, {"days"}));
+    root.only_keys(keys_with(
+        {"format", "schema_version", "ccbuild_version", "inputs", "feasible", "infeasibility",
+         "totals", "layers", "plans", "stages", "events", "deliveries", "warnings"},
+        calendar, {"days"}));
     Schedule& s = doc.schedule;
     s.feasible = root.at("feasible").boolean();
     if (!root.at("infeasibility").is_null())
@@ -562,6 +573,17 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
       s.stages.push_back(read_stage(st, in));
     for (const auto& e : root.at("events").elements(kMaxEvents))
       s.events.push_back(read_event(e, in));
+    if (const auto list = root.maybe("deliveries"))
+      for (const auto& d : list->elements(kMaxEvents)) {
+        d.only_keys(keys_with({"due_s", "m3", "floor", "layer"}, calendar, {"due_time"}));
+        Delivery delivery;
+        delivery.due_s = d.at("due_s").number(kTime_s, "s");
+        check_times(d, calendar, delivery.due_s, delivery.due_s, "due_time", "due_time");
+        delivery.m3 = d.at("m3").number(Range::above(0.0, 1e4), "m3");
+        delivery.floor = static_cast<int>(d.at("floor").integer(0, kMaxFloor));
+        delivery.layer = static_cast<int>(d.at("layer").integer(0, kMaxLayer));
+        s.deliveries.push_back(delivery);
+      }
     for (const auto& w : root.at("warnings").elements(kMaxSmall))
       s.warnings.push_back(w.string(kMaxText));
   }

@@ -10,6 +10,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/planner/timeline.hpp"
+#include "ccbuild/schedule/quantities.hpp"
 #include "schedule_deposits.hpp"
 
 namespace ccbuild::schedule::detail {
@@ -41,6 +42,7 @@ class Rules {
     check_events();
     check_stages();
     check_totals();
+    check_quantities();
     check_days();
     if (found_.empty()) return;
     if (count_ > found_.size())
@@ -539,10 +541,44 @@ class Rules {
                            pj.treatment_s, below->floor, below->layer, block_s));
   }
 
+  /// Each layer's concrete is its plan's pieces' volume; the deliveries are the
+  /// material's batches of it (schedules written before quantities have neither).
+  void check_quantities() {
+    const Schedule& s = doc_.schedule;
+    if (s.deliveries.empty()) return;
+    const double nozzle_m = doc_.inputs.machine.nozzle_width_m;
+    for (std::size_t i = 0; i < s.layers.size(); ++i) {
+      const ScheduledLayer& l = s.layers[i];
+      const auto plan = s.plans.find(l.plan);
+      if (plan == s.plans.end()) continue;
+      const double want_m3 =
+          layer_volume_m3(plan->second.layer, nozzle_m, l.z_top_m - l.z_bottom_m);
+      if (std::abs(l.concrete_m3 - want_m3) > 1e-6 + 1e-9 * want_m3)
+        broken(pointer_to("/layers", i) + "/concrete_m3", "quantities",
+               printf_string("%.6f m3, but its pieces hold %.6f m3", l.concrete_m3, want_m3));
+    }
+    const auto want = deliveries_of(s.layers, doc_.inputs.material.delivery_batch_m3);
+    if (want.size() != s.deliveries.size()) {
+      broken("/deliveries", "quantities",
+             printf_string("%zu deliveries, but %.6f m3 in batches of %.6f m3 make %zu",
+                           s.deliveries.size(), s.totals.concrete_m3,
+                           doc_.inputs.material.delivery_batch_m3, want.size()));
+      return;
+    }
+    for (std::size_t k = 0; k < want.size(); ++k) {
+      const Delivery &a = s.deliveries[k], &b = want[k];
+      if (std::abs(a.due_s - b.due_s) > kStated_s || std::abs(a.m3 - b.m3) > 1e-6 ||
+          a.floor != b.floor || a.layer != b.layer)
+        broken(pointer_to("/deliveries", k), "quantities",
+               printf_string("expected %.6f m3 due at %.6f s (floor %d layer %d)", b.m3, b.due_s,
+                             b.floor, b.layer));
+    }
+  }
+
   void check_days() {
     const SiteCalendar* calendar = doc_.inputs.calendar.get();
     if (!calendar) return;
-    const auto want = work_days(doc_.schedule.layers, *calendar);
+    const auto want = work_days(doc_.schedule.layers, doc_.schedule.deliveries, *calendar);
     const auto& got = doc_.schedule.days;
     if (want.size() != got.size()) {
       broken("/days", "days",
@@ -555,6 +591,7 @@ class Rules {
       if (a.date != b.date || a.layers != b.layers || a.first_floor != b.first_floor ||
           a.first_layer != b.first_layer || a.last_floor != b.last_floor ||
           a.last_layer != b.last_layer || a.stop != b.stop || a.detail != b.detail ||
+          a.deliveries != b.deliveries || std::abs(a.concrete_m3 - b.concrete_m3) > 1e-6 ||
           std::abs(a.printing_s - b.printing_s) > kStated_s * (b.layers + 1))
         broken(pointer_to("/days", k), "days",
                printf_string("%s: expected %d layers, floor %d layer %d to floor %d layer %d, "
@@ -681,6 +718,7 @@ class Rules {
         {"climbs_s", {got.climbs_s, want.climbs_s}},
         {"slabs_s", {got.slabs_s, want.slabs_s}},
         {"joints_s", {got.joints_s, want.joints_s}},
+        {"concrete_m3", {got.concrete_m3, want.concrete_m3}},
         {"machine_s", {got.machine_s, want.machine_s}}};
     for (const auto& [key, values] : totals)
       if (std::abs(values.first - values.second) > slack_s + 1e-9 * std::abs(values.second))

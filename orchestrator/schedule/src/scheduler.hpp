@@ -155,6 +155,9 @@ class Scheduler {
   /// starting at `start_s` on one that started at `below_start_s`.
   double largest_interval_s(const IntervalOffsets& o, double below_start_s, double start_s) const;
   double smallest_interval_s(const IntervalOffsets& o, double below_start_s, double start_s) const;
+  /// The peak flow of registered plan `key`, m³/s (computed once).
+  double peak_flow_of(const std::string& key);
+  std::map<std::string, double> peak_flow_;
   /// A time for messages: a date and time of day on a calendar, else seconds.
   std::string when_text(double t_s) const {
     return calendar_ ? calendar_->local_text(t_s) : printf_string("%.1f s", t_s);

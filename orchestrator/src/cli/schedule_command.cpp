@@ -135,10 +135,11 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   if (!s.days.empty()) {
     std::cout << printf_string("%zu working days with printing:\n", s.days.size());
     for (const auto& d : s.days)
-      std::cout << printf_string("  %s %s  %3d layer%s, %s printing: %s\n",
+      std::cout << printf_string("  %s %s  %3d layer%s, %s printing, %.2f m³, %d deliver%s: %s\n",
                                  kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7],
                                  d.date.c_str(), d.layers, d.layers == 1 ? " " : "s",
-                                 duration(d.printing_s).c_str(), d.detail.c_str());
+                                 duration(d.printing_s).c_str(), d.concrete_m3, d.deliveries,
+                                 d.deliveries == 1 ? "y" : "ies", d.detail.c_str());
   }
   for (const auto& e : s.events) {
     if (e.kind != schedule::Event::Kind::kClimb) continue;
@@ -201,6 +202,27 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       duration(t.machine_s).c_str(), duration(t.deposition_s).c_str(),
       duration(t.airtime_s).c_str(), duration(t.waits_s).c_str(), duration(t.climbs_s).c_str(),
       duration(t.slabs_s).c_str(), duration(t.pipes_s).c_str(), duration(t.purges_s).c_str());
+  {
+    // Quantities: concrete per floor and in all, the pump's peak, the deliveries.
+    std::map<int, double> per_floor;
+    double peak_m3_s = 0.0;
+    for (const auto& l : s.layers) {
+      per_floor[l.floor] += l.concrete_m3;
+      peak_m3_s = std::max(peak_m3_s, l.peak_flow_m3_s);
+    }
+    std::string floors_text;
+    for (const auto& [floor, m3] : per_floor)
+      floors_text += printf_string("%sfloor %d %.2f", floors_text.empty() ? "" : ", ", floor, m3);
+    std::cout << printf_string(
+        "concrete: %.2f m³ (%s); the nozzles draw at most %.2f m³/h%s; %zu deliveries of "
+        "%g m³\n",
+        t.concrete_m3, floors_text.c_str(), peak_m3_s * 3600.0,
+        project.machine->pump_capacity_m3_s
+            ? printf_string(" (the pump: %.2f m³/h)", *project.machine->pump_capacity_m3_s * 3600.0)
+                  .c_str()
+            : "",
+        s.deliveries.size(), project.material.delivery_batch_m3);
+  }
   for (const auto& w : s.warnings) std::cout << "warning: " << w << "\n";
   std::cout << printf_string(
       "computed in %.1f s: %.1f s planning %d layer plans, %.1f s planning climbs, %.1f s the "

@@ -75,6 +75,8 @@ struct MaterialProfile {
   MaturityFunction maturity;
   /// `placing_temperature_c: [min, max]`: the air temperature printing needs.
   double placing_min_c = 5.0, placing_max_c = 35.0;
+  /// `delivery_batch_m3`: what one delivery brings (a truck mixer's 8 m³ by default).
+  double delivery_batch_m3 = 8.0;
 
   /// Strength at `age_s` (equivalent age at 20 °C): the curve's, linear between points,
   /// flat outside them, or the Eurocode's where that is larger.

@@ -60,6 +60,9 @@ struct MachineModel {
   RailAxis rail_axis = RailAxis::kX;  ///< the layout axis the rails run along
   /// Clearing the nozzle after an idle spell longer than nozzle_idle_limit_s.
   double purge_s = 120.0;
+  /// `pump_capacity_m3_h`: the most concrete the pump delivers, m³/s; unset: no limit. A
+  /// plan whose nozzles together draw more is not used (fewer nozzles print the layer).
+  std::optional<double> pump_capacity_m3_s;
 
   /// The defaults above, with x/y axes 0..50 m at 0.5 m/s and z 0..10 m at 0.1 m/s.
   static MachineModel defaults();

@@ -107,6 +107,8 @@ struct ScheduledLayer {
   std::optional<double> equivalent_interval_min_s, equivalent_interval_max_s;
   PieceEnd local_min_at, local_max_at;
   int piece_ends_checked = 0;
+  double concrete_m3 = 0.0;     ///< its pieces' volume
+  double peak_flow_m3_s = 0.0;  ///< the most its nozzles deposit at once
 };
 
 /// A nozzle's timed path known by its digest only: how many waypoints, and the SHA-256 of
@@ -206,8 +208,16 @@ struct ScheduleTotals {
   double makespan_s = 0.0;
   double deposition_s = 0.0, airtime_s = 0.0;  ///< nozzle time
   double waits_s = 0.0, climbs_s = 0.0, slabs_s = 0.0, pipes_s = 0.0, purges_s = 0.0, moves_s = 0.0;
-  double joints_s = 0.0;   ///< planned joints' treatments (crew time, not the machine's)
-  double machine_s = 0.0;  ///< the machine busy: layers, moves, pipes, purges, climbs
+  double joints_s = 0.0;     ///< planned joints' treatments (crew time, not the machine's)
+  double concrete_m3 = 0.0;  ///< the layers' concrete
+  double machine_s = 0.0;    ///< the machine busy: layers, moves, pipes, purges, climbs
+};
+
+/// A delivery of concrete (a truck of the material's batch size, the last one the rest).
+struct Delivery {
+  double due_s = 0.0;  ///< when the concrete used reaches the batches before it
+  double m3 = 0.0;
+  int floor = 0, layer = 0;  ///< the layer being printed then
 };
 
 /// What was printed on one local day of a site calendar, and where printing stopped.
@@ -215,7 +225,9 @@ struct WorkDay {
   std::string date;  ///< local, "2027-03-01"
   int layers = 0;    ///< layers started that day
   int first_floor = 0, first_layer = 0, last_floor = 0, last_layer = 0;
-  double printing_s = 0.0;  ///< those layers' time
+  double printing_s = 0.0;   ///< those layers' time
+  double concrete_m3 = 0.0;  ///< those layers' concrete
+  int deliveries = 0;        ///< due that day
   /// How the day's printing ended: "planned-joint" (the next layer starts on one),
   /// "floor-top" (the floor's walls are done; its slab follows), "finished" (the building's
   /// walls are), "continues" (the next layer follows within its interval).
@@ -233,6 +245,7 @@ struct Schedule {
   ScheduleTotals totals;
   /// Per local day with printing, when the site has a calendar (else empty).
   std::vector<WorkDay> days;
+  std::vector<Delivery> deliveries;  ///< by due time
   std::vector<std::string> warnings;
   /// Wall-clock seconds spent planning layers, planning climbs, and on the rest (not in
   /// the JSON, which stays byte-identical).
@@ -248,6 +261,7 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
 /// The days of `layers` and `events` on `calendar`: what was printed each day and how it
 /// stopped.
 std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const std::vector<Delivery>& deliveries,
                                const SiteCalendar& calendar);
 
 /// Schedules the whole building. Throws InputError for a project that cannot be

@@ -48,6 +48,7 @@ struct RecordedMachine {
   double gantry_width_m = 0.0;
   machine::RailAxis rail_axis = machine::RailAxis::kX;
   double purge_s = 0.0;
+  std::optional<double> pump_capacity_m3_s;  ///< unset: no limit
   bool climbing = false;
   /// Climbing machines only.
   double anchor_strength_mpa = 0.0, pipe_embed_s = 0.0;
