@@ -24,6 +24,32 @@ fs::path scratch(const std::string& name) {
   return testing::scratch_dir("schedule_cli", name);
 }
 
+TEST(ScheduleCommand, OnASiteInWeatherTheSameInputsGiveTheSameBytes) {
+  const fs::path dir = scratch("site_bytes");
+  const std::string site = " --site config/sites/weekdays-berlin-2027-weather.yaml";
+  const auto one = run_ccbuild("schedule config/buildings/house.yaml --quiet --jobs 1 -o " +
+                               (dir / "one.json").string() + site);
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_TRUE(contains(one.out, "site: from Mon 2027-03-01 07:00 (Europe/Berlin, +01:00)"))
+      << one.out;
+  EXPECT_TRUE(contains(one.out, "weather: ")) << one.out;
+  EXPECT_TRUE(contains(one.out, "working days with printing")) << one.out;
+  const auto two = run_ccbuild("schedule config/buildings/house.yaml --quiet --jobs 2 -o " +
+                               (dir / "two.json").string() + site);
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(slurp(dir / "one.json"), slurp(dir / "two.json"));
+  // The weather file is an input: recorded with its checksum.
+  EXPECT_TRUE(contains(slurp(dir / "one.json"), "berlin-spring-2027.csv"));
+  // A site file with an unknown key is bad input, naming it.
+  std::ofstream(dir / "typo.yaml") << "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"
+                                      "holiday: [2027-03-02]\n";
+  const auto typo = run_ccbuild("schedule config/buildings/house.yaml --quiet --site " +
+                                (dir / "typo.yaml").string());
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_TRUE(contains(typo.err, "typo.yaml:3")) << typo.err;
+  EXPECT_TRUE(contains(typo.err, "holidays")) << typo.err;
+}
+
 TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
   const fs::path dir = scratch("jobs");
   const auto one = run_ccbuild("schedule config/buildings/house.yaml --quiet --jobs 1 -o " +
