@@ -588,3 +588,30 @@ TEST(Quantities, DeliveriesAreDueWhenTheConcreteUsedReachesEachBatch) {
 
 }  // namespace
 }  // namespace ccbuild::schedule
+
+namespace ccbuild::schedule {
+namespace {
+
+TEST(Objective, ShortestEndsNoLaterAndUsesMoreNozzlesWhereThatFinishesSooner) {
+  orchestrator::ProjectOptions po;
+  po.site_file = "config/sites/weekdays-berlin-2027.yaml";
+  const orchestrator::Project house = orchestrator::open_project("config/buildings/house.yaml", po);
+  ScheduleOptions fewest;
+  fewest.jobs = 2;
+  ScheduleOptions shortest = fewest;
+  shortest.objective = Objective::kShortest;
+  const Schedule a = build_schedule(house, fewest);
+  const Schedule b = build_schedule(house, shortest);
+  ASSERT_TRUE(a.feasible && b.feasible);
+  EXPECT_LE(b.totals.makespan_s, a.totals.makespan_s + 1e-6);
+  int more = 0;
+  for (std::size_t i = 0; i < a.layers.size(); ++i)
+    more += b.layers[i].nozzles > a.layers[i].nozzles;
+  EXPECT_GT(more, 0);  // the house's layers end sooner on more nozzles
+  const auto j = schedule_json(recorded_inputs(house, shortest), b);
+  EXPECT_EQ(j["inputs"]["objective"], "shortest");
+  EXPECT_FALSE(schedule_json(recorded_inputs(house, fewest), a)["inputs"].contains("objective"));
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule

@@ -1356,6 +1356,8 @@ class Calendar:
         return (utc - self.start).total_seconds()
 
     def timestamp(self, t_s):
+        if not math.isfinite(t_s):
+            return "never"
         at = self.start + datetime.timedelta(seconds=math.floor(t_s + 0.5))
         return at.astimezone(self.zone).isoformat()
 
@@ -1604,7 +1606,8 @@ def guarded(name, fn, problems, *args):
     """A check that trips over a corrupt document reports that, not a traceback."""
     try:
         fn(*args)
-    except (KeyError, TypeError, ValueError, IndexError, ZeroDivisionError, AttributeError) as x:
+    except (KeyError, TypeError, ValueError, IndexError, ZeroDivisionError, AttributeError,
+            OverflowError) as x:
         problems.append("the %s check could not run: %s: %s" % (name, type(x).__name__, x))
 
 

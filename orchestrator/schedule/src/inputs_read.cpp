@@ -215,7 +215,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   in.ccbuild_version = root.at("ccbuild_version").string(100);
   const JsonAt i = root.at("inputs");
   i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
-               "files", "machine", "material", "provenance", "site"});
+               "files", "machine", "material", "provenance", "site", "objective"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -238,6 +238,13 @@ RecordedInputs read_inputs(const JsonAt& root) {
         placed->at("rotation_deg").number(Range::closed(-360.0, 360.0), "deg") * M_PI / 180.0;
   }
   in.seed = i.at("seed").unsigned_integer();
+  if (const auto objective = i.maybe("objective")) {
+    const std::string name = objective->string(20);
+    if (name == "shortest")
+      in.objective = Objective::kShortest;
+    else if (name != "fewest-nozzles")
+      objective->refuse("expected \"fewest-nozzles\" or \"shortest\", got \"" + name + "\"");
+  }
   for (const auto& f : i.at("files").elements(kMaxSmall)) {
     f.only_keys({"path", "sha256"});
     RecordedFile file{f.at("path").string(4096), f.at("sha256").string(64)};

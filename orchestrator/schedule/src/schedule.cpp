@@ -510,6 +510,14 @@ bool Scheduler::schedule_layer(int i) {
     } else {
       c.ok = true;
     }
+    if (options_.objective == Objective::kShortest) {
+      // Every count is tried: the one whose layer ends earliest, the fewest on a tie.
+      const auto end_of = [](const Choice& x) { return x.start_s + x.planned->layer_time_s; };
+      if (c.ok ? !best || !best->ok || end_of(c) < end_of(*best) - 1e-9
+               : !best || (!best->ok && c.local_max_s < best->local_max_s))
+        best = std::move(c);
+      return false;
+    }
     const bool done = c.ok;
     if (c.ok || !best || c.local_max_s < best->local_max_s) best = std::move(c);
     return done;
@@ -859,6 +867,10 @@ Schedule Scheduler::run() {
 }
 
 }  // namespace detail
+
+std::string to_string(Objective objective) {
+  return objective == Objective::kShortest ? "shortest" : "fewest-nozzles";
+}
 
 std::string to_string(WaitKind kind) {
   switch (kind) {

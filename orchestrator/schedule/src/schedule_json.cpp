@@ -109,6 +109,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   in.slab_stage_s = b.slab_stage_s;
   in.placement = project.placement;
   in.seed = options.seed;
+  in.objective = options.objective;
   for (const auto& path : project.files_read())
     in.files.push_back({path.string(), sha256_file_hex(path)});
   const machine::MachineModel& m = *project.machine;
@@ -201,6 +202,8 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     }
     out["inputs"]["provenance"] = floors_json;
   }
+  if (in.objective != Objective::kFewestNozzles)
+    out["inputs"]["objective"] = to_string(in.objective);
   if (calendar) out["inputs"]["site"] = site_json(*calendar);
   if (calendar && in.conditions)
     out["inputs"]["site"]["conditions"] = conditions_json(*in.conditions);

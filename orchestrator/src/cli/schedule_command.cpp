@@ -29,6 +29,7 @@ struct ScheduleCommandOptions {
   bool quiet = false;
   bool path_digests = false;
   std::string what_if;  ///< "anchors" or empty
+  std::string objective = "fewest-nozzles";
 };
 
 // 1970-01-01, day 0, was a Thursday.
@@ -51,6 +52,8 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   options.seed = o.seed;
   options.jobs = o.jobs;
   options.layer_time_limit_s = o.layer_time_limit_s;
+  options.objective = o.objective == "shortest" ? schedule::Objective::kShortest
+                                                : schedule::Objective::kFewestNozzles;
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
   const schedule::Schedule s = schedule::build_schedule(project, options);
   std::vector<schedule::AnchorWhatIf> changes;
@@ -223,6 +226,31 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
             : "",
         s.deliveries.size(), project.material.delivery_batch_m3);
   }
+  {
+    // The other objective, scheduled in full, for comparison.
+    schedule::ScheduleOptions other = options;
+    other.objective = options.objective == schedule::Objective::kShortest
+                          ? schedule::Objective::kFewestNozzles
+                          : schedule::Objective::kShortest;
+    if (other.progress)
+      other.progress("scheduling again with --objective " + to_string(other.objective) +
+                     ", to compare");
+    other.progress = nullptr;
+    const schedule::Schedule alt = schedule::build_schedule(project, other);
+    const auto most_nozzles = [](const schedule::Schedule& x) {
+      int n = 0;
+      for (const auto& l : x.layers) n = std::max(n, l.nozzles);
+      return n;
+    };
+    const auto line = [&](const schedule::Schedule& x, schedule::Objective which) {
+      return printf_string("%s %s%s (up to %d nozzle%s)", to_string(which).c_str(),
+                           duration(x.totals.makespan_s).c_str(),
+                           x.feasible ? "" : ", NOT feasible", most_nozzles(x),
+                           most_nozzles(x) == 1 ? "" : "s");
+    };
+    std::cout << "objectives: " << line(s, options.objective) << " (this schedule); "
+              << line(alt, other.objective) << "\n";
+  }
   for (const auto& w : s.warnings) std::cout << "warning: " << w << "\n";
   std::cout << printf_string(
       "computed in %.1f s: %.1f s planning %d layer plans, %.1f s planning climbs, %.1f s the "
@@ -300,6 +328,15 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
                    "scheduled in full: pipes cast a storey earlier (the legs as much longer as "
                    "that needs), a lower anchor strength, two more units sharing the load")
       ->check(CLI::IsMember({"anchors"}));
+  command
+      ->add_option("--objective", o->objective,
+                   "fewest-nozzles: each layer with the fewest nozzles that keep its intervals "
+                   "(the default); shortest: each layer with the count that ends it earliest "
+                   "(on a calendar, more nozzles may finish a floor within a shift instead of "
+                   "stopping on a planned joint). The summary compares both, each scheduled "
+                   "in full")
+      ->check(CLI::IsMember({"fewest-nozzles", "shortest"}))
+      ->capture_default_str();
   add_input_options(*command, o->input);
   command->callback([o, &exit_code] { run_schedule(*o, exit_code); });
 }

@@ -31,8 +31,16 @@
 
 namespace ccbuild::schedule {
 
+/// What the scheduler optimises layer by layer.
+enum class Objective {
+  kFewestNozzles,  ///< "fewest-nozzles": the fewest nozzles that keep every interval
+  kShortest,       ///< "shortest": the count whose layer ends earliest (fewest on a tie)
+};
+std::string to_string(Objective objective);
+
 struct ScheduleOptions {
   std::uint64_t seed = 1;
+  Objective objective = Objective::kFewestNozzles;
   /// Threads planning distinct layers and climbs; 0: every core.
   int jobs = 0;
   /// Per plan (one geometry at one nozzle count). Plans end on their kick budget well

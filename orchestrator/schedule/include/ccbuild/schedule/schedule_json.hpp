@@ -78,6 +78,7 @@ struct RecordedInputs {
   /// machine's frame. Absent in schedules older than placement: as drawn.
   Placement placement;
   std::uint64_t seed = 1;
+  Objective objective = Objective::kFewestNozzles;  ///< written when not the default
   std::vector<RecordedFile> files;
   RecordedMachine machine;
   floors::MaterialProfile material;
