@@ -52,18 +52,24 @@ std::string clock_text(int minutes_of_day) {
   return printf_string("%02d:%02d", minutes_of_day / 60, minutes_of_day % 60);
 }
 
+/// "HH:MM-HH:MM" as its two clocks, in any order; nothing when either is no clock.
+std::optional<std::pair<int, int>> split_span(const std::string& text) {
+  const auto dash = text.find('-');
+  if (dash == std::string::npos) return std::nullopt;
+  const auto from = parse_clock(text.substr(0, dash)), to = parse_clock(text.substr(dash + 1));
+  if (!from || !to) return std::nullopt;
+  return std::make_pair(*from, *to);
+}
+
 WorkingHours read_span(const Field& f) {
   const std::string text = f.as_string();
-  const auto dash = text.find('-');
-  const auto from = dash == std::string::npos ? std::nullopt : parse_clock(text.substr(0, dash));
-  const auto to = dash == std::string::npos ? std::nullopt : parse_clock(text.substr(dash + 1));
-  if (!from || !to)
-    f.fail("expected working hours as HH:MM-HH:MM (e.g. 07:00-17:00), got '" + text + "'");
-  if (*to <= *from)
+  const auto span = split_span(text);
+  if (!span) f.fail("expected working hours as HH:MM-HH:MM (e.g. 07:00-17:00), got '" + text + "'");
+  if (span->second <= span->first)
     f.fail("'" + text +
            "' ends before it starts; a span lies within one day (a night shift is "
            "22:00-24:00 on one day and 00:00-06:00 on the next, which join)");
-  return {*from, *to};
+  return {span->first, span->second};
 }
 
 /// The weekdays a `working_hours` key names: "mon", "mon-fri", "sat-sun".
@@ -123,11 +129,9 @@ std::string to_string(const WorkingHours& hours) {
 }
 
 std::optional<WorkingHours> parse_working_hours(const std::string& text) {
-  const auto dash = text.find('-');
-  if (dash == std::string::npos) return std::nullopt;
-  const auto from = parse_clock(text.substr(0, dash)), to = parse_clock(text.substr(dash + 1));
-  if (!from || !to || *to <= *from) return std::nullopt;
-  return WorkingHours{*from, *to};
+  const auto span = split_span(text);
+  if (!span || span->second <= span->first) return std::nullopt;
+  return WorkingHours{span->first, span->second};
 }
 
 std::optional<std::int64_t> parse_local_start(const std::string& text) {

@@ -232,11 +232,13 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     other.objective = options.objective == schedule::Objective::kShortest
                           ? schedule::Objective::kFewestNozzles
                           : schedule::Objective::kShortest;
-    if (other.progress)
+    // One nozzle: both objectives choose the same count for every layer.
+    const bool same = project.machine->nozzles == 1;
+    if (other.progress && !same)
       other.progress("scheduling again with --objective " + to_string(other.objective) +
                      ", to compare");
     other.progress = nullptr;
-    const schedule::Schedule alt = schedule::build_schedule(project, other);
+    const schedule::Schedule alt = same ? s : schedule::build_schedule(project, other);
     const auto most_nozzles = [](const schedule::Schedule& x) {
       int n = 0;
       for (const auto& l : x.layers) n = std::max(n, l.nozzles);

@@ -1,0 +1,185 @@
+// The schedule model's small functions: the names of its kinds (as the JSON writes them),
+// plan keys, totals and the days of a site calendar, all computed from a schedule's layers
+// and events alone (the scheduler and read_schedule's rules share them).
+
+#include <algorithm>
+
+#include "ccbuild/common/format.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+
+namespace ccbuild::schedule {
+
+std::string to_string(Objective objective) {
+  return objective == Objective::kShortest ? "shortest" : "fewest-nozzles";
+}
+
+std::string to_string(WaitKind kind) {
+  switch (kind) {
+    case WaitKind::kMinInterval:
+      return "min-interval";
+    case WaitKind::kStrength:
+      return "strength";
+    case WaitKind::kAnchorStrength:
+      return "anchor-strength";
+    case WaitKind::kSlab:
+      return "slab";
+    case WaitKind::kOffShift:
+      return "off-shift";
+    case WaitKind::kJoint:
+      return "joint";
+    case WaitKind::kCold:
+      return "cold";
+    case WaitKind::kWind:
+      return "wind";
+  }
+  return "?";
+}
+
+std::optional<WaitKind> wait_kind_named(const std::string& name) {
+  for (WaitKind k :
+       {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab,
+        WaitKind::kOffShift, WaitKind::kJoint, WaitKind::kCold, WaitKind::kWind})
+    if (to_string(k) == name) return k;
+  return std::nullopt;
+}
+
+std::string to_string(InfeasibilityKind kind) {
+  switch (kind) {
+    case InfeasibilityKind::kMaxInterval:
+      return "max-interval";
+    case InfeasibilityKind::kNoPlan:
+      return "no-plan";
+    case InfeasibilityKind::kStrength:
+      return "strength";
+    case InfeasibilityKind::kClimb:
+      return "climb";
+    case InfeasibilityKind::kCalendar:
+      return "calendar";
+    case InfeasibilityKind::kJoint:
+      return "joint";
+  }
+  return "?";
+}
+
+std::optional<InfeasibilityKind> infeasibility_kind_named(const std::string& name) {
+  for (InfeasibilityKind k :
+       {InfeasibilityKind::kMaxInterval, InfeasibilityKind::kNoPlan, InfeasibilityKind::kStrength,
+        InfeasibilityKind::kClimb, InfeasibilityKind::kCalendar, InfeasibilityKind::kJoint})
+    if (to_string(k) == name) return k;
+  return std::nullopt;
+}
+
+std::string PlanKey::to_string() const {
+  std::string key =
+      follows.empty() ? printf_string("g%dn%d", geometry, nozzles)
+                      : printf_string("g%d~%s%s", geometry, follows.c_str(), held_back ? "h" : "");
+  return relabelled > 0 ? key + "m" + std::to_string(relabelled) : key;
+}
+
+std::string to_string(Event::Kind kind) {
+  switch (kind) {
+    case Event::Kind::kPipe:
+      return "pipe";
+    case Event::Kind::kClimb:
+      return "climb";
+    case Event::Kind::kSlab:
+      return "slab";
+    case Event::Kind::kPurge:
+      return "purge";
+    case Event::Kind::kJoint:
+      return "joint";
+  }
+  return "?";
+}
+
+ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
+                         const std::vector<Event>& events) {
+  ScheduleTotals tot;
+  for (const auto& l : layers) {
+    tot.makespan_s = std::max(tot.makespan_s, l.end_s);
+    tot.deposition_s += l.deposition_s;
+    tot.airtime_s += l.airtime_s;
+    tot.waits_s += l.wait_before_s;
+    tot.moves_s += l.move_before_s;
+    tot.machine_s += l.end_s - l.start_s + l.move_before_s;
+    tot.concrete_m3 += l.concrete_m3;
+  }
+  for (const auto& e : events) {
+    tot.makespan_s = std::max(tot.makespan_s, e.end_s);
+    const double d = e.end_s - e.start_s;
+    switch (e.kind) {
+      case Event::Kind::kPipe:
+        tot.pipes_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kSlab:
+        tot.slabs_s += d;
+        break;
+      case Event::Kind::kPurge:
+        tot.purges_s += d;
+        tot.machine_s += d;
+        break;
+      case Event::Kind::kJoint:
+        tot.joints_s += d;
+        break;
+      case Event::Kind::kClimb:
+        tot.climbs_s += d;
+        tot.machine_s += d;
+        if (e.climb) tot.waits_s += e.climb->wait_before_s;
+        break;
+    }
+  }
+  return tot;
+}
+
+std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const std::vector<Delivery>& deliveries,
+                               const SiteCalendar& calendar) {
+  std::vector<WorkDay> days;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const ScheduledLayer& l = layers[i];
+    const std::string date = calendar.local_date(l.start_s);
+    if (days.empty() || days.back().date != date) {
+      WorkDay d;
+      d.date = date;
+      d.first_floor = l.floor;
+      d.first_layer = l.layer;
+      days.push_back(d);
+    }
+    WorkDay& d = days.back();
+    ++d.layers;
+    d.last_floor = l.floor;
+    d.last_layer = l.layer;
+    d.printing_s += l.end_s - l.start_s;
+    d.concrete_m3 += l.concrete_m3;
+    const ScheduledLayer* next = i + 1 < layers.size() ? &layers[i + 1] : nullptr;
+    if (next && calendar.local_date(next->start_s) == date) continue;
+    const std::string at = printf_string("floor %d layer %d", l.floor, l.layer);
+    if (!next) {
+      d.stop = "finished";
+      d.detail = "the building's walls are finished with " + at;
+    } else if (next->floor != l.floor) {
+      d.stop = "floor-top";
+      d.detail = printf_string("stopped at the top of floor %d (%s); floor %d starts on its slab",
+                               l.floor, at.c_str(), next->floor);
+    } else if (next->planned_joint) {
+      d.stop = "planned-joint";
+      d.detail =
+          printf_string("stopped at the end of %s; floor %d layer %d starts on a planned joint",
+                        at.c_str(), next->floor, next->layer);
+    } else {
+      d.stop = "continues";
+      d.detail = printf_string("%s ends the day; floor %d layer %d follows within its interval",
+                               at.c_str(), next->floor, next->layer);
+    }
+  }
+  // Each delivery on the day it is due (a day with printing: it feeds a layer that day).
+  for (const auto& delivery : deliveries) {
+    const std::string date = calendar.local_date(delivery.due_s);
+    for (auto& d : days)
+      if (d.date == date) ++d.deliveries;
+  }
+  return days;
+}
+
+}  // namespace ccbuild::schedule
