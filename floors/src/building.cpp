@@ -121,11 +121,87 @@ Site read_site(const Field& field, LengthUnit unit) {
   return site;
 }
 
+int read_crew(const Field& field) {
+  const double crew = field.as_number_in(limits::kCrew, "people");
+  if (crew != std::floor(crew))
+    field.fail("expected a whole number of people, got " + plain_number(crew));
+  return static_cast<int>(crew);
+}
+
+// `lintels: {type, height, bearing, place_min, crew, by}`.
+LintelSpec read_lintels(const Field& field, LengthUnit unit) {
+  MapReader map(field, {"type", "height", "bearing", "place_min", "crew", "by"});
+  map.reject_unknown();
+  LintelSpec lintel;
+  if (auto type = map.optional("type")) {
+    const std::string t = type->as_string();
+    if (t != "precast" && t != "formwork")
+      type->fail(
+          "expected precast (an element set on bearings) or formwork (a soffit form the layers "
+          "are printed over), got '" +
+          t + "'");
+    lintel.type = t == "precast" ? LintelSpec::Type::kPrecast : LintelSpec::Type::kFormwork;
+  }
+  if (auto height = map.optional("height")) {
+    if (lintel.type != LintelSpec::Type::kPrecast)
+      height->fail("only a precast lintel has a height (a formwork lintel is printed)");
+    lintel.height_m = read_length(*height, limits::kLintelHeight_m, unit);
+  } else if (lintel.type == LintelSpec::Type::kPrecast) {
+    map.required("height");
+  }
+  if (auto bearing = map.optional("bearing"))
+    lintel.bearing_m = read_length(*bearing, limits::kLintelBearing_m, unit);
+  if (auto place = map.optional("place_min"))
+    lintel.place_s = place->as_number_in(limits::kLintelPlace_s, "min", 60.0);
+  if (auto by = map.optional("by")) {
+    const std::string who = by->as_string();
+    if (who != "crew" && who != "arm")
+      by->fail("expected crew (people set it, in working hours) or arm (the machine's arm), got '" +
+               who + "'");
+    lintel.by_arm = who == "arm";
+    if (lintel.by_arm) lintel.crew = 0;
+  }
+  if (auto crew = map.optional("crew")) {
+    lintel.crew = read_crew(*crew);
+    if (lintel.by_arm && lintel.crew > 0) crew->fail("a lintel set by the arm has no crew");
+  }
+  return lintel;
+}
+
+// `slabs: {thickness, setup_h, pour_m3_h, ready_mpa, concrete, crew, roof}`.
+SlabSpec read_slabs(const Field& field, LengthUnit unit) {
+  MapReader map(field,
+                {"thickness", "setup_h", "pour_m3_h", "ready_mpa", "concrete", "crew", "roof"});
+  map.reject_unknown();
+  SlabSpec slab;
+  if (auto t = map.optional("thickness")) {
+    slab.thickness_m = read_length(*t, limits::kSlabThickness_m, unit);
+    if (slab.thickness_m <= 0.0) t->fail("a slab is thicker than 0");
+  }
+  if (auto setup = map.optional("setup_h"))
+    slab.setup_s = setup->as_number_in(limits::kSlabSetup_s, "h", 3600.0);
+  if (auto rate = map.optional("pour_m3_h"))
+    slab.pour_rate_m3_s = rate->as_number_in(limits::kPourRate_m3_s, "m3/h", 1.0 / 3600.0);
+  if (auto ready = map.optional("ready_mpa"))
+    slab.ready_mpa = ready->as_number_in(limits::kSlabReady_mpa, "MPa");
+  if (auto concrete = map.optional("concrete"))
+    slab.concrete = read_en1992_strength(*concrete, {"fcm_mpa", "cement_class"});
+  if (auto ready = map.optional("ready_mpa"))
+    if (slab.ready_mpa >= slab.concrete.fcm_mpa * std::exp(slab.concrete.s))
+      ready->fail("the slab's concrete never reaches " + plain_number(slab.ready_mpa) +
+                  " MPa (EN 1992-1-1: at most fcm e^s = " +
+                  plain_number(slab.concrete.fcm_mpa * std::exp(slab.concrete.s)) + " MPa)");
+  if (auto crew = map.optional("crew")) slab.crew = read_crew(*crew);
+  if (auto roof = map.optional("roof")) slab.roof = roof->as_bool();
+  return slab;
+}
+
 Building building_from_document(const Document& doc, const fs::path& path,
                                 const DrawingReader& drawings) {
   const Field root = Field::root(doc);
-  MapReader map(root, {"name", "description", "units", "layer_height", "slab_stage_h", "material",
-                       "machine", "site", "wall_pattern", "climbs", "floors"});
+  MapReader map(root,
+                {"name", "description", "units", "layer_height", "slab_stage_h", "slabs", "lintels",
+                 "material", "machine", "site", "wall_pattern", "climbs", "floors"});
   map.reject_unknown();
   const fs::path base = path.has_parent_path() ? path.parent_path() : fs::path(".");
 
@@ -139,6 +215,14 @@ Building building_from_document(const Document& doc, const fs::path& path,
   building.layer_height_m = read_length(layer_height, limits::kLayerHeight_m, unit);
   if (auto slab = map.optional("slab_stage_h"))
     building.slab_stage_s = slab->as_number_in(limits::kSlabStage_s, "h", 3600.0);
+  if (auto slabs = map.optional("slabs")) {
+    if (map.has("slab_stage_h"))
+      slabs->fail(
+          "give either slab_stage_h (a fixed stage between floors) or slabs (poured and cured "
+          "to a strength), not both");
+    building.slabs = read_slabs(*slabs, unit);
+  }
+  if (auto lintels = map.optional("lintels")) building.lintels = read_lintels(*lintels, unit);
   building.material_profile =
       resolve_reference(map.required("material"), base, building.material_source);
   building.machine_profile =
@@ -183,6 +267,8 @@ Building building_from_document(const Document& doc, const fs::path& path,
     floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
     if (auto slab = fm.optional("slab"))
       floor.slab_m = read_length(*slab, limits::kSlabThickness_m, unit);
+    else if (building.slabs)
+      floor.slab_m = building.slabs->thickness_m;  // the floor above stands on it
     floor.base_elevation_m = elevation_m;
     elevation_m += floor.height_m + floor.slab_m;
 
@@ -231,6 +317,7 @@ Building building_from_document(const Document& doc, const fs::path& path,
         floor.anchors.push_back(anchor);
       }
     }
+    floor.plan.lintel = building.lintels;
     const std::string context = "floor '" + floor.name + "'";
     try {
       validate_plan(floor.plan, floor.height_m, context);
@@ -253,6 +340,38 @@ bool is_building_document(const Document& doc) {
 }
 
 }  // namespace
+
+double slab_area_m2(const Floor& floor) {
+  // Andrew's monotone chain, then the shoelace formula.
+  std::vector<Eigen::Vector2d> p;
+  for (const auto& v : floor.plan.vertices) p.push_back(v.position_m);
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (p.size() < 3) return 0.0;
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  double twice = 0.0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const auto& a = hull[i];
+    const auto& b = hull[(i + 1) % hull.size()];
+    twice += a.x() * b.y() - b.x() * a.y();
+  }
+  return 0.5 * std::abs(twice);
+}
 
 Envelope envelope(const Building& building) {
   Envelope out;

@@ -97,6 +97,27 @@ double MaterialProfile::age_for_strength_s(double strength_mpa) const {
   return en1992 ? std::min(table_s, en1992->age_for_strength_s(strength_mpa)) : table_s;
 }
 
+En1992Strength read_en1992_strength(const Field& field, const std::vector<std::string>& keys) {
+  MapReader e(field, keys);
+  e.reject_unknown();
+  En1992Strength en;
+  en.fcm_mpa = e.required("fcm_mpa").as_number_in(kFcm_mpa, "MPa");
+  if (auto c = e.optional("cement_class")) {
+    en.cement_class = c->as_string();
+    if (en.cement_class == "R")
+      en.s = 0.20;
+    else if (en.cement_class == "N")
+      en.s = 0.25;
+    else if (en.cement_class == "S")
+      en.s = 0.38;
+    else
+      c->fail("expected R, N or S (EN 1992-1-1 §3.1.2: s = 0.20, 0.25, 0.38), got '" +
+              en.cement_class + "'");
+  }
+  if (e.has("from_h")) en.from_s = e.required("from_h").as_number_in(kJointAge_s, "h", 3600.0);
+  return en;
+}
+
 MaterialProfile load_material_profile(const std::filesystem::path& path) {
   const Document doc = load_document(path);
   const Field root = Field::root(doc);
@@ -150,26 +171,8 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
         a->fail("must be greater than min_age_h (" + plain_number(p.min_age_s / 3600.0) + " h)");
     }
   }
-  if (auto eurocode = map.optional("strength_en1992")) {
-    MapReader e(*eurocode, {"fcm_mpa", "cement_class", "from_h"});
-    e.reject_unknown();
-    En1992Strength en;
-    en.fcm_mpa = e.required("fcm_mpa").as_number_in(kFcm_mpa, "MPa");
-    if (auto c = e.optional("cement_class")) {
-      en.cement_class = c->as_string();
-      if (en.cement_class == "R")
-        en.s = 0.20;
-      else if (en.cement_class == "N")
-        en.s = 0.25;
-      else if (en.cement_class == "S")
-        en.s = 0.38;
-      else
-        c->fail("expected R, N or S (EN 1992-1-1 §3.1.2: s = 0.20, 0.25, 0.38), got '" +
-                en.cement_class + "'");
-    }
-    if (auto from = e.optional("from_h")) en.from_s = from->as_number_in(kJointAge_s, "h", 3600.0);
-    m.en1992 = en;
-  }
+  if (auto eurocode = map.optional("strength_en1992"))
+    m.en1992 = read_en1992_strength(*eurocode, {"fcm_mpa", "cement_class", "from_h"});
   if (auto maturity = map.optional("maturity")) {
     MapReader r(*maturity, {"function", "activation_energy_kj_mol", "datum_temperature_c"});
     r.reject_unknown();

@@ -1,5 +1,6 @@
 #include "ccbuild/floors/plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -34,6 +35,25 @@ Eigen::Vector2d FloorPlan::wall_end_m(const Wall& wall) const {
 
 double FloorPlan::wall_length_m(const Wall& wall) const {
   return (wall_end_m(wall) - wall_start_m(wall)).norm();
+}
+
+std::string to_string(LintelSpec::Type type) {
+  return type == LintelSpec::Type::kPrecast ? "precast" : "formwork";
+}
+
+OpeningState opening_state(const Opening& opening, const LintelSpec& lintel, double mid_m) {
+  if (mid_m >= opening.sill_m && mid_m < opening.head_m) return OpeningState::kOpen;
+  if (lintel.type == LintelSpec::Type::kPrecast && mid_m >= opening.head_m &&
+      mid_m < opening.head_m + lintel.height_m)
+    return OpeningState::kLintel;
+  return OpeningState::kWall;
+}
+
+std::pair<double, double> opening_gap_m(const Opening& opening, const LintelSpec& lintel,
+                                        OpeningState state, double wall_length_m) {
+  const double bearing_m = state == OpeningState::kLintel ? lintel.bearing_m : 0.0;
+  return {std::max(0.0, opening.offset_m - bearing_m),
+          std::min(wall_length_m, opening.offset_m + opening.width_m + bearing_m)};
 }
 
 namespace {

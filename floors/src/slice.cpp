@@ -48,11 +48,6 @@ class PointMerger {
   std::unordered_map<std::uint64_t, std::vector<int>> grid_;
 };
 
-// An opening is open in a layer whose mid-height lies in [sill, head).
-bool open_at(const Opening& o, double mid_m) {
-  return mid_m >= o.sill_m && mid_m < o.head_m;
-}
-
 // Cuts every wall at the openings active at height `mid_m` (nullopt: none).
 Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceOptions& options) {
   std::vector<PieceSpec> pieces;
@@ -63,8 +58,10 @@ Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceO
     std::vector<std::pair<double, double>> gaps;
     if (mid_m) {
       for (const auto& o : plan.openings) {
-        if (o.wall_id == wall.id && open_at(o, *mid_m))
-          gaps.emplace_back(std::max(0.0, o.offset_m), std::min(length, o.offset_m + o.width_m));
+        if (o.wall_id != wall.id) continue;
+        const OpeningState state = opening_state(o, plan.lintel, *mid_m);
+        if (state != OpeningState::kWall)
+          gaps.push_back(opening_gap_m(o, plan.lintel, state, length));
       }
     }
     std::sort(gaps.begin(), gaps.end());
@@ -171,13 +168,14 @@ std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
   layers.reserve(count);
   // A layer's pieces depend only on which openings are open at its mid-height: layers
   // alike in that are cut (and offset into beads, the costly part) once.
-  std::map<std::vector<bool>, std::size_t> first_with;
+  std::map<std::vector<OpeningState>, std::size_t> first_with;
   for (int k = 0; k < count; ++k) {
     const double z0 = k * layer_height_m;
-    const double mid_m = 0.5 * (z0 + std::min((k + 1) * layer_height_m, floor.height_m));
-    std::vector<bool> open;
+    const double mid_m = layer_mid_m(floor.height_m, layer_height_m, k);
+    std::vector<OpeningState> open;
     open.reserve(floor.plan.openings.size());
-    for (const auto& o : floor.plan.openings) open.push_back(open_at(o, mid_m));
+    for (const auto& o : floor.plan.openings)
+      open.push_back(opening_state(o, floor.plan.lintel, mid_m));
     const auto [it, fresh] = first_with.try_emplace(std::move(open), layers.size());
     if (fresh) {
       layers.push_back(slice_floor_layer(floor, layer_height_m, k, options));
@@ -192,11 +190,17 @@ std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
   return layers;
 }
 
+double layer_mid_m(double floor_height_m, double layer_height_m, int k) {
+  return 0.5 * (k * layer_height_m + std::min((k + 1) * layer_height_m, floor_height_m));
+}
+
 Layer slice_floor_layer(const Floor& floor, double layer_height_m, int k,
                         const SliceOptions& options) {
   const double z0 = k * layer_height_m;
   const double z1 = std::min((k + 1) * layer_height_m, floor.height_m);
-  Layer layer = slice_plan_at(floor.plan, z0, z1, options);
+  Layer layer = cut_walls(floor.plan, layer_mid_m(floor.height_m, layer_height_m, k), options);
+  layer.z_bottom_m = z0;
+  layer.z_top_m = z1;
   layer.floor_index = floor.index;
   layer.index = k;
   layer.z_bottom_m = floor.base_elevation_m + z0;

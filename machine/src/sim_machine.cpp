@@ -328,7 +328,7 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
       const double interval_s = start_s + path.t_s[k] - e.t_s;
       const char* what = nullptr;
       std::int8_t kind = 0;
-      if (interval_s > options_.max_interval_s + kIntervalSlack_s) {
+      if (interval_s > options_.max_interval_s + kIntervalSlack_s && !job.on_planned_joint) {
         what = "a cold joint: covered %.1f s after it was deposited, over the maximum %.1f s";
         kind = ccbuild_fault_t::COLD_JOINT;
       } else if (interval_s < options_.min_interval_s - kIntervalSlack_s) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -50,7 +51,7 @@ const ScheduleDocument& house_schedule() {
 TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
   const ScheduleDocument& s = house_schedule();
   const auto jobs = jobs_of_schedule(s);
-  int deposits = 0, slabs = 0, purges = 0;
+  int deposits = 0, slabs = 0, purges = 0, joints = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const JobMessages sent = messages_of(jobs[k]);  // as they go on the wire
     const auto& j = sent.job;
@@ -67,6 +68,9 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
     const ScheduledLayer* layer = nullptr;
     for (const auto& l : s.schedule.layers)
       if (l.floor == j.floor && l.layer == j.layer) layer = &l;
+    // A layer on a planned joint (after the stop for lintels) says so on the wire.
+    if (layer) EXPECT_EQ(j.on_planned_joint, layer->planned_joint);
+    joints += j.on_planned_joint;
     ASSERT_NE(layer, nullptr);
     const SchedulePlan& plan = s.schedule.plans.at(j.plan);
     const auto& path = plan.waypoints.at(j.nozzle);
@@ -87,7 +91,12 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
   }
   EXPECT_EQ(deposits, 60);  // one nozzle, 60 layers
   EXPECT_EQ(slabs, 1);
-  EXPECT_EQ(purges, 1);
+  // A purge job where the schedule purges: after the slab, and after the stops for lintels.
+  const auto purged = std::count_if(s.schedule.layers.begin(), s.schedule.layers.end(),
+                                    [](const auto& l) { return l.purge_before; });
+  EXPECT_GE(purged, 2);
+  EXPECT_EQ(joints, 2);  // one nozzle: the layer over each floor's lintels
+  EXPECT_EQ(purges, purged);
 }
 
 TEST(DispatchJobs, PathsSplitIntoChunksAtTheirBoundary) {

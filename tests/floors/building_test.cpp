@@ -99,8 +99,15 @@ TEST(Material, SafetyFactorDefaultsAndKeepsItsRange) {
 TEST(Building, SlabStageInHoursWithItsDefault) {
   const Building house = load_building(testing::source_path("config/buildings/house.yaml"));
   EXPECT_DOUBLE_EQ(house.slab_stage_s, 8 * 3600.0);
+  EXPECT_FALSE(house.slabs);
+  // The tower's slabs are formed, poured and cured (`slabs:`); each floor stands on one.
   const Building tower = load_building(testing::source_path("config/buildings/tower.yaml"));
-  EXPECT_DOUBLE_EQ(tower.slab_stage_s, 12 * 3600.0);
+  ASSERT_TRUE(tower.slabs);
+  EXPECT_DOUBLE_EQ(tower.slabs->setup_s, 8 * 3600.0);
+  EXPECT_DOUBLE_EQ(tower.slabs->pour_rate_m3_s, 30.0 / 3600.0);
+  EXPECT_DOUBLE_EQ(tower.slabs->concrete.s, 0.25);
+  EXPECT_NEAR(tower.floors[0].slab_m, 0.66 * 0.3048, 1e-12);
+  EXPECT_NEAR(tower.floors[1].base_elevation_m, (10 + 0.66) * 0.3048, 1e-9);
   const auto dir = scratch();
   std::filesystem::copy_file(data("plans/cottage.yaml"), dir / "plan.yaml",
                              std::filesystem::copy_options::overwrite_existing);

@@ -99,7 +99,7 @@ void expect_schedule_rules(const Project& project, const Schedule& s) {
     const double stress_mpa = m.safety_factor * m.density_kg_m3 * 9.80665 * 1e-6 *
                               (l.z_top_m - s.layers[i - 1].z_bottom_m);
     EXPECT_GE(*l.local_interval_min_s, m.age_for_strength_s(stress_mpa) - kTol_s);
-    if (s.feasible) {
+    if (s.feasible && !l.planned_joint) {
       EXPECT_LE(*l.local_interval_max_s, m.max_layer_interval_s + kTol_s);
     }
     // No longer than needed: a layer that waited for its minimum interval starts when
@@ -252,12 +252,14 @@ TEST(Schedule, AMaximumNoNozzleCountMeetsIsInfeasibleWithItsFix) {
 TEST(Schedule, TheMaximumHoldsAtEqualityAndNotBeyond) {
   // Find the largest local interval with a roomy window, then make it the maximum
   // exactly (feasible), and a microsecond less (the layer needs more than this plan).
+  // Layers on a planned joint (after a stop for lintels) may exceed any maximum.
   const fs::path dir = scratch_dir("boundary");
   const Project roomy = open_project(generated_building(dir, 2, material(10, 7200)));
   const Schedule s = build_schedule(roomy, quick());
   double worst_s = 0.0;
   for (const auto& l : s.layers)
-    if (l.local_interval_max_s) worst_s = std::max(worst_s, *l.local_interval_max_s);
+    if (l.local_interval_max_s && !l.planned_joint)
+      worst_s = std::max(worst_s, *l.local_interval_max_s);
   ASSERT_GT(worst_s, 10.0);
   const Project exact = open_project(generated_building(dir, 2, material(10, worst_s)));
   const Schedule at = build_schedule(exact, quick());

@@ -65,6 +65,8 @@ PY
     exit 2
     ;;
 esac
-if [ "$expected" -eq 0 ]; then
+# SELF_TEST=0: the checker's self-test is run on a schedule of the same kind elsewhere (a
+# tower's self-test takes a minute: each planted corruption is a whole check).
+if [ "$expected" -eq 0 ] && [ "${SELF_TEST:-1}" != 0 ]; then
   "$python" "$here/$checker" --self-test "$out/out.json"
 fi

@@ -119,7 +119,7 @@ def main():
         "x/t charts": len(re.findall(r'class="xt-chart"', dom)),
     }
     for what, n in counts.items():
-        if n == 0 and what != "anchor curves":
+        if n == 0 and what not in ("anchor curves", "lintels on plans"):
             problems.append("no %s in the DOM" % what)
     if counts["plan cards"] < args.min_plans:
         problems.append("%d plan cards, expected at least %d" % (counts["plan cards"], args.min_plans))
@@ -138,6 +138,16 @@ def main():
         if what_ifs and shown != what_ifs:
             problems.append("%d anchor what-ifs in the data, %d in the table" % (what_ifs, shown))
         counts["anchor curves"] = curves
+        # Every lintel as a beam in the 3-D view, and on the plan of the layer over it.
+        lintels = sum(1 for e in schedule.get("events", []) if e.get("kind") == "lintel")
+        beams = re.search(r'data-lintels="(\d+)"', dom)
+        if beams is None or int(beams.group(1)) != lintels:
+            problems.append("%s lintel beams in the 3-D view for %d lintels" % (
+                beams.group(1) if beams else "no", lintels))
+        drawn = len(re.findall(r'class="lintel"', dom))
+        if lintels and drawn == 0:
+            problems.append("%d lintels, none drawn on the plans" % lintels)
+        counts["lintels on plans"] = drawn
     canvas = re.search(r'<canvas id="playback-canvas"([^>]*)>', dom)
     if not canvas:
         problems.append("no playback canvas")

@@ -82,7 +82,7 @@ ROUND_A = 2e-6     # rad: two headings, each rounded to microradians
 INTERVAL = 2.5e-6  # s: an interval from four times rounded to microseconds, against the bounds
 WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab", "off-shift", "joint", "cold",
               "wind")
-EVENT_KINDS = ("pipe", "slab", "purge", "climb", "joint")
+EVENT_KINDS = ("pipe", "slab", "purge", "climb", "joint", "lintel", "pour")
 MAX_SHOWN = 20
 
 
@@ -142,6 +142,8 @@ SITE_LAYER = {"start_time": STR, "end_time": STR, "planned_joint": BOOL}
 SITE_EVENT = {"start_time": STR, "end_time": STR}
 SITE_TOTALS = {"joints_s": NUM, "start_time": STR, "finish_time": STR}
 JOINT = {"treatment_s": NUM, "min_age_s": NUM, "max_age_s": NUM}
+LINTEL = {"opening": STR, "wall": INT, "from_m": NUM, "to_m": NUM, "sill_m": NUM, "head_m": NUM,
+          "head_z_m": NUM, "type": STR, "by": STR}
 DAY = {"date": STR, "layers": INT, "first": LIST, "last": LIST, "printing_s": NUM, "stop": STR,
        "detail": STR}
 
@@ -206,10 +208,15 @@ def check_structure(doc, problems):
         if keys_ok(doc, {"days": LIST}, "document", problems):
             for i, d in enumerate(doc["days"]):
                 keys_ok(d, DAY, "days[%d]" % i, problems)
-    else:
-        for i, e in enumerate(doc["events"]):
-            if isinstance(e, dict) and e.get("kind") == "joint":
-                problems.append("event %d: a joint without a site calendar (inputs.site)" % i)
+    if any(isinstance(l, dict) and l.get("planned_joint") for l in doc["layers"]):
+        keys_ok(inputs["material"], {"planned_joint": OBJ}, "inputs.material", problems) and \
+            keys_ok(inputs["material"]["planned_joint"], JOINT, "inputs.material.planned_joint", problems)
+    for i, e in enumerate(doc["events"]):
+        if isinstance(e, dict) and e.get("kind") == "lintel":
+            keys_ok(e, {"lintel": OBJ}, "event %d" % i, problems) and \
+                keys_ok(e["lintel"], LINTEL, "event %d lintel" % i, problems)
+        if isinstance(e, dict) and e.get("kind") == "pour":
+            keys_ok(e, {"concrete_m3": NUM, "roof": BOOL}, "event %d" % i, problems)
     for i, layer in enumerate(doc["layers"]):
         where = "layers[%d]" % i
         if site is not None:
@@ -828,9 +835,17 @@ def earliest_start(layer, purge_s, joint_s=0.0):
 
 
 def joint_treatment_s(doc):
-    """The planned joint's treatment, s (0 without a site calendar)."""
+    """The planned joint's treatment, s (0 where the material states none)."""
     joint = doc["inputs"]["material"].get("planned_joint")
-    return joint["treatment_s"] if doc["inputs"].get("site") is not None and joint else 0.0
+    return joint["treatment_s"] if joint else 0.0
+
+
+def slab_ready_age_s(slabs):
+    """The age at which a slab's concrete reaches its `ready_mpa` (EN 1992-1-1 §3.1.2:
+    fcm exp(s (1 - sqrt(28 d / t))) solved for t), s."""
+    c = slabs["concrete"]
+    ratio = math.log(slabs["ready_mpa"] / c["fcm_mpa"]) / c["s"]
+    return math.inf if ratio >= 1 else 28 * 86400.0 / (1 - ratio) ** 2
 
 
 def older_layers(layers, i, has_below, curve, rho_g_sf, earliest, feasible, where, problems, notes,
@@ -1087,8 +1102,12 @@ def check_events(doc, problems, stats):
     curve = StrengthModel(doc["inputs"]["material"])
     starts = [l["start_s"] for l in layers]
     index = {(l["floor"], l["layer"]): i for i, l in enumerate(layers)}
-    duration = {"purge": machine["purge_s"], "slab": doc["inputs"]["slab_stage_s"],
-                "pipe": machine.get("pipe_embed_s"), "joint": joint_treatment_s(doc)}
+    slabs, lintels = doc["inputs"].get("slabs"), doc["inputs"].get("lintels")
+    duration = {"purge": machine["purge_s"],
+                "slab": slabs["setup_s"] if slabs else doc["inputs"]["slab_stage_s"],
+                "pipe": machine.get("pipe_embed_s"), "joint": joint_treatment_s(doc),
+                "lintel": lintels["place_s"] if lintels else None}
+    mat = maturity_of(doc)
     purges_end = []
     for i, e in enumerate(events):
         where = "event %d (%s)" % (i, e["kind"])
@@ -1129,6 +1148,41 @@ def check_events(doc, problems, stats):
             problems.append("%s: a slab over floor %d before its top layer" % (where, e["floor"]))
         if e["kind"] == "climb":
             check_climb(doc, i, e, curve, problems, stats)
+        if e["kind"] == "lintel":
+            # Every layer of its floor at or over the head after it, every one under it before.
+            lt = e["lintel"]
+            for l in layers:
+                if l["floor"] != e["floor"]:
+                    continue
+                mid = 0.5 * (l["z_bottom_m"] + l["z_m"])   # within rounding of the head: either side
+                over, under = mid >= lt["head_z_m"] + ROUND_P, mid < lt["head_z_m"] - ROUND_P
+                if over and l["start_s"] < e["end_s"] - T_DOC:
+                    problems.append("%s: the lintel over opening %s is set until %.6f s, but floor %d layer %d, "
+                                    "over its head at %.4f m, starts at %.6f s" % (
+                                        where, lt["opening"], e["end_s"], l["floor"], l["layer"], lt["head_z_m"],
+                                        l["start_s"]))
+                if under and l["end_s"] > e["start_s"] + T_DOC:
+                    problems.append("%s: the lintel over opening %s is set from %.6f s, before floor %d layer %d, "
+                                    "under its head, ends at %.6f s" % (
+                                        where, lt["opening"], e["start_s"], l["floor"], l["layer"], l["end_s"]))
+            stats["lintels"] = stats.get("lintels", 0) + 1
+        if e["kind"] == "pour":
+            if slabs is None:
+                problems.append("%s: a pour, but the inputs have no slabs" % where)
+                continue
+            want = e["concrete_m3"] / (slabs["pour_m3_h"] / 3600.0)
+            if abs(e["end_s"] - e["start_s"] - want) > T_DOC + 1e-9 * want:
+                problems.append("%s: pours %.6f m3 in %.6f s; at %g m3/h that takes %.6f s" % (
+                    where, e["concrete_m3"], e["end_s"] - e["start_s"], slabs["pour_m3_h"], want))
+            if not e["roof"]:
+                age = slab_ready_age_s(slabs)
+                ready = mat.after(e["end_s"], age) if mat is not None else e["end_s"] + age
+                nxt = next((l for l in layers if l["floor"] > e["floor"]), None)
+                if nxt is not None and nxt["start_s"] < ready - T_DOC:
+                    problems.append("%s: floor %d layer %d starts at %.6f s, before the slab reaches %g MPa "
+                                    "(at %.6f s)" % (where, nxt["floor"], nxt["layer"], nxt["start_s"],
+                                                     slabs["ready_mpa"], ready))
+            stats["pours"] = stats.get("pours", 0) + 1
     # A purge ends at the start of each layer that says so, and only there.
     purges_end.sort()
     for l in layers:
@@ -1165,7 +1219,7 @@ def check_between(doc, problems):
                 between.append(events[j])
             j += 1
         busy = sum(e["end_s"] - e["start_s"] for e in between)
-        waits = sum(e["wait_before_s"] for e in between if e["kind"] == "climb")
+        waits = sum(e.get("wait_before_s", 0.0) for e in between)   # climbs' and crew tasks' waits
         gap = layer["start_s"] - prev["end_s"]
         if abs(gap - busy - waits - layer["move_before_s"] - layer["wait_before_s"]) > T_DOC:
             problems.append("%s: %.6f s since the previous layer's end; its events (%.6f s), climbs' "
@@ -1275,12 +1329,15 @@ def check_totals(doc, infos, problems):
         "airtime_s": sum(infos[l["plan"]].airtime for l in layers),
         "moves_s": sum(l["move_before_s"] for l in layers),
         "waits_s": sum(l["wait_before_s"] for l in layers) +
-        sum(e["wait_before_s"] for e in events if e["kind"] == "climb"),
+        sum(e.get("wait_before_s", 0.0) for e in events),
         "pipes_s": span("pipe"), "purges_s": span("purge"), "climbs_s": span("climb"),
-        "slabs_s": span("slab"),
+        "slabs_s": span("slab") + span("pour"),
     }
-    if doc["inputs"].get("site") is not None:
-        pieces["joints_s"] = span("joint")
+    for key, kind in (("joints_s", "joint"), ("lintels_s", "lintel")):
+        if key in totals or doc["inputs"].get("site") is not None:
+            pieces[key] = span(kind)
+    if "crew_h" in totals:
+        pieces["crew_h"] = sum(e.get("crew", 0) * (e["end_s"] - e["start_s"]) for e in events) / 3600.0
     pieces["machine_s"] = sum(infos[l["plan"]].end_t for l in layers) + pieces["moves_s"] + \
         pieces["pipes_s"] + pieces["purges_s"] + pieces["climbs_s"]
     if totals["layers"] != len(layers):
@@ -1378,6 +1435,44 @@ class Calendar:
         return math.inf
 
 
+def check_joint(doc, where, l, below, block, stopped, problems, stats):
+    """A planned joint under layer `l`, whose block (treatment, purge, layer) starts at
+    `block`: on a layer of its floor, where work stopped (`stopped`: off-shift hours or
+    cold; or lintels set in between), treated by a joint event within the material's ages."""
+    joint = doc["inputs"]["material"]["planned_joint"]
+    if below is None:
+        problems.append("%s: a planned joint on a floor's first layer, which stands on its slab" % where)
+        return
+    lintels = any(e["kind"] == "lintel" and e["start_s"] >= below["end_s"] - T_DOC and e["end_s"] <= block + T_DOC
+                  for e in doc["events"])
+    if not stopped and not lintels:
+        problems.append("%s: a planned joint, but no off-shift hours, cold or lintels lie between the layer below's "
+                        "end (%.6f s) and the joint (%.6f s)" % (where, below["end_s"], block))
+    age = block - below["end_s"]
+    if age < joint["min_age_s"] - T_DOC or (doc["feasible"] and age > joint["max_age_s"] + T_DOC):
+        problems.append("%s: the joint is treated %.1f s after the layer below ended, outside the "
+                        "material's %g..%g s" % (where, age, joint["min_age_s"], joint["max_age_s"]))
+    if not any(e["kind"] == "joint" and (e["floor"], e["after_layer"]) == (below["floor"], below["layer"]) and
+               abs(e["start_s"] - block) <= T_DOC for e in doc["events"]):
+        problems.append("%s: a planned joint, and no joint event after floor %d layer %d at %.6f s" % (
+            where, below["floor"], below["layer"], block))
+    stats["joints"] = stats.get("joints", 0) + 1
+
+
+def check_joints_off_site(doc, problems, stats):
+    """Without a site calendar, a planned joint only where lintels stopped the work."""
+    if doc["inputs"].get("site") is not None:
+        return
+    layers = doc["layers"]
+    purge_s, treat = doc["inputs"]["machine"]["purge_s"], joint_treatment_s(doc)
+    for i, l in enumerate(layers):
+        if not l.get("planned_joint"):
+            continue
+        below = layers[i - 1] if i and layers[i - 1]["floor"] == l["floor"] else None
+        block = l["start_s"] - (purge_s if l["purge_before"] else 0.0) - treat
+        check_joint(doc, "floor %d layer %d" % (l["floor"], l["layer"]), l, below, block, False, problems, stats)
+
+
 def check_site(doc, problems, stats):
     """On a site calendar: the timestamps are the seconds' local times; attended printing,
     climbs, joints' treatments and (when the crew places them) pipes lie within one
@@ -1431,7 +1526,6 @@ def check_site(doc, problems, stats):
             t = u
         return math.inf
     largest = stats.get("largest", {})
-    joints = {(e["floor"], e["after_layer"], round(e["start_s"], 3)) for e in events if e["kind"] == "joint"}
     for i, l in enumerate(layers):
         where = "floor %d layer %d" % (l["floor"], l["layer"])
         treat = joint["treatment_s"] if l["planned_joint"] else 0.0
@@ -1459,26 +1553,17 @@ def check_site(doc, problems, stats):
                         where, r["required_s"], cal.timestamp(block), block - earliest))
         below = layers[i - 1] if i and layers[i - 1]["floor"] == l["floor"] else None
         if l["planned_joint"]:
-            if below is None:
-                problems.append("%s: a planned joint on a floor's first layer, which stands on its slab" % where)
-                continue
-            if cal.within(below["end_s"], block) and \
-                    (mat is None or mat.all_ok(below["end_s"], block, warm)):
-                problems.append("%s: a planned joint, but no off-shift hours (or cold) lie between the layer below's end "
-                                "(%s) and the joint (%s)" % (where, cal.timestamp(below["end_s"]), cal.timestamp(block)))
-            age = block - below["end_s"]
-            if age < joint["min_age_s"] - T_DOC or (doc["feasible"] and age > joint["max_age_s"] + T_DOC):
-                problems.append("%s: the joint is treated %.1f s after the layer below ended, outside the "
-                                "material's %g..%g s" % (where, age, joint["min_age_s"], joint["max_age_s"]))
-            if (below["floor"], below["layer"], round(block, 3)) not in joints:
-                problems.append("%s: a planned joint, and no joint event after floor %d layer %d at %.6f s" % (
-                    where, below["floor"], below["layer"], block))
-            stats["joints"] = stats.get("joints", 0) + 1
+            stopped = below is not None and (not cal.within(below["end_s"], block) or (
+                mat is not None and not mat.all_ok(below["end_s"], block, warm)))
+            check_joint(doc, where, l, below, block, stopped, problems, stats)
         elif i in largest and largest[i] > material["max_layer_interval_s"] + INTERVAL and doc["feasible"]:
             problems.append("%s: covered %.6f s after the layer below, over the maximum interval %g s, "
                             "and not a planned joint" % (where, largest[i], material["max_layer_interval_s"]))
     for i, e in enumerate(events):
-        crew = e["kind"] in ("climb", "joint") or (e["kind"] == "pipe" and site["pipes"] == "crew")
+        lintel_crew = e["kind"] == "lintel" and (e["lintel"]["by"] == "crew" or attended)
+        slab_crew = e["kind"] == "pour" or (e["kind"] == "slab" and doc["inputs"].get("slabs") is not None)
+        crew = e["kind"] in ("climb", "joint") or (e["kind"] == "pipe" and site["pipes"] == "crew") or \
+            lintel_crew or slab_crew
         if crew and not cal.within(e["start_s"], e["end_s"]):
             problems.append("event %d (%s): needs a crew, but runs %s to %s, outside one working window" % (
                 i, e["kind"], cal.timestamp(e["start_s"]), cal.timestamp(e["end_s"])))
@@ -1528,6 +1613,12 @@ def check_site(doc, problems, stats):
             due = sum(1 for t in doc.get("deliveries", []) if cal.date(t["due_s"]) == got["date"])
             if due != got["deliveries"]:
                 problems.append("days %s: deliveries %d, %d are due that day" % (got["date"], got["deliveries"], due))
+        if "crew_h" in got:
+            crew_h = sum(e.get("crew", 0) * (e["end_s"] - e["start_s"]) for e in events
+                         if cal.date(e["start_s"]) == got["date"]) / 3600.0
+            if abs(crew_h - got["crew_h"]) > 1e-5:
+                problems.append("days %s: crew_h %.6f, its crew tasks add up to %.6f person-hours" % (
+                    got["date"], got["crew_h"], crew_h))
         if abs(want["printing_s"] - got["printing_s"]) > T_DOC:
             problems.append("days %s: printing_s %.6f, its layers last %.6f s" % (
                 got["date"], got["printing_s"], want["printing_s"]))
@@ -1640,6 +1731,7 @@ def check(doc):
     guarded("event", check_events, problems, doc, problems, stats)
     guarded("totals", check_totals, problems, doc, infos, problems)
     guarded("site calendar", check_site, problems, doc, problems, stats)
+    guarded("planned joints", check_joints_off_site, problems, doc, problems, stats)
     guarded("quantities", check_quantities, problems, doc, problems, stats)
     return problems, notes, stats
 
@@ -1952,6 +2044,7 @@ def corruptions(doc):
         add("a pipe without its anchor", "no `anchor`")(
             lambda d: next(e for e in d["events"] if e["kind"] == "pipe").pop("anchor"))
     site_corruptions(doc, add)
+    lintel_slab_corruptions(doc, add)
     if "deliveries" in doc and doc["deliveries"]:
         add("a layer's concrete", "concrete_m3")(
             lambda d: d["layers"][0].update(concrete_m3=d["layers"][0]["concrete_m3"] * 1.01))
@@ -1960,6 +2053,27 @@ def corruptions(doc):
         add("a layer's peak flow", "peak_flow_m3_h")(
             lambda d: d["layers"][-1].update(peak_flow_m3_h=d["layers"][-1]["peak_flow_m3_h"] * 0.5))
     return out
+
+
+def lintel_slab_corruptions(doc, add):
+    """A lintel set after the first layer over it, or lasting less than the building says;
+    a pour faster than its rate; the next floor started before its slab is strong."""
+    events = doc["events"]
+    lintels = [i for i, e in enumerate(events) if e["kind"] == "lintel"]
+    if lintels:
+        k = lintels[-1]     # the last before a layer: later, it overlaps that layer
+        add("a lintel set an hour late", "(lintel)")(
+            lambda d: d["events"][k].update(start_s=d["events"][k]["start_s"] + 3600.0,
+                                             end_s=d["events"][k]["end_s"] + 3600.0))
+        add("a lintel shortened", "the inputs say")(
+            lambda d: d["events"][k].update(end_s=d["events"][k]["end_s"] - 60.0))
+    pours = [i for i, e in enumerate(events) if e["kind"] == "pour" and not e["roof"]]
+    if pours:
+        p = pours[0]
+        add("a pour at twice its rate", "m3/h that takes")(
+            lambda d: d["events"][p].update(concrete_m3=2 * d["events"][p]["concrete_m3"]))
+        add("a slab that must reach 1.2 fcm first", "before the slab reaches")(
+            lambda d: d["inputs"]["slabs"].update(ready_mpa=1.2 * d["inputs"]["slabs"]["concrete"]["fcm_mpa"]))
 
 
 def site_corruptions(doc, add):
@@ -2012,9 +2126,11 @@ def site_corruptions(doc, add):
 
         @add("a climb in the night", "outside one working window")
         def night(d):
+            # To 02:xx local time the same day, whatever hour it started at.
             e = d["events"][c]
-            e["start_s"] -= 3 * 3600.0
-            e["end_s"] -= 3 * 3600.0
+            back = (int(e["start_time"][11:13]) - 2) * 3600.0
+            e["start_s"] -= back
+            e["end_s"] -= back
 
 
 def self_test(text, doc):

@@ -52,6 +52,7 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
   std::vector<DispatchJob> jobs;
   const Schedule& schedule = document.schedule;
   const double purge_s = document.inputs.machine.purge_s;
+  const double treatment_s = document.inputs.material.planned_joint.treatment_s;
   // Nozzle -> its last position (x, y, z, heading), if it deposited the layer before.
   std::map<int, std::array<double, 4>> last, ending;
   for (const ScheduledLayer& l : schedule.layers) {
@@ -63,10 +64,11 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
     const double start_s = l.start_s;
     const double dz_m = l.z_top_m - plan.z_top_m;
     // Before the layer: the move to it, the wait (the machine idle, with its reasons),
-    // then the purge (an event of its own).
+    // then a planned joint's treatment and the purge (events of their own).
     const double wait_s = l.wait_before_s;
     const double move_s = l.move_before_s;
-    const double waited_from_s = start_s - (l.purge_before ? purge_s : 0.0) - wait_s;
+    const double waited_from_s =
+        start_s - (l.purge_before ? purge_s : 0.0) - (l.planned_joint ? treatment_s : 0.0) - wait_s;
     if (wait_s > 0.0) {
       std::string why;
       for (const auto& r : l.wait_reasons) why += (why.empty() ? "" : "; ") + r.detail;
@@ -100,6 +102,7 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
                             nozzle, l.plan,
                             printf_string("floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
                             std::move(path)));
+      jobs.back().on_planned_joint = l.planned_joint;
     }
     last.swap(ending);  // a nozzle idle for a layer moves without a job (as planned)
     ending.clear();
@@ -118,8 +121,11 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
       }
       continue;
     }
-    const JobKind kind = e.kind == Event::Kind::kPipe    ? JobKind::kPipe
-                         : e.kind == Event::Kind::kSlab  ? JobKind::kSlab
+    // The machine waits through crew work (joints, lintels); a slab's formwork and pour
+    // are the slab stage.
+    const JobKind kind = e.kind == Event::Kind::kPipe ? JobKind::kPipe
+                         : e.kind == Event::Kind::kSlab || e.kind == Event::Kind::kPour
+                             ? JobKind::kSlab
                          : e.kind == Event::Kind::kPurge ? JobKind::kPurge
                                                          : JobKind::kWait;
     jobs.push_back(job_of(kind, gantry_id(0), e.start_s, e.end_s - e.start_s, e.floor, e.layer, -1,

@@ -46,6 +46,7 @@ JobMessages messages_of(const DispatchJob& d) {
   for (auto& c : m.chunks) c.job_id = d.job_id;
   j.chunk_count = static_cast<std::int32_t>(m.chunks.size());
   j.point_count = static_cast<std::int32_t>(d.path.size());
+  j.on_planned_joint = d.on_planned_joint;
   return m;
 }
 

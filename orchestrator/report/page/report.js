@@ -32,7 +32,8 @@
   var COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf'];
   var REASON_COLORS = { 'min-interval': '#f2a900', 'strength': '#8e44ad', 'anchor-strength': '#c0392b',
                         'slab': '#7f8c8d', 'none': '#95a5a6' };
-  var EVENT_COLORS = { pipe: '#16a085', purge: '#e67e22', slab: '#7f8c8d', climb: '#2c3e50' };
+  var EVENT_COLORS = { pipe: '#16a085', purge: '#e67e22', slab: '#7f8c8d', pour: '#4a235a', climb: '#2c3e50',
+                       joint: '#b7950b', lintel: '#a04000' };
   var mat = S.inputs.material;
   var machine = S.inputs.machine;
   var tooltip = document.getElementById('tooltip');
@@ -220,7 +221,7 @@
     var W = Math.max(900, node.clientWidth - 40), left = 110, right = 10, rowH = 18;
     var rows = floors.map(function (f) { return { key: 'floor' + f, label: 'floor ' + f }; });
     rows.push({ key: 'waits', label: 'waits' });
-    ['pipe', 'purge', 'slab', 'climb'].forEach(function (k) {
+    ['pipe', 'purge', 'joint', 'lintel', 'slab', 'pour', 'climb'].forEach(function (k) {
       if (S.events.some(function (e) { return e.kind === k; })) rows.push({ key: k, label: k + 's' });
     });
     var H = 24 + rows.length * rowH + 24;
@@ -543,6 +544,17 @@
         svg('line', { x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]), y2: Y(p.end_m[1]), stroke: '#d5d9e0',
                       'stroke-width': p.width_m ? Math.max(1, p.width_m * k - 0.5) : 4 }, root);
       });
+      // The lintels set before one of its layers (at or over their heads), as they lie.
+      S.events.forEach(function (e) {
+        if (e.kind !== 'lintel' || !e.lintel.start_m) return;
+        var before = users.some(function (l) { return l.floor === e.floor && l.layer === e.after_layer + 1; });
+        if (!before) return;
+        var a = e.lintel.start_m, b = e.lintel.end_m;
+        hover(svg('line', { x1: X(a[0]), y1: Y(a[1]), x2: X(b[0]), y2: Y(b[1]), stroke: EVENT_COLORS.lintel,
+                            'stroke-width': 6, opacity: 0.8, 'class': 'lintel' }, root),
+          e.lintel.type + ' lintel over opening ' + e.lintel.opening + ' (wall ' + e.lintel.wall + '), head at ' +
+          e.lintel.head_z_m.toFixed(2) + ' m, set ' + clock(e.start_s) + ' before this plan\'s layer ' + (e.after_layer + 1));
+      });
       // Several nozzles: each one's section along the rails, tinted behind its walls.
       var railX = machine.rail_axis !== 'y';
       if (plan.nozzles.length > 1)
@@ -588,7 +600,7 @@
         svg('path', { d: d, stroke: COLORS[ni % COLORS.length], fill: 'none', 'stroke-width': 1.2 }, chart);
       });
     });
-    el('p', { 'class': 'hint' }, node, 'Each distinct plan: deposition solid, air moves dashed (red: lifted over walls built), each nozzle\'s start a circle and its section tinted; beside it, each gantry\'s position on the rails over the layer\'s time.');
+    el('p', { 'class': 'hint' }, node, 'Each distinct plan: deposition solid, air moves dashed (red: lifted over walls built), each nozzle\'s start a circle and its section tinted, the lintels set before its first layer over them thick brown; beside it, each gantry\'s position on the rails over the layer\'s time.');
   });
 
   // ---------------------------------------------------------------- 3-D ---------
@@ -689,6 +701,19 @@
       scene.add(platform);
     }
     var climbs = S.events.filter(function (e) { return e.kind === 'climb'; });
+    // Lintels: a beam over each opening from its head, shown once it is set.
+    var lintels = S.events.filter(function (e) { return e.kind === 'lintel' && e.lintel.start_m; }).map(function (e) {
+      var a = e.lintel.start_m, b = e.lintel.end_m, dx = b[0] - a[0], dy = b[1] - a[1];
+      var depth = e.lintel.height_m > 0 ? e.lintel.height_m : S.inputs.layer_height_m;
+      var beam = new THREE.Mesh(new THREE.BoxGeometry(Math.sqrt(dx * dx + dy * dy) || 0.01, 2 * half + 0.02, depth),
+        new THREE.MeshLambertMaterial({ color: 0xa04000 }));
+      beam.position.set((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, e.lintel.head_z_m + depth / 2);
+      beam.rotation.z = Math.atan2(dy, dx);
+      beam.visible = false;
+      scene.add(beam);
+      return { mesh: beam, set_s: e.end_s };
+    });
+    canvas.setAttribute('data-lintels', String(lintels.length));
     var camera = new THREE.PerspectiveCamera(40, width / height, 0.1, size * 20);
     camera.up.set(0, 0, 1);
     camera.position.set(cx + size * 0.9, cy - size * 1.3, zmax + size * 0.8);
@@ -734,6 +759,7 @@
         });
         platform.position.z = z;
       }
+      lintels.forEach(function (b) { b.mesh.visible = t >= b.set_s; });
       label.textContent = clock(t) + ' - ' + what;
       renderer.render(scene, camera);
     }

@@ -215,7 +215,8 @@ RecordedInputs read_inputs(const JsonAt& root) {
   in.ccbuild_version = root.at("ccbuild_version").string(100);
   const JsonAt i = root.at("inputs");
   i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
-               "files", "machine", "material", "provenance", "site", "objective"});
+               "files", "machine", "material", "provenance", "site", "objective", "lintels",
+               "slabs"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -275,6 +276,38 @@ RecordedInputs read_inputs(const JsonAt& root) {
         p.openings.emplace_back(id, guid.string(64));
       in.provenance.push_back(std::move(p));
     }
+  }
+  if (const auto l = i.maybe("lintels")) {
+    l->only_keys({"type", "height_m", "bearing_m", "place_s", "crew", "by"});
+    const std::string type = l->at("type").string(20);
+    if (type != "precast" && type != "formwork")
+      l->at("type").refuse("expected \"precast\" or \"formwork\", got \"" + type + "\"");
+    in.lintels.type = type == "precast" ? floors::LintelSpec::Type::kPrecast
+                                        : floors::LintelSpec::Type::kFormwork;
+    in.lintels.height_m = l->at("height_m").number(floors::limits::kLintelHeight_m, "m");
+    in.lintels.bearing_m = l->at("bearing_m").number(floors::limits::kLintelBearing_m, "m");
+    in.lintels.place_s = l->at("place_s").number(floors::limits::kLintelPlace_s, "s");
+    in.lintels.crew = static_cast<int>(l->at("crew").integer(0, 100));
+    const std::string by = l->at("by").string(10);
+    if (by != "crew" && by != "arm")
+      l->at("by").refuse("expected \"crew\" or \"arm\", got \"" + by + "\"");
+    in.lintels.by_arm = by == "arm";
+  }
+  if (const auto sl = i.maybe("slabs")) {
+    sl->only_keys({"thickness_m", "setup_s", "pour_m3_h", "ready_mpa", "concrete", "crew", "roof"});
+    floors::SlabSpec spec;
+    spec.thickness_m = sl->at("thickness_m").number(floors::limits::kSlabThickness_m, "m");
+    spec.setup_s = sl->at("setup_s").number(floors::limits::kSlabSetup_s, "s");
+    spec.pour_rate_m3_s = sl->at("pour_m3_h").number(Range::above(0.1, 500.0), "m3/h") / 3600.0;
+    spec.ready_mpa = sl->at("ready_mpa").number(floors::limits::kSlabReady_mpa, "MPa");
+    const JsonAt c = sl->at("concrete");
+    c.only_keys({"fcm_mpa", "cement_class", "s"});
+    spec.concrete.fcm_mpa = c.at("fcm_mpa").number(Range::above(0, 200), "MPa");
+    spec.concrete.cement_class = c.at("cement_class").string(2);
+    spec.concrete.s = c.at("s").number(Range::closed(0.0, 1.0), "");
+    spec.crew = static_cast<int>(sl->at("crew").integer(0, 100));
+    spec.roof = sl->at("roof").boolean();
+    in.slabs = spec;
   }
   in.machine = read_machine(i.at("machine"));
   read_material(i.at("material"), in);

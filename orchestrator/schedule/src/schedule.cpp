@@ -162,6 +162,51 @@ void Scheduler::prepare() {
   const int count = static_cast<int>(slices_.size());
   layer_end_s_.assign(count, 0.0);
 
+  // Each opening's lintel goes in before the first layer of its floor whose mid-height is
+  // at or over its head (the slicer's rule: that layer is no longer cut by the opening).
+  // An opening whose head no printed layer of its floor reaches needs none: the slab
+  // spans it.
+  for (const auto& f : b.floors)
+    for (const auto& o : f.plan.openings)
+      for (int i = 0; i < count; ++i) {
+        if (slices_[i].floor != f.index ||
+            floors::layer_mid_m(f.height_m, b.layer_height_m, slices_[i].layer.index) < o.head_m)
+          continue;
+        if (i == 0) {
+          // Under the building's first layer: no layer is ever cut by it.
+          schedule_.warnings.push_back(
+              printf_string("floor %d: opening %s has its head at %.3f m, under the first layer's "
+                            "mid-height: no layer leaves it open, and it gets no lintel",
+                            f.index, o.id.c_str(), o.head_m));
+          break;
+        }
+        LintelTask task;
+        task.opening = !o.id.empty() ? o.id
+                                     : printf_string("wall %lld at %.3f m",
+                                                     static_cast<long long>(o.wall_id), o.offset_m);
+        task.wall = o.wall_id;
+        task.offset_m = o.offset_m;
+        task.width_m = o.width_m;
+        const floors::Wall* wall = f.plan.find_wall(o.wall_id);
+        const double length_m = wall ? f.plan.wall_length_m(*wall) : o.offset_m + o.width_m;
+        std::tie(task.from_m, task.to_m) =
+            floors::opening_gap_m(o, b.lintels, floors::OpeningState::kLintel, length_m);
+        if (wall && length_m > 0.0) {
+          const Eigen::Vector2d a = f.plan.wall_start_m(*wall);
+          const Eigen::Vector2d along = (f.plan.wall_end_m(*wall) - a) / length_m;
+          task.start_m = a + along * task.from_m;
+          task.end_m = a + along * task.to_m;
+        }
+        task.sill_m = o.sill_m;
+        task.head_m = o.head_m;
+        task.head_z_m = f.base_elevation_m + o.head_m;
+        task.type = b.lintels.type;
+        task.height_m = b.lintels.height_m;
+        task.by_arm = b.lintels.by_arm;
+        lintels_before_[i].push_back(std::move(task));
+        break;
+      }
+
   // Climbing machine: stages (as `ccbuild climb` places them) and their climbs, planned
   // in parallel with the first layer plans.
   std::vector<double> climb_planning_s;
@@ -324,6 +369,11 @@ bool Scheduler::schedule_layer(int i) {
     bool ok = false;
   };
   std::optional<Choice> best;
+  // After a stop, a plan that keeps every interval is preferred to a planned joint: the
+  // counts are tried without joints first, unless the stop alone outlasts the maximum.
+  bool allow_joint =
+      !stopped_since_below_ || !below ||
+      previous_end_s_ + ready_extra_s_ - below->start_s > material_.max_layer_interval_s;
   std::vector<std::string> refusals;
   auto consider = [&](int n, const std::string& key, const Planned& p) {
     Choice c;
@@ -390,6 +440,8 @@ bool Scheduler::schedule_layer(int i) {
                                 below_age_s));
       }
     }
+    if (!below && slab_ready_s_ > earliest_s + 1e-9)
+      require(slab_ready_s_, WaitKind::kSlab, slab_ready_detail_);
     if (!impossible && std::isfinite(strong_s)) {
       strength.required_s = 0.0;
       if (strong_s > earliest_s + 1e-9) require(strong_s, WaitKind::kStrength, strength.detail);
@@ -400,7 +452,7 @@ bool Scheduler::schedule_layer(int i) {
     const double rules_s = start_s;
     double block_s = start_s;
     const floors::PlannedJoint& pj = material_.planned_joint;
-    bool moved = off_shift_since_below_;
+    bool moved = stopped_since_below_;
     WaitKind pushed_by = WaitKind::kOffShift;
     for (int pass = 0; pass < 8; ++pass) {
       c.purge =
@@ -455,7 +507,7 @@ bool Scheduler::schedule_layer(int i) {
       const bool over_max = below && c.offsets.ends > 0 &&
                             largest_interval_s(c.offsets, below->start_s, layer_start_s) >
                                 material_.max_layer_interval_s + 1e-9;
-      if (moved && over_max && !c.joint) {
+      if (moved && over_max && !c.joint && allow_joint) {
         c.joint = true;
         if (below->end_s + pj.min_age_s > block_s + 1e-9) {
           block_s = below->end_s + pj.min_age_s;
@@ -524,34 +576,44 @@ bool Scheduler::schedule_layer(int i) {
   };
   // A layer like the one below first tries the same plan: every interval is then the
   // same, start to start.
-  bool placed = false;
-  if (below && slices_[i - 1].geometry == slice.geometry)
-    placed = consider(below->nozzles, below->plan, *registered_.at(below->plan));
-  for (int n = fewest_nozzles(slice.geometry, run_between_s_[i]); !placed && n <= machine_.nozzles;
-       ++n) {
-    const Planned& p = planned(slice.geometry, n);
-    if (p.usable && consider(n, plan_key(slice, n), p)) break;
-    if (!p.usable)
-      refusals.push_back(printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
-    if (below && n == below->nozzles) {
-      const Planned& f = follow_plan(slice, below->plan, false);
-      if (f.usable &&
-          consider(n, register_plan(follow_key(slice, below->plan, false), slice, n, f), f))
-        break;
-      if (!f.usable)
-        refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
-                                         n == 1 ? "" : "s", f.why_not.c_str()));
-      // At the machine's last count, the gantries in each other's way held back.
-      if (!f.usable && n > 1 && n == machine_.nozzles) {
-        const Planned& h = follow_plan(slice, below->plan, true);
-        if (h.usable &&
-            consider(n, register_plan(follow_key(slice, below->plan, true), slice, n, h), h))
+  const auto try_counts = [&] {
+    bool placed = false;
+    if (below && slices_[i - 1].geometry == slice.geometry)
+      placed = consider(below->nozzles, below->plan, *registered_.at(below->plan));
+    for (int n = fewest_nozzles(slice.geometry, run_between_s_[i]);
+         !placed && n <= machine_.nozzles; ++n) {
+      const Planned& p = planned(slice.geometry, n);
+      if (p.usable && consider(n, plan_key(slice, n), p)) break;
+      if (!p.usable)
+        refusals.push_back(
+            printf_string("%d nozzle%s: %s", n, n == 1 ? "" : "s", p.why_not.c_str()));
+      if (below && n == below->nozzles) {
+        const Planned& f = follow_plan(slice, below->plan, false);
+        if (f.usable &&
+            consider(n, register_plan(follow_key(slice, below->plan, false), slice, n, f), f))
           break;
-        if (!h.usable)
-          refusals.push_back(printf_string("%d nozzles following the layer below, held back: %s", n,
-                                           h.why_not.c_str()));
+        if (!f.usable)
+          refusals.push_back(printf_string("%d nozzle%s following the layer below: %s", n,
+                                           n == 1 ? "" : "s", f.why_not.c_str()));
+        // At the machine's last count, the gantries in each other's way held back.
+        if (!f.usable && n > 1 && n == machine_.nozzles) {
+          const Planned& h = follow_plan(slice, below->plan, true);
+          if (h.usable &&
+              consider(n, register_plan(follow_key(slice, below->plan, true), slice, n, h), h))
+            break;
+          if (!h.usable)
+            refusals.push_back(printf_string("%d nozzles following the layer below, held back: %s",
+                                             n, h.why_not.c_str()));
+        }
       }
     }
+  };
+  try_counts();
+  if (!allow_joint && !(best && best->ok)) {
+    best.reset();
+    refusals.clear();
+    allow_joint = true;
+    try_counts();
   }
   if (!best) {
     // No nozzle count has a plan at all.
@@ -629,6 +691,7 @@ bool Scheduler::schedule_layer(int i) {
     const double age_s = best->block_s - below->end_s;
     Event e;
     e.kind = Event::Kind::kJoint;
+    e.crew = kJointCrew;
     e.start_s = best->block_s;
     e.end_s = best->block_s + pj.treatment_s;
     e.floor = below->floor;
@@ -673,7 +736,7 @@ bool Scheduler::schedule_layer(int i) {
   previous_key_ = out.plan;
   schedule_.layers.push_back(out);
   ready_extra_s_ = 0.0;
-  off_shift_since_below_ = false;
+  stopped_since_below_ = false;
 
   return true;
 }
@@ -687,13 +750,16 @@ bool Scheduler::after_layer(int i) {
   pipes_before_s_ = 0.0;
   if (auto it = pipes_after_.find({out.floor, out.layer}); it != pipes_after_.end())
     for (const auto& a : it->second) {
+      const double ready_s = t;
       if (calendar_ && calendar_->programme().pipes_need_crew) {
         const double fit_s = calendar_->fit_s(t, project_.climber->pipe_embed_s);
-        off_shift_since_below_ = off_shift_since_below_ || fit_s > t + 1e-9;
+        stopped_since_below_ = stopped_since_below_ || fit_s > t + 1e-9;
         t = fit_s;  // a pipe is far shorter than any window: finite
       }
       Event e;
       e.kind = Event::Kind::kPipe;
+      e.crew = calendar_ && !calendar_->programme().pipes_need_crew ? 0 : kPipeCrew;
+      e.wait_before_s = t - ready_s;
       e.start_s = t;
       e.end_s = t += project_.climber->pipe_embed_s;
       pipes_before_s_ += project_.climber->pipe_embed_s;
@@ -705,7 +771,10 @@ bool Scheduler::after_layer(int i) {
       schedule_.events.push_back(e);
     }
   const bool floor_top = i + 1 == count || slices_[i + 1].floor != out.floor;
-  if (floor_top && i + 1 < count) {
+  if (floor_top && b.slabs && (i + 1 < count || b.slabs->roof)) {
+    t = pour_slab(out, i + 1 == count, t);
+    if (!std::isfinite(t)) return false;
+  } else if (floor_top && i + 1 < count) {
     Event e;
     e.kind = Event::Kind::kSlab;
     e.start_s = t;
@@ -804,7 +873,7 @@ bool Scheduler::after_layer(int i) {
                                calendar_->local_text(ready_s).c_str(), ce.plan.duration_s / 60.0,
                                calendar_->local_text(fit_s).c_str())});
       ready_s = fit_s;
-      off_shift_since_below_ = true;
+      stopped_since_below_ = true;
     }
     ce.wait_before_s = ready_s - t;
     ce.start_s = ready_s;
@@ -832,12 +901,127 @@ bool Scheduler::after_layer(int i) {
     e.floor = out.floor;
     e.layer = out.layer;
     e.detail = printf_string("climb from stage %d to %d", c, c + 1);
+    e.crew = kClimbCrew;
     t = e.end_s;
     e.climb = std::move(ce);
     schedule_.events.push_back(std::move(e));
   }
+  if (i + 1 < count) {
+    t = place_lintels(i + 1, t);
+    if (!std::isfinite(t)) return false;
+  }
   ready_extra_s_ = t - out.end_s;
   return true;
+}
+
+double Scheduler::crew_start_s(double t_s, double duration_s, bool needs_crew,
+                               const std::string& what, int floor, int layer) {
+  if (!calendar_ || !needs_crew) return t_s;
+  const double fit_s = calendar_->fit_s(t_s, duration_s);
+  if (!std::isfinite(fit_s)) {
+    Infeasibility inf;
+    inf.kind = InfeasibilityKind::kCalendar;
+    inf.floor = floor;
+    inf.layer = layer;
+    inf.message = printf_string(
+        "%s takes %.2f h of crew work, and no working window from %s holds it (the longest is "
+        "%.2f h)",
+        what.c_str(), duration_s / 3600.0, calendar_->local_text(t_s).c_str(),
+        calendar_->longest_window_s() / 3600.0);
+    inf.fix = "longer working hours, or a shorter task";
+    fail(inf);
+    return kInf;
+  }
+  if (fit_s > t_s + 1e-9) stopped_since_below_ = true;
+  return fit_s;
+}
+
+double Scheduler::place_lintels(int next, double t_s) {
+  const auto it = lintels_before_.find(next);
+  if (it == lintels_before_.end()) return t_s;
+  const floors::LintelSpec& spec = project_.building.lintels;
+  const Slice& before = slices_[next];
+  stopped_since_below_ = true;  // printing stops for them: the next layer may start on a joint
+  for (const auto& task : it->second) {
+    const std::string what = "the lintel over opening " + task.opening;
+    const bool needs_crew = !spec.by_arm || printing_attended();
+    const double ready_s = t_s;
+    t_s = crew_start_s(t_s, spec.place_s, needs_crew, what, before.floor, before.layer.index);
+    if (!std::isfinite(t_s)) return t_s;
+    Event e;
+    e.wait_before_s = t_s - ready_s;
+    e.kind = Event::Kind::kLintel;
+    e.start_s = t_s;
+    e.end_s = t_s += spec.place_s;
+    // Named after the layer it follows, like every event.
+    e.floor = schedule_.layers.back().floor;
+    e.layer = schedule_.layers.back().layer;
+    e.crew = spec.crew;
+    e.detail = printf_string(
+        "%s lintel over opening %s (wall %lld, %.3f to %.3f m), head at %.3f m, by %s, before "
+        "floor %d layer %d",
+        floors::to_string(task.type).c_str(), task.opening.c_str(),
+        static_cast<long long>(task.wall), task.from_m, task.to_m, task.head_z_m,
+        task.by_arm ? "the arm" : printf_string("a crew of %d", spec.crew).c_str(), before.floor,
+        before.layer.index);
+    e.lintel = task;
+    schedule_.events.push_back(std::move(e));
+  }
+  return t_s;
+}
+
+double Scheduler::pour_slab(const ScheduledLayer& top, bool roof, double t_s) {
+  const floors::SlabSpec& spec = *project_.building.slabs;
+  const floors::Floor* floor = nullptr;
+  for (const auto& f : project_.building.floors)
+    if (f.index == top.floor) floor = &f;
+  const std::string what = roof ? "the roof over floor " + std::to_string(top.floor)
+                                : "the slab over floor " + std::to_string(top.floor);
+  // Formwork and reinforcement, then one continuous pour, each within working hours.
+  double ready_s = t_s;
+  t_s = crew_start_s(t_s, spec.setup_s, true, "the formwork of " + what, top.floor, top.layer);
+  if (!std::isfinite(t_s)) return t_s;
+  Event setup;
+  setup.wait_before_s = t_s - ready_s;
+  setup.kind = Event::Kind::kSlab;
+  setup.start_s = t_s;
+  setup.end_s = t_s += spec.setup_s;
+  setup.floor = top.floor;
+  setup.layer = top.layer;
+  setup.crew = spec.crew;
+  setup.roof = roof;
+  setup.detail = "formwork and reinforcement of " + what;
+  schedule_.events.push_back(setup);
+
+  const double thickness_m = floor ? floor->slab_m : spec.thickness_m;
+  const double m3 = rounded((floor ? floors::slab_area_m2(*floor) : 0.0) * thickness_m);
+  const double pour_s = m3 / spec.pour_rate_m3_s;
+  ready_s = t_s;
+  t_s = crew_start_s(t_s, pour_s, true, "the pour of " + what, top.floor, top.layer);
+  if (!std::isfinite(t_s)) return t_s;
+  Event pour;
+  pour.wait_before_s = t_s - ready_s;
+  pour.kind = Event::Kind::kPour;
+  pour.start_s = t_s;
+  pour.end_s = t_s += pour_s;
+  pour.floor = top.floor;
+  pour.layer = top.layer;
+  pour.crew = spec.crew;
+  pour.roof = roof;
+  pour.concrete_m3 = m3;
+  pour.detail = printf_string("pour of %s: %.2f m³ (%.3f m thick) at %.1f m³/h", what.c_str(), m3,
+                              thickness_m, spec.pour_rate_m3_s * 3600.0);
+  schedule_.events.push_back(pour);
+  if (!roof) {
+    // The next floor's walls start once the slab's concrete carries them (EN 1992-1-1
+    // §3.1.2, its age equivalent at 20 °C with the site's weather).
+    const double age_s = spec.concrete.age_for_strength_s(spec.ready_mpa);
+    slab_ready_s_ = aged_s(pour.end_s, age_s);
+    slab_ready_detail_ =
+        printf_string("%s reaches %.1f MPa %.1f h (equivalent at 20 °C) after its pour ends at %s",
+                      what.c_str(), spec.ready_mpa, age_s / 3600.0, when_text(pour.end_s).c_str());
+  }
+  return t_s;
 }
 
 Schedule Scheduler::run() {
@@ -860,7 +1044,9 @@ Schedule Scheduler::run() {
   }
   schedule_.deliveries = deliveries_of(schedule_.layers, material_.delivery_batch_m3);
   schedule_.totals = totals_of(schedule_.layers, schedule_.events);
-  if (calendar_) schedule_.days = work_days(schedule_.layers, schedule_.deliveries, *calendar_);
+  if (calendar_)
+    schedule_.days =
+        work_days(schedule_.layers, schedule_.events, schedule_.deliveries, *calendar_);
   schedule_.bookkeeping_s =
       seconds_since(started) - schedule_.layer_planning_s - schedule_.climb_planning_s;
   return std::move(schedule_);

@@ -107,6 +107,8 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   in.units = floors::to_string(b.units);
   in.layer_height_m = b.layer_height_m;
   in.slab_stage_s = b.slab_stage_s;
+  in.lintels = b.lintels;
+  in.slabs = b.slabs;
   in.placement = project.placement;
   in.seed = options.seed;
   in.objective = options.objective;
@@ -159,7 +161,8 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   json files = json::array();
   for (const auto& f : in.files) files.push_back({{"path", f.path}, {"sha256", f.sha256}});
   json material = material_json(in.material);
-  if (in.calendar) {
+  {
+    // A stop for working hours, the cold or lintels may make a planned joint.
     const floors::PlannedJoint& j = in.material.planned_joint;
     material["planned_joint"] = {{"treatment_s", rounded(j.treatment_s)},
                                  {"min_age_s", rounded(j.min_age_s)},
@@ -202,6 +205,28 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     }
     out["inputs"]["provenance"] = floors_json;
   }
+  {
+    const floors::LintelSpec& l = in.lintels;
+    out["inputs"]["lintels"] = {{"type", floors::to_string(l.type)},
+                                {"height_m", rounded(l.height_m)},
+                                {"bearing_m", rounded(l.bearing_m)},
+                                {"place_s", rounded(l.place_s)},
+                                {"crew", l.crew},
+                                {"by", l.by_arm ? "arm" : "crew"}};
+  }
+  if (in.slabs) {
+    const floors::SlabSpec& sl = *in.slabs;
+    out["inputs"]["slabs"] = {{"thickness_m", rounded(sl.thickness_m)},
+                              {"setup_s", rounded(sl.setup_s)},
+                              {"pour_m3_h", rounded(sl.pour_rate_m3_s * 3600.0)},
+                              {"ready_mpa", rounded(sl.ready_mpa)},
+                              {"concrete",
+                               {{"fcm_mpa", rounded(sl.concrete.fcm_mpa)},
+                                {"cement_class", sl.concrete.cement_class},
+                                {"s", rounded(sl.concrete.s)}}},
+                              {"crew", sl.crew},
+                              {"roof", sl.roof}};
+  }
   if (in.objective != Objective::kFewestNozzles)
     out["inputs"]["objective"] = to_string(in.objective);
   if (calendar) out["inputs"]["site"] = site_json(*calendar);
@@ -230,15 +255,22 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   }
 
   const ScheduleTotals& t = schedule.totals;
-  out["totals"] = {
-      {"makespan_s", rounded(t.makespan_s)},     {"layers", schedule.layers.size()},
-      {"deposition_s", rounded(t.deposition_s)}, {"airtime_s", rounded(t.airtime_s)},
-      {"moves_s", rounded(t.moves_s)},           {"waits_s", rounded(t.waits_s)},
-      {"pipes_s", rounded(t.pipes_s)},           {"purges_s", rounded(t.purges_s)},
-      {"climbs_s", rounded(t.climbs_s)},         {"slabs_s", rounded(t.slabs_s)},
-      {"machine_s", rounded(t.machine_s)},       {"concrete_m3", rounded(t.concrete_m3)}};
+  out["totals"] = {{"makespan_s", rounded(t.makespan_s)},
+                   {"layers", schedule.layers.size()},
+                   {"deposition_s", rounded(t.deposition_s)},
+                   {"airtime_s", rounded(t.airtime_s)},
+                   {"moves_s", rounded(t.moves_s)},
+                   {"waits_s", rounded(t.waits_s)},
+                   {"pipes_s", rounded(t.pipes_s)},
+                   {"purges_s", rounded(t.purges_s)},
+                   {"climbs_s", rounded(t.climbs_s)},
+                   {"slabs_s", rounded(t.slabs_s)},
+                   {"machine_s", rounded(t.machine_s)},
+                   {"concrete_m3", rounded(t.concrete_m3)},
+                   {"joints_s", rounded(t.joints_s)},
+                   {"lintels_s", rounded(t.lintels_s)},
+                   {"crew_h", rounded(t.crew_h)}};
   if (calendar) {
-    out["totals"]["joints_s"] = rounded(t.joints_s);
     times(out["totals"], "start_time", 0.0);
     times(out["totals"], "finish_time", t.makespan_s);
     json days = json::array();
@@ -250,6 +282,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
                       {"printing_s", rounded(d.printing_s)},
                       {"concrete_m3", rounded(d.concrete_m3)},
                       {"deliveries", d.deliveries},
+                      {"crew_h", rounded(d.crew_h)},
                       {"stop", d.stop},
                       {"detail", d.detail}});
     out["days"] = days;
@@ -277,7 +310,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     j["wait_before_s"] = rounded(l.wait_before_s);
     j["wait_reasons"] = reasons_json(l.wait_reasons);
     j["purge_before"] = l.purge_before;
-    if (calendar) j["planned_joint"] = l.planned_joint;
+    j["planned_joint"] = l.planned_joint;
     j["interval_s"] = optional_number(l.interval_s);
     j["local_interval_min_s"] = optional_number(l.local_interval_min_s);
     j["local_interval_max_s"] = optional_number(l.local_interval_max_s);
@@ -331,8 +364,32 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
   for (const auto& e : schedule.events) {
     json j = {{"kind", to_string(e.kind)}, {"start_s", rounded(e.start_s)},
               {"end_s", rounded(e.end_s)}, {"floor", e.floor},
-              {"after_layer", e.layer},    {"detail", e.detail}};
+              {"after_layer", e.layer},    {"crew", e.crew},
+              {"detail", e.detail}};
     if (calendar) times(j, "start_time", e.start_s), times(j, "end_time", e.end_s);
+    if (e.kind == Event::Kind::kPipe || e.kind == Event::Kind::kLintel ||
+        e.kind == Event::Kind::kPour || (e.kind == Event::Kind::kSlab && in.slabs))
+      j["wait_before_s"] = rounded(e.wait_before_s);
+    if (e.kind == Event::Kind::kPour) j["concrete_m3"] = rounded(e.concrete_m3);
+    if (e.kind == Event::Kind::kPour || (e.kind == Event::Kind::kSlab && in.slabs))
+      j["roof"] = e.roof;
+    if (e.lintel) {
+      const LintelTask& l = *e.lintel;
+      j["lintel"] = {{"opening", l.opening},
+                     {"wall", l.wall},
+                     {"offset_m", rounded(l.offset_m)},
+                     {"width_m", rounded(l.width_m)},
+                     {"from_m", rounded(l.from_m)},
+                     {"to_m", rounded(l.to_m)},
+                     {"start_m", {rounded(l.start_m.x()), rounded(l.start_m.y())}},
+                     {"end_m", {rounded(l.end_m.x()), rounded(l.end_m.y())}},
+                     {"sill_m", rounded(l.sill_m)},
+                     {"head_m", rounded(l.head_m)},
+                     {"head_z_m", rounded(l.head_z_m)},
+                     {"type", floors::to_string(l.type)},
+                     {"height_m", rounded(l.height_m)},
+                     {"by", l.by_arm ? "arm" : "crew"}};
+    }
     if (e.anchor) j["anchor"] = anchor_json(in.unit_names, *e.anchor);
     if (e.climb) {
       const ClimbEvent& c = *e.climb;

@@ -88,6 +88,10 @@ std::string to_string(Event::Kind kind) {
       return "purge";
     case Event::Kind::kJoint:
       return "joint";
+    case Event::Kind::kLintel:
+      return "lintel";
+    case Event::Kind::kPour:
+      return "pour";
   }
   return "?";
 }
@@ -107,13 +111,19 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
   for (const auto& e : events) {
     tot.makespan_s = std::max(tot.makespan_s, e.end_s);
     const double d = e.end_s - e.start_s;
+    tot.crew_h += e.crew * d / 3600.0;
+    tot.waits_s += e.wait_before_s;
     switch (e.kind) {
       case Event::Kind::kPipe:
         tot.pipes_s += d;
         tot.machine_s += d;
         break;
       case Event::Kind::kSlab:
+      case Event::Kind::kPour:
         tot.slabs_s += d;
+        break;
+      case Event::Kind::kLintel:
+        tot.lintels_s += d;
         break;
       case Event::Kind::kPurge:
         tot.purges_s += d;
@@ -133,6 +143,7 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
 }
 
 std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const std::vector<Event>& events,
                                const std::vector<Delivery>& deliveries,
                                const SiteCalendar& calendar) {
   std::vector<WorkDay> days;
@@ -178,6 +189,13 @@ std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
     const std::string date = calendar.local_date(delivery.due_s);
     for (auto& d : days)
       if (d.date == date) ++d.deliveries;
+  }
+  // Crew hours on the day their task starts (a day without printing has none listed).
+  for (const auto& e : events) {
+    if (e.crew == 0) continue;
+    const std::string date = calendar.local_date(e.start_s);
+    for (auto& d : days)
+      if (d.date == date) d.crew_h += e.crew * (e.end_s - e.start_s) / 3600.0;
   }
   return days;
 }

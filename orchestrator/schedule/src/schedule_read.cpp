@@ -112,12 +112,12 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
        "local_interval_max_at",
        "piece_ends_checked",
        "concrete_m3",
-       "peak_flow_m3_h"},
+       "peak_flow_m3_h",
+       "planned_joint"},
       calendar,
-      conditions
-          ? std::vector<std::string>{"start_time", "end_time", "planned_joint",
-                                     "equivalent_interval_min_s", "equivalent_interval_max_s"}
-          : std::vector<std::string>{"start_time", "end_time", "planned_joint"}));
+      conditions ? std::vector<std::string>{"start_time", "end_time", "equivalent_interval_min_s",
+                                            "equivalent_interval_max_s"}
+                 : std::vector<std::string>{"start_time", "end_time"}));
   ScheduledLayer l;
   l.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   l.layer = static_cast<int>(j.at("layer").integer(0, kMaxLayer));
@@ -140,7 +140,11 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
   l.wait_reasons = read_reasons(j.at("wait_reasons"));
   l.purge_before = j.at("purge_before").boolean();
   check_times(j, calendar, l.start_s, l.end_s);
-  if (calendar) l.planned_joint = j.at("planned_joint").boolean();
+  // Before lintels, only schedules on a calendar had planned joints.
+  if (const auto joint = j.maybe("planned_joint"))
+    l.planned_joint = joint->boolean();
+  else if (calendar)
+    j.at("planned_joint");
   if (conditions) {
     const Range any = Range::closed(-1e10, 1e10);
     l.equivalent_interval_min_s = j.at("equivalent_interval_min_s").number_or_null(any, "s");
@@ -400,17 +404,64 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
   const std::string kind = j.at("kind").string(20);
   if (kind == "pipe") {
     e.kind = Event::Kind::kPipe;
-    only({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "anchor"});
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "crew", "detail", "anchor",
+          "wait_before_s"});
     e.anchor = read_anchor(j.at("anchor"), in);
-  } else if (kind == "slab" || kind == "purge" || (kind == "joint" && calendar)) {
+  } else if (kind == "slab" || kind == "purge" || kind == "joint") {
     e.kind = kind == "slab"    ? Event::Kind::kSlab
              : kind == "purge" ? Event::Kind::kPurge
                                : Event::Kind::kJoint;
-    only({"kind", "start_s", "end_s", "floor", "after_layer", "detail"});
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "crew", "detail", "roof",
+          "wait_before_s"});
+    if (const auto roof = j.maybe("roof")) e.roof = roof->boolean();
+  } else if (kind == "pour") {
+    e.kind = Event::Kind::kPour;
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "crew", "detail", "roof",
+          "concrete_m3", "wait_before_s"});
+    e.roof = j.at("roof").boolean();
+    e.concrete_m3 = j.at("concrete_m3").number(Range::closed(0, 1e7), "m3");
+  } else if (kind == "lintel") {
+    e.kind = Event::Kind::kLintel;
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "crew", "detail", "lintel",
+          "wait_before_s"});
+    const JsonAt l = j.at("lintel");
+    l.only_keys({"opening", "wall", "offset_m", "width_m", "from_m", "to_m", "start_m", "end_m",
+                 "sill_m", "head_m", "head_z_m", "type", "height_m", "by"});
+    LintelTask task;
+    task.opening = l.at("opening").string(200);
+    task.wall = l.at("wall").integer(1, std::int64_t{1} << 53);
+    const Range along = Range::closed(-1e5, 1e5);
+    task.offset_m = l.at("offset_m").number(along, "m");
+    task.width_m = l.at("width_m").number(Range::above(0, 1e5), "m");
+    task.from_m = l.at("from_m").number(along, "m");
+    task.to_m = l.at("to_m").number(along, "m");
+    if (task.to_m < task.from_m) l.at("to_m").refuse("must not be before from_m");
+    for (const auto& [key, point] :
+         {std::pair<const char*, Eigen::Vector2d*>{"start_m", &task.start_m},
+          {"end_m", &task.end_m}}) {
+      const auto xy = l.at(key).elements(3);
+      if (xy.size() != 2) l.at(key).refuse("expected [x, y]");
+      *point = {xy[0].number(kCoordinate_m, "m"), xy[1].number(kCoordinate_m, "m")};
+    }
+    task.sill_m = l.at("sill_m").number(Range::closed(0, 1e3), "m");
+    task.head_m = l.at("head_m").number(Range::closed(0, 1e3), "m");
+    if (task.head_m <= task.sill_m) l.at("head_m").refuse("must be above sill_m");
+    task.head_z_m = l.at("head_z_m").number(kCoordinate_m, "m");
+    const std::string type = l.at("type").string(20);
+    if (type != "precast" && type != "formwork")
+      l.at("type").refuse("expected \"precast\" or \"formwork\", got \"" + type + "\"");
+    task.type = type == "precast" ? floors::LintelSpec::Type::kPrecast
+                                  : floors::LintelSpec::Type::kFormwork;
+    task.height_m = l.at("height_m").number(Range::closed(0, 10), "m");
+    const std::string by = l.at("by").string(10);
+    if (by != "crew" && by != "arm")
+      l.at("by").refuse("expected \"crew\" or \"arm\", got \"" + by + "\"");
+    task.by_arm = by == "arm";
+    e.lintel = std::move(task);
   } else if (kind == "climb") {
     e.kind = Event::Kind::kClimb;
-    only({"kind", "start_s", "end_s", "floor", "after_layer", "detail", "from_stage", "to_stage",
-          "wait_before_s", "wait_reasons", "anchors", "climb"});
+    only({"kind", "start_s", "end_s", "floor", "after_layer", "crew", "detail", "from_stage",
+          "to_stage", "wait_before_s", "wait_reasons", "anchors", "climb"});
     ClimbEvent c;
     c.from_stage = static_cast<int>(j.at("from_stage").integer(0, kMaxLayer));
     c.to_stage = static_cast<int>(j.at("to_stage").integer(0, kMaxLayer));
@@ -434,9 +485,8 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     c.plan = read_climb_plan(j.at("climb"), in);
     e.climb = std::move(c);
   } else {
-    j.at("kind").refuse(std::string("expected pipe, climb, slab, purge") +
-                        (calendar ? " or joint" : " (or joint, on a site calendar)") + ", got \"" +
-                        kind + "\"");
+    j.at("kind").refuse("expected pipe, climb, slab, pour, lintel, purge or joint, got \"" + kind +
+                        "\"");
   }
   e.start_s = j.at("start_s").number(kTime_s, "s");
   e.end_s = j.at("end_s").number(kTime_s, "s");
@@ -445,6 +495,9 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
   e.floor = static_cast<int>(j.at("floor").integer(0, kMaxFloor));
   e.layer = static_cast<int>(j.at("after_layer").integer(0, kMaxLayer));
   e.detail = j.at("detail").string(kMaxText);
+  if (const auto crew = j.maybe("crew")) e.crew = static_cast<int>(crew->integer(0, 100));
+  if (!e.climb)
+    if (const auto w = j.maybe("wait_before_s")) e.wait_before_s = w->number(kDuration_s, "s");
   if (e.climb) {
     e.climb->start_s = e.start_s;
     e.climb->end_s = e.end_s;
@@ -479,8 +532,9 @@ Infeasibility read_infeasibility(const JsonAt& j) {
 
 ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers, const SiteCalendar* calendar) {
   t.only_keys(keys_with({"makespan_s", "layers", "deposition_s", "airtime_s", "moves_s", "waits_s",
-                         "pipes_s", "purges_s", "climbs_s", "slabs_s", "machine_s", "concrete_m3"},
-                        calendar, {"joints_s", "start_time", "finish_time"}));
+                         "pipes_s", "purges_s", "climbs_s", "slabs_s", "machine_s", "concrete_m3",
+                         "joints_s", "lintels_s", "crew_h"},
+                        calendar, {"start_time", "finish_time"}));
   ScheduleTotals out;
   out.makespan_s = t.at("makespan_s").number(kTime_s, "s");
   layers = static_cast<std::size_t>(t.at("layers").integer(0, kMaxLayers));
@@ -495,16 +549,22 @@ ScheduleTotals read_totals(const JsonAt& t, std::size_t& layers, const SiteCalen
   out.machine_s = t.at("machine_s").number(kDuration_s, "s");
   if (const auto v = t.maybe("concrete_m3"))
     out.concrete_m3 = v->number(Range::closed(0, 1e9), "m3");
+  // Older schedules: joints only on a calendar, no lintels or crews.
+  if (const auto v = t.maybe("joints_s"))
+    out.joints_s = v->number(kDuration_s, "s");
+  else if (calendar)
+    t.at("joints_s");
+  if (const auto v = t.maybe("lintels_s")) out.lintels_s = v->number(kDuration_s, "s");
+  if (const auto v = t.maybe("crew_h")) out.crew_h = v->number(Range::closed(0, 1e9), "h");
   if (calendar) {
-    out.joints_s = t.at("joints_s").number(kDuration_s, "s");
     check_times(t, calendar, 0.0, out.makespan_s, "start_time", "finish_time");
   }
   return out;
 }
 
 WorkDay read_day(const JsonAt& j) {
-  j.only_keys({"date", "layers", "first", "last", "printing_s", "concrete_m3", "deliveries", "stop",
-               "detail"});
+  j.only_keys({"date", "layers", "first", "last", "printing_s", "concrete_m3", "deliveries",
+               "crew_h", "stop", "detail"});
   WorkDay d;
   d.date = j.at("date").string(20);
   if (!parse_local_date(d.date)) j.at("date").refuse("expected a date as YYYY-MM-DD");
@@ -520,6 +580,7 @@ WorkDay read_day(const JsonAt& j) {
   d.printing_s = j.at("printing_s").number(kDuration_s, "s");
   d.concrete_m3 = j.at("concrete_m3").number(Range::closed(0, 1e9), "m3");
   d.deliveries = static_cast<int>(j.at("deliveries").integer(0, 10'000'000));
+  if (const auto v = j.maybe("crew_h")) d.crew_h = v->number(Range::closed(0, 1e9), "h");
   d.stop = j.at("stop").string(20);
   d.detail = j.at("detail").string(kMaxText);
   return d;

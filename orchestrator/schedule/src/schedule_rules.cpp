@@ -42,6 +42,7 @@ class Rules {
     check_events();
     check_stages();
     check_totals();
+    check_lintels_and_slabs();
     check_quantities();
     check_days();
     if (found_.empty()) return;
@@ -488,9 +489,8 @@ class Rules {
   /// on a floor's layer above another, treated within its ages.
   void check_calendar(const std::string& at, const ScheduledLayer& l, const ScheduledLayer* below) {
     const SiteCalendar* calendar = doc_.inputs.calendar.get();
-    if (!calendar) return;
     const double block_s = block_start_s(l);
-    if (calendar->programme().printing_attended &&
+    if (calendar && calendar->programme().printing_attended &&
         !calendar->within_one_window(block_s, l.end_s - kStated_s))
       broken(at + "/start_time", "working hours",
              printf_string("printing is attended, but floor %d layer %d (with its purge and "
@@ -510,13 +510,19 @@ class Rules {
           return r.temperature_c >= mix.placing_min_c - 1e-9 &&
                  r.temperature_c <= mix.placing_max_c + 1e-9;
         }) > below->end_s + kStated_s;
-    if (calendar->within_one_window(below->end_s, block_s) && !cold_between)
-      broken(at + "/planned_joint", "planned joints",
-             printf_string(
-                 "no off-shift hours (or cold) lie between floor %d layer %d's end (%s) and this "
-                 "joint (%s): a joint is planned only where work stops for them",
-                 below->floor, below->layer, calendar->local_text(below->end_s).c_str(),
-                 calendar->local_text(block_s).c_str()));
+    const bool lintels_between =
+        std::any_of(doc_.schedule.events.begin(), doc_.schedule.events.end(), [&](const Event& e) {
+          return e.kind == Event::Kind::kLintel && e.start_s >= below->end_s - kStated_s &&
+                 e.end_s <= block_s + kStated_s;
+        });
+    const bool off_shift_between = calendar && !calendar->within_one_window(below->end_s, block_s);
+    if (!off_shift_between && !cold_between && !lintels_between)
+      broken(
+          at + "/planned_joint", "planned joints",
+          printf_string("no off-shift hours, cold or lintels lie between floor %d layer %d's end "
+                        "(%.6f s) and this joint (%.6f s): a joint is planned only where work "
+                        "stops for them",
+                        below->floor, below->layer, below->end_s, block_s));
     const floors::PlannedJoint& pj = doc_.inputs.material.planned_joint;
     const double age_s = block_s - below->end_s;
     if (age_s < pj.min_age_s - kStated_s)
@@ -578,7 +584,8 @@ class Rules {
   void check_days() {
     const SiteCalendar* calendar = doc_.inputs.calendar.get();
     if (!calendar) return;
-    const auto want = work_days(doc_.schedule.layers, doc_.schedule.deliveries, *calendar);
+    const auto want =
+        work_days(doc_.schedule.layers, doc_.schedule.events, doc_.schedule.deliveries, *calendar);
     const auto& got = doc_.schedule.days;
     if (want.size() != got.size()) {
       broken("/days", "days",
@@ -592,6 +599,7 @@ class Rules {
           a.first_layer != b.first_layer || a.last_floor != b.last_floor ||
           a.last_layer != b.last_layer || a.stop != b.stop || a.detail != b.detail ||
           a.deliveries != b.deliveries || std::abs(a.concrete_m3 - b.concrete_m3) > 1e-6 ||
+          std::abs(a.crew_h - b.crew_h) > 1e-6 * (1 + b.crew_h) ||
           std::abs(a.printing_s - b.printing_s) > kStated_s * (b.layers + 1))
         broken(pointer_to("/days", k), "days",
                printf_string("%s: expected %d layers, floor %d layer %d to floor %d layer %d, "
@@ -639,8 +647,12 @@ class Rules {
       if (e.kind == Event::Kind::kPipe && !e.anchor)
         broken(at, "events", "a pipe names its anchor");
       if (const SiteCalendar* calendar = doc_.inputs.calendar.get()) {
-        const bool crew = e.kind == Event::Kind::kClimb || e.kind == Event::Kind::kJoint ||
-                          (e.kind == Event::Kind::kPipe && calendar->programme().pipes_need_crew);
+        const bool crew =
+            e.kind == Event::Kind::kClimb || e.kind == Event::Kind::kJoint ||
+            (e.kind == Event::Kind::kPipe && calendar->programme().pipes_need_crew) ||
+            (e.kind == Event::Kind::kLintel &&
+             (!doc_.inputs.lintels.by_arm || calendar->programme().printing_attended)) ||
+            ((e.kind == Event::Kind::kSlab && doc_.inputs.slabs) || e.kind == Event::Kind::kPour);
         if (crew && !calendar->within_one_window(e.start_s, e.end_s - kStated_s))
           broken(at + "/start_time", "working hours",
                  printf_string("the %s needs a crew, but runs from %s to %s, outside one working "
@@ -698,6 +710,65 @@ class Rules {
       broken("/stages", "stages", "a fixed gantry has no stages");
   }
 
+  /// Each lintel set while its floor's layers below its head are done and before the first
+  /// one at or over it, for as long as the building says; each slab's formwork and pour as
+  /// long as the building says, and the next floor's first layer after the slab carries it.
+  void check_lintels_and_slabs() {
+    const Schedule& s = doc_.schedule;
+    for (std::size_t k = 0; k < s.events.size(); ++k) {
+      const Event& e = s.events[k];
+      const std::string at = pointer_to("/events", k);
+      if (e.kind == Event::Kind::kLintel) {
+        if (!e.lintel) continue;
+        if (std::abs(e.end_s - e.start_s - doc_.inputs.lintels.place_s) > kStated_s)
+          broken(at + "/end_s", "lintels",
+                 printf_string("the lintel takes %.6f s, the building's place time %.6f s",
+                               e.end_s - e.start_s, doc_.inputs.lintels.place_s));
+        for (const auto& l : s.layers) {
+          if (l.floor != e.floor) continue;
+          // A mid-height within rounding of the head may fall either side of it.
+          const double mid_m = 0.5 * (l.z_bottom_m + l.z_top_m);
+          const bool over = mid_m >= e.lintel->head_z_m + kRoundLength_m;
+          const bool under = mid_m < e.lintel->head_z_m - kRoundLength_m;
+          if (over && l.start_s < e.end_s - kStated_s)
+            broken(at + "/end_s", "lintels",
+                   printf_string("the lintel over opening %s is set until %.6f s, but floor %d "
+                                 "layer %d, over its head, starts at %.6f s",
+                                 e.lintel->opening.c_str(), e.end_s, l.floor, l.layer, l.start_s));
+          if (under && l.end_s > e.start_s + kStated_s)
+            broken(at + "/start_s", "lintels",
+                   printf_string("the lintel over opening %s is set from %.6f s, before floor %d "
+                                 "layer %d, under its head, ends at %.6f s",
+                                 e.lintel->opening.c_str(), e.start_s, l.floor, l.layer, l.end_s));
+        }
+      }
+      if (!doc_.inputs.slabs) continue;
+      const floors::SlabSpec& spec = *doc_.inputs.slabs;
+      if (e.kind == Event::Kind::kSlab && std::abs(e.end_s - e.start_s - spec.setup_s) > kStated_s)
+        broken(at + "/end_s", "slabs",
+               printf_string("the slab's formwork takes %.6f s, the building's %.6f s",
+                             e.end_s - e.start_s, spec.setup_s));
+      if (e.kind != Event::Kind::kPour) continue;
+      const double pour_s = e.concrete_m3 / spec.pour_rate_m3_s;
+      if (std::abs(e.end_s - e.start_s - pour_s) > kStated_s + 1e-9 * pour_s)
+        broken(at + "/end_s", "slabs",
+               printf_string("the pour of %.6f m3 takes %.6f s, at the building's rate %.6f s",
+                             e.concrete_m3, e.end_s - e.start_s, pour_s));
+      if (e.roof) continue;
+      const double age_s = spec.concrete.age_for_strength_s(spec.ready_mpa);
+      const double ready_s = maturity_ ? maturity_->after(e.end_s, age_s) : e.end_s + age_s;
+      for (const auto& l : s.layers)
+        if (l.floor > e.floor) {
+          if (l.start_s < ready_s - kStated_s)
+            broken(at, "slabs",
+                   printf_string("floor %d layer %d starts at %.6f s, before the slab over floor "
+                                 "%d reaches %.6f MPa at %.6f s",
+                                 l.floor, l.layer, l.start_s, e.floor, spec.ready_mpa, ready_s));
+          break;
+        }
+    }
+  }
+
   void check_totals() {
     const Schedule& s = doc_.schedule;
     if (s.feasible == s.infeasibility.has_value())
@@ -718,6 +789,8 @@ class Rules {
         {"climbs_s", {got.climbs_s, want.climbs_s}},
         {"slabs_s", {got.slabs_s, want.slabs_s}},
         {"joints_s", {got.joints_s, want.joints_s}},
+        {"lintels_s", {got.lintels_s, want.lintels_s}},
+        {"crew_h", {got.crew_h, want.crew_h}},
         {"concrete_m3", {got.concrete_m3, want.concrete_m3}},
         {"machine_s", {got.machine_s, want.machine_s}}};
     for (const auto& [key, values] : totals)

@@ -25,6 +25,10 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 /// A geometry whose one-nozzle layer takes more than this share of the maximum interval
 /// is planned at every nozzle count too: the move and the waits still have to fit.
 inline constexpr double kTryMoreNozzlesShare = 0.9;
+/// The people on a crew task (a lintel's and a slab's come from the building): a pipe is
+/// set by one, a joint treated by one, a climb supervised by two (one at the controls, one
+/// at the pins).
+inline constexpr int kPipeCrew = 1, kJointCrew = 1, kClimbCrew = 2;
 
 inline double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -132,6 +136,19 @@ class Scheduler {
   /// What follows layer i: its pipes, the slab at a floor's top, a climb (false: the
   /// climb can never start, the schedule stops there).
   bool after_layer(int i);
+  /// Sets the lintels over the openings whose first layer above the head is global layer
+  /// `next`, from `t_s`; returns when they are set (+infinity: no working window holds one,
+  /// the schedule stops there).
+  double place_lintels(int next, double t_s);
+  /// The slab (or, with `roof`, the roof) over the floor whose top layer is `top`, with
+  /// `slabs:`: formwork and reinforcement, then the pour, each in working hours; sets when
+  /// the slab carries the next floor. Returns the pour's end (+infinity: no window holds it).
+  double pour_slab(const ScheduledLayer& top, bool roof, double t_s);
+  /// The start of `duration_s` of crew work from `t_s` (working hours when there is a
+  /// calendar; a wait there lets the next layer start on a planned joint); +infinity, after
+  /// failing with `what`, when no window holds it.
+  double crew_start_s(double t_s, double duration_s, bool needs_crew, const std::string& what,
+                      int floor, int layer);
   void fail(Infeasibility infeasibility);
   /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's.
   void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
@@ -200,9 +217,15 @@ class Scheduler {
   double previous_end_s_ = 0.0;                ///< the machine is free from here
   double ready_extra_s_ = 0.0;                 ///< pipes, slab and climb after the previous layer
   double pipes_before_s_ = 0.0;                ///< cast after the previous layer
-  /// Work after the previous layer (pipes, a climb) waited for working hours: the next
-  /// layer may start on a planned joint.
-  bool off_shift_since_below_ = false;
+  /// Work stopped after the previous layer (pipes or a climb waited for working hours,
+  /// lintels were set): the next layer may start on a planned joint.
+  bool stopped_since_below_ = false;
+  /// Lintels set before global layer i (the first layer over their openings' heads).
+  std::map<int, std::vector<LintelTask>> lintels_before_;
+  /// With `slabs:`, when the last slab poured carries the walls of the floor above it
+  /// (-infinity: none poured yet), and why.
+  double slab_ready_s_ = -kInf;
+  std::string slab_ready_detail_;
   std::string previous_key_;
 };
 

@@ -138,11 +138,12 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   if (!s.days.empty()) {
     std::cout << printf_string("%zu working days with printing:\n", s.days.size());
     for (const auto& d : s.days)
-      std::cout << printf_string("  %s %s  %3d layer%s, %s printing, %.2f m³, %d deliver%s: %s\n",
-                                 kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7],
-                                 d.date.c_str(), d.layers, d.layers == 1 ? " " : "s",
-                                 duration(d.printing_s).c_str(), d.concrete_m3, d.deliveries,
-                                 d.deliveries == 1 ? "y" : "ies", d.detail.c_str());
+      std::cout << printf_string(
+          "  %s %s  %3d layer%s, %s printing, %.2f m³, %d deliver%s, "
+          "%.1f crew person-hours: %s\n",
+          kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7], d.date.c_str(), d.layers,
+          d.layers == 1 ? " " : "s", duration(d.printing_s).c_str(), d.concrete_m3, d.deliveries,
+          d.deliveries == 1 ? "y" : "ies", d.crew_h, d.detail.c_str());
   }
   for (const auto& e : s.events) {
     if (e.kind != schedule::Event::Kind::kClimb) continue;
@@ -199,12 +200,33 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   const auto& t = s.totals;
   std::cout << printf_string(
       "total: %s from the first layer to the last%s (machine busy %s): deposition %s, airtime "
-      "%s, waits %s, climbs %s, slabs %s, pipes %s, purges %s\n",
+      "%s, waits %s, climbs %s, slabs %s, pipes %s, purges %s, lintels %s, joints %s\n",
       duration(t.makespan_s).c_str(),
       calendar ? (", finished " + calendar->local_text(t.makespan_s)).c_str() : "",
       duration(t.machine_s).c_str(), duration(t.deposition_s).c_str(),
       duration(t.airtime_s).c_str(), duration(t.waits_s).c_str(), duration(t.climbs_s).c_str(),
-      duration(t.slabs_s).c_str(), duration(t.pipes_s).c_str(), duration(t.purges_s).c_str());
+      duration(t.slabs_s).c_str(), duration(t.pipes_s).c_str(), duration(t.purges_s).c_str(),
+      duration(t.lintels_s).c_str(), duration(t.joints_s).c_str());
+  {
+    // Crew tasks: how many of each kind, and the person-hours they take.
+    std::map<std::string, std::pair<int, double>> by_kind;  // count, person-hours
+    double slab_m3 = 0.0;
+    for (const auto& e : s.events) {
+      if (e.kind == schedule::Event::Kind::kPour) slab_m3 += e.concrete_m3;
+      if (e.crew == 0) continue;
+      auto& [count, hours] = by_kind[schedule::to_string(e.kind)];
+      ++count;
+      hours += e.crew * (e.end_s - e.start_s) / 3600.0;
+    }
+    std::string kinds;
+    for (const auto& [kind, v] : by_kind)
+      kinds += printf_string("%s%d %s%s %.1f h", kinds.empty() ? "" : ", ", v.first, kind.c_str(),
+                             v.first == 1 ? "" : "s", v.second);
+    if (!by_kind.empty())
+      std::cout << printf_string(
+          "crew: %.1f person-hours (%s)%s\n", t.crew_h, kinds.c_str(),
+          slab_m3 > 0.0 ? printf_string("; slabs poured: %.2f m³", slab_m3).c_str() : "");
+  }
   {
     // Quantities: concrete per floor and in all, the pump's peak, the deliveries.
     std::map<int, double> per_floor;

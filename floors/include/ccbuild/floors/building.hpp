@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/floors/material.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "ccbuild/floors/units.hpp"
 
@@ -57,6 +58,24 @@ struct Site {
 /// The keys of `site:` that place the building.
 inline const std::vector<std::string> kSitePlacementKeys = {"origin", "rotation_deg", "place"};
 
+/// The slabs poured on each floor's walls and the roof on the top floor's (`slabs:` in
+/// the building file): formwork and reinforcement, the pour, then curing until the slab's
+/// concrete carries the next floor's walls. Its area is the convex hull of the floor's
+/// plan (an L-shaped floor's is overstated).
+struct SlabSpec {
+  double thickness_m = 0.2;             ///< every floor's `slab` where it gives none
+  double setup_s = 4 * 3600.0;          ///< formwork and reinforcement, s
+  double pour_rate_m3_s = 20.0 / 3600;  ///< the pour's placing rate
+  double ready_mpa = 5.0;  ///< the strength at which the next floor's walls start on it
+  /// Its concrete (EN 1992-1-1 §3.1.2), C30/37 with a class N cement by default.
+  En1992Strength concrete{38.0, 0.25, "N", 0.0};
+  int crew = 4;      ///< people who set up and pour
+  bool roof = true;  ///< a roof slab on the top floor
+};
+
+/// The area a floor's slab covers: the convex hull of its plan's vertices, m².
+double slab_area_m2(const Floor& floor);
+
 struct Building {
   std::string name;
   std::string source_file;
@@ -65,6 +84,11 @@ struct Building {
   /// Between two floors: the slab stage (placing and curing the slab before the next
   /// floor's walls start on it), s; `slab_stage_h` in the file, 8 h by default.
   double slab_stage_s = 8 * 3600.0;
+  /// Slabs poured and cured by a strength rule (`slabs:`; not with `slab_stage_h`);
+  /// unset: the fixed slab stage.
+  std::optional<SlabSpec> slabs;
+  /// How every opening's lintel is made (`lintels:`); also in every floor's plan.
+  LintelSpec lintels;
   std::vector<Floor> floors;
   std::filesystem::path material_profile;  ///< resolved against the building file's folder
   std::filesystem::path machine_profile;

@@ -29,6 +29,17 @@ inline const Range kSlabThickness_m = Range::closed(0.0, 10.0);
 inline const Range kLayerHeight_m = Range::closed(0.001, 1.0);
 /// The slab stage between floors: up to 30 days.
 inline const Range kSlabStage_s = Range::closed(0.0, 30 * 86'400.0);
+/// Lintels: a precast element's depth, its bearing on each side, the time to set one.
+inline const Range kLintelHeight_m = Range::closed(0.0, 3.0);
+inline const Range kLintelBearing_m = Range::closed(0.0, 2.0);
+inline const Range kLintelPlace_s = Range::above(0.0, 8 * 3600.0);
+/// A crew: people on one task.
+inline const Range kCrew = Range::closed(0.0, 100.0);
+/// Slabs: formwork and reinforcement time, the pour's rate (m³/h in the file), the
+/// strength that lets the next floor start.
+inline const Range kSlabSetup_s = Range::closed(0.0, 30 * 86'400.0);
+inline const Range kPourRate_m3_s = Range::above(0.1 / 3600.0, 500.0 / 3600.0);
+inline const Range kSlabReady_mpa = Range::above(0.0, 100.0);
 
 /// A site's rotation, degrees in the file.
 inline const Range kSiteRotation_rad = Range::closed(-2 * 3.141592653589793, 2 * 3.141592653589793);

@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+namespace ccbuild {
+class Field;
+}
+
 namespace ccbuild::floors {
 
 struct StrengthPoint {
@@ -87,6 +91,11 @@ struct MaterialProfile {
   /// The strength it reaches at the most, MPa.
   double final_strength_mpa() const;
 };
+
+/// Reads an EN 1992-1-1 §3.1.2 strength from a map with `fcm_mpa`, `cement_class` (R, N,
+/// S; R by default) and, where `keys` allow it, `from_h`. Throws InputError naming the
+/// field.
+En1992Strength read_en1992_strength(const Field& field, const std::vector<std::string>& keys);
 
 /// Loads and validates a material profile (YAML or JSON).
 /// Throws InputError naming file, line and field.

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ccbuild/floors/beads.hpp"
@@ -58,6 +59,27 @@ struct Opening {
   std::string global_id{};
 };
 
+/// How an opening's lintel is made (`lintels:` in the building file); one kind for every
+/// opening of a building. The lintel bears on the wall at the opening's head, `bearing_m`
+/// past each side (clipped at the wall's ends, where a crossing wall carries it).
+struct LintelSpec {
+  enum class Type {
+    /// A soffit form spans the opening at its head; the layers printed over it make the
+    /// lintel (it is struck later, off the critical path).
+    kFormwork,
+    /// A precast element `height_m` deep: the wall over [head, head + height) is left out
+    /// across the opening and both bearings, where the element lies.
+    kPrecast,
+  };
+  Type type = Type::kFormwork;
+  double height_m = 0.0;    ///< precast only
+  double bearing_m = 0.15;  ///< on each side
+  double place_s = 1800.0;  ///< to set one lintel (and its form), s
+  int crew = 2;             ///< people who set it (0 when the machine's arm does)
+  bool by_arm = false;      ///< set by the machine's arm: no crew needed
+};
+std::string to_string(LintelSpec::Type type);
+
 struct FloorPlan {
   std::vector<Vertex> vertices;
   std::vector<Wall> walls;
@@ -67,6 +89,8 @@ struct FloorPlan {
   /// How walls thicker than one bead are sliced (set from the machine by a project;
   /// bead width 0: one pass per wall).
   BeadSpec beads;
+  /// The building's lintels (set by the building reader; a plan alone has formwork ones).
+  LintelSpec lintel;
 
   const Vertex* find_vertex(std::int64_t id) const;
   const Wall* find_wall(std::int64_t id) const;
@@ -79,6 +103,15 @@ struct FloorPlan {
 /// True when two plans hold the same vertices, walls and openings (in the same order,
 /// lengths within `tolerance_m`); where they were read from is ignored.
 bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m = 1e-9);
+
+/// What an opening is in a layer whose mid-height is `mid_m` above the floor's base: open
+/// in [sill, head); a precast lintel in [head, head + its height); else wall.
+enum class OpeningState { kWall, kOpen, kLintel };
+OpeningState opening_state(const Opening& opening, const LintelSpec& lintel, double mid_m);
+/// The stretch of its wall that an opening leaves out in `state` (kOpen: the opening;
+/// kLintel: with both bearings), m from the wall's start, clipped to [0, wall_length_m].
+std::pair<double, double> opening_gap_m(const Opening& opening, const LintelSpec& lintel,
+                                        OpeningState state, double wall_length_m);
 
 enum class PlanFormat { kAuto, kYaml, kJson, kTable };
 

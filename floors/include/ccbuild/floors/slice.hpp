@@ -79,6 +79,9 @@ int layer_count(double floor_height_m, double layer_height_m);
 /// All layers of one floor of a building.
 std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
                                const SliceOptions& options = {});
+/// The mid-height of layer `k` of a floor of height `floor_height_m` above its base, m:
+/// what decides whether an opening cuts the layer (the one computation of it).
+double layer_mid_m(double floor_height_m, double layer_height_m, int k);
 /// Layer `k` (0 to layer_count - 1) of one floor of a building, as slice_floor gives it.
 Layer slice_floor_layer(const Floor& floor, double layer_height_m, int k,
                         const SliceOptions& options = {});

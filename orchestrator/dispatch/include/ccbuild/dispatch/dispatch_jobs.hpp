@@ -37,6 +37,9 @@ struct DispatchJob {
   std::string plan;         ///< the schedule's plan key (deposit jobs), else ""
   std::string detail;       ///< what it is, in words
   machine::TimedPath path;  ///< times from the job's start; empty for jobs without a path
+  /// A deposit on a planned joint: the layer below's top was treated, so its piece ends are
+  /// not held to the maximum interval.
+  bool on_planned_joint = false;
 };
 
 /// Every job of `schedule` (as read_schedule gives it, re-validated), in the order they are

@@ -175,15 +175,40 @@ struct ClimbEvent {
   climb::ClimbPlan plan;
 };
 
+/// A lintel set over an opening before the first layer above its head.
+struct LintelTask {
+  std::string opening;  ///< its id, or "wall W at X m" when the file names none
+  std::int64_t wall = 0;
+  /// Along the wall from its start, m: the opening, and what the lintel covers (with
+  /// its bearings, clipped to the wall).
+  double offset_m = 0.0, width_m = 0.0, from_m = 0.0, to_m = 0.0;
+  /// The ends of what it covers, in the machine's frame (z: head_z_m), m.
+  Eigen::Vector2d start_m = Eigen::Vector2d::Zero(), end_m = Eigen::Vector2d::Zero();
+  double sill_m = 0.0, head_m = 0.0;  ///< above the floor's base
+  double head_z_m = 0.0;              ///< the head's elevation
+  floors::LintelSpec::Type type = floors::LintelSpec::Type::kFormwork;
+  double height_m = 0.0;  ///< precast: the element's depth
+  bool by_arm = false;
+};
+
 struct Event {
   /// kJoint: a planned joint's treatment, by the crew, before the layer above it.
-  enum class Kind { kPipe, kClimb, kSlab, kPurge, kJoint };
+  /// kSlab: the fixed slab stage, or (with `slabs:`) a slab's formwork and reinforcement;
+  /// kPour: a slab's pour; kLintel: a lintel set before the layer over its opening.
+  enum class Kind { kPipe, kClimb, kSlab, kPurge, kJoint, kLintel, kPour };
   Kind kind = Kind::kPipe;
   double start_s = 0.0, end_s = 0.0;
   int floor = 0, layer = 0;  ///< pipes: cast after this layer; slab: over this floor
+  int crew = 0;              ///< people on it (0: the machine alone)
+  /// Crew tasks (pipes, lintels, slabs, pours): waited for working hours before it, s
+  /// (a climb's wait is its ClimbEvent's).
+  double wait_before_s = 0.0;
   std::string detail;
   std::optional<climb::Anchor> anchor;  ///< pipes
   std::optional<ClimbEvent> climb;      ///< climbs
+  std::optional<LintelTask> lintel;     ///< lintels
+  double concrete_m3 = 0.0;             ///< pours: the slab's concrete
+  bool roof = false;                    ///< slab and pour: the roof over the top floor
 };
 std::string to_string(Event::Kind kind);
 
@@ -217,6 +242,8 @@ struct ScheduleTotals {
   double deposition_s = 0.0, airtime_s = 0.0;  ///< nozzle time
   double waits_s = 0.0, climbs_s = 0.0, slabs_s = 0.0, pipes_s = 0.0, purges_s = 0.0, moves_s = 0.0;
   double joints_s = 0.0;     ///< planned joints' treatments (crew time, not the machine's)
+  double lintels_s = 0.0;    ///< lintels set (the machine waits for them)
+  double crew_h = 0.0;       ///< person-hours: every event's crew times its duration
   double concrete_m3 = 0.0;  ///< the layers' concrete
   double machine_s = 0.0;    ///< the machine busy: layers, moves, pipes, purges, climbs
 };
@@ -236,6 +263,7 @@ struct WorkDay {
   double printing_s = 0.0;   ///< those layers' time
   double concrete_m3 = 0.0;  ///< those layers' concrete
   int deliveries = 0;        ///< due that day
+  double crew_h = 0.0;       ///< person-hours of the crew tasks that start that day
   /// How the day's printing ended: "planned-joint" (the next layer starts on one),
   /// "floor-top" (the floor's walls are done; its slab follows), "finished" (the building's
   /// walls are), "continues" (the next layer follows within its interval).
@@ -269,6 +297,7 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
 /// The days of `layers` and `events` on `calendar`: what was printed each day and how it
 /// stopped.
 std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
+                               const std::vector<Event>& events,
                                const std::vector<Delivery>& deliveries,
                                const SiteCalendar& calendar);
 

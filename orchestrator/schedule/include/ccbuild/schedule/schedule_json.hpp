@@ -74,6 +74,9 @@ struct RecordedInputs {
   std::string name;
   std::string units;  ///< "m" or "ft": the building's own unit
   double layer_height_m = 0.0, slab_stage_s = 0.0;
+  floors::LintelSpec lintels;  ///< how lintels are made (formwork by default)
+  /// Slabs poured and cured to a strength (`slabs:`); unset: the fixed slab stage.
+  std::optional<floors::SlabSpec> slabs;
   /// Where the building stood on the machine: every coordinate in the schedule is in the
   /// machine's frame. Absent in schedules older than placement: as drawn.
   Placement placement;

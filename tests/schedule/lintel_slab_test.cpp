@@ -1,0 +1,321 @@
+// Lintels and slabs: a lintel over every opening before the first layer at or over its head
+// (at the boundary: a head exactly at a layer's mid-height), the layers a precast lintel
+// lies in cut across its opening and bearings, a stop for lintels leaving a planned joint,
+// slabs formed and poured by a crew and cured to a strength before the next floor, the
+// roof, crew hours, and the building keys refused at their lines. On small fixtures and on
+// the bundled examples.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/slice.hpp"
+#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/schedule.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::schedule {
+namespace {
+namespace fs = std::filesystem;
+using testing::contains;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_lintel_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// The one-wall building (12.5 m, layers of 0.1 m) with a window on its wall up to
+/// `head_m` (none at 0) and `extra` building keys; `floors` floors of 2 m.
+fs::path one_wall_building(const fs::path& dir, double head_m, const std::string& extra,
+                           int floors = 1, const std::string& plan_file = "one_wall.yaml") {
+  const fs::path plan = fs::path(testing::source_path("tests/data/plans/" + plan_file));
+  const fs::path mix = fs::path(testing::source_path("tests/data/materials/quick-bond-mix.yaml"));
+  const fs::path machine = fs::path(testing::source_path("config/machines/cc-gantry.yaml"));
+  std::ofstream out(dir / "b.yaml");
+  out << "name: One wall\nunits: m\nlayer_height: 0.1\nmaterial: " << mix.string()
+      << "\nmachine: " << machine.string() << "\n"
+      << extra << "floors:\n";
+  for (int f = 0; f < floors; ++f) {
+    out << "  - name: f" << f << "\n    height: 2.0\n    plan: " << plan.string() << "\n";
+    if (head_m > 0)
+      out << "    openings: [{id: W" << f << ", kind: window, wall: 1, offset: 4.0, width: 1.2, "
+          << "sill: 0.6, head: " << head_m << "}]\n";
+  }
+  return dir / "b.yaml";
+}
+
+Schedule schedule_of(const orchestrator::Project& project) {
+  ScheduleOptions o;
+  o.jobs = 1;
+  Schedule s = build_schedule(project, o);
+  // Its JSON reads back under every rule (read_schedule's own checks, lintels and slabs too).
+  try {
+    parse_schedule(schedule_json(recorded_inputs(project, o), s).dump(1), "lintels.json");
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "its JSON does not read back: " << e.what();
+  }
+  return s;
+}
+
+std::vector<const Event*> events_of(const Schedule& s, Event::Kind kind) {
+  std::vector<const Event*> out;
+  for (const auto& e : s.events)
+    if (e.kind == kind) out.push_back(&e);
+  return out;
+}
+
+/// Every lintel: each layer of its floor whose mid-height is at or over the head starts
+/// after it, each one under it ends before it. Returns how many it checked.
+int check_lintels_precede_layers(const Schedule& s) {
+  int checked = 0;
+  for (const Event* e : events_of(s, Event::Kind::kLintel)) {
+    EXPECT_TRUE(e->lintel.has_value());
+    if (!e->lintel) continue;
+    ++checked;
+    for (const auto& l : s.layers) {
+      if (l.floor != e->floor) continue;
+      // A mid-height within a micrometre of the head may fall either side of it.
+      const double mid_m = 0.5 * (l.z_bottom_m + l.z_top_m);
+      if (mid_m >= e->lintel->head_z_m + 1e-6)
+        EXPECT_GE(l.start_s, e->end_s - 1e-9) << "floor " << l.floor << " layer " << l.layer
+                                              << " over opening " << e->lintel->opening;
+      else if (mid_m < e->lintel->head_z_m - 1e-6)
+        EXPECT_LE(l.end_s, e->start_s + 1e-9) << "floor " << l.floor << " layer " << l.layer
+                                              << " under opening " << e->lintel->opening;
+    }
+  }
+  return checked;
+}
+
+TEST(Lintels, ALintelGoesInBeforeTheFirstLayerAtOrOverItsHeadAtTheBoundary) {
+  // Head 1.25 m: layer 12 (1.2 to 1.3 m) has its mid-height exactly at the head, so it is
+  // the first no longer cut, and the lintel goes in before it; 1 mm higher, before layer 13.
+  for (const auto& [head_m, first_over] : {std::pair{1.25, 12}, std::pair{1.251, 13}}) {
+    const fs::path dir = scratch("boundary");
+    const auto project = orchestrator::open_project(
+        one_wall_building(dir, head_m, "lintels: {place_min: 10, crew: 3}\n"));
+    const Schedule s = schedule_of(project);
+    ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+    const auto lintels = events_of(s, Event::Kind::kLintel);
+    ASSERT_EQ(lintels.size(), 1u) << "head " << head_m;
+    const Event& e = *lintels[0];
+    EXPECT_EQ(e.layer, first_over - 1) << "head " << head_m;  // after the last layer open
+    EXPECT_NEAR(e.end_s - e.start_s, 600.0, 1e-9);
+    EXPECT_EQ(e.crew, 3);
+    EXPECT_EQ(e.lintel->opening, "W0");
+    EXPECT_NEAR(e.lintel->from_m, 4.0 - 0.15, 1e-9);  // the bearings
+    EXPECT_NEAR(e.lintel->to_m, 5.2 + 0.15, 1e-9);
+    EXPECT_EQ(check_lintels_precede_layers(s), 1);
+    // The layer over it waits for it; 600 s is over the mix's 200 s maximum, so it starts
+    // on a planned joint treated after the lintel.
+    const ScheduledLayer& over = s.layers[first_over];
+    EXPECT_TRUE(over.planned_joint);
+    EXPECT_GE(over.start_s, e.end_s + 1800.0 - 1e-9);
+    EXPECT_EQ(events_of(s, Event::Kind::kJoint).size(), 1u);
+    EXPECT_NEAR(s.totals.lintels_s, 600.0, 1e-9);
+    // Crew hours: the lintel's 3 people for 10 min and the joint's one for 30 min.
+    EXPECT_NEAR(s.totals.crew_h, 3 * 600.0 / 3600 + 1800.0 / 3600, 1e-9);
+  }
+}
+
+TEST(Lintels, AnOpeningUpToTheFloorsTopNeedsNone) {
+  const fs::path dir = scratch("full");
+  const auto project = orchestrator::open_project(one_wall_building(dir, 2.0, ""));
+  const Schedule s = schedule_of(project);
+  EXPECT_TRUE(events_of(s, Event::Kind::kLintel).empty());
+  EXPECT_TRUE(events_of(s, Event::Kind::kJoint).empty());
+}
+
+TEST(Lintels, APrecastLintelLeavesItsOpeningAndBearingsOutOfTheLayersItLiesIn) {
+  const fs::path dir = scratch("precast");
+  const auto project = orchestrator::open_project(one_wall_building(
+      dir, 1.2, "lintels: {type: precast, height: 0.2, bearing: 0.25, place_min: 15}\n"));
+  const floors::Building& b = project.building;
+  const auto layers = floors::slice_floor(b.floors[0], b.layer_height_m);
+  ASSERT_EQ(layers.size(), 20u);
+  const auto spans = [&](int k) {
+    std::vector<std::pair<double, double>> out;  // x of each piece, the wall runs along x
+    for (const auto& seg : layers[k].segments)
+      out.push_back(
+          {std::min(layers[k].points[seg.start_point].x(), layers[k].points[seg.end_point].x()),
+           std::max(layers[k].points[seg.start_point].x(), layers[k].points[seg.end_point].x())});
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  // The wall starts at x = 2: the window is x 6 to 7.2, with bearings 5.75 to 7.45.
+  using Spans = std::vector<std::pair<double, double>>;
+  const auto near = [](const Spans& a, const Spans& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (std::abs(a[i].first - b[i].first) > 1e-6 || std::abs(a[i].second - b[i].second) > 1e-6)
+        return false;
+    return true;
+  };
+  EXPECT_TRUE(near(spans(5), (Spans{{2.0, 14.5}})));              // under the sill
+  EXPECT_TRUE(near(spans(6), (Spans{{2.0, 6.0}, {7.2, 14.5}})));  // the window
+  EXPECT_TRUE(near(spans(11), (Spans{{2.0, 6.0}, {7.2, 14.5}})));
+  EXPECT_TRUE(near(spans(12), (Spans{{2.0, 5.75}, {7.45, 14.5}})));  // the lintel's band
+  EXPECT_TRUE(near(spans(13), (Spans{{2.0, 5.75}, {7.45, 14.5}})));
+  EXPECT_TRUE(near(spans(14), (Spans{{2.0, 14.5}})));  // printed over the lintel
+  const Schedule s = schedule_of(project);
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const auto lintels = events_of(s, Event::Kind::kLintel);
+  ASSERT_EQ(lintels.size(), 1u);
+  EXPECT_EQ(lintels[0]->layer, 11);  // set on the wall's top at the head
+  EXPECT_EQ(lintels[0]->lintel->type, floors::LintelSpec::Type::kPrecast);
+  EXPECT_EQ(check_lintels_precede_layers(s), 1);
+}
+
+TEST(Lintels, EveryOpeningOfEveryExampleGetsOneBeforeTheFirstLayerOverIt) {
+  for (const std::string name : {"house", "apartment", "tower"}) {
+    const auto project =
+        orchestrator::open_project(testing::source_path("config/buildings/" + name + ".yaml"));
+    const Schedule s = schedule_of(project);
+    ASSERT_TRUE(s.feasible) << name << ": " << s.infeasibility->message;
+    // Openings whose head some printed layer of their floor reaches.
+    int want = 0;
+    for (const auto& f : project.building.floors)
+      for (const auto& o : f.plan.openings)
+        for (const auto& l : s.layers)
+          if (l.floor == f.index &&
+              0.5 * (l.z_bottom_m + l.z_top_m) - f.base_elevation_m >= o.head_m) {
+            ++want;
+            break;
+          }
+    EXPECT_GT(want, 0) << name;
+    EXPECT_EQ(check_lintels_precede_layers(s), want) << name;
+    // The tower's slabs: formed and poured over each floor but the top, and its roof.
+    if (!project.building.slabs) continue;
+    const int floors = static_cast<int>(project.building.floors.size());
+    const auto setups = events_of(s, Event::Kind::kSlab);
+    const auto pours = events_of(s, Event::Kind::kPour);
+    ASSERT_EQ(static_cast<int>(setups.size()), floors) << name;
+    ASSERT_EQ(static_cast<int>(pours.size()), floors) << name;
+    for (int f = 0; f < floors; ++f) {
+      EXPECT_EQ(pours[f]->floor, f);
+      EXPECT_EQ(pours[f]->roof, f + 1 == floors);
+      EXPECT_GT(pours[f]->concrete_m3, 0.0);
+    }
+  }
+}
+
+TEST(Lintels, AfterAShortStopAPlanThatKeepsTheIntervalIsPreferredToAJoint) {
+  // Two gantries, a mix that needs both, lintels set by the arm in 3 s: over the ground
+  // floor's heads a plan following the layer below, a gantry held back, keeps every
+  // interval, so no planned joint is made there.
+  orchestrator::ProjectOptions open;
+  open.machine_profile = testing::source_path("tests/data/machines/two-gantries.yaml");
+  open.material_profile = testing::source_path("tests/data/materials/two-gantry-mix.yaml");
+  const auto project = orchestrator::open_project(
+      testing::source_path("tests/data/buildings/house-arm-lintels.yaml"), open);
+  const Schedule s = schedule_of(project);
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const auto over = std::find_if(s.layers.begin(), s.layers.end(), [](const ScheduledLayer& l) {
+    return l.floor == 0 && l.layer == 21;
+  });
+  ASSERT_NE(over, s.layers.end());
+  EXPECT_FALSE(over->planned_joint);
+  EXPECT_NE(over->plan.find('~'), std::string::npos) << over->plan;  // follows the layer below
+  EXPECT_LE(*over->local_interval_max_s, project.material.max_layer_interval_s + 1e-6);
+  EXPECT_EQ(check_lintels_precede_layers(s), 48);
+}
+
+TEST(Slabs, EachFloorsSlabIsFormedPouredAndCuredBeforeTheNextFloorAndTheRoofLast) {
+  const fs::path dir = scratch("slabs");
+  const auto project = orchestrator::open_project(
+      one_wall_building(dir, 0.0,
+                        "slabs: {thickness: 0.25, setup_h: 2, pour_m3_h: 10, ready_mpa: 5, "
+                        "concrete: {fcm_mpa: 38, cement_class: N}, crew: 5}\n",
+                        2, "two_metre_room.yaml"));
+  const Schedule s = schedule_of(project);
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const auto setups = events_of(s, Event::Kind::kSlab);
+  const auto pours = events_of(s, Event::Kind::kPour);
+  ASSERT_EQ(setups.size(), 2u);  // the slab over floor 0 and the roof
+  ASSERT_EQ(pours.size(), 2u);
+  EXPECT_FALSE(pours[0]->roof);
+  EXPECT_TRUE(pours[1]->roof);
+  // 2 m x 2 m x 0.25 m = 1 m³ at 10 m³/h: 360 s.
+  EXPECT_NEAR(pours[0]->concrete_m3, 1.0, 1e-9);
+  EXPECT_NEAR(pours[0]->end_s - pours[0]->start_s, 360.0, 1e-6);
+  EXPECT_NEAR(setups[0]->end_s - setups[0]->start_s, 7200.0, 1e-9);
+  EXPECT_NEAR(pours[0]->start_s, setups[0]->end_s, 1e-9);
+  EXPECT_EQ(pours[0]->crew, 5);
+  // EN 1992-1-1 with s = 0.25: 5 MPa of 38 at t = 28 / (1 - ln(5/38)/0.25)^2 days.
+  const double ready_age_s = 28 * 86400.0 / std::pow(1 - std::log(5.0 / 38.0) / 0.25, 2);
+  EXPECT_NEAR(ready_age_s / 3600.0, 8.09, 0.01);
+  const ScheduledLayer* first_up = nullptr;
+  for (const auto& l : s.layers)
+    if (l.floor == 1) {
+      first_up = &l;
+      break;
+    }
+  ASSERT_NE(first_up, nullptr);
+  // It starts (after the purge its nozzle needs, idle since the floor below) at that age.
+  const double purge_s = first_up->purge_before ? project.machine->purge_s : 0.0;
+  EXPECT_NEAR(first_up->start_s - purge_s, pours[0]->end_s + ready_age_s, 1e-3);
+  ASSERT_FALSE(first_up->wait_reasons.empty());
+  EXPECT_EQ(first_up->wait_reasons.back().kind, WaitKind::kSlab);
+  // The roof after the top floor's last layer, and the makespan its pour's end.
+  EXPECT_GE(setups[1]->start_s, s.layers.back().end_s - 1e-9);
+  EXPECT_NEAR(s.totals.makespan_s, pours[1]->end_s, 1e-9);
+  EXPECT_NEAR(s.totals.slabs_s, 2 * (7200.0 + 360.0), 1e-6);
+  EXPECT_NEAR(s.totals.crew_h, 5 * 2 * (7200.0 + 360.0) / 3600.0, 1e-6);
+}
+
+TEST(Slabs, TheAreaIsTheConvexHullOfTheFloorsPlan) {
+  floors::Floor f;
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+           {0, 0}, {4, 0}, {4, 2}, {2, 2}, {2, 4}, {0, 4}, {1, 1}})  // an L and a point inside
+    f.plan.vertices.push_back(
+        {static_cast<std::int64_t>(f.plan.vertices.size() + 1), Eigen::Vector2d(x, y), {}});
+  EXPECT_NEAR(floors::slab_area_m2(f), 14.0, 1e-12);  // the L's 12 m² and the corner's 2
+  f.plan.vertices.resize(2);
+  EXPECT_EQ(floors::slab_area_m2(f), 0.0);
+}
+
+TEST(Slabs, ASlabStageAndSlabsTogetherAndBadLintelsAreRefusedAtTheirKeys) {
+  struct Case {
+    std::string extra, field, says;
+  };
+  const Case cases[] = {
+      {"slab_stage_h: 8\nslabs: {setup_h: 2}\n", "slabs", "not both"},
+      {"slabs: {ready_mpa: 60}\n", "slabs.ready_mpa", "never reaches"},
+      {"slabs: {pour_m3_h: 0}\n", "slabs.pour_m3_h", ""},
+      {"slabs: {crew: 2.5}\n", "slabs.crew", "whole number"},
+      {"slabs: {concrete: {fcm_mpa: 38, cement_class: X}}\n", "slabs.concrete.cement_class",
+       "R, N or S"},
+      {"slabs: {depth: 1}\n", "slabs.depth", ""},
+      {"lintels: {type: precast}\n", "lintels", "height"},
+      {"lintels: {height: 0.2}\n", "lintels.height", "only a precast"},
+      {"lintels: {type: steel}\n", "lintels.type", "precast"},
+      {"lintels: {by: arm, crew: 2}\n", "lintels.crew", "no crew"},
+      {"lintels: {place_min: 0}\n", "lintels.place_min", ""},
+  };
+  for (const auto& c : cases) {
+    const fs::path dir = scratch("bad");
+    const fs::path path = one_wall_building(dir, 1.2, c.extra);
+    try {
+      orchestrator::open_project(path);
+      ADD_FAILURE() << "accepted: " << c.extra;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.first().file, path.string()) << c.extra;
+      EXPECT_GT(e.first().line, 0) << c.extra;
+      EXPECT_EQ(e.first().field, c.field) << c.extra << ": " << e.what();
+      EXPECT_TRUE(contains(e.what(), c.says)) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule
