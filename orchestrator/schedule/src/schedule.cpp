@@ -914,6 +914,21 @@ bool Scheduler::after_layer(int i) {
   return true;
 }
 
+std::optional<Event> Scheduler::crew_task(Event::Kind kind, double& t_s, double duration_s,
+                                          int crew, bool needs_crew, const std::string& what,
+                                          int floor, int layer) {
+  const double ready_s = t_s;
+  t_s = crew_start_s(t_s, duration_s, needs_crew, what, floor, layer);
+  if (!std::isfinite(t_s)) return std::nullopt;
+  Event e;
+  e.kind = kind;
+  e.wait_before_s = t_s - ready_s;
+  e.start_s = t_s;
+  e.end_s = t_s += duration_s;
+  e.crew = crew;
+  return e;
+}
+
 double Scheduler::crew_start_s(double t_s, double duration_s, bool needs_crew,
                                const std::string& what, int floor, int layer) {
   if (!calendar_ || !needs_crew) return t_s;
@@ -945,18 +960,13 @@ double Scheduler::place_lintels(int next, double t_s) {
   for (const auto& task : it->second) {
     const std::string what = "the lintel over opening " + task.opening;
     const bool needs_crew = !spec.by_arm || printing_attended();
-    const double ready_s = t_s;
-    t_s = crew_start_s(t_s, spec.place_s, needs_crew, what, before.floor, before.layer.index);
-    if (!std::isfinite(t_s)) return t_s;
-    Event e;
-    e.wait_before_s = t_s - ready_s;
-    e.kind = Event::Kind::kLintel;
-    e.start_s = t_s;
-    e.end_s = t_s += spec.place_s;
+    auto made = crew_task(Event::Kind::kLintel, t_s, spec.place_s, spec.crew, needs_crew, what,
+                          before.floor, before.layer.index);
+    if (!made) return kInf;
+    Event& e = *made;
     // Named after the layer it follows, like every event.
     e.floor = schedule_.layers.back().floor;
     e.layer = schedule_.layers.back().layer;
-    e.crew = spec.crew;
     e.detail = printf_string(
         "%s lintel over opening %s (wall %lld, %.3f to %.3f m), head at %.3f m, by %s, before "
         "floor %d layer %d",
@@ -978,48 +988,38 @@ double Scheduler::pour_slab(const ScheduledLayer& top, bool roof, double t_s) {
   const std::string what = roof ? "the roof over floor " + std::to_string(top.floor)
                                 : "the slab over floor " + std::to_string(top.floor);
   // Formwork and reinforcement, then one continuous pour, each within working hours.
-  double ready_s = t_s;
-  t_s = crew_start_s(t_s, spec.setup_s, true, "the formwork of " + what, top.floor, top.layer);
-  if (!std::isfinite(t_s)) return t_s;
-  Event setup;
-  setup.wait_before_s = t_s - ready_s;
-  setup.kind = Event::Kind::kSlab;
-  setup.start_s = t_s;
-  setup.end_s = t_s += spec.setup_s;
-  setup.floor = top.floor;
-  setup.layer = top.layer;
-  setup.crew = spec.crew;
-  setup.roof = roof;
-  setup.detail = "formwork and reinforcement of " + what;
-  schedule_.events.push_back(setup);
+  auto setup = crew_task(Event::Kind::kSlab, t_s, spec.setup_s, spec.crew, true,
+                         "the formwork of " + what, top.floor, top.layer);
+  if (!setup) return kInf;
+  setup->floor = top.floor;
+  setup->layer = top.layer;
+  setup->roof = roof;
+  setup->detail = "formwork and reinforcement of " + what;
+  schedule_.events.push_back(std::move(*setup));
 
   const double thickness_m = floor ? floor->slab_m : spec.thickness_m;
   const double m3 = rounded((floor ? floors::slab_area_m2(*floor) : 0.0) * thickness_m);
   const double pour_s = m3 / spec.pour_rate_m3_s;
-  ready_s = t_s;
-  t_s = crew_start_s(t_s, pour_s, true, "the pour of " + what, top.floor, top.layer);
-  if (!std::isfinite(t_s)) return t_s;
-  Event pour;
-  pour.wait_before_s = t_s - ready_s;
-  pour.kind = Event::Kind::kPour;
-  pour.start_s = t_s;
-  pour.end_s = t_s += pour_s;
+  auto made = crew_task(Event::Kind::kPour, t_s, pour_s, spec.crew, true, "the pour of " + what,
+                        top.floor, top.layer);
+  if (!made) return kInf;
+  Event& pour = *made;
   pour.floor = top.floor;
   pour.layer = top.layer;
-  pour.crew = spec.crew;
   pour.roof = roof;
   pour.concrete_m3 = m3;
   pour.detail = printf_string("pour of %s: %.2f m³ (%.3f m thick) at %.1f m³/h", what.c_str(), m3,
                               thickness_m, spec.pour_rate_m3_s * 3600.0);
-  schedule_.events.push_back(pour);
+  const double pour_end_s = pour.end_s;
+  schedule_.events.push_back(std::move(pour));
   if (!roof) {
     // The next floor's walls start once the slab's concrete carries them (EN 1992-1-1
     // §3.1.2, its age equivalent at 20 °C with the site's weather).
     const double age_s = spec.concrete.age_for_strength_s(spec.ready_mpa);
-    slab_ready_s_ = aged_s(pour.end_s, age_s);
+    slab_ready_s_ = aged_s(pour_end_s, age_s);
     slab_ready_detail_ =
         printf_string("%s reaches %.1f MPa %.1f h (equivalent at 20 °C) after its pour ends at %s",
-                      what.c_str(), spec.ready_mpa, age_s / 3600.0, when_text(pour.end_s).c_str());
+                      what.c_str(), spec.ready_mpa, age_s / 3600.0, when_text(pour_end_s).c_str());
   }
   return t_s;
 }

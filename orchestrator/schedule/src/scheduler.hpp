@@ -144,6 +144,10 @@ class Scheduler {
   /// `slabs:`: formwork and reinforcement, then the pour, each in working hours; sets when
   /// the slab carries the next floor. Returns the pour's end (+infinity: no window holds it).
   double pour_slab(const ScheduledLayer& top, bool roof, double t_s);
+  /// A crew task of `kind` for `duration_s` from `t_s` (see crew_start_s), with its wait,
+  /// start, end and crew; `t_s` moves to its end. Unset (after failing): no window holds it.
+  std::optional<Event> crew_task(Event::Kind kind, double& t_s, double duration_s, int crew,
+                                 bool needs_crew, const std::string& what, int floor, int layer);
   /// The start of `duration_s` of crew work from `t_s` (working hours when there is a
   /// calendar; a wait there lets the next layer start on a planned joint); +infinity, after
   /// failing with `what`, when no window holds it.
