@@ -2,7 +2,8 @@
 // The scheduler behind build_schedule (schedule.hpp), internal to the orchestrator: its
 // plans (schedule_plans.cpp: each geometry at each nozzle count, the plans that follow
 // the layer below, their registration under plan keys) and its walk up the building
-// (schedule.cpp: nozzles, intervals, waits, pipes, slabs, climbs, totals).
+// (schedule.cpp: nozzles, intervals, waits, pipes, slabs, climbs, totals) and its crew tasks
+// (schedule_crew.cpp: lintels, slab formwork and pours).
 
 #include <chrono>
 #include <functional>
