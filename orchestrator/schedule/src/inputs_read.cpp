@@ -210,6 +210,18 @@ void read_material(const JsonAt& m, RecordedInputs& in) {
 
 }  // namespace
 
+void read_lintel_kind(const JsonAt& j, floors::LintelSpec::Type& type, bool& by_arm) {
+  const std::string name = j.at("type").string(20);
+  if (name != "precast" && name != "formwork")
+    j.at("type").refuse("expected \"precast\" or \"formwork\", got \"" + name + "\"");
+  type =
+      name == "precast" ? floors::LintelSpec::Type::kPrecast : floors::LintelSpec::Type::kFormwork;
+  const std::string by = j.at("by").string(10);
+  if (by != "crew" && by != "arm")
+    j.at("by").refuse("expected \"crew\" or \"arm\", got \"" + by + "\"");
+  by_arm = by == "arm";
+}
+
 RecordedInputs read_inputs(const JsonAt& root) {
   RecordedInputs in;
   in.ccbuild_version = root.at("ccbuild_version").string(100);
@@ -279,19 +291,11 @@ RecordedInputs read_inputs(const JsonAt& root) {
   }
   if (const auto l = i.maybe("lintels")) {
     l->only_keys({"type", "height_m", "bearing_m", "place_s", "crew", "by"});
-    const std::string type = l->at("type").string(20);
-    if (type != "precast" && type != "formwork")
-      l->at("type").refuse("expected \"precast\" or \"formwork\", got \"" + type + "\"");
-    in.lintels.type = type == "precast" ? floors::LintelSpec::Type::kPrecast
-                                        : floors::LintelSpec::Type::kFormwork;
+    read_lintel_kind(*l, in.lintels.type, in.lintels.by_arm);
     in.lintels.height_m = l->at("height_m").number(floors::limits::kLintelHeight_m, "m");
     in.lintels.bearing_m = l->at("bearing_m").number(floors::limits::kLintelBearing_m, "m");
     in.lintels.place_s = l->at("place_s").number(floors::limits::kLintelPlace_s, "s");
     in.lintels.crew = static_cast<int>(l->at("crew").integer(0, 100));
-    const std::string by = l->at("by").string(10);
-    if (by != "crew" && by != "arm")
-      l->at("by").refuse("expected \"crew\" or \"arm\", got \"" + by + "\"");
-    in.lintels.by_arm = by == "arm";
   }
   if (const auto sl = i.maybe("slabs")) {
     sl->only_keys({"thickness_m", "setup_s", "pour_m3_h", "ready_mpa", "concrete", "crew", "roof"});

@@ -447,16 +447,8 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     task.head_m = l.at("head_m").number(Range::closed(0, 1e3), "m");
     if (task.head_m <= task.sill_m) l.at("head_m").refuse("must be above sill_m");
     task.head_z_m = l.at("head_z_m").number(kCoordinate_m, "m");
-    const std::string type = l.at("type").string(20);
-    if (type != "precast" && type != "formwork")
-      l.at("type").refuse("expected \"precast\" or \"formwork\", got \"" + type + "\"");
-    task.type = type == "precast" ? floors::LintelSpec::Type::kPrecast
-                                  : floors::LintelSpec::Type::kFormwork;
+    read_lintel_kind(l, task.type, task.by_arm);
     task.height_m = l.at("height_m").number(Range::closed(0, 10), "m");
-    const std::string by = l.at("by").string(10);
-    if (by != "crew" && by != "arm")
-      l.at("by").refuse("expected \"crew\" or \"arm\", got \"" + by + "\"");
-    task.by_arm = by == "arm";
     e.lintel = std::move(task);
   } else if (kind == "climb") {
     e.kind = Event::Kind::kClimb;
