@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/machine/path_chunks.hpp"
 #include "ccbuild_lcm/ccbuild_ack_t.hpp"
+#include "ccbuild_lcm/ccbuild_clock_t.hpp"
 #include "ccbuild_lcm/ccbuild_command_t.hpp"
 #include "ccbuild_lcm/ccbuild_done_t.hpp"
 #include "ccbuild_lcm/ccbuild_fault_t.hpp"
@@ -44,6 +46,13 @@ constexpr double kRounding = 1e-6;
 /// a turn that takes longer than its travel is, stays within it once rounded.
 bool over_limit(double delta, double dt_s, double limit) {
   return std::abs(delta) - kRounding > limit * (dt_s + kRounding) * (1.0 + 1e-9);
+}
+
+/// The fault a job ended on, as the record words it and as the wire codes it.
+std::int8_t fault_code(const std::string& word) {
+  return word == "clog"         ? ccbuild_fault_t::PUMP_CLOG
+         : word == "pin-missed" ? ccbuild_fault_t::PIN_MISSED
+                                : 0;
 }
 
 /// The ends of each extruding run of one wall piece: (waypoint, wall) pairs.
@@ -153,6 +162,7 @@ SimMachine::SimMachine(Bus& bus, SimOptions options)
   if (!options_.state_file.empty() && std::filesystem::exists(options_.state_file)) {
     for (const RecordedJob& r : read_machine_record(options_.state_file)) {
       done_[r.job_id] = {r.start_s, r.end_s, r.at, r.ok, r.stopped_at, r.fault};
+      last_ended_ = {r.job_id, fault_code(r.fault), r.start_s, r.end_s, r.stopped_at};
       if (r.fault == "clog") clogged_once_ = true;
       executed_.push_back(r.job_id);
       position_ = r.at;
@@ -169,6 +179,12 @@ SimMachine::SimMachine(Bus& bus, SimOptions options)
       channel("PATH", id), [this](const ccbuild_lcm::ccbuild_path_chunk_t& c) {
         if (!replayed("PATH", c.utime, c.seq)) arrive([this, c] { on_chunk(c); });
       });
+  if (options_.site_clock)
+    bus_.subscribe<ccbuild_lcm::ccbuild_clock_t>(
+        kClockChannel, [this](const ccbuild_lcm::ccbuild_clock_t& c) {
+          if (!replayed("CLOCK", c.utime, c.seq))
+            arrive([this, c] { on_clock(c.tick, c.sim_time_s); });
+        });
   bus_.subscribe<ccbuild_lcm::ccbuild_command_t>(
       channel("COMMAND", id), [this](const ccbuild_lcm::ccbuild_command_t& c) {
         if (c.machine_id != options_.machine_id) {
@@ -302,10 +318,10 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
   if (options_.model)
     if (auto breach = limit_breach(*options_.model, path, options_.check_z_range)) return breach;
   // A pin into an anchor younger than the anchor strength needs.
-  if (job.kind == ccbuild_job_t::CLIMB_PHASE && options_.anchor_min_age_s > 0.0) {
-    const auto at = job.detail.find(": insert ");
-    if (at != std::string::npos) {
-      const std::string unit = job.detail.substr(at + 9);
+  if (job.kind == ccbuild_job_t::CLIMB_PHASE && job.phase == ccbuild_job_t::INSERT &&
+      options_.anchor_min_age_s > 0.0) {
+    {
+      const std::string& unit = job.unit;
       const auto pipe = pipes_.find(unit);
       if (pipe != pipes_.end() && start_s - pipe->second < options_.anchor_min_age_s - 1e-3)
         return std::pair<std::int8_t, std::string>(
@@ -371,20 +387,20 @@ void SimMachine::try_start() {
                           ordered ? "increasing" : "going back", last_t, job.duration_s));
       return;
     }
-    const double start_s = std::max(clock_s_, job.start_s);  // idle time passes at once
+    // On its own clock idle time passes at once; on the site clock the job waits for it.
+    const double start_s = std::max(clock_s_, job.start_s);
     if (const auto why = refusal(job, path, start_s)) {
       acknowledge(job.job_id, false, false, why->second);
       fault(job.job_id, why->first, why->second);
       return;
     }
-    acknowledge(job.job_id, true, false, "");
-    clock_s_ = start_s;
-    // A wait or a slab stage is the machine idle: its time passes at once.
+    if (!options_.site_clock) clock_s_ = start_s;
+    // A wait or a slab stage is the machine idle: on its own clock its time passes at once.
     const bool idle = job.kind == ccbuild_job_t::WAIT || job.kind == ccbuild_job_t::SLAB;
     Running run;
     run.job = job;
     run.path = std::move(path);
-    run.started_s = clock_s_;
+    run.started_s = start_s;
     // Injected: a clog part-way through the layer, at the first extruding waypoint past
     // 40% of its time; a pin that misses its pipe at the end of its insertion.
     if (job.kind == ccbuild_job_t::DEPOSIT && job.floor == options_.clog_floor &&
@@ -400,16 +416,20 @@ void SimMachine::try_start() {
           break;
         }
     }
-    if (job.kind == ccbuild_job_t::CLIMB_PHASE &&
-        job.detail.find(": insert") != std::string::npos && pin_failures_left_ > 0) {
+    if (job.kind == ccbuild_job_t::CLIMB_PHASE && job.phase == ccbuild_job_t::INSERT &&
+        pin_failures_left_ > 0) {
       --pin_failures_left_;
       run.stop_fault = ccbuild_fault_t::PIN_MISSED;
       run.stop_elapsed_s = job.duration_s;
       run.stop_point = 0;
       run.stop_message = "the pin did not find its pipe (" + job.detail + ")";
     }
-    if (idle) run.elapsed_s = job.duration_s;
+    if (idle && !options_.site_clock) run.elapsed_s = job.duration_s;
     current_ = std::move(run);
+    // On the site clock the orchestrator decides the next step from the statuses: the
+    // status that says the job is current goes before its acknowledgement.
+    if (options_.site_clock) publish_status();
+    acknowledge(job.job_id, true, false, "");
     return;
   }
 }
@@ -437,6 +457,29 @@ void SimMachine::follow(double elapsed_s) {
   position_ = at;
 }
 
+void SimMachine::maybe_stall() {
+  if (options_.stall_at_s < 0.0 || stalled_rail_m_ || clock_s_ < options_.stall_at_s) return;
+  const int rail = options_.model && options_.model->rail_axis == RailAxis::kY ? 1 : 0;
+  stalled_rail_m_ = position_[rail];
+  say(printf_string("ccbuild-sim %s: (injected) the rail axis stalled at %.3f m\n",
+                    options_.machine_id.c_str(), *stalled_rail_m_));
+}
+
+void SimMachine::report_progress() {
+  Running& run = *current_;
+  const double fraction =
+      run.job.duration_s > 0 ? std::min(1.0, run.elapsed_s / run.job.duration_s) : 1.0;
+  // Progress in tenths, not at every step: the bus stays quiet.
+  if (fraction >= run.reported + 0.1 || fraction >= 1.0) {
+    run.reported = fraction;
+    auto p = stamped<ccbuild_lcm::ccbuild_progress_t>();
+    p.job_id = run.job.job_id;
+    p.fraction = fraction;
+    p.sim_time_s = clock_s_;
+    send("PROGRESS", p);
+  }
+}
+
 void SimMachine::step(double real_dt_s) {
   real_s_ += real_dt_s;
   if (!delayed_.empty()) {
@@ -450,37 +493,76 @@ void SimMachine::step(double real_dt_s) {
       }
     for (auto& handle : due) handle();
   }
-  if (options_.stall_at_s >= 0.0 && !stalled_rail_m_ && clock_s_ >= options_.stall_at_s) {
-    const int rail = options_.model && options_.model->rail_axis == RailAxis::kY ? 1 : 0;
-    stalled_rail_m_ = position_[rail];
-    say(printf_string("ccbuild-sim %s: (injected) the rail axis stalled at %.3f m\n",
-                      options_.machine_id.c_str(), *stalled_rail_m_));
+  real_since_status_s_ += real_dt_s;
+  if (options_.site_clock) {
+    // Time moves only with the site clock; the last status again is the heartbeat.
+    if (real_since_status_s_ >= 0.25) republish_status();
+    return;
   }
+  maybe_stall();
   if (current_ && !paused_) {
     Running& run = *current_;
     run.elapsed_s += real_dt_s * options_.speed;
     const double end_s = run.stop_fault ? run.stop_elapsed_s : run.job.duration_s;
     clock_s_ = run.started_s + std::min(run.elapsed_s, end_s);
     follow(std::min(run.elapsed_s, end_s));
-    const double fraction =
-        run.job.duration_s > 0 ? std::min(1.0, run.elapsed_s / run.job.duration_s) : 1.0;
-    // Progress in tenths, not at every step: the bus stays quiet.
-    if (fraction >= run.reported + 0.1 || fraction >= 1.0) {
-      run.reported = fraction;
-      auto p = stamped<ccbuild_lcm::ccbuild_progress_t>();
-      p.job_id = run.job.job_id;
-      p.fraction = fraction;
-      p.sim_time_s = clock_s_;
-      send("PROGRESS", p);
-    }
+    report_progress();
     if (run.elapsed_s >= end_s) finish(run.stop_fault == 0);
   }
   // Status every status_period_s of the machine's clock, and while it waits at least
   // four times a real second: the heartbeat.
-  real_since_status_s_ += real_dt_s;
   if (clock_s_ - last_status_s_ >= options_.status_period_s || real_since_status_s_ >= 0.25)
     publish_status();
   if (!paused_) try_start();
+}
+
+void SimMachine::on_clock(std::int64_t tick, double sim_time_s) {
+  // A tick answered before (repeated, or reordered behind a later one): the status again.
+  if (tick <= last_tick_ || !std::isfinite(sim_time_s)) {
+    republish_status();
+    return;
+  }
+  advance_to(sim_time_s);
+  last_tick_ = tick;
+  publish_status();
+}
+
+void SimMachine::advance_to(double t_s) {
+  for (;;) {
+    if (!current_ && !paused_) try_start();
+    if (!current_ || paused_) break;
+    Running& run = *current_;
+    const double from_s = std::max(clock_s_, run.started_s);
+    if (from_s > t_s) break;  // it starts after this tick
+    const double end_elapsed_s = run.stop_fault ? run.stop_elapsed_s : run.job.duration_s;
+    // Up to the tick, or to the stall first.
+    double to_s = t_s;
+    if (options_.stall_at_s >= 0.0 && !stalled_rail_m_ && options_.stall_at_s > from_s)
+      to_s = std::min(to_s, options_.stall_at_s);
+    const double end_s = from_s + (end_elapsed_s - run.elapsed_s);
+    if (end_s <= to_s) {
+      run.elapsed_s = end_elapsed_s;
+      clock_s_ = end_s;
+      follow(run.elapsed_s);
+      maybe_stall();
+      report_progress();
+      const bool faulted = run.stop_fault != 0;
+      finish(!faulted);
+      // A job that ended on a fault holds the machine's clock there, standing still, so
+      // that what recovers from it (a purge, a pin again, the rest of the path) starts
+      // from the fault, not from the tick.
+      if (faulted) return;
+      continue;
+    }
+    run.elapsed_s += to_s - from_s;
+    clock_s_ = to_s;
+    follow(run.elapsed_s);
+    maybe_stall();
+    report_progress();
+    if (to_s >= t_s) break;
+  }
+  clock_s_ = std::max(clock_s_, t_s);
+  maybe_stall();
 }
 
 void SimMachine::finish(bool completed) {
@@ -494,7 +576,11 @@ void SimMachine::finish(bool completed) {
   // The record first: a machine that dies now still knows the job is done.
   if (!options_.state_file.empty()) {
     FILE* f = std::fopen(options_.state_file.c_str(), "a");
-    CCBUILD_CHECK(f != nullptr, "cannot append to " + options_.state_file.string());
+    // Not a crash to be restarted from: the machine cannot keep its record at all.
+    if (f == nullptr)
+      throw InputError(
+          options_.state_file.string(), 0, "--state",
+          std::string("cannot append to the machine's record: ") + std::strerror(errno));
     std::fprintf(f, "%lld %.17g %.17g %.17g %.17g %.17g %.17g",
                  static_cast<long long>(run.job.job_id), run.started_s, end_s, position_[0],
                  position_[1], position_[2], position_[3]);
@@ -505,14 +591,13 @@ void SimMachine::finish(bool completed) {
     std::fclose(f);
   }
   done_[run.job.job_id] = {run.started_s, end_s, position_, completed, stopped_at, fault_word};
+  last_ended_ = {run.job.job_id, fault_code(fault_word), run.started_s, end_s, stopped_at};
   executed_.push_back(run.job.job_id);
   clock_s_ = end_s;
   if (run.stop_fault == ccbuild_fault_t::PUMP_CLOG) clogged_once_ = true;
   // The pipes it placed, for the anchors' age.
-  if (run.job.kind == ccbuild_job_t::PIPE && completed) {
-    const auto at = run.job.detail.find(" for unit ");
-    if (at != std::string::npos) pipes_[run.job.detail.substr(at + 10)] = end_s;
-  }
+  if (run.job.kind == ccbuild_job_t::PIPE && completed && !run.job.unit.empty())
+    pipes_[run.job.unit] = end_s;
   // The piece ends it laid, for the interval check of the layer above.
   if (run.job.kind == ccbuild_job_t::DEPOSIT) {
     auto& ends = deposited_[{run.job.floor, run.job.layer}];
@@ -557,6 +642,7 @@ void SimMachine::publish_done(std::int64_t job_id, double started_s, double fini
   d.started_s = started_s;
   d.finished_s = finished_s;
   d.stopped_at = stopped_at;
+  d.fault = fault_code(detail);
   d.detail = detail;
   send("DONE", d);
 }
@@ -577,7 +663,36 @@ void SimMachine::publish_status() {
   s.y_m = position_[1];
   s.z_m = position_[2];
   s.heading_cumulative_rad = position_[3];
-  s.pump_on = current_ && !paused_ && current_->job.kind == ccbuild_job_t::DEPOSIT;
+  s.pump_on = current_ && !paused_ && current_->job.kind == ccbuild_job_t::DEPOSIT &&
+              current_->started_s <= clock_s_;
+  s.tick = options_.site_clock ? last_tick_ : 0;
+  s.started_s = current_ ? current_->started_s : 0.0;
+  s.idle_until_s = -1.0;
+  if (current_ && !paused_) {
+    const Running& run = *current_;
+    const bool idle = run.job.kind == ccbuild_job_t::WAIT || run.job.kind == ccbuild_job_t::SLAB;
+    s.idle_until_s = run.started_s > clock_s_ ? run.started_s
+                     : idle                   ? run.started_s + run.job.duration_s
+                                              : clock_s_;
+  }
+  s.last_job_id = last_ended_.job_id;
+  s.last_fault = last_ended_.fault;
+  s.last_started_s = last_ended_.started_s;
+  s.last_finished_s = last_ended_.finished_s;
+  s.last_stopped_at = last_ended_.stopped_at;
+  last_status_ = s;
+  send("STATUS", s);
+}
+
+void SimMachine::republish_status() {
+  if (!last_status_) {
+    publish_status();
+    return;
+  }
+  real_since_status_s_ = 0.0;
+  auto s = *last_status_;
+  s.utime = utime_now();
+  s.seq = next_seq();
   send("STATUS", s);
 }
 

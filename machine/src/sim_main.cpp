@@ -28,8 +28,10 @@ extern "C" void on_stop(int) {
 int main(int argc, char** argv) {
   CLI::App app(
       "ccbuild-sim: a simulated Contour Crafting machine on the LCM bus. It takes the jobs "
-      "for its machine id as a real machine would, runs them on its own clock at --speed "
-      "(idle time passes at once), keeps its own record of the jobs it ran in --state (read "
+      "for its machine id as a real machine would and runs them on the site clock "
+      "(CCBUILD_CLOCK: it simulates up to each tick's time and answers with its status for "
+      "that instant), or with --own-clock on its own clock at --speed (idle time passes at "
+      "once), as real hardware runs. It keeps its own record of the jobs it ran in --state (read "
       "back when it restarts), acknowledges a job it has seen again without running it "
       "twice, and refuses jobs out of order, paths that do not add up or break its URDF's "
       "limits (--machine), and layers that would cover its layer below too early or too late "
@@ -41,14 +43,19 @@ int main(int argc, char** argv) {
   ccbuild::machine::SimOptions options;
   std::string url = "udpm://239.255.76.67:7667?ttl=0";
   std::string state;
-  bool climbing = false;
+  bool climbing = false, own_clock = false;
   app.add_option("--machine-id", options.machine_id, "The machine it is")->capture_default_str();
   app.add_option("--lcm-url", url, "LCM provider URL (ttl=0: this host only)")
       ->capture_default_str();
-  app.add_option("--speed", options.speed, "Simulated seconds per real second while busy")
+  app.add_flag("--own-clock", own_clock,
+               "Run on its own clock at --speed, statuses every --status-period of it, and "
+               "ignore the site clock (as real hardware)");
+  app.add_option("--speed", options.speed,
+                 "With --own-clock: simulated seconds per real second while busy")
       ->check(range(sim_limits::kSpeed))
       ->capture_default_str();
-  app.add_option("--status-period", options.status_period_s, "Status every this many simulated s")
+  app.add_option("--status-period", options.status_period_s,
+                 "With --own-clock: status every this many simulated s")
       ->check(range(sim_limits::kStatusPeriod_s))
       ->capture_default_str();
   app.add_option("--state", state, "Its record of the jobs it ran (appended; read at start)");
@@ -101,6 +108,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   options.state_file = state;
   options.check_z_range = !climbing;
+  options.site_clock = !own_clock;
   if (home.size() == 4) options.home = {home[0], home[1], home[2], home[3]};
   try {
     if (!clog_at.empty() &&

@@ -239,6 +239,12 @@ TEST(HostileInput, OutputsNeverReplaceWhatTheyShouldNot) {
   expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --state-dir " + notes),
                  "--state-dir: exists and is not a folder", "state dir is a file");
   EXPECT_EQ(site.bytes("notes.txt"), "precious");
+  // A state folder that cannot be made or written: refused before any machine starts (a
+  // machine that cannot keep its record used to be restarted again and again).
+  expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --state-dir /proc/ccbuild-state"),
+                 "--state-dir: cannot be made a folder", "state dir under /proc");
+  expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --journal /proc/ccbuild.journal"),
+                 "--journal: cannot be written", "journal under /proc");
 }
 
 TEST(HostileInput, DryRunFlagsAndFaultsAreCheckedAgainstTheMachinesAndTheSchedule) {

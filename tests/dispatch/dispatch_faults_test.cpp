@@ -221,6 +221,13 @@ DispatchJob climb_phase(std::int64_t id, const std::string& what, double start_s
   d.plan = "";
   d.detail = "climb from stage 0 to 1: " + what;
   d.path = {};
+  // The machine reads the phase and the unit from their fields, never from the words.
+  if (what.rfind("insert ", 0) == 0) {
+    d.phase = ccbuild_lcm::ccbuild_job_t::INSERT;
+    d.unit = what.substr(7);
+  } else if (what == "lift") {
+    d.phase = ccbuild_lcm::ccbuild_job_t::LIFT;
+  }
   return d;
 }
 
@@ -264,6 +271,8 @@ TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
   DispatchJob pipe = climb_phase(10, "", 0.0, 120.0);
   pipe.kind = JobKind::kPipe;
   pipe.detail = "pipe A1 for unit U1";
+  pipe.unit = "U1";
+  pipe.anchor = "A1";
   for (const double age_s : {3600.0, 3599.99}) {
     machine::SimOptions so = window(0.0, 1e9);
     so.anchor_min_age_s = 3600.0;

@@ -561,11 +561,21 @@ def interpolate(track, times, t):
 
 
 def check_gantries(key, plan, machine, info, problems):
-    """Adjacent nozzles on common rails, a gantry width apart at every breakpoint."""
-    if len(plan["nozzles"]) < 2:
-        return
+    """Adjacent nozzles on common rails, a gantry width apart at every breakpoint; on fewer
+    gantries than the machine has, room for the idle ones at the far end of the rails."""
     axis = machine["rail_axis"] + "_m"
     width = machine["gantry_width_m"]
+    idle = machine.get("nozzles", 1) - len(plan["nozzles"])
+    if idle > 0 and all("waypoints" in n for n in plan["nozzles"]):
+        reach = max((q[axis] for n in plan["nozzles"] for q in n["waypoints"]), default=-math.inf)
+        room = machine[machine["rail_axis"] + "_range_m"][1] - idle * width
+        if reach > room + 1e-6:
+            problems.append("plan %s: on %d of the machine's %d gantries the path reaches %.6f m "
+                            "along %s, where the idle ones leave room only up to %.6f m" % (
+                                key, len(plan["nozzles"]), machine["nozzles"], reach,
+                                machine["rail_axis"], room))
+    if len(plan["nozzles"]) < 2:
+        return
     tracks = [[(q["t_s"], q[axis]) for q in n["waypoints"]] for n in plan["nozzles"]]
     smallest = math.inf
     for i in range(len(tracks) - 1):

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The site watchdog against a stalled rail axis: the twin cottages on two gantries at 20x,
+# The site watchdog against a stalled rail axis: the twin cottages on two gantries at the
+# default 10,000x on the site clock,
 # gantry-1's rail axis stalled at 75 s (at x = 6 m, where the first layer's plan builds
 # walls along y before heading back to x = 2.5 m) while gantry-2 carries on towards it. With the
 # watchdog every machine is paused before the gap falls under the gantry width; without
@@ -19,7 +20,7 @@ run() {  # run NAME EXTRA-ARGS...: the dry-run, which must exit 1 (stopped)
   set +e
   $netns sh -c 'ip link set lo up && ip link set lo multicast on &&
     ip route add 224.0.0.0/4 dev lo && exec "$@"' sh \
-    "$ccbuild" dry-run "$out/twin.json" --speed 20 --inject stall=gantry-1@75 --timeout 60 \
+    "$ccbuild" dry-run "$out/twin.json" --inject stall=gantry-1@75 --timeout 60 \
     --log "$out/$name.lcmlog" "$@" > "$out/$name.txt" 2> "$out/$name.err"
   local code=$?
   set -e

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
+#include <set>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild_lcm/ccbuild_job_t.hpp"
 
 namespace ccbuild::dispatch {
 namespace {
@@ -42,6 +45,27 @@ machine::TimedPath timed_path(const std::vector<planner::Waypoint>& waypoints) {
   return path;
 }
 
+/// A climb phase's kind as the job message codes it.
+std::int8_t wire_phase(climb::ClimbPhase::Kind kind) {
+  using K = climb::ClimbPhase::Kind;
+  using J = ccbuild_lcm::ccbuild_job_t;
+  switch (kind) {
+    case K::kPark:
+      return J::PARK;
+    case K::kBalance:
+      return J::BALANCE;
+    case K::kRelease:
+      return J::RELEASE;
+    case K::kTransit:
+      return J::TRANSIT;
+    case K::kInsert:
+      return J::INSERT;
+    case K::kLift:
+      return J::LIFT;
+  }
+  return J::NO_PHASE;
+}
+
 }  // namespace
 
 std::string gantry_id(int nozzle) {
@@ -53,8 +77,40 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
   const Schedule& schedule = document.schedule;
   const double purge_s = document.inputs.machine.purge_s;
   const double treatment_s = document.inputs.material.planned_joint.treatment_s;
-  // Nozzle -> its last position (x, y, z, heading), if it deposited the layer before.
-  std::map<int, std::array<double, 4>> last, ending;
+  const auto unit_name = [&](int unit) {
+    return unit >= 0 && unit < static_cast<int>(document.inputs.unit_names.size())
+               ? document.inputs.unit_names[unit]
+               : std::string();
+  };
+  // Where each gantry stands once its last job ends (x, y, z, heading). A gantry idle
+  // for a layer first goes to its park at the far end of the rails: the plan of a layer
+  // on fewer nozzles counts on the others being out of its way.
+  std::map<int, std::array<double, 4>> where;
+  std::set<int> parked;
+  const schedule::RecordedMachine& machine = document.inputs.machine;
+  int gantries = 1;
+  for (const auto& [key, plan] : schedule.plans)
+    for (std::size_t n = 0; n < plan.waypoints.size(); ++n)
+      if (!plan.waypoints[n].empty()) gantries = std::max(gantries, static_cast<int>(n) + 1);
+  const int rail = machine.rail_axis == machine::RailAxis::kY ? 1 : 0;
+  const double rail_max_m =
+      machine::rail_coordinate(machine.x_max_m, machine.y_max_m, machine.rail_axis);
+  // A straight move with every axis within its speed: as long as the slowest axis needs.
+  const auto move_time_s = [&](const std::array<double, 4>& a, const std::array<double, 4>& b) {
+    const double speeds[4] = {machine.x_speed_m_s, machine.y_speed_m_s, machine.z_speed_m_s,
+                              machine.rotation_speed_rad_s};
+    double t_s = 0.0;
+    for (int k = 0; k < 4; ++k)
+      if (speeds[k] > 0.0) t_s = std::max(t_s, std::abs(b[k] - a[k]) / speeds[k]);
+    return t_s;
+  };
+  const auto travel = [](const std::array<double, 4>& a, const std::array<double, 4>& b,
+                         double duration_s) {
+    machine::TimedPath move;
+    move.push_back(0.0, a[0], a[1], a[2], a[3], false, 0, 0);
+    move.push_back(duration_s, b[0], b[1], b[2], b[3], false, 0, 0);
+    return move;
+  };
   for (const ScheduledLayer& l : schedule.layers) {
     const auto plan_it = schedule.plans.find(l.plan);
     if (plan_it == schedule.plans.end())
@@ -76,27 +132,46 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
           job_of(JobKind::kWait, gantry_id(0), waited_from_s, wait_s, floor, layer, -1, "",
                  printf_string("wait before floor %d layer %d: %s", floor, layer, why.c_str())));
     }
+    const double moves_from_s = waited_from_s - move_s;
+    for (auto& [nozzle, at] : where) {
+      const bool works =
+          nozzle < static_cast<int>(plan.waypoints.size()) && !plan.waypoints[nozzle].empty();
+      if (works || parked.count(nozzle)) continue;
+      std::array<double, 4> park = at;
+      park[rail] = rail_max_m - (gantries - 1 - nozzle) * machine.gantry_width_m;
+      const double park_s = move_time_s(at, park);
+      if (park_s > 0.0)
+        jobs.push_back(job_of(JobKind::kTravel, gantry_id(nozzle), moves_from_s, park_s, floor,
+                              layer, nozzle, "",
+                              printf_string("nozzle %d parks clear at the far end of the rails "
+                                            "(idle on floor %d layer %d)",
+                                            nozzle + 1, floor, layer),
+                              travel(at, park, park_s)));
+      at = park;
+      parked.insert(nozzle);
+    }
     for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
       const int nozzle = static_cast<int>(n);
       machine::TimedPath path = timed_path(plan.waypoints[n]);
       if (path.size() == 0) continue;
       for (double& z_m : path.z_m) z_m += dz_m;  // this layer's height
-      // The move from where this nozzle ended to where it starts, in a straight line.
-      const auto from = last.find(nozzle);
-      if (from != last.end() && move_s > 0.0) {
-        const auto& [x0, y0, z0, h0] = from->second;
-        machine::TimedPath move;
-        move.push_back(0.0, x0, y0, z0, h0, false, 0, 0);
-        move.push_back(move_s, path.x_m[0], path.y_m[0], path.z_m[0], path.heading_rad[0], false, 0,
-                       0);
-        jobs.push_back(
-            job_of(JobKind::kTravel, gantry_id(nozzle), waited_from_s - move_s, move_s, floor,
-                   layer, nozzle, "",
-                   printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
-                   std::move(move)));
+      // The move from where this gantry stands to where it starts, in a straight line,
+      // over the layer's move time (longer coming back from its park).
+      const std::array<double, 4> first = {path.x_m[0], path.y_m[0], path.z_m[0],
+                                           path.heading_rad[0]};
+      if (const auto from = where.find(nozzle); from != where.end()) {
+        const double needed_s = move_time_s(from->second, first);
+        if (move_s > 0.0 || needed_s > 1e-6) {
+          const double travel_s = std::max(move_s, needed_s);
+          jobs.push_back(job_of(
+              JobKind::kTravel, gantry_id(nozzle), moves_from_s, travel_s, floor, layer, nozzle, "",
+              printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
+              travel(from->second, first, travel_s)));
+        }
       }
       const std::size_t end = path.size() - 1;
-      ending[nozzle] = {path.x_m[end], path.y_m[end], path.z_m[end], path.heading_rad[end]};
+      where[nozzle] = {path.x_m[end], path.y_m[end], path.z_m[end], path.heading_rad[end]};
+      parked.erase(nozzle);
       const double duration_s = path.t_s.back();
       jobs.push_back(job_of(JobKind::kDeposit, gantry_id(nozzle), start_s, duration_s, floor, layer,
                             nozzle, l.plan,
@@ -104,19 +179,17 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
                             std::move(path)));
       jobs.back().on_planned_joint = l.planned_joint;
     }
-    last.swap(ending);  // a nozzle idle for a layer moves without a job (as planned)
-    ending.clear();
   }
   for (const Event& e : schedule.events) {
     if (e.kind == Event::Kind::kClimb && e.climb) {
       double t = e.start_s;
       for (const auto& p : e.climb->plan.phases) {
-        const std::string unit =
-            p.unit >= 0 && p.unit < static_cast<int>(document.inputs.unit_names.size())
-                ? " " + document.inputs.unit_names[p.unit]
-                : "";
-        jobs.push_back(job_of(JobKind::kClimbPhase, gantry_id(0), t, p.duration_s, e.floor, e.layer,
-                              -1, "", e.detail + ": " + climb::to_string(p.kind) + unit));
+        const std::string unit = unit_name(p.unit);
+        jobs.push_back(
+            job_of(JobKind::kClimbPhase, gantry_id(0), t, p.duration_s, e.floor, e.layer, -1, "",
+                   e.detail + ": " + climb::to_string(p.kind) + (unit.empty() ? "" : " " + unit)));
+        jobs.back().phase = wire_phase(p.kind);
+        jobs.back().unit = unit;
         t += p.duration_s;
       }
       continue;
@@ -130,6 +203,10 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
                                                          : JobKind::kWait;
     jobs.push_back(job_of(kind, gantry_id(0), e.start_s, e.end_s - e.start_s, e.floor, e.layer, -1,
                           "", e.detail));
+    if (e.kind == Event::Kind::kPipe && e.anchor) {
+      jobs.back().unit = unit_name(e.anchor->unit);
+      jobs.back().anchor = e.anchor->id;
+    }
   }
   // Schedule order: by planned start, then gantry; stable for equal keys.
   std::stable_sort(jobs.begin(), jobs.end(), [](const DispatchJob& a, const DispatchJob& b) {

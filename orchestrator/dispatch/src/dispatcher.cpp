@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -271,20 +272,16 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
     bus_.subscribe<ccbuild_lcm::ccbuild_done_t>(
         machine::channel("DONE", machine), [this](const ccbuild_lcm::ccbuild_done_t& d) {
           on_done({d.machine_id, d.job_id, d.ok != 0, d.started_s, d.finished_s, d.stopped_at,
-                   d.detail});
+                   static_cast<FaultKind>(d.fault), d.detail});
         });
     bus_.subscribe<ccbuild_lcm::ccbuild_fault_t>(
         machine::channel("FAULT", machine), [this](const ccbuild_lcm::ccbuild_fault_t& f) {
           const auto kind = static_cast<FaultKind>(f.kind);
           on_fault({f.machine_id, f.job_id, kind, f.message, policy_of(kind)});
         });
-    bus_.subscribe<ccbuild_lcm::ccbuild_status_t>(machine::channel("STATUS", machine),
-                                                  [this](const ccbuild_lcm::ccbuild_status_t& s) {
-                                                    const auto it = queues_.find(s.machine_id);
-                                                    if (it == queues_.end()) return;
-                                                    it->second.heard = true;
-                                                    it->second.silent_s = 0.0;
-                                                  });
+    bus_.subscribe<ccbuild_lcm::ccbuild_status_t>(
+        machine::channel("STATUS", machine),
+        [this](const ccbuild_lcm::ccbuild_status_t& s) { on_status(s); });
   }
 }
 
@@ -505,6 +502,34 @@ Dispatcher::Queue* Dispatcher::queue_of(const std::string& machine_id, std::int6
   return &q;
 }
 
+void Dispatcher::on_status(const ccbuild_lcm::ccbuild_status_t& s) {
+  const auto it = queues_.find(s.machine_id);
+  if (it == queues_.end()) return;
+  Queue& q = it->second;
+  q.heard = true;
+  q.silent_s = 0.0;
+  if (q.next >= q.jobs.size() || q.wait == Queue::Wait::kSend || stopped_) return;
+  const std::int64_t job_id = jobs_[q.jobs[q.next]].job_id;
+  // What a lost ACK or DONE would have said, learnt from the status: the job in flight
+  // is the machine's current one (accepted), or the last one it ended.
+  if (s.last_job_id == job_id) {
+    on_done({s.machine_id, job_id, s.last_fault == 0, s.last_started_s, s.last_finished_s,
+             s.last_stopped_at, static_cast<FaultKind>(s.last_fault), "(from its status)"});
+    return;
+  }
+  if (s.current_job_id == job_id && q.wait == Queue::Wait::kAck) on_ack(s.machine_id, job_id, true);
+}
+
+bool Dispatcher::awaiting_machines() const {
+  if (stopped_) return false;
+  for (const auto& [machine, q] : queues_) {
+    if (q.next >= q.jobs.size() || !q.heard) continue;
+    if (q.wait == Queue::Wait::kAck) return true;
+    if (q.wait == Queue::Wait::kSend && released(q.jobs[q.next])) return true;
+  }
+  return false;
+}
+
 void Dispatcher::on_ack(const std::string& machine_id, std::int64_t job_id, bool accepted) {
   Queue* q = queue_of(machine_id, job_id);
   if (!q || q->wait != Queue::Wait::kAck || stopped_) return;
@@ -536,6 +561,7 @@ void Dispatcher::advance(Queue& q, std::size_t index, const JournalRow& row) {
   ++q.next;
   q.wait = Queue::Wait::kSend;
   q.waited_s = 0.0;
+  q.attempts = 0;
 }
 
 void Dispatcher::on_done(const JobEnd& done) {
@@ -550,12 +576,15 @@ void Dispatcher::on_done(const JobEnd& done) {
     advance(*q, index, row);
     return;
   }
-  row.state = done.detail == "clog" ? "clogged" : done.detail == "pin-missed" ? "pin-missed" : "";
+  row.state = done.fault == FaultKind::kPumpClog    ? "clogged"
+              : done.fault == FaultKind::kPinMissed ? "pin-missed"
+                                                    : "";
   if (row.state.empty()) {
     journal_.record(done.job_id, JournalRow{done.machine_id, "failed", done.started_s,
                                             done.finished_s, done.stopped_at});
     advance(*q, index, row);
-    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " ended: " + done.detail);
+    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " ended on " +
+         fault_name(done.fault) + ": " + done.detail);
     return;
   }
   journal_.record(done.job_id, row);  // before the recovery jobs are made
@@ -580,12 +609,22 @@ void Dispatcher::step(double real_dt_s) {
       q.waited_s = 0.0;
       continue;
     }
-    const double done_within_s = job.duration_s / options_.speed + options_.done_slack_s;
+    // Each time a job goes out again, its answer is waited for twice as long (up to
+    // retry_max_s): a LAN answers in milliseconds, a busy machine later.
+    const double backoff = std::ldexp(1.0, std::min(q.attempts, 20));
+    const double ack_within_s = std::min(options_.ack_timeout_s * backoff, options_.retry_max_s);
+    const double done_within_s =
+        job.duration_s / options_.speed + std::min(options_.done_slack_s * backoff, 60.0);
     const bool due = q.wait == Queue::Wait::kSend ||
-                     (q.wait == Queue::Wait::kAck && q.waited_s > options_.ack_timeout_s) ||
+                     (q.wait == Queue::Wait::kAck && q.waited_s > ack_within_s) ||
                      (q.wait == Queue::Wait::kDone && q.waited_s > done_within_s);
     if (!due) continue;
-    if (q.wait != Queue::Wait::kSend || q.waited_s > real_dt_s) ++resent_;
+    if (q.wait != Queue::Wait::kSend) {
+      ++resent_;
+      ++q.attempts;
+    } else {
+      q.attempts = 0;
+    }
     journal_.record(job.job_id, job.machine_id, "sent");  // before it goes out
     send(index);
     q.wait = q.wait == Queue::Wait::kDone ? Queue::Wait::kDone : Queue::Wait::kAck;

@@ -47,6 +47,9 @@ JobMessages messages_of(const DispatchJob& d) {
   j.chunk_count = static_cast<std::int32_t>(m.chunks.size());
   j.point_count = static_cast<std::int32_t>(d.path.size());
   j.on_planned_joint = d.on_planned_joint;
+  j.phase = d.phase;
+  j.unit = d.unit;
+  j.anchor = d.anchor;
   return m;
 }
 

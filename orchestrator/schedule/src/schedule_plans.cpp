@@ -101,6 +101,8 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
       out.max_idle_s = result.max_idle_s();
       if (result.idle_limit_violations() > 0)
         out.why_not = idle_limit_broken(out.max_idle_s);
+      else if (auto crowded = no_room_to_park(out.waypoints, nozzles))
+        out.why_not = *crowded;
       else
         out.usable = true;
     }
@@ -111,6 +113,28 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
   for (auto& path : out.waypoints) label_pieces(path, layer);
   out.planning_s = seconds_since(started);
   return out;
+}
+
+std::optional<std::string> Scheduler::no_room_to_park(
+    const std::vector<std::vector<planner::Waypoint>>& waypoints, int nozzles) const {
+  const int idle = machine_.nozzles - nozzles;
+  if (idle <= 0) return std::nullopt;
+  // The idle gantries wait beyond the working ones, at the far end of the rails: each a
+  // gantry width from the next (the dispatcher parks them there).
+  const machine::AxisLimits& rail =
+      machine_.rail_axis == machine::RailAxis::kY ? machine_.y : machine_.x;
+  double reach_m = -kInf;
+  for (const auto& path : waypoints)
+    for (const auto& w : path)
+      reach_m = std::max(reach_m, machine::rail_coordinate(w.position_m.x(), w.position_m.y(),
+                                                           machine_.rail_axis));
+  const double room_m = rail.max_m - idle * machine_.gantry_width_m;
+  if (reach_m <= room_m + 1e-6) return std::nullopt;
+  return printf_string(
+      "on %d of the machine's %d gantries the path reaches %.3f %s along the rails, where "
+      "the %d idle one%s, parked at the far end (%.3f %s), leave%s room only up to %.3f %s",
+      nozzles, machine_.nozzles, reach_m, "m", idle, idle == 1 ? "" : "s", rail.max_m, "m",
+      idle == 1 ? "s" : "", room_m, "m");
 }
 
 void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,

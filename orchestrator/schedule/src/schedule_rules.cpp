@@ -87,6 +87,7 @@ class Rules {
       broken(at + "/layer_time_s", "layer time",
              printf_string("%.6f s, but its paths end at %.6f s", plan.layer_time_s, end_s));
     if (plan.nozzles > 1) check_gaps(at, plan);
+    check_park_room(at, plan);
   }
 
   void check_coverage(const std::string& at, const SchedulePlan& plan) {
@@ -282,6 +283,26 @@ class Rules {
       broken(
           at + "/min_gap_m", "gantry gap",
           printf_string("%.6f m, but the gantries come %.6f m apart", plan.min_gap_m, smallest_m));
+  }
+
+  /// A plan on fewer gantries than the machine has leaves the idle ones room to park at
+  /// the far end of the rails, a gantry width apart.
+  void check_park_room(const std::string& at, const SchedulePlan& plan) {
+    const RecordedMachine& m = doc_.inputs.machine;
+    const int idle = m.nozzles - static_cast<int>(plan.waypoints.size());
+    if (idle <= 0) return;
+    double reach_m = -INFINITY;
+    for (const auto& path : plan.waypoints)
+      for (const auto& w : path)
+        reach_m = std::max(reach_m, planner::rail_coordinate(w.position_m, m.rail_axis));
+    const double room_m =
+        machine::rail_coordinate(m.x_max_m, m.y_max_m, m.rail_axis) - idle * m.gantry_width_m;
+    if (reach_m > room_m + 1e-6)
+      broken(at + "/nozzles", "gantry gap",
+             printf_string("on %zu of the machine's %d gantries the path reaches %.6f m along "
+                           "%s, where the idle ones leave room only up to %.6f m",
+                           plan.waypoints.size(), m.nozzles, reach_m,
+                           machine::to_string(m.rail_axis).c_str(), room_m));
   }
 
   /// A wait is as long as its longest reason (none: no wait).

@@ -94,6 +94,10 @@ class Scheduler {
     if (options_.progress) options_.progress(line);
   }
   Planned plan(int geometry, int nozzles) const;
+  /// Why a plan on `nozzles` of the machine's gantries leaves the others no room to park
+  /// at the far end of the rails (its path reaches too far), or nothing.
+  std::optional<std::string> no_room_to_park(
+      const std::vector<std::vector<planner::Waypoint>>& waypoints, int nozzles) const;
   const Planned& planned(int geometry, int nozzles);
   /// The fewest nozzles whose plan of `geometry` is usable and, with the move up to its
   /// own start, no longer than the maximum interval: below that, the next layer of the

@@ -25,6 +25,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/sha256.hpp"
 #include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/site_run.hpp"
 #include "ccbuild/dispatch/site_watchdog.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/machine_model.hpp"
@@ -32,6 +33,7 @@
 #include "ccbuild/machine/sim_machine.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "dry_run_inputs.hpp"
@@ -50,10 +52,12 @@ struct DryRunOptions {
   std::string log;
   std::string inject;  ///< "drop=0.1,duplicate=0.1,reorder=0.1"
   std::uint64_t seed = 1;
-  double retry_after_s = 1.0;
+  double retry_after_s = 0.02;
   bool external = false;
   double timeout_s = 600.0;
   double status_period_s = 0.0;  ///< 0: chosen from the speed
+  bool own_clock = false;        ///< machines on their own clocks (as hardware), no site clock
+  bool by_layer = false;         ///< the summary layer by layer, not floor by floor
   bool no_watchdog = false;
   bool force = false;
   bool allow_infeasible = false;
@@ -215,6 +219,9 @@ std::string duration(double s) {
   return printf_string("%.1f s", s);
 }
 
+/// The site clock's resolution: the rail guard's finest step, schedule s.
+constexpr double kSiteStatusPeriod_s = 0.02;
+
 void run_dry_run(const DryRunOptions& o, int& exit_code) {
   namespace lim = machine::sim_limits;
   const Injected inject = injected(o.inject);  // its grammar, before any work
@@ -267,10 +274,13 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   const bool climbing = machine_rec.climbing;
   // Statuses at a fixed rate of machine time, no more than 200 a real second, within what
   // the machines accept.
+  // On the site clock: the watchdog's resolution, schedule s. On their own clocks: a
+  // status every this much machine time, no more than 200 a real second.
   const double status_period_s =
       o.status_period_s > 0.0 ? o.status_period_s
-                              : std::clamp(std::max(1.0, o.speed * 0.005), lim::kStatusPeriod_s.min,
-                                           lim::kStatusPeriod_s.max);
+      : o.own_clock           ? std::clamp(std::max(1.0, o.speed * 0.005), lim::kStatusPeriod_s.min,
+                                           lim::kStatusPeriod_s.max)
+                              : kSiteStatusPeriod_s;
   // Every value the machines will be given, checked as they will check it.
   const double anchor_age_s =
       climbing ? material.age_for_strength_s(machine_rec.anchor_strength_mpa) : 0.0;
@@ -312,7 +322,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   for (const auto& [key, plan] : schedule.schedule.plans)
     if (plan.nozzles > 1) planned_gap_m = std::min(planned_gap_m, plan.min_gap_m);
   const bool several = ids.size() > 1;
-  const bool can_guard = several && gantry_width_m + margin_m < planned_gap_m;
+  // On the site clock the watchdog guards at any speed; on the machines' own clocks only
+  // where statuses come often enough.
+  const bool can_guard = several && (!o.own_clock || gantry_width_m + margin_m < planned_gap_m);
   const bool guard = can_guard && !o.no_watchdog;
 
   // The default journal and machine records live in a folder of this run's own, removed
@@ -327,11 +339,20 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     }
   } temporary;
   if (o.journal.empty() || o.state_dir.empty()) {
-    temporary.path = fs::temp_directory_path() / ("ccbuild-dry-run-" + std::to_string(::getpid()));
     std::error_code ec;
+    const fs::path tmp = fs::temp_directory_path(ec);
+    if (ec) throw InputError("", 0, "TMPDIR", "no temporary folder: " + ec.message());
+    temporary.path = tmp / ("ccbuild-dry-run-" + std::to_string(::getpid()));
     fs::remove_all(temporary.path, ec);
-    fs::create_directories(temporary.path);
+    check_writable_folder(temporary.path, {}, "TMPDIR");
   }
+  if (!o.state_dir.empty()) {
+    std::vector<fs::path> records;
+    for (const auto& id : ids) records.push_back(fs::path(o.state_dir) / (id + ".state"));
+    check_writable_folder(o.state_dir, records, "--state-dir");
+  }
+  if (!o.journal.empty())
+    check_writable_folder(fs::absolute(o.journal).parent_path(), {o.journal}, "--journal");
   const fs::path& work = temporary.path;
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
   dispatch::Journal journal(journal_path, schedule_sha256);
@@ -364,6 +385,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         "--machine",       profile,
         "--min-interval",  printf_string("%.17g", material.min_layer_interval_s),
         "--max-interval",  printf_string("%.17g", material.max_layer_interval_s)};
+    if (o.own_clock) common.push_back("--own-clock");
     if (climbing) {
       common.push_back("--climbing");
       // The age at which the material reaches the anchor strength the climber needs.
@@ -380,7 +402,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   dispatch::DispatchOptions d;
   d.speed = o.speed;
   d.ack_timeout_s = o.retry_after_s;
-  d.done_slack_s = 2.0 * o.retry_after_s;
+  // On the site clock every status says which job the machine last ended, so a job is
+  // sent again for a lost DONE only when statuses are lost too (or the machine restarted).
+  d.done_slack_s = o.own_clock ? std::max(0.25, 10.0 * o.retry_after_s) : 2.0;
   d.purge_s = machine_rec.purge_s;
   if (several) {  // the rest of a clogged layer may need its neighbours out of the way
     d.gantry_width_m = gantry_width_m;
@@ -391,7 +415,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   dispatch::Dispatcher dispatcher(bus, jobs, journal, d);
   std::optional<dispatch::SiteWatchdog> watchdog;
-  if (several) {
+  if (several && o.own_clock) {
     dispatch::WatchdogOptions w;
     w.machines = ids;
     w.rail_axis = rail_axis;
@@ -402,7 +426,21 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   std::cerr << printf_string("dry-run: %zu jobs to %zu machine(s) at %.0fx over %s\n", jobs.size(),
                              ids.size(), o.speed, o.lcm_url.c_str());
-  if (several && guard)
+  std::optional<dispatch::SiteRun> site;
+  if (!o.own_clock) {
+    dispatch::SiteRunOptions so;
+    so.speed = o.speed;
+    so.guard = guard;
+    so.status_period_s = status_period_s;
+    site.emplace(bus, dispatcher, ids, rail_axis, gantry_width_m, so);
+  }
+  if (several && guard && site)
+    std::cerr << printf_string(
+        "dry-run: site watchdog guarding the rails on the site clock: a step of it only where "
+        "no two gantries can come closer than %.3f m whatever each does along its path, in "
+        "steps of %.3g s (two gantries close at most %.3f m within one)\n",
+        gantry_width_m, status_period_s, site->guard().margin_m(rail_speed_m_s));
+  else if (several && guard)
     std::cerr << printf_string(
         "dry-run: site watchdog guarding the rails: every machine paused below %.3f m (the "
         "gantry width %.3f m plus %.3f m the gantries can close between statuses every %.3g s "
@@ -427,6 +465,11 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     const double dt_s = std::chrono::duration<double>(now - last).count();
     last = now;
     dispatcher.step(dt_s);
+    if (site)
+      if (const auto why = site->step(dt_s)) {
+        events.push_back(*why);
+        std::cerr << "dry-run: " << *why << "\n";
+      }
     if (watchdog)
       if (const auto why = watchdog->check(dt_s)) {
         events.push_back(*why);
@@ -450,6 +493,36 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
                        "writing the LCM log failed: " + bus.log_error() + "; the run stopped");
     if (now - last_line > std::chrono::seconds(2)) {
       last_line = now;
+      // Where the building is: the last layer begun, the site's date, and an estimate of
+      // the real time left from the jobs done so far.
+      int floor = -1, layer = -1;
+      for (const auto& [id, span] : dispatcher.executed())
+        if (const dispatch::DispatchJob* j = dispatcher.job(id);
+            j && j->kind == dispatch::JobKind::kDeposit &&
+            std::make_pair(j->floor, j->layer) > std::make_pair(floor, layer))
+          floor = j->floor, layer = j->layer;
+      const double site_s = site ? site->clock().now_s() : 0.0;
+      const std::string when =
+          schedule.inputs.calendar
+              ? schedule.inputs.calendar->local_text(site_s)
+              : "day " + std::to_string(static_cast<int>(site_s / 86400.0) + 1) +
+                    printf_string(" %02d:%02d", static_cast<int>(std::fmod(site_s, 86400.0) / 3600),
+                                  static_cast<int>(std::fmod(site_s, 3600.0) / 60));
+      const double done = static_cast<double>(dispatcher.executed().size());
+      const double elapsed_s = std::chrono::duration<double>(now - started).count();
+      const double eta_s = done > 0 ? elapsed_s * (dispatcher.jobs().size() - done) / done : 0.0;
+      std::cerr << printf_string(
+          "dry-run: floor %d layer %d, %s of site time%s; %.0f of %zu jobs (%.0f%%), about %s "
+          "left\n",
+          floor, layer, when.c_str(),
+          site
+              ? printf_string(" (tick %lld, %ld sent again)",
+                              static_cast<long long>(site->clock().tick()), site->clock().repeats())
+                    .c_str()
+              : "",
+          done, dispatcher.jobs().size(),
+          100.0 * done / std::max<std::size_t>(1, dispatcher.jobs().size()),
+          duration(eta_s).c_str());
       for (const auto& [machine, silent_s] : dispatcher.silent(3.0))
         std::cerr << printf_string(
             "dry-run: %s not heard from %s\n", machine.c_str(),
@@ -471,7 +544,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
 
   // Planned against executed, layer by layer.
   std::map<std::pair<int, int>, std::array<double, 4>> layers;  // planned start/end, started/ended
-  const double inf = std::numeric_limits<double>::infinity();
+  constexpr double inf = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < dispatcher.jobs().size(); ++k) {
     const auto& j = dispatcher.jobs()[k];
     if (j.kind != dispatch::JobKind::kDeposit) continue;
@@ -493,20 +566,84 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       "schedule time\n",
       o.file.c_str(), dispatcher.executed().size(), dispatcher.jobs().size(), ids.size(), real_s,
       o.speed, duration(latest_s).c_str());
-  std::cout << "layer            planned start  started        deviation   planned end    ended\n";
   long late_layers = 0, missing_layers = 0;
   double worst_s = 0.0;
+  // Per floor: planned start and end, started and ended, its layers late and not run, its
+  // worst deviation.
+  struct FloorRow {
+    std::array<double, 4> span{inf, -inf, inf, -inf};
+    int layers = 0, late = 0, missing = 0;
+    double worst_s = 0.0;
+  };
+  std::map<int, FloorRow> floors;
+  if (o.by_layer)
+    std::cout
+        << "layer            planned start  started        deviation   planned end    ended\n";
   for (const auto& [key, l] : layers) {
     const bool ran = std::isfinite(l[2]);
     const double dev_s = ran ? l[2] - l[0] : 0.0;
     late_layers += ran && std::abs(dev_s) > 1.0;
     missing_layers += !ran;
     worst_s = std::max(worst_s, std::abs(dev_s));
-    std::cout << printf_string(
-        "floor %2d layer %3d  %-13s  %-13s  %-10s  %-13s  %s\n", key.first, key.second,
-        duration(l[0]).c_str(), ran ? duration(l[2]).c_str() : "not run",
-        ran ? printf_string("%+.1f s", dev_s).c_str() : "-", duration(l[1]).c_str(),
-        std::isfinite(l[3]) ? duration(l[3]).c_str() : "-");
+    FloorRow& f = floors[key.first];
+    ++f.layers;
+    f.late += ran && std::abs(dev_s) > 1.0;
+    f.missing += !ran;
+    if (std::abs(dev_s) > std::abs(f.worst_s)) f.worst_s = dev_s;
+    f.span = {std::min(f.span[0], l[0]), std::max(f.span[1], l[1]), std::min(f.span[2], l[2]),
+              std::max(f.span[3], l[3])};
+    if (o.by_layer)
+      std::cout << printf_string(
+          "floor %2d layer %3d  %-13s  %-13s  %-10s  %-13s  %s\n", key.first, key.second,
+          duration(l[0]).c_str(), ran ? duration(l[2]).c_str() : "not run",
+          ran ? printf_string("%+.1f s", dev_s).c_str() : "-", duration(l[1]).c_str(),
+          std::isfinite(l[3]) ? duration(l[3]).c_str() : "-");
+  }
+  if (!o.by_layer) {
+    std::cout << "by floor (--by-layer for every layer): planned start and end, when its first "
+                 "layer started and its last ended, its layers started over 1 s late or early, "
+                 "its worst start deviation\n";
+    std::cout << "floor  layers  planned start  started        planned end    ended          "
+                 "off   not run  worst\n";
+    for (const auto& [floor, f] : floors) {
+      const auto at = [](double t_s) {
+        return std::isfinite(t_s) ? duration(t_s) : std::string("-");
+      };
+      std::cout << printf_string("%5d  %6d  %-13s  %-13s  %-13s  %-13s  %4d  %7d  %+.1f s\n", floor,
+                                 f.layers, at(f.span[0]).c_str(), at(f.span[2]).c_str(),
+                                 at(f.span[1]).c_str(), at(f.span[3]).c_str(), f.late, f.missing,
+                                 f.worst_s);
+    }
+  }
+  // The crew's and the climber's jobs: planned, and how many ran (a pin tried again counts
+  // once more).
+  {
+    struct Count {
+      int planned = 0, ran = 0;
+    };
+    std::map<std::string, Count> kinds;
+    for (std::size_t k = 0; k < dispatcher.jobs().size(); ++k) {
+      const auto& j = dispatcher.jobs()[k];
+      const char* what =
+          j.kind == dispatch::JobKind::kPipe    ? "pipes"
+          : j.kind == dispatch::JobKind::kSlab  ? "slab stages"
+          : j.kind == dispatch::JobKind::kPurge ? "purges"
+          : j.kind == dispatch::JobKind::kClimbPhase
+              ? (j.phase == ccbuild_lcm::ccbuild_job_t::INSERT ? "pin insertions"
+                                                               : "other climb phases")
+              : nullptr;
+      if (!what) continue;
+      Count& c = kinds[what];
+      c.planned += dispatcher.origin_of(k) == k;
+      c.ran += dispatcher.executed().count(j.job_id) > 0;
+    }
+    if (!kinds.empty()) {
+      std::string line;
+      for (const auto& [what, c] : kinds)
+        line += printf_string("%s%s %d of %d", line.empty() ? "" : "; ", what.c_str(), c.ran,
+                              c.planned);
+      std::cout << "climbs, pipes and slabs (ran of planned): " << line << "\n";
+    }
   }
   std::cout << printf_string(
       "deviations: %ld of %zu layers started more than 1 s off their planned start (worst "
@@ -522,6 +659,24 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         f.policy.c_str());
   for (const auto& e : events) std::cout << "event: " << e << "\n";
   bool collided = false;
+  if (site) collided = site->collided() || site->guard().smallest_gap_m() < gantry_width_m;
+  if (site && several) {
+    const dispatch::RailGuard& rail_guard = site->guard();
+    std::cout << printf_string(
+        "gantry gaps: %ld measured at the site clock's %lld ticks, the smallest %.3f m (gantry "
+        "width %.3f m)%s; %s\n",
+        rail_guard.gaps_measured(), static_cast<long long>(site->clock().tick()),
+        rail_guard.smallest_gap_m(), gantry_width_m, collided ? ": COLLISION" : "",
+        guard ? printf_string("watchdog steps of %.3g s, within which two gantries close at most "
+                              "%.3f m",
+                              status_period_s, rail_guard.margin_m(rail_speed_m_s))
+                    .c_str()
+              : "no watchdog (--no-watchdog): steps of up to 0.5 s, unguarded");
+  }
+  if (site)
+    std::cout << printf_string("site clock: %lld ticks, %ld sent again\n",
+                               static_cast<long long>(site->clock().tick()),
+                               site->clock().repeats());
   if (watchdog) {
     collided = watchdog->smallest_gap_m() < gantry_width_m;
     std::cout << printf_string(
@@ -625,8 +780,10 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command
       ->add_option("--retry-after", o->retry_after_s,
-                   "Send a job again when not acknowledged within this many real seconds "
-                   "(or not done within its expected time plus twice this)")
+                   "Send a job again when not acknowledged within this many real seconds, "
+                   "waiting twice as long after each repeat up to 1 s (a job not reported done "
+                   "within its expected time plus ten times this, at least 0.25 s, likewise; "
+                   "on the site clock a lost answer is also learnt from the next status)")
       ->check(number_in(Range::above(0.0, 600.0), "s"))
       ->capture_default_str();
   command->add_flag("--external", o->external, "Use machines already on the bus");
@@ -635,6 +792,14 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
                    "The machines' status every this many seconds of machine time (default: "
                    "1 s, or what keeps them under 200 a real second)")
       ->check(number_in(machine::sim_limits::kStatusPeriod_s, "s"));
+  command->add_flag(
+      "--own-clock", o->own_clock,
+      "Run the simulated machines on their own clocks, each at --speed in real time with "
+      "statuses every --status-period of it, as real hardware runs (no site clock: the "
+      "watchdog guards only where statuses come often enough)");
+  command->add_flag("--by-layer", o->by_layer,
+                    "The summary layer by layer (planned and actual start and end, deviation), "
+                    "not floor by floor");
   command->add_flag("--no-watchdog", o->no_watchdog,
                     "Let gantries collide: the site watchdog only measures the gaps (to "
                     "show what it prevents)");

@@ -1,7 +1,12 @@
 #include "dry_run_inputs.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
+#include <fstream>
 
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
@@ -143,6 +148,41 @@ void check_state_dir(const fs::path& dir, const std::vector<std::string>& ids,
   for (const auto& id : ids)
     if (const fs::path record = dir / (id + ".state"); fs::exists(record, ec))
       machine::read_machine_record(record);
+}
+
+void check_writable_folder(const fs::path& dir, const std::vector<fs::path>& files,
+                           const std::string& field) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw InputError(dir.string(), 0, field,
+                     "cannot be made a folder" + (ec ? ": " + ec.message() : std::string()) +
+                         "; nothing was started");
+  // A file of its own, written, synced and removed: what the journal and the machines'
+  // records will do there.
+  const fs::path probe = dir / (".ccbuild-write-test-" + std::to_string(::getpid()));
+  {
+    std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+    out << "ccbuild\n";
+    out.flush();
+    if (!out) {
+      out.close();
+      fs::remove(probe, ec);
+      throw InputError(dir.string(), 0, field,
+                       "cannot be written (" + std::string(std::strerror(errno)) +
+                           "); the journal and the machines' records go there: nothing was "
+                           "started");
+    }
+  }
+  fs::remove(probe, ec);
+  for (const auto& f : files) {
+    if (!fs::exists(f, ec)) continue;
+    std::ofstream out(f, std::ios::binary | std::ios::app);
+    if (!out)
+      throw InputError(
+          f.string(), 0, field,
+          "cannot be appended to (" + std::string(std::strerror(errno)) + "); nothing was started");
+  }
 }
 
 }  // namespace ccbuild::cli

@@ -68,4 +68,12 @@ void check_injected(const Injected& inject, const schedule::ScheduleDocument& do
 void check_state_dir(const std::filesystem::path& dir, const std::vector<std::string>& ids,
                      const std::string& schedule_sha256);
 
+/// The folder of the journal and the machines' records can be made and written, and each
+/// of `files` already there appended to: else InputError (exit 2) naming it, `field` the
+/// flag, before anything starts (a machine that cannot record a job would otherwise stop
+/// at its first one).
+void check_writable_folder(const std::filesystem::path& dir,
+                           const std::vector<std::filesystem::path>& files,
+                           const std::string& field);
+
 }  // namespace ccbuild::cli

@@ -26,6 +26,9 @@ std::int64_t utime_now();
 /// JOB, PATH, ACK, PROGRESS, DONE, STATUS, FAULT, COMMAND.
 std::string channel(const std::string& kind, const std::string& machine_id);
 
+/// The site clock's channel, one for every machine (ccbuild_clock_t).
+inline constexpr const char* kClockChannel = "CCBUILD_CLOCK";
+
 class Bus {
  public:
   /// Opens LCM at `url` ("" for LCM's default). Throws InputError (field `--lcm-url`)

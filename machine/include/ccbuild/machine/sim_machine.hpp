@@ -36,15 +36,22 @@
 #include "ccbuild/machine/timed_path.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::machine {
 
 struct SimOptions {
   std::string machine_id = "gantry-1";
-  /// Simulated seconds per real second while a job runs.
+  /// Follows the site clock (docs/dispatch.md): simulates up to each tick's time, no
+  /// further, and answers every tick with a status for that instant, so that the statuses
+  /// of all machines describe the same moment. False: its own clock, `speed` times real
+  /// time, statuses every `status_period_s` of it, as real hardware runs.
+  bool site_clock = false;
+  /// On its own clock: simulated seconds per real second while a job runs.
   double speed = 10'000.0;
-  /// Status (the heartbeat) every this many simulated seconds, and four times a real
-  /// second at least.
+  /// On its own clock: status (the heartbeat) every this many simulated seconds, and four
+  /// times a real second at least. On the site clock: the last status again four times a
+  /// real second while no tick comes.
   double status_period_s = 60.0;
   /// The machine's own record: one line per job run ("job_id start_s end_s x_m y_m z_m
   /// heading_rad", where it ended, then the fault it ended on and the waypoints done, if
@@ -162,6 +169,14 @@ class SimMachine {
   };
 
   void on_job(const ccbuild_lcm::ccbuild_job_t& job);
+  /// A site clock tick: simulates up to `sim_time_s` and answers with a status.
+  void on_clock(std::int64_t tick, double sim_time_s);
+  /// Runs the current job (and the next ones that start) on to `t_s` of site time.
+  void advance_to(double t_s);
+  /// The injected stall, once the clock has reached it.
+  void maybe_stall();
+  /// Progress in tenths of the running job.
+  void report_progress();
   void on_chunk(const ccbuild_lcm::ccbuild_path_chunk_t& chunk);
   void on_command(std::int8_t command, const std::string& reason);
   /// Whether a message with this header was seen before or is too old (then logged).
@@ -178,6 +193,8 @@ class SimMachine {
   void publish_done(std::int64_t job_id, double started_s, double finished_s, bool ok,
                     int stopped_at, const std::string& detail);
   void publish_status();
+  /// The last status again (a tick repeated, or the heartbeat on the site clock).
+  void republish_status();
   void follow(double elapsed_s);
   std::int64_t next_seq() { return ++seq_; }
   /// Takes an incoming message through the injected network faults.
@@ -235,6 +252,16 @@ class SimMachine {
   std::set<std::tuple<std::string, std::int64_t, std::int64_t>> seen_;
   std::deque<std::tuple<std::string, std::int64_t, std::int64_t>> seen_order_;
   std::int64_t newest_utime_ = 0;
+  /// The site clock tick last answered (0: none yet).
+  std::int64_t last_tick_ = 0;
+  std::optional<ccbuild_lcm::ccbuild_status_t> last_status_;
+  /// The last job it ended, repeated in every status.
+  struct LastEnded {
+    std::int64_t job_id = 0;
+    std::int8_t fault = 0;
+    double started_s = 0.0, finished_s = 0.0;
+    int stopped_at = -1;
+  } last_ended_;
 };
 
 }  // namespace ccbuild::machine

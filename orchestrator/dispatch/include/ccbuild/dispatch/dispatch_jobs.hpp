@@ -40,6 +40,11 @@ struct DispatchJob {
   /// A deposit on a planned joint: the layer below's top was treated, so its piece ends are
   /// not held to the maximum interval.
   bool on_planned_joint = false;
+  /// A climb phase's kind, as the wire codes it (ccbuild_job_t::PARK ... LIFT; 0 for other
+  /// jobs).
+  std::int8_t phase = 0;
+  std::string unit;    ///< the climbing unit a pipe is cast for or a phase moves, else ""
+  std::string anchor;  ///< a pipe's anchor id, else ""
 };
 
 /// Every job of `schedule` (as read_schedule gives it, re-validated), in the order they are

@@ -23,6 +23,7 @@
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 struct sqlite3;
 
@@ -109,11 +110,16 @@ std::string policy_of(FaultKind kind);
 std::string fault_name(FaultKind kind);
 
 struct DispatchOptions {
-  double ack_timeout_s = 1.0;  ///< real seconds before a job is sent again
-  double done_slack_s = 2.0;   ///< beyond its expected real duration, before it is sent again
-  double speed = 10'000.0;     ///< the machines' speed factor (for the expected duration)
-  double purge_s = 120.0;      ///< clearing a clogged nozzle, before the rest of its layer
-  int pin_attempts = 3;        ///< a pin insertion tried at most this often
+  /// Real seconds before a job not acknowledged is sent again; each repeat waits twice as
+  /// long, up to retry_max_s.
+  double ack_timeout_s = 0.02;
+  double retry_max_s = 1.0;
+  /// Beyond its expected real duration, before a job not reported done is sent again
+  /// (doubling likewise).
+  double done_slack_s = 0.25;
+  double speed = 10'000.0;  ///< the machines' speed factor (for the expected duration)
+  double purge_s = 120.0;   ///< clearing a clogged nozzle, before the rest of its layer
+  int pin_attempts = 3;     ///< a pin insertion tried at most this often
   /// For the rest of a clogged layer on shared rails: gantries in the way are moved clear
   /// first (0: not checked).
   double gantry_width_m = 0.0;
@@ -135,6 +141,9 @@ class Dispatcher {
   void step(double real_dt_s);
   /// Every job done (then stopped() is empty), or stopped safely.
   bool finished() const;
+  /// A machine is about to be sent a job, or has not yet acknowledged one: the site
+  /// clock holds until it has (so a job starts at the site time it was meant for).
+  bool awaiting_machines() const;
   /// Stops safely: every machine paused, nothing more sent; the reason is journalled.
   void stop(const std::string& reason);
   /// Why it stopped, if it did.
@@ -145,6 +154,11 @@ class Dispatcher {
   /// Completion as the machines reported it: job id -> (start, end), schedule seconds,
   /// including jobs done before a restart (from the journal).
   const std::map<std::int64_t, std::pair<double, double>>& executed() const { return executed_; }
+  /// The job with id `job_id`, or null.
+  const DispatchJob* job(std::int64_t job_id) const {
+    const auto it = index_of_.find(job_id);
+    return it == index_of_.end() ? nullptr : &jobs_[it->second];
+  }
   /// The jobs, the schedule's and the recovery jobs made so far.
   const std::vector<DispatchJob>& jobs() const { return jobs_; }
   /// The schedule job that jobs()[index] is or recovers from.
@@ -161,6 +175,7 @@ class Dispatcher {
     std::size_t next = 0;           ///< the job in flight (or next to send)
     enum class Wait { kSend, kAck, kDone } wait = Wait::kSend;
     double waited_s = 0.0;
+    int attempts = 0;       ///< times the job in flight was sent again
     bool heard = false;     ///< a status has come from the machine
     double silent_s = 0.0;  ///< real seconds since its last status
   };
@@ -171,10 +186,13 @@ class Dispatcher {
     bool ok = false;
     double started_s = 0.0, finished_s = 0.0;  ///< schedule s
     int stopped_at = -1;                       ///< waypoints done when it ended on a fault
-    std::string detail;
+    FaultKind fault = FaultKind::kNone;        ///< the fault it ended on (not ok)
+    std::string detail;                        ///< for people
   };
   void send(std::size_t index);
   void on_ack(const std::string& machine_id, std::int64_t job_id, bool accepted);
+  /// A status: the machine is heard, and a lost ACK or DONE is learnt from it.
+  void on_status(const ccbuild_lcm::ccbuild_status_t& status);
   void on_done(const JobEnd& done);
   void on_fault(const FaultRecord& fault);
   Queue* queue_of(const std::string& machine_id, std::int64_t job_id);
