@@ -8,8 +8,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <lcm/lcm-cpp.hpp>
@@ -309,6 +311,57 @@ TEST(Dispatch, AMachineRefusesJobsOutOfOrderAndPathsThatDoNotAddUp) {
   send(messages_of(jobs[2]));  // a repeat of one it ran: acknowledged, not run again
   EXPECT_EQ(sim.executed().size(), 1u);
   EXPECT_EQ(faults.size(), 2u);
+}
+
+}  // namespace
+}  // namespace ccbuild::dispatch
+
+namespace ccbuild::dispatch {
+namespace {
+
+// The apartment block on three gantries: some layers use one or two. An idle gantry first
+// parks at the far end of the rails (a travel job of its own, each a gantry width from the
+// next), and comes back from there: every gantry's jobs join up, none jumps.
+TEST(DispatchJobs, AGantryIdleForALayerParksAtTheFarEndAndComesBackFromThere) {
+  const Project apartment = open_project(testing::source_path("config/buildings/apartment.yaml"));
+  ScheduleOptions o;
+  o.max_kicks = 200;
+  const ScheduleDocument doc{recorded_inputs(apartment, o), build_schedule(apartment, o)};
+  const auto& m = doc.inputs.machine;
+  ASSERT_EQ(m.nozzles, 3);
+  const auto jobs = jobs_of_schedule(doc);
+  int parks = 0;
+  for (int g = 0; g < m.nozzles; ++g) {
+    const std::string id = gantry_id(g);
+    const double park_m = m.x_max_m - (m.nozzles - 1 - g) * m.gantry_width_m;
+    std::optional<std::array<double, 2>> at;  // where its last job left it (x, y)
+    for (const auto& j : jobs) {
+      if (j.machine_id != id || j.path.size() == 0) continue;
+      const std::size_t last = j.path.size() - 1;
+      if (at) {
+        EXPECT_NEAR(j.path.x_m[0], (*at)[0], 1e-9) << j.detail;
+        EXPECT_NEAR(j.path.y_m[0], (*at)[1], 1e-9) << j.detail;
+      }
+      at = std::array<double, 2>{j.path.x_m[last], j.path.y_m[last]};
+      if (j.detail.find("parks clear") == std::string::npos) continue;
+      ++parks;
+      EXPECT_EQ(j.kind, JobKind::kTravel);
+      EXPECT_DOUBLE_EQ(j.path.x_m[last], park_m) << j.detail;
+      // At the rail axis's speed, no faster.
+      EXPECT_GE(j.duration_s * m.x_speed_m_s + 1e-9, std::abs(j.path.x_m[last] - j.path.x_m[0]))
+          << j.detail;
+    }
+  }
+  EXPECT_GT(parks, 0) << "the apartment has layers on fewer gantries than it has";
+  // No layer on fewer gantries reaches into the parks of the idle ones.
+  for (const auto& [key, plan] : doc.schedule.plans)
+    for (const auto& path : plan.waypoints)
+      for (const auto& w : path)
+        EXPECT_LE(w.position_m.x(),
+                  m.x_max_m -
+                      (m.nozzles - static_cast<int>(plan.waypoints.size())) * m.gantry_width_m +
+                      1e-6)
+            << key;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -88,7 +89,8 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
   std::map<int, std::array<double, 4>> where;
   std::set<int> parked;
   const schedule::RecordedMachine& machine = document.inputs.machine;
-  int gantries = 1;
+  // Parks for every gantry of the machine (one never used stays at the far end).
+  int gantries = std::max(1, machine.nozzles);
   for (const auto& [key, plan] : schedule.plans)
     for (std::size_t n = 0; n < plan.waypoints.size(); ++n)
       if (!plan.waypoints[n].empty()) gantries = std::max(gantries, static_cast<int>(n) + 1);
@@ -216,6 +218,37 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
   for (std::size_t k = 0; k < jobs.size(); ++k)
     jobs[k].job_id = static_cast<std::int64_t>(10 * (k + 1));
   return jobs;
+}
+
+std::map<std::string, std::array<double, 4>> parking_homes(
+    const std::vector<DispatchJob>& jobs, const std::vector<std::string>& ids,
+    const schedule::RecordedMachine& machine) {
+  const machine::RailAxis rail_axis = machine.rail_axis;
+  const double gantry_width_m = machine.gantry_width_m;
+  const int rail = rail_axis == machine::RailAxis::kY ? 1 : 0;
+  const double rail_max_m = machine::rail_coordinate(machine.x_max_m, machine.y_max_m, rail_axis);
+  double first_s = std::numeric_limits<double>::infinity();
+  for (const auto& j : jobs)
+    if (j.kind == JobKind::kDeposit) first_s = std::min(first_s, j.start_s);
+  std::map<std::string, std::array<double, 4>> homes;
+  std::map<std::string, bool> from_first;
+  for (const auto& id : ids)
+    for (const auto& j : jobs)
+      if (j.machine_id == id && j.path.size() > 0) {
+        const auto& c = j.path;
+        homes[id] = {c.x_m[0], c.y_m[0], c.z_m[0], c.heading_rad[0]};
+        from_first[id] = j.start_s == first_s;
+        break;
+      }
+  // Gantries never used (beyond `ids`) stand at the far end of the rails.
+  const int count = std::max(static_cast<int>(ids.size()), machine.nozzles);
+  for (int k = 0; k < static_cast<int>(ids.size()); ++k)
+    if (homes.count(ids[k]) && !from_first[ids[k]])
+      homes[ids[k]][rail] = rail_max_m - (count - 1 - k) * gantry_width_m;
+  for (int k = 1; k < static_cast<int>(ids.size()); ++k)
+    if (homes.count(ids[k]) && homes.count(ids[k - 1]))
+      homes[ids[k]][rail] = std::max(homes[ids[k]][rail], homes[ids[k - 1]][rail] + gantry_width_m);
+  return homes;
 }
 
 }  // namespace ccbuild::dispatch

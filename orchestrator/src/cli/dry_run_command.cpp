@@ -2,8 +2,6 @@
 // LCM, exactly as the jobs would go to hardware: one `ccbuild-sim` process per gantry
 // (or machines already on the bus with --external), the dispatcher and its journal here.
 
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,7 +9,6 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -27,6 +24,7 @@
 #include "ccbuild/dispatch/dispatcher.hpp"
 #include "ccbuild/dispatch/site_run.hpp"
 #include "ccbuild/dispatch/site_watchdog.hpp"
+#include "ccbuild/dispatch/supervisor.hpp"
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/machine/sim_limits.hpp"
@@ -63,93 +61,6 @@ struct DryRunOptions {
   bool allow_infeasible = false;
 };
 
-/// The simulated machines, one process each; stopped (SIGTERM) when this goes. One that
-/// ends by itself (a crash) is started again on its own record, without the crash.
-class Machines {
- public:
-  /// `homes`: where each machine is parked before its first job (x, y, z, heading).
-  Machines(const std::vector<std::string>& ids,
-           const std::map<std::string, std::array<double, 4>>& homes,
-           std::vector<std::string> common,
-           const std::map<std::string, std::vector<std::string>>& faults, const fs::path& state_dir)
-      : sim_(fs::read_symlink("/proc/self/exe").parent_path() / "ccbuild-sim") {
-    if (!fs::exists(sim_))
-      throw InputError(sim_.string(), 0, "", "ccbuild-sim not found beside ccbuild (build it)");
-    for (const auto& id : ids) {
-      std::vector<std::string> args = {"ccbuild-sim", "--machine-id", id, "--state",
-                                       (state_dir / (id + ".state")).string()};
-      args.insert(args.end(), common.begin(), common.end());
-      if (const auto home = homes.find(id); home != homes.end()) {
-        args.push_back("--home");
-        for (const double v : home->second) args.push_back(printf_string("%.17g", v));
-      }
-      const auto it = faults.find(id);
-      if (it != faults.end()) args.insert(args.end(), it->second.begin(), it->second.end());
-      running_.push_back({id, args, start(args)});
-    }
-  }
-  ~Machines() {
-    for (const auto& m : running_)
-      if (m.pid > 0) ::kill(m.pid, SIGTERM);
-    for (const auto& m : running_)
-      if (m.pid > 0) ::waitpid(m.pid, nullptr, 0);
-  }
-  /// Starts again the machines that ended; returns what happened, in words. Throws
-  /// InputError when a machine refused its input (exit code 2: its own message is above),
-  /// and sets `given_up` when one ended more often than kMostRestarts.
-  std::vector<std::string> restart_ended(std::optional<std::string>& given_up) {
-    std::vector<std::string> said;
-    for (auto& m : running_) {
-      int status = 0;
-      if (m.pid <= 0 || ::waitpid(m.pid, &status, WNOHANG) != m.pid) continue;
-      m.pid = -1;
-      const bool exited = WIFEXITED(status);
-      const int code = exited ? WEXITSTATUS(status) : WTERMSIG(status);
-      if (exited && (code == 2 || code == 127))
-        throw InputError("", 0, m.id,
-                         code == 2 ? "ccbuild-sim refused what it was given (exit code 2; its "
-                                     "message is above): nothing was started again"
-                                   : "ccbuild-sim could not be started (exit code 127)");
-      if (++m.restarts > kMostRestarts) {
-        given_up = printf_string("%s ended %d times; not started again", m.id.c_str(), m.restarts);
-        continue;
-      }
-      said.push_back(printf_string("%s ended (%s %d); started again on its own record",
-                                   m.id.c_str(), exited ? "exit code" : "signal", code));
-      // It crashed once; it runs on without that fault.
-      for (std::size_t k = 0; k + 1 < m.args.size(); ++k)
-        if (m.args[k] == "--crash-after") m.args.erase(m.args.begin() + k, m.args.begin() + k + 2);
-      m.pid = start(m.args);
-    }
-    return said;
-  }
-
- private:
-  pid_t start(std::vector<std::string> args) {
-    const pid_t pid = ::fork();
-    CCBUILD_CHECK(pid >= 0, "fork failed");
-    if (pid == 0) {
-      ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // never outlive the dry-run
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      ::execv(sim_.c_str(), argv.data());
-      ::_exit(127);
-    }
-    return pid;
-  }
-  /// A machine ending more often than this is not started again: the run stops.
-  static constexpr int kMostRestarts = 10;
-  struct Running {
-    std::string id;
-    std::vector<std::string> args;
-    pid_t pid;
-    int restarts = 0;
-  };
-  fs::path sim_;
-  std::vector<Running> running_;
-};
-
 /// The machine profile a schedule was made with: the building's (when FILE is one), else
 /// --machine (which must be one of the files the schedule recorded), else the recorded file
 /// that loads as the machine the schedule names. The recorded files were checked against
@@ -177,40 +88,6 @@ std::string machine_profile(const schedule::ScheduleDocument& schedule, const Dr
   throw InputError(o.file, 0, "/inputs/machine/name",
                    "the machine profile '" + name +
                        "' is not among the schedule's files here; name it with --machine");
-}
-
-/// Where each gantry is parked before its first job: where its first path starts when it
-/// works from the first layer on; else (it joins later, and no plan says where it waits)
-/// at the far end of the rails, a gantry width from the next. Neighbours' homes are kept
-/// a gantry width apart.
-std::map<std::string, std::array<double, 4>> homes_of(
-    const std::vector<dispatch::DispatchJob>& jobs, const std::vector<std::string>& ids,
-    const schedule::RecordedMachine& machine) {
-  const machine::RailAxis rail_axis = machine.rail_axis;
-  const double gantry_width_m = machine.gantry_width_m;
-  const int rail = rail_axis == machine::RailAxis::kY ? 1 : 0;
-  const double rail_max_m = machine::rail_coordinate(machine.x_max_m, machine.y_max_m, rail_axis);
-  double first_s = std::numeric_limits<double>::infinity();
-  for (const auto& j : jobs)
-    if (j.kind == dispatch::JobKind::kDeposit) first_s = std::min(first_s, j.start_s);
-  std::map<std::string, std::array<double, 4>> homes;
-  std::map<std::string, bool> from_first;
-  for (const auto& id : ids)
-    for (const auto& j : jobs)
-      if (j.machine_id == id && j.path.size() > 0) {
-        const auto& c = j.path;
-        homes[id] = {c.x_m[0], c.y_m[0], c.z_m[0], c.heading_rad[0]};
-        from_first[id] = j.start_s == first_s;
-        break;
-      }
-  const int count = static_cast<int>(ids.size());
-  for (int k = 0; k < count; ++k)
-    if (homes.count(ids[k]) && !from_first[ids[k]])
-      homes[ids[k]][rail] = rail_max_m - (count - 1 - k) * gantry_width_m;
-  for (int k = 1; k < count; ++k)
-    if (homes.count(ids[k]) && homes.count(ids[k - 1]))
-      homes[ids[k]][rail] = std::max(homes[ids[k]][rail], homes[ids[k - 1]][rail] + gantry_width_m);
-  return homes;
 }
 
 std::string duration(double s) {
@@ -370,7 +247,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     std::cerr << "dry-run: a message on " << channel << " (" << size
               << " bytes) did not decode: rejected\n";
   });
-  std::unique_ptr<Machines> machines;
+  std::unique_ptr<dispatch::MachineSupervisor> machines;
   const fs::path state_dir = o.state_dir.empty() ? work : fs::path(o.state_dir);
   if (!o.state_dir.empty()) {
     fs::create_directories(state_dir);
@@ -396,8 +273,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       common.push_back("--" + name);
       common.push_back(printf_string("%.17g", p));
     }
-    machines = std::make_unique<Machines>(ids, homes_of(jobs, ids, machine_rec), common,
-                                          inject.flags(), state_dir);
+    machines = std::make_unique<dispatch::MachineSupervisor>(
+        fs::read_symlink("/proc/self/exe").parent_path() / "ccbuild-sim", ids,
+        dispatch::parking_homes(jobs, ids, machine_rec), common, inject.flags(), state_dir);
   }
   dispatch::DispatchOptions d;
   d.speed = o.speed;
@@ -723,27 +601,32 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
       "Run a schedule against simulated machines over LCM, as it would go to hardware: one "
       "ccbuild-sim process per gantry (or machines already on the bus with --external), "
       "each checking the jobs against its URDF's limits and the material's interval window. "
-      "A layer's jobs go out together with a common start; each job's path in chunks under "
-      "64 kB; acknowledged and completed, sent again when an answer is late (a machine never "
-      "runs a job twice); every step written to the SQLite journal first (--journal: a "
-      "dry-run restarted on it goes on where it stopped). Faults meet their policy: a pin "
-      "that missed is tried again, a clog is purged and the rest of its layer re-planned, "
-      "anything else stops every machine safely. With several gantries a site watchdog "
-      "pauses them all before two come closer than the gantry width (at speeds where "
-      "statuses come often enough; else it audits the gaps). A machine that crashes is "
-      "started again on its own record. Ends with planned against executed, layer by "
-      "layer, every fault and what was done. Before anything starts, a schedule file is read "
-      "back and checked (a hand-edited one that breaks a rule is refused with the place), "
-      "its input files must be unchanged, a schedule marked not feasible is refused, and "
-      "every flag and fault is checked against what the machines accept and the schedule "
-      "holds (exit 2). Exit 0 when the building was completed within its constraints, 1 "
-      "otherwise. Run it in a network namespace of its own "
+      "One site clock drives them all: the orchestrator publishes the time up to which the "
+      "machines may run, each answers with its status for that instant, and the clock moves "
+      "on (at --speed while something moves, at once over idle time) only once all have "
+      "answered. A layer's jobs go out together with a common start; each job's path in "
+      "chunks under 64 kB; acknowledged and completed, sent again when an answer is late "
+      "(from 20 ms, doubling; a machine never runs a job twice); every step written to the "
+      "SQLite journal first (--journal: a dry-run restarted on it goes on where it stopped). "
+      "Faults meet their policy: a pin that missed is tried again, a clog is purged and the "
+      "rest of its layer re-planned, anything else stops every machine safely. With several "
+      "gantries the site watchdog lets the clock move on only where no two gantries can come "
+      "closer than their width whatever each does along its path, and pauses them all before "
+      "they touch, at any speed. Idle gantries park at the far end of the rails. A machine "
+      "that crashes is started again on its own record (at most 10 times). Ends with planned "
+      "against executed, floor by floor (--by-layer: layer by layer), every fault and what "
+      "was done. Before anything starts, a schedule file is read back and checked (a "
+      "hand-edited one that breaks a rule is refused with the place), its input files must "
+      "be unchanged, a schedule marked not feasible is refused, every flag and fault is "
+      "checked against what the machines accept and the schedule holds, and the journal and "
+      "state folders must be writable (exit 2). Exit 0 when the building was completed "
+      "within its constraints, 1 otherwise. Run it in a network namespace of its own "
       "(scripts/in-netns.sh; docs/dispatch.md).\n"
       "Examples:\n"
       "  ccbuild dry-run config/buildings/house.yaml\n"
       "  ccbuild dry-run house.schedule.json --speed 100000 --journal house.journal\n"
       "  ccbuild dry-run config/buildings/house.yaml --inject drop=0.1,clog=0:5 --seed 3\n"
-      "  ccbuild dry-run twin.schedule.json --speed 20 --inject stall=gantry-1@20");
+      "  ccbuild dry-run twin.schedule.json --inject stall=gantry-1@75 --log twin.lcmlog");
   command->add_option("FILE", o->file, "A building, or a schedule JSON")->required();
   command->add_option("--lcm-url", o->lcm_url, "LCM provider URL (ttl=0: this host only)")
       ->capture_default_str();
@@ -789,8 +672,10 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
   command->add_flag("--external", o->external, "Use machines already on the bus");
   command
       ->add_option("--status-period", o->status_period_s,
-                   "The machines' status every this many seconds of machine time (default: "
-                   "1 s, or what keeps them under 200 a real second)")
+                   "On the site clock: the watchdog's finest step, seconds of site time "
+                   "(default 0.02 s: paused when a step would have to be shorter). With "
+                   "--own-clock: the machines' status every this many seconds of machine time "
+                   "(default 1 s, or what keeps them under 200 a real second)")
       ->check(number_in(machine::sim_limits::kStatusPeriod_s, "s"));
   command->add_flag(
       "--own-clock", o->own_clock,

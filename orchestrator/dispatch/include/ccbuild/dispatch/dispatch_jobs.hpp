@@ -7,7 +7,9 @@
 // nine after each are for the jobs that recover from its faults); the same schedule
 // gives the same jobs.
 
+#include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -51,5 +53,14 @@ struct DispatchJob {
 /// to be sent (by planned start, then gantry). Throws InputError when a layer's plan is
 /// missing.
 std::vector<DispatchJob> jobs_of_schedule(const schedule::ScheduleDocument& schedule);
+
+/// Where each gantry of `ids` (in rail order) is parked before its first job (x, y, z m,
+/// heading rad): where its first path starts when it works from the first layer on; else
+/// (it joins later) at its park at the far end of the rails, a gantry width from the
+/// next (the machine's gantries that never work stand beyond it). Neighbours' homes are
+/// kept a gantry width apart.
+std::map<std::string, std::array<double, 4>> parking_homes(
+    const std::vector<DispatchJob>& jobs, const std::vector<std::string>& ids,
+    const schedule::RecordedMachine& machine);
 
 }  // namespace ccbuild::dispatch
