@@ -401,6 +401,16 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
           done, dispatcher.jobs().size(),
           100.0 * done / std::max<std::size_t>(1, dispatcher.jobs().size()),
           duration(eta_s).c_str());
+      // A machine heard but not answering the clock runs on a clock of its own (a real
+      // machine, or ccbuild-sim --own-clock): say so rather than wait in silence.
+      if (site && site->clock().waited_s() > 2.0)
+        for (const auto& machine : site->clock().waiting_for())
+          std::cerr << printf_string(
+              "dry-run: %s has not answered the site clock's tick %lld for %.0f s (a machine on "
+              "its own clock answers with tick 0: run such machines with `ccbuild dry-run "
+              "--own-clock`)\n",
+              machine.c_str(), static_cast<long long>(site->clock().tick()),
+              site->clock().waited_s());
       for (const auto& [machine, silent_s] : dispatcher.silent(3.0))
         std::cerr << printf_string(
             "dry-run: %s not heard from %s\n", machine.c_str(),
