@@ -320,7 +320,7 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
   // A pin into an anchor younger than the anchor strength needs.
   if (job.kind == ccbuild_job_t::CLIMB_PHASE && job.phase == ccbuild_job_t::INSERT &&
       options_.anchor_min_age_s > 0.0) {
-    {
+    {  // the unit's last pipe, by the job's unit field
       const std::string& unit = job.unit;
       const auto pipe = pipes_.find(unit);
       if (pipe != pipes_.end() && start_s - pipe->second < options_.anchor_min_age_s - 1e-3)
@@ -437,20 +437,7 @@ void SimMachine::try_start() {
 void SimMachine::follow(double elapsed_s) {
   const TimedPath& p = current_->path;
   if (p.size() == 0) return;
-  const auto it = std::upper_bound(p.t_s.begin(), p.t_s.end(), elapsed_s);
-  const std::size_t k = static_cast<std::size_t>(it - p.t_s.begin());
-  std::array<double, 4> at;
-  if (k == 0 || k >= p.size()) {
-    const std::size_t j = k == 0 ? 0 : p.size() - 1;
-    at = {p.x_m[j], p.y_m[j], p.z_m[j], p.heading_rad[j]};
-  } else {
-    const double span = p.t_s[k] - p.t_s[k - 1];
-    const double f = span > 0.0 ? (elapsed_s - p.t_s[k - 1]) / span : 1.0;
-    const auto lerp = [&](const std::vector<double>& v) {
-      return v[k - 1] + f * (v[k] - v[k - 1]);
-    };
-    at = {lerp(p.x_m), lerp(p.y_m), lerp(p.z_m), lerp(p.heading_rad)};
-  }
+  std::array<double, 4> at = position_at(p, elapsed_s);
   // A stalled rail axis stays where it stopped; the others follow the path.
   const int rail = options_.model && options_.model->rail_axis == RailAxis::kY ? 1 : 0;
   if (stalled_rail_m_) at[rail] = *stalled_rail_m_;

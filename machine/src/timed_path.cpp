@@ -18,6 +18,19 @@ void TimedPath::push_back(double t, double x, double y, double z, double heading
   piece.push_back(piece_number);
 }
 
+std::array<double, 4> position_at(const TimedPath& p, double t_s) {
+  const auto it = std::upper_bound(p.t_s.begin(), p.t_s.end(), t_s);
+  const std::size_t k = static_cast<std::size_t>(it - p.t_s.begin());
+  if (k == 0 || k >= p.size()) {
+    const std::size_t j = k == 0 ? 0 : p.size() - 1;
+    return {p.x_m[j], p.y_m[j], p.z_m[j], p.heading_rad[j]};
+  }
+  const double span = p.t_s[k] - p.t_s[k - 1];
+  const double f = span > 0.0 ? (t_s - p.t_s[k - 1]) / span : 1.0;
+  const auto lerp = [&](const std::vector<double>& v) { return v[k - 1] + f * (v[k] - v[k - 1]); };
+  return {lerp(p.x_m), lerp(p.y_m), lerp(p.z_m), lerp(p.heading_rad)};
+}
+
 void append_waypoint(TimedPath& path, const ccbuild_lcm::ccbuild_path_chunk_t& c, int k) {
   path.push_back(c.t_s[k], c.x_m[k], c.y_m[k], c.z_m[k], c.heading_rad[k], c.extruding[k],
                  c.wall[k], c.piece[k]);

@@ -9,18 +9,10 @@
 namespace ccbuild::dispatch {
 namespace {
 
-/// The rail position of `path` at `t_s` from its start (linear between waypoints).
+/// The rail position of `path` at `t_s` from its start.
 double rail_on_path(const machine::TimedPath& p, double t_s, machine::RailAxis axis) {
-  const auto it = std::upper_bound(p.t_s.begin(), p.t_s.end(), t_s);
-  const std::size_t k = static_cast<std::size_t>(it - p.t_s.begin());
-  const auto rail = [&](std::size_t j) {
-    return machine::rail_coordinate(p.x_m[j], p.y_m[j], axis);
-  };
-  if (k == 0) return rail(0);
-  if (k >= p.size()) return rail(p.size() - 1);
-  const double span = p.t_s[k] - p.t_s[k - 1];
-  const double f = span > 0.0 ? (t_s - p.t_s[k - 1]) / span : 1.0;
-  return rail(k - 1) + f * (rail(k) - rail(k - 1));
+  const auto at = machine::position_at(p, t_s);
+  return machine::rail_coordinate(at[0], at[1], axis);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // A job's timed path as the machine follows it. On the wire it travels in path chunks
 // (path_chunks.hpp).
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -19,5 +20,10 @@ struct TimedPath {
   void push_back(double t, double x, double y, double z, double heading, bool deposits,
                  std::int64_t wall_id, std::int32_t piece_number);
 };
+
+/// Where `path` is `t_s` after its start: x, y, z (m) and heading (rad), in a straight
+/// line between waypoints; its first waypoint before it, its last after it. The path must
+/// not be empty.
+std::array<double, 4> position_at(const TimedPath& path, double t_s);
 
 }  // namespace ccbuild::machine
