@@ -27,7 +27,6 @@ namespace {
 using ccbuild_lcm::ccbuild_fault_t;
 using ccbuild_lcm::ccbuild_job_t;
 
-constexpr double kEndMatch_m = 0.02;  ///< piece ends this close are the same end
 constexpr double kIntervalSlack_s = 1e-3;
 constexpr std::int64_t kReplayAge_us = 120'000'000;  ///< older than the newest by this: a replay
 constexpr std::size_t kSeenKept = 8192;
@@ -55,24 +54,6 @@ std::int8_t fault_code(const std::string& word) {
                                 : 0;
 }
 
-/// The ends of each extruding run of one wall piece: (waypoint, wall) pairs.
-std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const TimedPath& p) {
-  std::vector<std::pair<std::size_t, std::int64_t>> ends;
-  std::size_t k = 0;
-  while (k + 1 < p.size()) {
-    if (!p.extruding[k]) {
-      ++k;
-      continue;
-    }
-    const std::size_t first = k;
-    while (k + 1 < p.size() && p.extruding[k] && p.wall[k] == p.wall[first] &&
-           p.piece[k] == p.piece[first])
-      ++k;
-    ends.emplace_back(first, p.wall[first]);
-    ends.emplace_back(k, p.wall[first]);
-  }
-  return ends;
-}
 }  // namespace
 
 std::vector<RecordedJob> read_machine_record(const std::filesystem::path& path) {
@@ -338,8 +319,8 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
   if (below == deposited_.end()) return std::nullopt;
   for (const auto& [k, wall] : piece_ends(path)) {
     for (const PieceEnd& e : below->second) {
-      if (e.wall != wall || std::abs(e.x_m - path.x_m[k]) > kEndMatch_m ||
-          std::abs(e.y_m - path.y_m[k]) > kEndMatch_m)
+      if (e.wall != wall || std::abs(e.x_m - path.x_m[k]) > kPieceEndMatch_m ||
+          std::abs(e.y_m - path.y_m[k]) > kPieceEndMatch_m)
         continue;
       const double interval_s = start_s + path.t_s[k] - e.t_s;
       const char* what = nullptr;

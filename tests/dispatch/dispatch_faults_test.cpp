@@ -459,14 +459,15 @@ TEST(Dispatch, TheRestOfAClogRunsAloneWithTheGantriesInItsWayMovedClear) {
   const Dispatcher& d = *run.dispatcher;
   ASSERT_TRUE(d.finished());
   ASSERT_FALSE(d.stopped()) << *d.stopped();
-  EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
-  EXPECT_EQ(run.sim2.executed(), (std::vector<std::int64_t>{20, 21}));      // its wall, the move
+  // clog, purge, rest (its id after one left free for a treatment it did not need)
+  EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 13}));
+  EXPECT_EQ(run.sim2.executed(), (std::vector<std::int64_t>{20, 21}));  // its wall, the move
   const auto& move = d.jobs().at(4);
   EXPECT_EQ(move.kind, JobKind::kTravel);
   EXPECT_DOUBLE_EQ(move.path.x_m.back(), 8.0);  // the rest reaches 6: 6 + 2
   EXPECT_DOUBLE_EQ(run.sim2.position()[0], 8.0);
   // The rest started only once gantry-2 had moved clear.
-  EXPECT_GE(d.executed().at(12).first, d.executed().at(21).second - 1e-9);
+  EXPECT_GE(d.executed().at(13).first, d.executed().at(21).second - 1e-9);
 }
 
 TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
@@ -476,11 +477,11 @@ TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
   const Dispatcher& d = *run.dispatcher;
   ASSERT_TRUE(d.finished());
   ASSERT_FALSE(d.stopped()) << *d.stopped();
-  EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 12}));  // clog, purge, rest
+  EXPECT_EQ(run.sim1.executed(), (std::vector<std::int64_t>{10, 11, 13}));  // clog, purge, rest
   EXPECT_EQ(run.sim2.executed(), (std::vector<std::int64_t>{20}));          // no move
   EXPECT_EQ(d.jobs().size(), 4u);
   EXPECT_DOUBLE_EQ(run.sim2.position()[0], 8.0);
-  EXPECT_DOUBLE_EQ(d.executed().at(12).first, d.executed().at(20).second);
+  EXPECT_DOUBLE_EQ(d.executed().at(13).first, d.executed().at(20).second);
 }
 
 /// A status of machine `id` at machine time `t_s`, on `channel_of`'s status channel (by
@@ -589,6 +590,237 @@ TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) 
     EXPECT_TRUE(contains(*why, "gantry-2 at 2.400 m")) << *why;
     EXPECT_NEAR(dog.smallest_gap_m(), 1.95, 1e-9);
   }
+}
+
+// --- Re-planning a late run from what the machines laid (replan.hpp) ---
+
+TEST(Replan, AStartWindowKeepsEachPieceEndWithinTheIntervalAndMatchesEndsWithinTwoCm) {
+  // piece_job's path: one piece of wall 1 from x = 0 (t 0) to x = 1 m (t 5 s).
+  const machine::TimedPath path = piece_job(20, 1, 0.0).path;
+  const std::vector<LaidEnd> below = {{1, 0.0, 0.0, 100.0}, {1, 1.0, 0.0, 105.0}};
+  const StartWindow w = start_window(path, below, 60.0, 500.0);
+  EXPECT_EQ(w.ends_covered, 2);
+  EXPECT_DOUBLE_EQ(w.earliest_s, 160.0);  // x = 0: 100 + 60 - 0; x = 1: 105 + 60 - 5
+  EXPECT_DOUBLE_EQ(w.latest_s, 600.0);    // x = 0: 100 + 500 - 0; x = 1: 105 + 500 - 5
+  EXPECT_DOUBLE_EQ(w.newest_below_s, 105.0);
+  EXPECT_FALSE(w.empty());
+  // An end 19.5 mm off is the same end; 20.5 mm off, or of another wall, is not.
+  EXPECT_EQ(start_window(path, {{1, 1.0195, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 1);
+  EXPECT_EQ(start_window(path, {{1, 1.0205, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 0);
+  EXPECT_EQ(start_window(path, {{2, 1.0, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 0);
+  // Ends laid 440 s apart leave no start for a 60-500 s window; 440 s is its width.
+  StartWindow apart = start_window(path, {{1, 0.0, 0.0, 0.0}, {1, 1.0, 0.0, 445.0}}, 60.0, 500.0);
+  EXPECT_DOUBLE_EQ(apart.earliest_s, apart.latest_s);
+  EXPECT_FALSE(apart.empty());
+  apart = start_window(path, {{1, 0.0, 0.0, 0.0}, {1, 1.0, 0.0, 445.001}}, 60.0, 500.0);
+  EXPECT_TRUE(apart.empty());
+  // What a deposit laid: every end, or those up to the waypoint it stopped at.
+  EXPECT_EQ(laid_ends(path, 10.0).size(), 2u);
+  EXPECT_EQ(laid_ends(path, 10.0, 0).size(), 1u);
+  EXPECT_DOUBLE_EQ(laid_ends(path, 10.0, 1).back().t_s, 15.0);
+}
+
+/// A layer of two wall pieces along x at 0.2 m/s: wall 1 from x = 0 to 1 m, wall 2 from
+/// 1 to 2 m; a clog stops it at x = 1 m (the first extruding waypoint past 40% of it).
+DispatchJob two_walls(std::int64_t id, int layer, double start_s) {
+  DispatchJob d = piece_job(id, layer, start_s);
+  const double z_m = 0.1 * (layer + 1);
+  d.path = {};
+  d.path.push_back(0.0, 0.0, 0.0, z_m, 0.0, true, 1, 1);
+  d.path.push_back(5.0, 1.0, 0.0, z_m, 0.0, true, 2, 1);
+  d.path.push_back(10.0, 2.0, 0.0, z_m, 0.0, false, 0, 0);
+  d.duration_s = 10.0;
+  return d;
+}
+
+/// Four layers a minute apart, the pump clogging in layer 1, on a mix that bonds within
+/// `max_interval_s` (from 30 s), re-planned by a dispatcher that knows the window.
+struct LateRun {
+  explicit LateRun(double max_interval_s,
+                   std::filesystem::path journal = ":memory:", machine::SimOptions so = clogging(),
+                   double stop_after_replans = 1e9, double joint_min_age_s = 0.0)
+      : rig(with_window(so, max_interval_s), layers(), journal,
+            options(max_interval_s, joint_min_age_s)) {
+    for (int k = 0; k < 200'000 && !rig.dispatcher->finished() &&
+                    rig.dispatcher->replans().size() < stop_after_replans;
+         ++k)
+      rig.run(1);
+  }
+  static machine::SimOptions clogging() {
+    machine::SimOptions so = window(30.0, 0.0);
+    so.clog_floor = 0;
+    so.clog_layer = 1;
+    return so;
+  }
+  static machine::SimOptions with_window(machine::SimOptions so, double max_interval_s) {
+    so.max_interval_s = max_interval_s;
+    return so;
+  }
+  static std::vector<DispatchJob> layers() {
+    return {two_walls(10, 0, 0.0), two_walls(20, 1, 60.0), two_walls(30, 2, 120.0),
+            two_walls(40, 3, 180.0)};
+  }
+  static DispatchOptions options(double max_interval_s, double joint_min_age_s = 0.0) {
+    DispatchOptions o;
+    o.joint_min_age_s = joint_min_age_s;
+    o.purge_s = 120.0;
+    o.min_interval_s = 30.0;
+    o.max_interval_s = max_interval_s;
+    o.joint_treatment_s = 50.0;
+    return o;
+  }
+  /// Every piece end's interval to the end below it, from the machine's own record of
+  /// each job (when it started, where it stopped) and the paths it was sent: (interval,
+  /// laid on a planned joint).
+  std::vector<std::pair<double, bool>> intervals() const {
+    std::map<int, std::vector<LaidEnd>> laid;
+    std::vector<std::pair<double, bool>> out;
+    for (const std::int64_t id : rig.sim.executed()) {
+      const DispatchJob& j = *rig.dispatcher->job(id);
+      if (j.kind != JobKind::kDeposit) continue;
+      const auto row = rig.journal.rows().at(id);
+      const auto ends = laid_ends(j.path, rig.dispatcher->executed().at(id).first,
+                                  row.state == "done" ? -1 : row.stopped_at);
+      for (const LaidEnd& e : ends)
+        for (const LaidEnd& b : laid[j.layer - 1])
+          if (b.wall == e.wall && std::abs(b.x_m - e.x_m) < 1e-9)
+            out.emplace_back(e.t_s - b.t_s, j.on_planned_joint);
+      laid[j.layer].insert(laid[j.layer].end(), ends.begin(), ends.end());
+    }
+    return out;
+  }
+  Rig rig;
+};
+
+TEST(Dispatch, AClogOnATightMixEndsInPlannedJointsTreatedFirstWhereNoStartKeepsItWarm) {
+  // Layer 1 clogs at x = 1 m (65 s); after the 120 s purge its rest would cover layer
+  // 0's wall 2 (laid at 5 and 10 s) 180 s later, past the 100 s maximum: the top of layer
+  // 0 is treated first (50 s) and the rest laid on a planned joint. Layer 2 then covers
+  // ends of layer 1 laid 170 s apart, more than the 70 s the window is wide: a planned
+  // joint again. Layer 3 keeps every joint within the window.
+  LateRun late(100.0);
+  const Dispatcher& d = *late.rig.dispatcher;
+  ASSERT_TRUE(d.finished());
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  // clog, purge, treatment, rest; treatment, layer 2; layer 3.
+  EXPECT_EQ(late.rig.sim.executed(), (std::vector<std::int64_t>{10, 20, 21, 22, 23, 29, 30, 40}));
+  ASSERT_EQ(d.replans().size(), 2u);
+  EXPECT_EQ(d.replans()[0].what, "planned joint");
+  EXPECT_EQ(d.replans()[0].job_id, 23);
+  EXPECT_EQ(d.replans()[0].treatment_job_id, 22);
+  EXPECT_DOUBLE_EQ(d.replans()[0].treatment_start_s, 185.0);  // clog 65 + purge 120
+  EXPECT_DOUBLE_EQ(d.replans()[0].start_s, 235.0);
+  EXPECT_EQ(d.replans()[1].job_id, 30);
+  EXPECT_EQ(d.replans()[1].treatment_job_id, 29);
+  // Layer 2 at 120 s + the 170 s the rest ended late, after its treatment.
+  EXPECT_DOUBLE_EQ(d.replans()[1].treatment_start_s, 290.0);
+  EXPECT_DOUBLE_EQ(d.replans()[1].start_s, 340.0);
+  EXPECT_TRUE(contains(d.replans()[1].detail, "laid 170.0 s apart")) << d.replans()[1].detail;
+  // Each treatment ran before the deposit it prepares, which started when re-planned.
+  EXPECT_DOUBLE_EQ(d.executed().at(22).second, d.executed().at(23).first);
+  EXPECT_DOUBLE_EQ(d.executed().at(29).second, d.executed().at(30).first);
+  EXPECT_DOUBLE_EQ(d.executed().at(40).first, 400.0);  // 180 + the delay of 220 s
+  // By the machine's record: every joint not on a planned one is within 30-100 s.
+  int warm = 0, planned = 0;
+  for (const auto& [interval_s, on_joint] : late.intervals()) {
+    if (on_joint) {
+      ++planned;
+      continue;
+    }
+    ++warm;
+    EXPECT_GE(interval_s, 30.0 - 1e-6);
+    EXPECT_LE(interval_s, 100.0 + 1e-6);
+  }
+  EXPECT_GT(warm, 0);
+  EXPECT_GT(planned, 0);
+  EXPECT_EQ(late.rig.journal.replans().size(), 2u);
+  // A treatment that needs the layer below 300 s old waits for it: wall 2's last end
+  // below was laid at 10 s, so from 310 s, not 185 s.
+  LateRun aged(100.0, ":memory:", LateRun::clogging(), 1e9, 300.0);
+  ASSERT_FALSE(aged.rig.dispatcher->replans().empty());
+  EXPECT_DOUBLE_EQ(aged.rig.dispatcher->replans()[0].treatment_start_s, 310.0);
+  EXPECT_DOUBLE_EQ(aged.rig.dispatcher->executed().at(22).first, 310.0);
+}
+
+TEST(Dispatch, AClogWhoseRestStillFitsTheWindowNeedsNoPlannedJoint) {
+  // With a 180 s maximum the rest (at 185 s) covers wall 2's ends (laid at 5 and 10 s)
+  // exactly 180 s later, and layer 2 (at 240 s) covers layer 1's first end exactly 180 s
+  // after it: both at the boundary, kept warm, nothing re-planned.
+  LateRun late(180.0);
+  const Dispatcher& d = *late.rig.dispatcher;
+  ASSERT_TRUE(d.finished());
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  EXPECT_TRUE(d.replans().empty());
+  EXPECT_EQ(late.rig.sim.executed(), (std::vector<std::int64_t>{10, 20, 21, 23, 30, 40}));
+  double longest_s = 0.0;
+  for (const auto& [interval_s, on_joint] : late.intervals()) {
+    EXPECT_FALSE(on_joint);
+    longest_s = std::max(longest_s, interval_s);
+  }
+  EXPECT_NEAR(longest_s, 180.0, 1e-6);
+  // 10 ms less and the rest is past it: treated first, laid on a planned joint.
+  LateRun tighter(179.99);
+  ASSERT_FALSE(tighter.rig.dispatcher->stopped()) << *tighter.rig.dispatcher->stopped();
+  ASSERT_FALSE(tighter.rig.dispatcher->replans().empty());
+  EXPECT_EQ(tighter.rig.dispatcher->replans()[0].job_id, 23);
+  EXPECT_EQ(tighter.rig.dispatcher->replans()[0].what, "planned joint");
+}
+
+TEST(Dispatch, ALayerThatWouldCoverAPieceEndTooSoonStartsLater) {
+  // Planned 25 s after the layer below, under the 30 s minimum: started 5 s later (the
+  // machine would refuse it). Planned at exactly 30 s: as planned.
+  for (const double planned_s : {25.0, 30.0}) {
+    Rig rig(window(30.0, 100.0), {piece_job(10, 0, 0.0), piece_job(20, 1, planned_s)},
+            ":memory:", LateRun::options(100.0));
+    rig.run();
+    ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+    EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(20).first, 30.0) << planned_s;
+    EXPECT_EQ(rig.dispatcher->replans().size(), planned_s < 30.0 ? 1u : 0u);
+    if (planned_s < 30.0) {
+      EXPECT_EQ(rig.dispatcher->replans()[0].what, "later");
+      EXPECT_DOUBLE_EQ(rig.dispatcher->delay_s(), 5.0);
+    }
+  }
+}
+
+TEST(Dispatch, ARestartedDispatcherReplansIdenticallyFromItsJournal) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("ccbuild_replan_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  machine::SimOptions so = LateRun::clogging();
+  so.state_file = dir / "gantry-1.state";
+  std::vector<Replan> first;
+  std::vector<DispatchJob> made;
+  {
+    // "Killed" once the first re-plan is journalled.
+    LateRun late(100.0, dir / "journal.sqlite", so, 1);
+    ASSERT_EQ(late.rig.dispatcher->replans().size(), 1u);
+    first = late.rig.dispatcher->replans();
+    made = late.rig.dispatcher->jobs();
+  }
+  so.clog_floor = -1;
+  LateRun again(100.0, dir / "journal.sqlite", so);
+  const Dispatcher& d = *again.rig.dispatcher;
+  ASSERT_FALSE(d.stopped()) << *d.stopped();
+  ASSERT_EQ(d.replans().size(), 2u);
+  EXPECT_EQ(d.replans()[0].job_id, first[0].job_id);
+  EXPECT_EQ(d.replans()[0].treatment_job_id, first[0].treatment_job_id);
+  EXPECT_DOUBLE_EQ(d.replans()[0].start_s, first[0].start_s);
+  EXPECT_DOUBLE_EQ(d.replans()[0].treatment_start_s, first[0].treatment_start_s);
+  // The same jobs as before the restart, then the same second re-plan as in one run.
+  for (const DispatchJob& j : made) {
+    const DispatchJob* now = d.job(j.job_id);
+    ASSERT_NE(now, nullptr) << j.job_id;
+    EXPECT_EQ(now->kind, j.kind) << j.job_id;
+    EXPECT_DOUBLE_EQ(now->start_s, j.start_s) << j.job_id;
+  }
+  EXPECT_TRUE(d.job(23)->on_planned_joint);
+  EXPECT_DOUBLE_EQ(d.replans()[1].start_s, 340.0);
+  const auto& ran = again.rig.sim.executed();
+  EXPECT_EQ(std::set<std::int64_t>(ran.begin(), ran.end()).size(), ran.size()) << "a job ran twice";
+  EXPECT_EQ(ran.size(), 8u);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 # The journal must be consistent: every job done, or ended on a fault whose recovery job
 # is done; no fault met by stopping. Lines the summary must hold can be given in EXPECT
 # (one extended regular expression per line); EXPECT_EXIT=1 for a run that must stop
-# (then jobs may be left, but none may run twice or go unreported).
+# (then jobs may be left, but none may run twice or go unreported). CHECK_JOINTS checks
+# every joint between layers from the machines' messages (check_joints.py).
 # Usage: [EXPECT=...] dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
 set -euo pipefail
 # As root, a network namespace; otherwise a user namespace with one (needs unprivileged
@@ -68,6 +69,12 @@ if complete and stops:
 print("journal: %d jobs, consistent; faults: %s" % (len(rows), db.execute(
     "SELECT group_concat(kind || ' ' || policy, '; ') FROM fault").fetchone()[0]))
 PY
+# Every joint between layers, from the machines' own messages in the LCM log (not the
+# orchestrator's view): CHECK_JOINTS="--min S --max S [--expect-planned]".
+if [ -n "${CHECK_JOINTS:-}" ]; then
+  # shellcheck disable=SC2086
+  python3 "$(dirname "$0")/check_joints.py" "$out/conversation.lcmlog" $CHECK_JOINTS
+fi
 while IFS= read -r pattern; do
   [ -z "$pattern" ] && continue
   grep -Eq -- "$pattern" "$out/summary.txt" "$out/progress.txt" ||

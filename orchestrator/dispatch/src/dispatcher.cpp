@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -125,6 +126,10 @@ Journal::Journal(const std::filesystem::path& path, const std::string& schedule_
       "NOT NULL, job_id INTEGER NOT NULL, kind INTEGER NOT NULL, message TEXT NOT NULL, policy "
       "TEXT NOT NULL, utime INTEGER NOT NULL);"
       "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+      "CREATE TABLE IF NOT EXISTS replan (id INTEGER PRIMARY KEY AUTOINCREMENT, job_id INTEGER "
+      "NOT NULL, what TEXT NOT NULL, start_s REAL NOT NULL, delay_s REAL NOT NULL, "
+      "treatment_job_id INTEGER NOT NULL, treatment_start_s REAL NOT NULL, "
+      "treatment_s REAL NOT NULL, detail TEXT NOT NULL, utime INTEGER NOT NULL);"
       "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state LIMIT 0;";
   char* error = nullptr;
   if (sqlite3_exec(db_, setup, nullptr, nullptr, &error) != SQLITE_OK) {
@@ -204,6 +209,38 @@ void Journal::record_fault(const FaultRecord& f) {
   write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
+void Journal::record_replan(const Replan& r) {
+  const auto started = std::chrono::steady_clock::now();
+  Statement s(db_,
+              "INSERT INTO replan (job_id, what, start_s, delay_s, treatment_job_id, "
+              "treatment_start_s, treatment_s, detail, utime) VALUES (?1, ?2, ?3, ?4, ?5, ?6, "
+              "?7, ?8, ?9)");
+  sqlite3_bind_int64(*s, 1, r.job_id);
+  sqlite3_bind_text(*s, 2, r.what.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_double(*s, 3, r.start_s);
+  sqlite3_bind_double(*s, 4, r.delay_s);
+  sqlite3_bind_int64(*s, 5, r.treatment_job_id);
+  sqlite3_bind_double(*s, 6, r.treatment_start_s);
+  sqlite3_bind_double(*s, 7, r.treatment_s);
+  sqlite3_bind_text(*s, 8, r.detail.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(*s, 9, machine::utime_now());
+  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
+  ++writes_;
+  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+std::vector<Replan> Journal::replans() const {
+  std::vector<Replan> out;
+  Statement s(db_,
+              "SELECT job_id, what, start_s, delay_s, treatment_job_id, treatment_start_s, "
+              "treatment_s, detail FROM replan ORDER BY id");
+  while (sqlite3_step(*s) == SQLITE_ROW)
+    out.push_back({sqlite3_column_int64(*s, 0), text(*s, 1), sqlite3_column_double(*s, 2),
+                   sqlite3_column_double(*s, 3), sqlite3_column_int64(*s, 4),
+                   sqlite3_column_double(*s, 5), sqlite3_column_double(*s, 6), text(*s, 7)});
+  return out;
+}
+
 std::map<std::int64_t, JournalRow> Journal::rows() const {
   std::map<std::int64_t, JournalRow> out;
   Statement s(db_,
@@ -245,6 +282,10 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
   // Back where the journal left off: the jobs ended, and the recovery jobs they made (in
   // order, so that the same ones are made again).
   const auto rows = journal_.rows();
+  const std::vector<Replan> journalled = journal_.replans();
+  std::size_t applied = 0;
+  while (applied < journalled.size() && index_of_.count(journalled[applied].job_id))
+    apply(journalled[applied++]);
   for (std::size_t k = 0; k < jobs_.size(); ++k) {  // jobs_ grows as recoveries are made
     const auto it = rows.find(jobs_[k].job_id);
     if (it == rows.end()) continue;
@@ -252,13 +293,36 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
     if (row.state == "done") {
       ended_[k] = true;
       executed_[jobs_[k].job_id] = {row.started_s, row.finished_s};
-      const DispatchJob& o = jobs_[origin_[k]];
-      delay_s_ = std::max(delay_s_, row.finished_s - (o.start_s + o.duration_s));
+      record_laid(k, row);
     } else if (row.state == "clogged" || row.state == "pin-missed") {
       ended_[k] = true;
       executed_[jobs_[k].job_id] = {row.started_s, row.finished_s};
+      record_laid(k, row);
       if (!recover(k, row)) stopped_ = "the journal ends on a fault with no recovery left";
     }
+    // The re-plans journalled, each once its job exists (a rest exists once its clog is
+    // recovered from): the same starts and treatments as before the restart.
+    while (applied < journalled.size() && index_of_.count(journalled[applied].job_id))
+      apply(journalled[applied++]);
+  }
+  if (applied < journalled.size())
+    stopped_ = "the journal re-plans job " + std::to_string(journalled[applied].job_id) +
+               ", which this run does not have";
+  // The delay: set by the last re-plan of a layer's (or a climb's) start, then raised by
+  // every job that ended after it (those planned from that start on).
+  double since_s = -std::numeric_limits<double>::infinity();
+  for (const Replan& r : replans_) {
+    const std::size_t k = index_of_.at(r.job_id);
+    if (origin_[k] != k) continue;  // a rest's start: the delay is not set by it
+    delay_s_ = r.delay_s;
+    since_s = jobs_[k].start_s;
+  }
+  for (const auto& [id, times] : executed_) {
+    const std::size_t k = index_of_.at(id);
+    const DispatchJob& o = jobs_[origin_[k]];
+    const auto row = rows.find(id);
+    if (row != rows.end() && row->second.state == "done" && o.start_s >= since_s)
+      delay_s_ = std::max(delay_s_, times.second - (o.start_s + o.duration_s));
   }
   for (auto& [machine, q] : queues_)
     while (q.next < q.jobs.size() && ended_[q.jobs[q.next]]) ++q.next;
@@ -327,12 +391,13 @@ int gantry_number(const std::string& machine_id) {
 }  // namespace
 
 bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob job,
-                              bool after_layer) {
+                              bool after_layer, std::int64_t skip_ids) {
   // Recovery jobs take the ids after their origin's (ids go in tens).
   std::int64_t id = jobs_[origin].job_id;
   for (const auto& [other, k] : index_of_)
     if (origin_[k] == origin) id = std::max(id, other);
-  if (++id >= jobs_[origin].job_id + 10) return false;
+  id += 1 + skip_ids;
+  if (id >= jobs_[origin].job_id + 10) return false;
   job.job_id = id;
   Queue& q = queues_[job.machine_id];
   const auto at = std::find(q.jobs.begin(), q.jobs.end(), after);
@@ -347,6 +412,18 @@ bool Dispatcher::insert_after(std::size_t after, std::size_t origin, DispatchJob
   index_of_[id] = jobs_.size() - 1;
   q.jobs.insert(q.jobs.begin() + static_cast<std::ptrdiff_t>(offset), jobs_.size() - 1);
   return true;
+}
+
+void Dispatcher::insert_before(std::size_t before, DispatchJob job) {
+  Queue& q = queues_[jobs_[before].machine_id];
+  const auto at = std::find(q.jobs.begin(), q.jobs.end(), before);
+  const std::ptrdiff_t offset = at - q.jobs.begin();
+  index_of_[job.job_id] = jobs_.size();
+  jobs_.push_back(std::move(job));
+  origin_.push_back(origin_[before]);
+  ended_.push_back(false);
+  after_layer_.push_back(false);
+  q.jobs.insert(q.jobs.begin() + offset, jobs_.size() - 1);
 }
 
 bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, double start_s,
@@ -430,7 +507,8 @@ bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
     std::vector<std::pair<std::size_t, DispatchJob>> moves;
     if (!clearing_moves(index, rest, row.finished_s, moves)) return false;
     // The rest waits for the layer's other jobs and the moves: it runs alone.
-    if (!insert_after(index, origin, purge, false) || !insert_after(index, origin, rest, true))
+    // (An id is left free before the rest, for a planned joint's treatment if it needs one.)
+    if (!insert_after(index, origin, purge, false) || !insert_after(index, origin, rest, true, 1))
       return false;
     for (auto& [k, m] : moves)
       if (!insert_after(k, k, std::move(m), false)) return false;
@@ -467,21 +545,161 @@ bool Dispatcher::released(std::size_t index) const {
   return true;
 }
 
-void Dispatcher::send(std::size_t index) {
-  DispatchJob d = jobs_[index];
+double Dispatcher::start_of(std::size_t index) const {
   // A common start for the jobs released together: planned, plus the delay so far
   // (recovery jobs carry their own starts).
-  if (origin_[index] == index) d.start_s += delay_s_;
+  double start_s = jobs_[index].start_s;
+  if (origin_[index] == index) start_s += delay_s_;
   // A job that runs alone starts when the last of its layer's other jobs ended (each
-  // machine keeps its own clock).
+  // machine keeps its own clock), or when it was re-planned to.
   if (after_layer_[index]) {
     const double layer_s = jobs_[origin_[index]].start_s;
     for (std::size_t k = 0; k < jobs_.size(); ++k) {
       const auto it = executed_.find(jobs_[k].job_id);
       if (k != index && jobs_[origin_[k]].start_s == layer_s && it != executed_.end())
-        d.start_s = std::max(d.start_s, it->second.second);
+        start_s = std::max(start_s, it->second.second);
     }
   }
+  if (const auto at = start_at_.find(index); at != start_at_.end())
+    start_s = std::max(start_s, at->second);
+  return start_s;
+}
+
+std::vector<std::size_t> Dispatcher::starting_with(std::size_t index) const {
+  const DispatchJob& job = jobs_[index];
+  if (origin_[index] != index) return {index};
+  std::vector<std::size_t> group;
+  if (job.kind == JobKind::kDeposit) {
+    // A layer's deposits: schedule jobs with its planned start (adjacent in order).
+    for (std::size_t k = 0; k < schedule_jobs_; ++k)
+      if (jobs_[k].kind == JobKind::kDeposit && jobs_[k].start_s == job.start_s &&
+          jobs_[k].floor == job.floor && jobs_[k].layer == job.layer)
+        group.push_back(k);
+  } else {
+    group.push_back(index);
+  }
+  return group;
+}
+
+void Dispatcher::record_laid(std::size_t index, const JournalRow& row) {
+  const DispatchJob& d = jobs_[index];
+  if (d.kind != JobKind::kDeposit) return;
+  auto ends = laid_ends(d.path, row.started_s, row.state == "done" ? -1 : row.stopped_at);
+  auto& laid = laid_[{d.floor, d.layer}];
+  laid.insert(laid.end(), ends.begin(), ends.end());
+}
+
+namespace {
+/// Within the machine's rounding of an interval (it refuses beyond 1 ms).
+constexpr double kReplanSlack_s = 5e-4;
+}  // namespace
+
+void Dispatcher::replan(std::size_t index) {
+  const DispatchJob& job = jobs_[index];
+  if (decided_.count(job.job_id)) return;
+  const std::vector<std::size_t> group = starting_with(index);
+  for (std::size_t k : group) decided_.insert(jobs_[k].job_id);
+  const bool schedule_job = origin_[index] == index;
+  const double start_s = start_of(index);
+  if (job.kind != JobKind::kDeposit || options_.max_interval_s <= 0.0) return;
+  const auto below = laid_.find({job.floor, job.layer - 1});
+  if (below == laid_.end()) return;
+  StartWindow w;
+  for (std::size_t k : group)
+    w.intersect(start_window(jobs_[k].path, below->second, options_.min_interval_s,
+                             options_.max_interval_s));
+  if (w.ends_covered == 0) return;
+  Replan r;
+  r.job_id = job.job_id;
+  r.delay_s = delay_s_;
+  {
+    const bool on_joint = job.on_planned_joint;
+    double new_start_s = std::max(start_s, w.earliest_s);
+    const bool cold = !on_joint && (w.empty() || new_start_s > w.latest_s + kReplanSlack_s);
+    const std::string what =
+        schedule_job ? printf_string("floor %d layer %d", job.floor, job.layer) : job.detail;
+    if (!cold) {
+      if (new_start_s <= start_s + kReplanSlack_s) return;
+      r.what = "later";
+      r.detail = printf_string(
+          "%s starts %.1f s later (at %.1f s): no piece end below is covered sooner than the "
+          "minimum %.0f s after the machines laid it",
+          what.c_str(), new_start_s - start_s, new_start_s, options_.min_interval_s);
+    } else {
+      // No start keeps every joint below within the maximum: a planned joint, treated
+      // first (once the layer below is old enough), as the schedule plans one.
+      r.what = "planned joint";
+      r.treatment_s = options_.joint_treatment_s;
+      r.treatment_start_s = std::max(start_s, w.newest_below_s + options_.joint_min_age_s);
+      new_start_s = std::max(r.treatment_start_s + r.treatment_s, w.earliest_s);
+      // An id between the jobs its machine ran before and this one.
+      const Queue& q = queues_.at(job.machine_id);
+      std::int64_t before_id = 0;
+      for (std::size_t k : q.jobs) {
+        if (k == index) break;
+        before_id = std::max(before_id, jobs_[k].job_id);
+      }
+      for (std::int64_t id = job.job_id - 1; id > before_id && r.treatment_job_id == 0; --id)
+        if (!index_of_.count(id)) r.treatment_job_id = id;
+      if (r.treatment_job_id == 0) {
+        stop("no job id left for the treatment of a planned joint before job " +
+             std::to_string(job.job_id));
+        return;
+      }
+      const std::string why =
+          w.empty()
+              ? printf_string(
+                    "the piece ends below were laid %.1f s apart, more than the "
+                    "material's window allows",
+                    w.earliest_s - w.latest_s + options_.max_interval_s - options_.min_interval_s)
+              : printf_string(
+                    "it could start at %.1f s at the earliest, and the last "
+                    "start that covers every piece end below within %.0f s "
+                    "was %.1f s",
+                    new_start_s - (r.treatment_s), options_.max_interval_s, w.latest_s);
+      r.detail = printf_string(
+          "%s on a planned joint: %s; the top of floor %d layer %d treated (%.0f s) from %.1f "
+          "s, then it starts at %.1f s",
+          what.c_str(), why.c_str(), job.floor, job.layer - 1, r.treatment_s, r.treatment_start_s,
+          new_start_s);
+    }
+    r.start_s = new_start_s;
+    if (schedule_job) r.delay_s = new_start_s - job.start_s;
+  }
+  journal_.record_replan(r);  // before it is acted on
+  apply(r);
+}
+
+void Dispatcher::apply(const Replan& r) {
+  const std::size_t index = index_of_.at(r.job_id);
+  const std::vector<std::size_t> group = starting_with(index);
+  for (std::size_t k : group) decided_.insert(jobs_[k].job_id);
+  replans_.push_back(r);
+  if (origin_[index] == index)
+    delay_s_ = r.delay_s;
+  else
+    start_at_[index] = r.start_s;
+  if (r.what != "planned joint") return;
+  for (std::size_t k : group) jobs_[k].on_planned_joint = true;
+  const DispatchJob& job = jobs_[index];
+  DispatchJob treat;
+  treat.job_id = r.treatment_job_id;
+  treat.machine_id = job.machine_id;
+  treat.kind = JobKind::kWait;
+  treat.floor = job.floor;
+  treat.layer = job.layer;
+  treat.start_s = r.treatment_start_s;
+  treat.duration_s = r.treatment_s;
+  treat.detail = printf_string(
+      "planned joint (re-planned): the top of floor %d layer %d treated before floor %d "
+      "layer %d",
+      job.floor, job.layer - 1, job.floor, job.layer);
+  insert_before(index, std::move(treat));
+}
+
+void Dispatcher::send(std::size_t index) {
+  DispatchJob d = jobs_[index];
+  d.start_s = start_of(index);
   JobMessages m = messages_of(d);
   m.job.utime = machine::utime_now();
   m.job.seq = ++seq_;
@@ -558,6 +776,7 @@ void Dispatcher::on_fault(const FaultRecord& record) {
 void Dispatcher::advance(Queue& q, std::size_t index, const JournalRow& row) {
   ended_[index] = true;
   executed_[jobs_[index].job_id] = {row.started_s, row.finished_s};
+  record_laid(index, row);
   ++q.next;
   q.wait = Queue::Wait::kSend;
   q.waited_s = 0.0;
@@ -619,6 +838,16 @@ void Dispatcher::step(double real_dt_s) {
                      (q.wait == Queue::Wait::kAck && q.waited_s > ack_within_s) ||
                      (q.wait == Queue::Wait::kDone && q.waited_s > done_within_s);
     if (!due) continue;
+    if (q.wait == Queue::Wait::kSend) {
+      // The first time out: its start re-planned from what the machines did (which may
+      // put a treatment before it, or stop the run).
+      replan(index);
+      if (stopped_) return;
+      if (q.jobs[q.next] != index) {
+        q.waited_s = 0.0;
+        continue;  // the treatment goes first, at the next step
+      }
+    }
     if (q.wait != Queue::Wait::kSend) {
       ++resent_;
       ++q.attempts;

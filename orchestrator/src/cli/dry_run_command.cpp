@@ -59,6 +59,7 @@ struct DryRunOptions {
   bool no_watchdog = false;
   bool force = false;
   bool allow_infeasible = false;
+  bool no_replan = false;  ///< send every job at its planned start plus the delay, as planned
 };
 
 /// The machine profile a schedule was made with: the building's (when FILE is one), else
@@ -284,6 +285,13 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   // sent again for a lost DONE only when statuses are lost too (or the machine restarted).
   d.done_slack_s = o.own_clock ? std::max(0.25, 10.0 * o.retry_after_s) : 2.0;
   d.purge_s = machine_rec.purge_s;
+  // The material's window, against which the rest of a late run is re-planned.
+  if (!o.no_replan) {
+    d.min_interval_s = material.min_layer_interval_s;
+    d.max_interval_s = material.max_layer_interval_s;
+  }
+  d.joint_treatment_s = material.planned_joint.treatment_s;
+  d.joint_min_age_s = material.planned_joint.min_age_s;
   if (several) {  // the rest of a clogged layer may need its neighbours out of the way
     d.gantry_width_m = gantry_width_m;
     d.rail_axis = rail_axis;
@@ -545,6 +553,17 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         "  %s job %lld: %s: %s -> %s\n", f.machine_id.empty() ? "dispatcher" : f.machine_id.c_str(),
         static_cast<long long>(f.job_id), dispatch::fault_name(f.kind).c_str(), f.message.c_str(),
         f.policy.c_str());
+  // The re-plans of a late run (each journalled before it was applied).
+  const auto& replans = dispatcher.replans();
+  std::cout << printf_string("re-plans: %zu%s\n", replans.size(),
+                             o.no_replan ? " (--no-replan: sent as planned)" : "");
+  constexpr std::size_t kReplansListed = 10;
+  for (std::size_t k = 0; k < replans.size() && k < kReplansListed; ++k)
+    std::cout << printf_string("  job %lld: %s: %s\n", static_cast<long long>(replans[k].job_id),
+                               replans[k].what.c_str(), replans[k].detail.c_str());
+  if (replans.size() > kReplansListed)
+    std::cout << printf_string("  ... %zu more (the journal's table replan has every one)\n",
+                               replans.size() - kReplansListed);
   for (const auto& e : events) std::cout << "event: " << e << "\n";
   bool collided = false;
   if (site) collided = site->collided() || site->guard().smallest_gap_m() < gantry_width_m;
@@ -701,7 +720,15 @@ void add_dry_run_command(CLI::App& app, int& exit_code) {
   command->add_flag("--force", o->force, "Overwrite the --log file when it exists");
   command->add_flag("--allow-infeasible", o->allow_infeasible,
                     "Run a schedule marked not feasible anyway, to see where its machines stop "
-                    "it (it never ends 'completed within its constraints': exit 1)");
+                    "it (with --no-replan) or how re-planning carries it (it never ends "
+                    "'completed within its constraints': exit 1)");
+  command->add_flag(
+      "--no-replan", o->no_replan,
+      "Send every deposit at its planned start plus the run's delay, as the schedule says, "
+      "and let the machines refuse what breaks the material's window. By default a deposit "
+      "is re-planned from the piece ends the machines laid: later where it would cover one "
+      "too soon, on a planned joint (its treatment first) where no start keeps every joint "
+      "within the maximum (docs/dispatch.md)");
   command->add_option("--timeout", o->timeout_s, "Give up after this many real seconds")
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();

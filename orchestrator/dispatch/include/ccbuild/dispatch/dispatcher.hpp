@@ -17,10 +17,12 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
+#include "ccbuild/dispatch/replan.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
@@ -89,6 +91,10 @@ class Journal {
   /// The state of every job recorded.
   std::map<std::int64_t, std::string> states() const;
   std::vector<FaultRecord> faults() const;
+  /// Records a re-plan (durably, before it is applied).
+  void record_replan(const Replan& replan);
+  /// Every re-plan recorded, in order.
+  std::vector<Replan> replans() const;
   /// Records written, and the wall-clock seconds they took (each synced to disk).
   long writes() const { return writes_; }
   double write_s() const { return write_s_; }
@@ -126,6 +132,11 @@ struct DispatchOptions {
   machine::RailAxis rail_axis = machine::RailAxis::kX;
   double rail_min_m = -1e9, rail_max_m = 1e9;  ///< the rail axis's range
   double travel_speed_m_s = 0.5;
+  /// The material's window between a piece end and the one laid on it (s); deposits are
+  /// re-planned against it from what the machines laid (max 0: not checked).
+  double min_interval_s = 0.0, max_interval_s = 0.0;
+  /// A planned joint's treatment (s), and the age (s) the layer below must have first.
+  double joint_treatment_s = 1800.0, joint_min_age_s = 0.0;
 };
 
 class Dispatcher {
@@ -165,6 +176,8 @@ class Dispatcher {
   std::size_t origin_of(std::size_t index) const { return origin_[index]; }
   /// The delay the run has built up against the schedule, s.
   double delay_s() const { return delay_s_; }
+  /// The re-plans made (and those a restart found in the journal), in order.
+  const std::vector<Replan>& replans() const { return replans_; }
   /// Machines not heard from (no status) for longer than `silence_s` real seconds, or
   /// never, and for how long.
   std::vector<std::pair<std::string, double>> silent(double silence_s) const;
@@ -203,7 +216,12 @@ class Dispatcher {
   bool recover(std::size_t index, const JournalRow& row);
   /// Puts `job` after the job at `after` in its machine's queue, with the next id of
   /// `origin`'s range. Returns false when the range is full.
-  bool insert_after(std::size_t after, std::size_t origin, DispatchJob job, bool after_layer);
+  /// `skip_ids` ids are left free before it (for a treatment that may come first).
+  bool insert_after(std::size_t after, std::size_t origin, DispatchJob job, bool after_layer,
+                    std::int64_t skip_ids = 0);
+  /// Puts `job` (with its id) right before the job at `before` in that job's queue; it
+  /// recovers from the same schedule job.
+  void insert_before(std::size_t before, DispatchJob job);
   /// Moves that clear the rails for `rest` (the rest of a clogged path of the job at
   /// `index`): (job index whose machine moves, the move). Nothing when none is needed;
   /// false when a gantry cannot get out of the way.
@@ -212,6 +230,19 @@ class Dispatcher {
   /// The job ended (done, or recovered from): its machine moves on.
   void advance(Queue& q, std::size_t index, const JournalRow& row);
   bool released(std::size_t index) const;
+  /// The start (schedule s) the job at `index` goes out with.
+  double start_of(std::size_t index) const;
+  /// Before the job at `index` goes out the first time: its start re-planned from what the
+  /// machines did (docs/dispatch.md, "When the site runs late"): a deposit's against the
+  /// piece ends below it (later, or on a planned joint with its treatment first).
+  /// Journals and applies what it changes.
+  void replan(std::size_t index);
+  /// Applies a re-plan (made now, or read from the journal on a restart).
+  void apply(const Replan& replan);
+  /// The jobs that start with the job at `index`: a schedule layer's deposits (else itself).
+  std::vector<std::size_t> starting_with(std::size_t index) const;
+  /// The piece ends the deposit at `index` laid, ended as `row`.
+  void record_laid(std::size_t index, const JournalRow& row);
 
   machine::Bus& bus_;
   std::vector<DispatchJob> jobs_;
@@ -230,6 +261,11 @@ class Dispatcher {
   std::vector<FaultRecord> fault_records_;
   std::optional<std::string> stopped_;
   double delay_s_ = 0.0;
+  /// Piece ends laid, by (floor, layer), as the machines reported their deposits.
+  std::map<std::pair<int, int>, std::vector<LaidEnd>> laid_;
+  std::set<std::int64_t> decided_;          ///< jobs whose start was re-planned, or needed none
+  std::map<std::size_t, double> start_at_;  ///< re-planned starts of jobs that run alone
+  std::vector<Replan> replans_;
   std::int64_t seq_ = 0;
   long resent_ = 0;
 };
