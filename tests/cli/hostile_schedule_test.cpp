@@ -124,6 +124,11 @@ TEST(HostileInput, HandEditedSchedulesAreRefusedByReportDiffAndDryRun) {
        },
        "nested more than 64 deep"},
       {"truncated", [&] { return text.substr(0, text.size() / 2); }, "not valid JSON"},
+      // The dry-run's machines would load another file as their profile.
+      {"machine profile not recorded",
+       [&] { return edited([](json& d) { d["inputs"]["machine"]["profile"] = "/etc/passwd"; }); },
+       "/inputs/machine/profile: expected one of the paths of /inputs/files, got "
+       "\"/etc/passwd\""},
   };
   for (const Edit& e : edits) {
     SCOPED_TRACE(e.name);

@@ -597,12 +597,18 @@ TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) 
 TEST(Replan, AStartWindowKeepsEachPieceEndWithinTheIntervalAndMatchesEndsWithinTwoCm) {
   // piece_job's path: one piece of wall 1 from x = 0 (t 0) to x = 1 m (t 5 s).
   const machine::TimedPath path = piece_job(20, 1, 0.0).path;
-  const std::vector<LaidEnd> below = {{1, 0.0, 0.0, 100.0}, {1, 1.0, 0.0, 105.0}};
-  const StartWindow w = start_window(path, below, 60.0, 500.0);
+  std::vector<LaidEnd> below = {{1, 0.0, 0.0, 100.0}, {1, 1.0, 0.0, 110.0}};
+  StartWindow w = start_window(path, below, 60.0, 500.0);
   EXPECT_EQ(w.ends_covered, 2);
-  EXPECT_DOUBLE_EQ(w.earliest_s, 160.0);  // x = 0: 100 + 60 - 0; x = 1: 105 + 60 - 5
-  EXPECT_DOUBLE_EQ(w.latest_s, 600.0);    // x = 0: 100 + 500 - 0; x = 1: 105 + 500 - 5
-  EXPECT_DOUBLE_EQ(w.newest_below_s, 105.0);
+  EXPECT_DOUBLE_EQ(w.earliest_s, 165.0);  // x = 0: 100 + 60 - 0; x = 1: 110 + 60 - 5
+  EXPECT_DOUBLE_EQ(w.latest_s, 600.0);    // x = 0: 100 + 500 - 0; x = 1: 110 + 500 - 5
+  EXPECT_DOUBLE_EQ(w.newest_below_s, 110.0);
+  // The end further along the path bounds the latest start when it was laid earlier.
+  below = {{1, 0.0, 0.0, 100.0}, {1, 1.0, 0.0, 95.0}};
+  w = start_window(path, below, 60.0, 500.0);
+  EXPECT_DOUBLE_EQ(w.earliest_s, 160.0);  // x = 0: 100 + 60 - 0; x = 1: 95 + 60 - 5
+  EXPECT_DOUBLE_EQ(w.latest_s, 590.0);    // x = 1: 95 + 500 - 5
+  EXPECT_DOUBLE_EQ(w.newest_below_s, 100.0);
   EXPECT_FALSE(w.empty());
   // An end 19.5 mm off is the same end; 20.5 mm off, or of another wall, is not.
   EXPECT_EQ(start_window(path, {{1, 1.0195, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 1);
@@ -764,6 +770,32 @@ TEST(Dispatch, AClogWhoseRestStillFitsTheWindowNeedsNoPlannedJoint) {
   ASSERT_FALSE(tighter.rig.dispatcher->replans().empty());
   EXPECT_EQ(tighter.rig.dispatcher->replans()[0].job_id, 23);
   EXPECT_EQ(tighter.rig.dispatcher->replans()[0].what, "planned joint");
+}
+
+TEST(Dispatch, AClogMidPieceLeavesNoPieceEndWhereThePathStopped) {
+  // One wall piece a layer, x = 0 to 2 m in 10 s; layer 1 clogs at x = 1 m (65 s), in
+  // the middle of its piece: it laid the end at x = 0 only, and its rest (after the 120 s
+  // purge) lays x = 2 m at 190 s. Layer 2, twice as slow, starts at 240 s: x = 0 covered
+  // 180 s after it was laid (the maximum), x = 2 m at 260 s. Had the clogged job been
+  // counted as laying x = 2 m at 70 s, 190 s before, layer 2 would need a planned joint.
+  const auto piece = [](std::int64_t id, int layer, double start_s, double duration_s) {
+    DispatchJob d = piece_job(id, layer, start_s);
+    const double z_m = 0.1 * (layer + 1);
+    d.path = {};
+    d.path.push_back(0.0, 0.0, 0.0, z_m, 0.0, true, 1, 1);
+    d.path.push_back(duration_s / 2, 1.0, 0.0, z_m, 0.0, true, 1, 1);
+    d.path.push_back(duration_s, 2.0, 0.0, z_m, 0.0, false, 0, 0);
+    d.duration_s = duration_s;
+    return d;
+  };
+  Rig rig(LateRun::with_window(LateRun::clogging(), 180.0),
+          {piece(10, 0, 0.0, 10.0), piece(20, 1, 60.0, 10.0), piece(30, 2, 120.0, 20.0)},
+          ":memory:", LateRun::options(180.0));
+  rig.run();
+  ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+  EXPECT_TRUE(rig.dispatcher->replans().empty());
+  EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(30).first, 240.0);
+  EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 20, 21, 23, 30}));
 }
 
 TEST(Dispatch, ALayerThatWouldCoverAPieceEndTooSoonStartsLater) {

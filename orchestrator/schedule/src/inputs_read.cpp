@@ -33,6 +33,7 @@ RecordedMachine read_machine(const JsonAt& m) {
                "y_range_m",
                "z_range_m",
                "origin",
+               "profile",
                "nozzles",
                "gantry_width_m",
                "rail_axis",
@@ -73,6 +74,7 @@ RecordedMachine read_machine(const JsonAt& m) {
   range("y_range_m", r.y_min_m, r.y_max_m);
   range("z_range_m", r.z_min_m, r.z_max_m);
   r.origin = m.at("origin").string(10'000);
+  if (const auto profile = m.maybe("profile")) r.profile = profile->string(4096);
   r.nozzles = static_cast<int>(m.at("nozzles").integer(1, kMaxNozzles));
   r.gantry_width_m = m.at("gantry_width_m").number(Range::closed(0, 1000), "m");
   const std::string axis = m.at("rail_axis").string(10);
@@ -314,6 +316,11 @@ RecordedInputs read_inputs(const JsonAt& root) {
     in.slabs = spec;
   }
   in.machine = read_machine(i.at("machine"));
+  if (!in.machine.profile.empty() &&
+      std::none_of(in.files.begin(), in.files.end(),
+                   [&](const RecordedFile& f) { return f.path == in.machine.profile; }))
+    i.at("machine").at("profile").refuse("expected one of the paths of /inputs/files, got \"" +
+                                         in.machine.profile + "\"");
   read_material(i.at("material"), in);
   if (const auto site = i.maybe("site")) {
     in.calendar = read_site(*site);

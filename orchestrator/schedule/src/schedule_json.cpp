@@ -29,6 +29,7 @@ json reasons_json(const std::vector<WaitReason>& reasons) {
 json recorded_machine_json(const RecordedMachine& m) {
   json out = machine_limits_json(m);
   out["origin"] = m.origin;
+  if (!m.profile.empty()) out["profile"] = m.profile;
   out["nozzles"] = m.nozzles;
   out["gantry_width_m"] = rounded(m.gantry_width_m);
   out["rail_axis"] = machine::to_string(m.rail_axis);
@@ -118,6 +119,13 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   RecordedMachine& r = in.machine;
   r = machine_limits(m);
   r.origin = project.machine_origin;
+  // Which of the files read is the machine's profile (the dry-run loads it again).
+  if (!m.source_file.empty()) {
+    std::error_code ec;
+    const auto source = std::filesystem::weakly_canonical(m.source_file, ec);
+    for (const auto& f : in.files)
+      if (!ec && std::filesystem::weakly_canonical(f.path, ec) == source && !ec) r.profile = f.path;
+  }
   r.nozzles = m.nozzles;
   r.gantry_width_m = m.gantry_width_m;
   r.rail_axis = m.rail_axis;

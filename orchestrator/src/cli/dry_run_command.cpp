@@ -63,9 +63,10 @@ struct DryRunOptions {
 };
 
 /// The machine profile a schedule was made with: the building's (when FILE is one), else
-/// --machine (which must be one of the files the schedule recorded), else the recorded file
-/// that loads as the machine the schedule names. The recorded files were checked against
-/// their SHA-256 already.
+/// --machine (which must be one of the files the schedule recorded), else the profile file
+/// the schedule recorded (inputs.machine.profile), else (an older schedule) the recorded
+/// file that loads as the machine it names. The recorded files were checked against their
+/// SHA-256 already.
 std::string machine_profile(const schedule::ScheduleDocument& schedule, const DryRunOptions& o,
                             const std::optional<orchestrator::Project>& project) {
   if (project) return project->machine->source_file;
@@ -77,6 +78,8 @@ std::string machine_profile(const schedule::ScheduleDocument& schedule, const Dr
                      "is not among the files the schedule " + o.file +
                          " was made from; a schedule runs on its own machine");
   }
+  // The profile the schedule recorded; a schedule from before it did: by its name.
+  if (!schedule.inputs.machine.profile.empty()) return schedule.inputs.machine.profile;
   const std::string& name = schedule.inputs.machine.name;
   for (const auto& f : schedule.inputs.files) {
     const fs::path path = f.path;

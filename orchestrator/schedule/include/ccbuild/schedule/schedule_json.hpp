@@ -44,6 +44,9 @@ struct RecordedMachine {
   double nozzle_idle_limit_s = 0.0, nozzle_width_m = 0.0;
   double x_min_m = 0.0, x_max_m = 0.0, y_min_m = 0.0, y_max_m = 0.0, z_min_m = 0.0, z_max_m = 0.0;
   std::string origin;  ///< where the profile came from, in words
+  /// The profile's file as inputs.files records it (empty: none, as for the bundled
+  /// default, or a schedule from before it was recorded): the dry-run's machines load it.
+  std::string profile;
   int nozzles = 1;
   double gantry_width_m = 0.0;
   machine::RailAxis rail_axis = machine::RailAxis::kX;
