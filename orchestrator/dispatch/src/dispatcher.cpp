@@ -308,7 +308,7 @@ Dispatcher::Dispatcher(machine::Bus& bus, std::vector<DispatchJob> jobs, Journal
   if (applied < journalled.size())
     stopped_ = "the journal re-plans job " + std::to_string(journalled[applied].job_id) +
                ", which this run does not have";
-  // The delay: set by the last re-plan of a layer's (or a climb's) start, then raised by
+  // The delay: set by the last re-plan of a layer's start, then raised by
   // every job that ended after it (those planned from that start on).
   double since_s = -std::numeric_limits<double>::infinity();
   for (const Replan& r : replans_) {
@@ -612,60 +612,59 @@ void Dispatcher::replan(std::size_t index) {
   Replan r;
   r.job_id = job.job_id;
   r.delay_s = delay_s_;
-  {
-    const bool on_joint = job.on_planned_joint;
-    double new_start_s = std::max(start_s, w.earliest_s);
-    const bool cold = !on_joint && (w.empty() || new_start_s > w.latest_s + kReplanSlack_s);
-    const std::string what =
-        schedule_job ? printf_string("floor %d layer %d", job.floor, job.layer) : job.detail;
-    if (!cold) {
-      if (new_start_s <= start_s + kReplanSlack_s) return;
-      r.what = "later";
-      r.detail = printf_string(
-          "%s starts %.1f s later (at %.1f s): no piece end below is covered sooner than the "
-          "minimum %.0f s after the machines laid it",
-          what.c_str(), new_start_s - start_s, new_start_s, options_.min_interval_s);
-    } else {
-      // No start keeps every joint below within the maximum: a planned joint, treated
-      // first (once the layer below is old enough), as the schedule plans one.
-      r.what = "planned joint";
-      r.treatment_s = options_.joint_treatment_s;
-      r.treatment_start_s = std::max(start_s, w.newest_below_s + options_.joint_min_age_s);
-      new_start_s = std::max(r.treatment_start_s + r.treatment_s, w.earliest_s);
-      // An id between the jobs its machine ran before and this one.
-      const Queue& q = queues_.at(job.machine_id);
-      std::int64_t before_id = 0;
-      for (std::size_t k : q.jobs) {
-        if (k == index) break;
-        before_id = std::max(before_id, jobs_[k].job_id);
-      }
-      for (std::int64_t id = job.job_id - 1; id > before_id && r.treatment_job_id == 0; --id)
-        if (!index_of_.count(id)) r.treatment_job_id = id;
-      if (r.treatment_job_id == 0) {
-        stop("no job id left for the treatment of a planned joint before job " +
-             std::to_string(job.job_id));
-        return;
-      }
-      const std::string why =
-          w.empty()
-              ? printf_string(
-                    "the piece ends below were laid %.1f s apart, more than the "
-                    "material's window allows",
-                    w.earliest_s - w.latest_s + options_.max_interval_s - options_.min_interval_s)
-              : printf_string(
-                    "it could start at %.1f s at the earliest, and the last "
-                    "start that covers every piece end below within %.0f s "
-                    "was %.1f s",
-                    new_start_s - (r.treatment_s), options_.max_interval_s, w.latest_s);
-      r.detail = printf_string(
-          "%s on a planned joint: %s; the top of floor %d layer %d treated (%.0f s) from %.1f "
-          "s, then it starts at %.1f s",
-          what.c_str(), why.c_str(), job.floor, job.layer - 1, r.treatment_s, r.treatment_start_s,
-          new_start_s);
+  const bool on_joint = job.on_planned_joint;
+  const double earliest_start_s = std::max(start_s, w.earliest_s);
+  double new_start_s = earliest_start_s;
+  const bool cold = !on_joint && (w.empty() || new_start_s > w.latest_s + kReplanSlack_s);
+  const std::string what =
+      schedule_job ? printf_string("floor %d layer %d", job.floor, job.layer) : job.detail;
+  if (!cold) {
+    if (new_start_s <= start_s + kReplanSlack_s) return;
+    r.what = "later";
+    r.detail = printf_string(
+        "%s starts %.1f s later (at %.1f s): no piece end below is covered sooner than the "
+        "minimum %.0f s after the machines laid it",
+        what.c_str(), new_start_s - start_s, new_start_s, options_.min_interval_s);
+  } else {
+    // No start keeps every joint below within the maximum: a planned joint, treated
+    // first (once the layer below is old enough), as the schedule plans one.
+    r.what = "planned joint";
+    r.treatment_s = options_.joint_treatment_s;
+    r.treatment_start_s = std::max(start_s, w.newest_below_s + options_.joint_min_age_s);
+    new_start_s = std::max(r.treatment_start_s + r.treatment_s, w.earliest_s);
+    // An id between the jobs its machine ran before and this one.
+    const Queue& q = queues_.at(job.machine_id);
+    std::int64_t before_id = 0;
+    for (std::size_t k : q.jobs) {
+      if (k == index) break;
+      before_id = std::max(before_id, jobs_[k].job_id);
     }
-    r.start_s = new_start_s;
-    if (schedule_job) r.delay_s = new_start_s - job.start_s;
+    for (std::int64_t id = job.job_id - 1; id > before_id && r.treatment_job_id == 0; --id)
+      if (!index_of_.count(id)) r.treatment_job_id = id;
+    if (r.treatment_job_id == 0) {
+      stop("no job id left for the treatment of a planned joint before job " +
+           std::to_string(job.job_id));
+      return;
+    }
+    const std::string why =
+        w.empty()
+            ? printf_string(
+                  "the piece ends below were laid %.1f s apart, more than the "
+                  "material's window allows",
+                  w.earliest_s - w.latest_s + options_.max_interval_s - options_.min_interval_s)
+            : printf_string(
+                  "it could start at %.1f s at the earliest, and the last "
+                  "start that covers every piece end below within %.0f s "
+                  "was %.1f s",
+                  earliest_start_s, options_.max_interval_s, w.latest_s);
+    r.detail = printf_string(
+        "%s on a planned joint: %s; the top of floor %d layer %d treated (%.0f s) from %.1f "
+        "s, then it starts at %.1f s",
+        what.c_str(), why.c_str(), job.floor, job.layer - 1, r.treatment_s, r.treatment_start_s,
+        new_start_s);
   }
+  r.start_s = new_start_s;
+  if (schedule_job) r.delay_s = new_start_s - job.start_s;
   journal_.record_replan(r);  // before it is acted on
   apply(r);
 }
