@@ -92,6 +92,12 @@ double MaterialProfile::strength_at_mpa(double age_s) const {
   return en1992 ? std::max(table, en1992->strength_at_mpa(age_s)) : table;
 }
 
+double MaterialProfile::strength_to_carry_mpa(double height_m) const {
+  constexpr double kGravity_m_s2 = 9.80665;
+  const double stress_per_m_mpa = density_kg_m3 * kGravity_m_s2 * 1e-6;
+  return safety_factor * stress_per_m_mpa * height_m;
+}
+
 double MaterialProfile::age_for_strength_s(double strength_mpa) const {
   const double table_s = curve_age_for(strength_curve, strength_mpa);
   return en1992 ? std::min(table_s, en1992->age_for_strength_s(strength_mpa)) : table_s;

@@ -798,6 +798,69 @@ TEST(Dispatch, AClogMidPieceLeavesNoPieceEndWhereThePathStopped) {
   EXPECT_EQ(rig.sim.executed(), (std::vector<std::int64_t>{10, 20, 21, 23, 30}));
 }
 
+/// The mix of the absorbing-wait tests: 2200 kg/m3, safety factor 1.5, its strength
+/// growing linearly to what 0.2 m of wall needs at `age_s` (never, when 0).
+floors::MaterialProfile mix_carrying_at(double age_s) {
+  floors::MaterialProfile m;
+  m.density_kg_m3 = 2200.0;
+  m.safety_factor = 1.5;
+  const double needed_mpa = m.strength_to_carry_mpa(0.2);
+  if (age_s > 0.0)
+    m.strength_curve = {{0.0, 0.0}, {2 * age_s, 2 * needed_mpa}};
+  else
+    m.strength_curve = {{0.0, 0.0}, {1e6, needed_mpa / 2}};
+  return m;
+}
+
+TEST(Dispatch, AWaitAbsorbsDelayAsFarAsTheLayersBelowCanCarryTheNext) {
+  // Layer 0 clogs at 5 s: purged (120 s), its rest ends at 130 s, 120 s late. Layer 1 is
+  // planned after a 1,000 s wait (working hours, say) at 1,010 s.
+  const auto jobs = [](bool absorbs) {
+    DispatchJob wait = piece_job(20, 1, 10.0);
+    wait.kind = JobKind::kWait;
+    wait.duration_s = 1000.0;
+    wait.path = {};
+    wait.absorbs_delay = absorbs;
+    std::vector<DispatchJob> out = {two_walls(10, 0, 0.0), wait, two_walls(30, 1, 1010.0)};
+    out[0].z_top_m = out[2].z_bottom_m = 0.1;
+    out[2].z_top_m = 0.2;
+    return out;
+  };
+  machine::SimOptions so = window(30.0, 5000.0);
+  so.clog_floor = so.clog_layer = 0;
+  const struct {
+    double carry_age_s;  // when layer 0 can carry layer 1 (0: never)
+    bool absorbs;
+    double layer1_s;  // when layer 1 starts
+  } cases[] = {
+      {1.0, true, 1010.0},     // strong at once: all 120 s absorbed, as planned
+      {950.0, true, 1080.0},   // layer 0 (ended at 130 s) carries it from 950 s on: 50 s absorbed
+      {950.0, false, 1130.0},  // a wait that may not absorb: 120 s late
+      {0.0, true, 1130.0},     // never strong enough: nothing absorbed
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.carry_age_s);
+    const floors::MaterialProfile mix = mix_carrying_at(c.carry_age_s);
+    DispatchOptions o = LateRun::options(5000.0);
+    o.material = &mix;
+    Rig rig(so, jobs(c.absorbs), ":memory:", o);
+    rig.run();
+    ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+    const Dispatcher& d = *rig.dispatcher;
+    EXPECT_NEAR(d.executed().at(30).first, c.layer1_s, 1e-6);
+    EXPECT_NEAR(d.executed().at(20).second, c.layer1_s, 1e-6) << "the wait ends as it starts";
+    EXPECT_NEAR(d.executed().at(20).first, 130.0, 1e-6);
+    if (c.layer1_s < 1130.0) {
+      ASSERT_EQ(d.replans().size(), 1u);
+      EXPECT_EQ(d.replans()[0].what, "absorbed");
+      EXPECT_NEAR(d.replans()[0].delay_s, c.layer1_s - 1010.0, 1e-6);
+      EXPECT_NEAR(d.replans()[0].duration_s, c.layer1_s - 130.0, 1e-6);
+    } else {
+      EXPECT_TRUE(d.replans().empty());
+    }
+  }
+}
+
 TEST(Dispatch, ALayerThatWouldCoverAPieceEndTooSoonStartsLater) {
   // Planned 25 s after the layer below, under the 30 s minimum: started 5 s later (the
   // machine would refuse it). Planned at exactly 30 s: as planned.

@@ -19,6 +19,8 @@ using schedule::Schedule;
 using schedule::ScheduledLayer;
 using schedule::ScheduleDocument;
 using schedule::SchedulePlan;
+using schedule::WaitKind;
+using schedule::WaitReason;
 
 DispatchJob job_of(JobKind kind, const std::string& machine, double start_s, double duration_s,
                    int floor, int layer, int nozzle, const std::string& plan,
@@ -133,6 +135,12 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
       jobs.push_back(
           job_of(JobKind::kWait, gantry_id(0), waited_from_s, wait_s, floor, layer, -1, "",
                  printf_string("wait before floor %d layer %d: %s", floor, layer, why.c_str())));
+      jobs.back().absorbs_delay =
+          !document.inputs.conditions &&
+          std::all_of(l.wait_reasons.begin(), l.wait_reasons.end(), [](const WaitReason& r) {
+            return r.kind == WaitKind::kMinInterval || r.kind == WaitKind::kStrength ||
+                   r.kind == WaitKind::kOffShift;
+          });
     }
     const double moves_from_s = waited_from_s - move_s;
     for (auto& [nozzle, at] : where) {
@@ -180,6 +188,8 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
                             printf_string("floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
                             std::move(path)));
       jobs.back().on_planned_joint = l.planned_joint;
+      jobs.back().z_bottom_m = l.z_bottom_m;
+      jobs.back().z_top_m = l.z_top_m;
     }
   }
   for (const Event& e : schedule.events) {

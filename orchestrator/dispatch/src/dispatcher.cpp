@@ -127,7 +127,8 @@ Journal::Journal(const std::filesystem::path& path, const std::string& schedule_
       "TEXT NOT NULL, utime INTEGER NOT NULL);"
       "CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
       "CREATE TABLE IF NOT EXISTS replan (id INTEGER PRIMARY KEY AUTOINCREMENT, job_id INTEGER "
-      "NOT NULL, what TEXT NOT NULL, start_s REAL NOT NULL, delay_s REAL NOT NULL, "
+      "NOT NULL, what TEXT NOT NULL, start_s REAL NOT NULL, delay_s REAL NOT NULL, duration_s "
+      "REAL NOT NULL, "
       "treatment_job_id INTEGER NOT NULL, treatment_start_s REAL NOT NULL, "
       "treatment_s REAL NOT NULL, detail TEXT NOT NULL, utime INTEGER NOT NULL);"
       "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state LIMIT 0;";
@@ -212,18 +213,19 @@ void Journal::record_fault(const FaultRecord& f) {
 void Journal::record_replan(const Replan& r) {
   const auto started = std::chrono::steady_clock::now();
   Statement s(db_,
-              "INSERT INTO replan (job_id, what, start_s, delay_s, treatment_job_id, "
+              "INSERT INTO replan (job_id, what, start_s, delay_s, duration_s, treatment_job_id, "
               "treatment_start_s, treatment_s, detail, utime) VALUES (?1, ?2, ?3, ?4, ?5, ?6, "
-              "?7, ?8, ?9)");
+              "?7, ?8, ?9, ?10)");
   sqlite3_bind_int64(*s, 1, r.job_id);
   sqlite3_bind_text(*s, 2, r.what.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_double(*s, 3, r.start_s);
   sqlite3_bind_double(*s, 4, r.delay_s);
-  sqlite3_bind_int64(*s, 5, r.treatment_job_id);
-  sqlite3_bind_double(*s, 6, r.treatment_start_s);
-  sqlite3_bind_double(*s, 7, r.treatment_s);
-  sqlite3_bind_text(*s, 8, r.detail.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_int64(*s, 9, machine::utime_now());
+  sqlite3_bind_double(*s, 5, r.duration_s);
+  sqlite3_bind_int64(*s, 6, r.treatment_job_id);
+  sqlite3_bind_double(*s, 7, r.treatment_start_s);
+  sqlite3_bind_double(*s, 8, r.treatment_s);
+  sqlite3_bind_text(*s, 9, r.detail.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(*s, 10, machine::utime_now());
   CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
   ++writes_;
   write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -232,12 +234,13 @@ void Journal::record_replan(const Replan& r) {
 std::vector<Replan> Journal::replans() const {
   std::vector<Replan> out;
   Statement s(db_,
-              "SELECT job_id, what, start_s, delay_s, treatment_job_id, treatment_start_s, "
-              "treatment_s, detail FROM replan ORDER BY id");
+              "SELECT job_id, what, start_s, delay_s, duration_s, treatment_job_id, "
+              "treatment_start_s, treatment_s, detail FROM replan ORDER BY id");
   while (sqlite3_step(*s) == SQLITE_ROW)
     out.push_back({sqlite3_column_int64(*s, 0), text(*s, 1), sqlite3_column_double(*s, 2),
-                   sqlite3_column_double(*s, 3), sqlite3_column_int64(*s, 4),
-                   sqlite3_column_double(*s, 5), sqlite3_column_double(*s, 6), text(*s, 7)});
+                   sqlite3_column_double(*s, 3), sqlite3_column_double(*s, 4),
+                   sqlite3_column_int64(*s, 5), sqlite3_column_double(*s, 6),
+                   sqlite3_column_double(*s, 7), text(*s, 8)});
   return out;
 }
 
@@ -585,8 +588,10 @@ void Dispatcher::record_laid(std::size_t index, const JournalRow& row) {
   const DispatchJob& d = jobs_[index];
   if (d.kind != JobKind::kDeposit) return;
   auto ends = laid_ends(d.path, row.started_s, row.state == "done" ? -1 : row.stopped_at);
-  auto& laid = laid_[{d.floor, d.layer}];
+  auto& laid = laid_[{d.floor, d.layer, d.machine_id}];
   laid.insert(laid.end(), ends.begin(), ends.end());
+  auto [at, made] = layer_end_.try_emplace({d.floor, d.layer}, d.z_bottom_m, row.finished_s);
+  if (!made) at->second.second = std::max(at->second.second, row.finished_s);
 }
 
 namespace {
@@ -601,13 +606,16 @@ void Dispatcher::replan(std::size_t index) {
   for (std::size_t k : group) decided_.insert(jobs_[k].job_id);
   const bool schedule_job = origin_[index] == index;
   const double start_s = start_of(index);
+  if (job.kind == JobKind::kWait && job.absorbs_delay && schedule_job) return absorb(index);
   if (job.kind != JobKind::kDeposit || options_.max_interval_s <= 0.0) return;
-  const auto below = laid_.find({job.floor, job.layer - 1});
-  if (below == laid_.end()) return;
+  // Each deposit against the piece ends its machine laid below it, as the machine checks
+  // them (docs/dispatch.md).
   StartWindow w;
   for (std::size_t k : group)
-    w.intersect(start_window(jobs_[k].path, below->second, options_.min_interval_s,
-                             options_.max_interval_s));
+    if (const auto below = laid_.find({job.floor, job.layer - 1, jobs_[k].machine_id});
+        below != laid_.end())
+      w.intersect(start_window(jobs_[k].path, below->second, options_.min_interval_s,
+                               options_.max_interval_s));
   if (w.ends_covered == 0) return;
   Replan r;
   r.job_id = job.job_id;
@@ -669,6 +677,66 @@ void Dispatcher::replan(std::size_t index) {
   apply(r);
 }
 
+void Dispatcher::absorb(std::size_t index) {
+  const DispatchJob& wait = jobs_[index];
+  if (!options_.material || delay_s_ <= kReplanSlack_s || options_.max_interval_s <= 0.0) return;
+  const floors::MaterialProfile& mix = *options_.material;
+  // The layer it waits for: its deposits' planned start, and the jobs between (a planned
+  // joint's treatment, a purge) keep their planned lengths.
+  std::vector<std::size_t> layer;
+  for (std::size_t k = index + 1; k < schedule_jobs_; ++k)
+    if (jobs_[k].kind == JobKind::kDeposit && jobs_[k].floor == wait.floor &&
+        jobs_[k].layer == wait.layer) {
+      layer = starting_with(k);
+      break;
+    }
+  if (layer.empty()) return;
+  const DispatchJob& first = jobs_[layer.front()];
+  const double planned_s = first.start_s;
+  const double wait_from_s = start_of(index);
+  const double between_s = planned_s - (wait.start_s + wait.duration_s);
+  // The earliest start: as planned, never sooner (working hours); once the wait is
+  // over; once every layer laid below can carry it (from its last deposit's end: more
+  // than the scheduler asks of the layer just below, which it checks piece end by piece
+  // end); once no piece end below is covered sooner than the minimum interval.
+  double start_s = std::max(planned_s, wait_from_s + between_s);
+  std::string bound = "its planned start";
+  for (const auto& [key, bottom_end] : layer_end_) {
+    const double age_s =
+        mix.age_for_strength_s(mix.strength_to_carry_mpa(first.z_top_m - bottom_end.first));
+    if (!std::isfinite(age_s)) return;
+    if (bottom_end.second + age_s > start_s) {
+      start_s = bottom_end.second + age_s;
+      bound = printf_string("the strength of floor %d layer %d", key.first, key.second);
+    }
+  }
+  StartWindow w;
+  for (std::size_t k : layer)
+    if (const auto below = laid_.find({first.floor, first.layer - 1, jobs_[k].machine_id});
+        below != laid_.end())
+      w.intersect(start_window(jobs_[k].path, below->second, options_.min_interval_s,
+                               options_.max_interval_s));
+  if (w.earliest_s > start_s) {
+    start_s = w.earliest_s;
+    bound =
+        printf_string("the minimum interval over floor %d layer %d", first.floor, first.layer - 1);
+  }
+  const double absorbed_s = planned_s + delay_s_ - start_s;
+  if (absorbed_s <= kReplanSlack_s) return;
+  Replan r;
+  r.job_id = wait.job_id;
+  r.what = "absorbed";
+  r.start_s = wait_from_s;
+  r.delay_s = delay_s_ - absorbed_s;
+  r.duration_s = wait.duration_s - absorbed_s;
+  r.detail = printf_string(
+      "%s: shortened by %.1f s of the run's %.1f s delay; floor %d layer %d starts at %.1f s, "
+      "bound by %s",
+      wait.detail.c_str(), absorbed_s, delay_s_, first.floor, first.layer, start_s, bound.c_str());
+  journal_.record_replan(r);  // before it is acted on
+  apply(r);
+}
+
 void Dispatcher::apply(const Replan& r) {
   const std::size_t index = index_of_.at(r.job_id);
   const std::vector<std::size_t> group = starting_with(index);
@@ -678,6 +746,10 @@ void Dispatcher::apply(const Replan& r) {
     delay_s_ = r.delay_s;
   else
     start_at_[index] = r.start_s;
+  if (r.what == "absorbed") {  // the wait starts as it would have, and ends sooner
+    start_at_[index] = r.start_s;
+    duration_at_[index] = r.duration_s;  // (its planned end stays what lateness counts from)
+  }
   if (r.what != "planned joint") return;
   for (std::size_t k : group) jobs_[k].on_planned_joint = true;
   const DispatchJob& job = jobs_[index];
@@ -699,6 +771,8 @@ void Dispatcher::apply(const Replan& r) {
 void Dispatcher::send(std::size_t index) {
   DispatchJob d = jobs_[index];
   d.start_s = start_of(index);
+  if (const auto shortened = duration_at_.find(index); shortened != duration_at_.end())
+    d.duration_s = shortened->second;
   JobMessages m = messages_of(d);
   m.job.utime = machine::utime_now();
   m.job.seq = ++seq_;

@@ -21,7 +21,6 @@
 namespace ccbuild::schedule::detail {
 
 using Clock = std::chrono::steady_clock;
-inline constexpr double kGravity_m_s2 = 9.80665;
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 /// A geometry whose one-nozzle layer takes more than this share of the maximum interval
 /// is planned at every nozzle count too: the move and the waits still have to fit.
@@ -69,7 +68,6 @@ class Scheduler {
         machine_(*project.machine),
         material_(project.material),
         calendar_(project.calendar.get()),
-        stress_per_m_mpa_(project.material.density_kg_m3 * kGravity_m_s2 * 1e-6),
         jobs_(options.jobs > 0
                   ? options.jobs
                   : std::max(1, static_cast<int>(std::thread::hardware_concurrency()))) {
@@ -188,12 +186,10 @@ class Scheduler {
   std::string when_text(double t_s) const {
     return calendar_ ? calendar_->local_text(t_s) : printf_string("%.1f s", t_s);
   }
-  /// The stress of a metre of wall on what carries it, MPa.
-  const double stress_per_m_mpa_;
   /// The strength a layer needs to carry `height_m` of wall above its bottom, with the
-  /// material's safety factor, MPa: the one statement of the buildability rule.
+  /// material's safety factor, MPa (floors::MaterialProfile::strength_to_carry_mpa).
   double required_strength_mpa(double height_m) const {
-    return material_.safety_factor * stress_per_m_mpa_ * height_m;
+    return material_.strength_to_carry_mpa(height_m);
   }
   /// Why a plan whose longest air move is `max_idle_s` is not used (a plan with an air
   /// move over the nozzle idle limit clogs).

@@ -292,6 +292,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (!o.no_replan) {
     d.min_interval_s = material.min_layer_interval_s;
     d.max_interval_s = material.max_layer_interval_s;
+    d.material = &material;  // waits may absorb delay as far as the layers below allow
   }
   d.joint_treatment_s = material.planned_joint.treatment_s;
   d.joint_min_age_s = material.planned_joint.min_age_s;

@@ -90,6 +90,9 @@ struct MaterialProfile {
   double age_for_strength_s(double strength_mpa) const;
   /// The strength it reaches at the most, MPa.
   double final_strength_mpa() const;
+  /// The strength (MPa) its concrete needs to carry `height_m` of its wall above it, with
+  /// the safety factor: the buildability rule, stated once.
+  double strength_to_carry_mpa(double height_m) const;
 };
 
 /// Reads an EN 1992-1-1 §3.1.2 strength from a map with `fcm_mpa`, `cement_class` (R, N,

@@ -47,6 +47,11 @@ struct DispatchJob {
   std::int8_t phase = 0;
   std::string unit;    ///< the climbing unit a pipe is cast for or a phase moves, else ""
   std::string anchor;  ///< a pipe's anchor id, else ""
+  double z_bottom_m = 0.0, z_top_m = 0.0;  ///< a deposit's layer, m
+  /// A layer's wait before it that may absorb the run's delay: it waits only for the
+  /// minimum interval, the strength of the layers below or working hours (which the
+  /// dispatcher re-checks from what the machines laid), on a site without weather.
+  bool absorbs_delay = false;
 };
 
 /// Every job of `schedule` (as read_schedule gives it, re-validated), in the order they are

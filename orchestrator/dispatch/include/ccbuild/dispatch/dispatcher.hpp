@@ -19,10 +19,12 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 #include "ccbuild/dispatch/replan.hpp"
+#include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
@@ -137,6 +139,10 @@ struct DispatchOptions {
   double min_interval_s = 0.0, max_interval_s = 0.0;
   /// A planned joint's treatment (s), and the age (s) the layer below must have first.
   double joint_treatment_s = 1800.0, joint_min_age_s = 0.0;
+  /// The mix, for the strength of the layers below: with it, a layer's wait that may
+  /// absorb delay (DispatchJob::absorbs_delay) is shortened as far as the layers the
+  /// machines laid can carry the layer and its joints keep the minimum (null: never).
+  const floors::MaterialProfile* material = nullptr;
 };
 
 class Dispatcher {
@@ -237,6 +243,8 @@ class Dispatcher {
   /// piece ends below it (later, or on a planned joint with its treatment first).
   /// Journals and applies what it changes.
   void replan(std::size_t index);
+  /// The part of replan for a wait that may absorb delay: how far it can be shortened.
+  void absorb(std::size_t index);
   /// Applies a re-plan (made now, or read from the journal on a restart).
   void apply(const Replan& replan);
   /// The jobs that start with the job at `index`: a schedule layer's deposits (else itself).
@@ -261,10 +269,13 @@ class Dispatcher {
   std::vector<FaultRecord> fault_records_;
   std::optional<std::string> stopped_;
   double delay_s_ = 0.0;
-  /// Piece ends laid, by (floor, layer), as the machines reported their deposits.
-  std::map<std::pair<int, int>, std::vector<LaidEnd>> laid_;
-  std::set<std::int64_t> decided_;          ///< jobs whose start was re-planned, or needed none
-  std::map<std::size_t, double> start_at_;  ///< re-planned starts of jobs that run alone
+  /// Piece ends laid, by (floor, layer, machine), as the machines reported their deposits.
+  std::map<std::tuple<int, int, std::string>, std::vector<LaidEnd>> laid_;
+  /// Per (floor, layer) laid: its bottom (m) and when its last deposit ended (schedule s).
+  std::map<std::pair<int, int>, std::pair<double, double>> layer_end_;
+  std::set<std::int64_t> decided_;             ///< jobs whose start was re-planned, or needed none
+  std::map<std::size_t, double> start_at_;     ///< re-planned starts of jobs that run alone
+  std::map<std::size_t, double> duration_at_;  ///< re-planned lengths of absorbing waits
   std::vector<Replan> replans_;
   std::int64_t seq_ = 0;
   long resent_ = 0;

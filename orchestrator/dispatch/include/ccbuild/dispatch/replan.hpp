@@ -51,10 +51,11 @@ StartWindow start_window(const machine::TimedPath& path, const std::vector<LaidE
 /// dispatcher applies it again.
 struct Replan {
   std::int64_t job_id = 0;  ///< the job re-planned: a layer's first deposit sent, or a rest
-  std::string what;         ///< "later", or "planned joint"
+  std::string what;         ///< "later", "planned joint", or "absorbed" (a wait shortened)
   double start_s = 0.0;     ///< its new start, schedule s
   /// The run's delay against the schedule afterwards, s (a layer's re-plan sets it).
   double delay_s = 0.0;
+  double duration_s = 0.0;  ///< an absorbing wait's new duration, s (else 0)
   /// A planned joint: the treatment job inserted before the job (0: none), its start and
   /// duration (schedule s).
   std::int64_t treatment_job_id = 0;
