@@ -599,6 +599,19 @@ namespace {
 constexpr double kReplanSlack_s = 5e-4;
 }  // namespace
 
+StartWindow Dispatcher::window_below(const std::vector<std::size_t>& deposits) const {
+  // Each deposit against the piece ends its machine laid below it, as the machine checks
+  // them (docs/dispatch.md).
+  StartWindow w;
+  for (std::size_t k : deposits) {
+    const DispatchJob& d = jobs_[k];
+    if (const auto below = laid_.find({d.floor, d.layer - 1, d.machine_id}); below != laid_.end())
+      w.intersect(
+          start_window(d.path, below->second, options_.min_interval_s, options_.max_interval_s));
+  }
+  return w;
+}
+
 void Dispatcher::replan(std::size_t index) {
   const DispatchJob& job = jobs_[index];
   if (decided_.count(job.job_id)) return;
@@ -608,14 +621,7 @@ void Dispatcher::replan(std::size_t index) {
   const double start_s = start_of(index);
   if (job.kind == JobKind::kWait && job.absorbs_delay && schedule_job) return absorb(index);
   if (job.kind != JobKind::kDeposit || options_.max_interval_s <= 0.0) return;
-  // Each deposit against the piece ends its machine laid below it, as the machine checks
-  // them (docs/dispatch.md).
-  StartWindow w;
-  for (std::size_t k : group)
-    if (const auto below = laid_.find({job.floor, job.layer - 1, jobs_[k].machine_id});
-        below != laid_.end())
-      w.intersect(start_window(jobs_[k].path, below->second, options_.min_interval_s,
-                               options_.max_interval_s));
+  const StartWindow w = window_below(group);
   if (w.ends_covered == 0) return;
   Replan r;
   r.job_id = job.job_id;
@@ -710,12 +716,7 @@ void Dispatcher::absorb(std::size_t index) {
       bound = printf_string("the strength of floor %d layer %d", key.first, key.second);
     }
   }
-  StartWindow w;
-  for (std::size_t k : layer)
-    if (const auto below = laid_.find({first.floor, first.layer - 1, jobs_[k].machine_id});
-        below != laid_.end())
-      w.intersect(start_window(jobs_[k].path, below->second, options_.min_interval_s,
-                               options_.max_interval_s));
+  const StartWindow w = window_below(layer);
   if (w.earliest_s > start_s) {
     start_s = w.earliest_s;
     bound =

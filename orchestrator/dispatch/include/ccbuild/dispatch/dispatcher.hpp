@@ -243,6 +243,9 @@ class Dispatcher {
   /// piece ends below it (later, or on a planned joint with its treatment first).
   /// Journals and applies what it changes.
   void replan(std::size_t index);
+  /// The start window of `deposits` (one layer's) over the piece ends their machines laid
+  /// below them.
+  StartWindow window_below(const std::vector<std::size_t>& deposits) const;
   /// The part of replan for a wait that may absorb delay: how far it can be shortened.
   void absorb(std::size_t index);
   /// Applies a re-plan (made now, or read from the journal on a restart).
