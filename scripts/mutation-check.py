@@ -7,9 +7,11 @@ runs the CTest tests it names (stopping at the first failure), and restores the 
 A mutant is killed when a test fails (or the build breaks); it survives when they all
 pass. Exit code 0 when at least 9 in 10 are killed.
 
-Usage: scripts/mutation-check.py [--keep] [--only N[,N...]] [--jobs 2]
+Usage: scripts/mutation-check.py [--keep] [--only N[,N...]] [--jobs 2] [--check]
   --keep     leave the scratch clone (its path is printed)
   --only     run only these mutants (1-based, in file order)
+  --check    only check that each mutant's text occurs exactly once in its file (CTest
+             runs this, so that a mutant left behind by a moved line fails at once)
 It takes about a minute per mutant on two cores, after a first build of four minutes.
 """
 
@@ -63,9 +65,20 @@ def main():
     parser.add_argument("--keep", action="store_true")
     parser.add_argument("--only", default="")
     parser.add_argument("--jobs", default="2")
+    parser.add_argument("--check", action="store_true")
     args = parser.parse_args()
 
     mutants = read_mutants(os.path.join(ROOT, "tests", "mutants", "mutants.txt"))
+    if args.check:
+        stale = []
+        for n, m in enumerate(mutants, 1):
+            path = os.path.join(ROOT, m["file"])
+            found = open(path).read().count(m["find"]) if os.path.isfile(path) else 0
+            if found != 1:
+                stale.append("mutant %d (%s): its text occurs %d times in %s, not once"
+                             % (n, m["why"], found, m["file"]))
+        print("\n".join(stale) or "all %d mutants apply" % len(mutants))
+        return 1 if stale else 0
     chosen = [int(n) for n in args.only.split(",") if n] or list(range(1, len(mutants) + 1))
     scratch = tempfile.mkdtemp(prefix="ccbuild-mutants-")
     clone = os.path.join(scratch, "ccbuild")

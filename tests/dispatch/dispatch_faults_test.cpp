@@ -820,7 +820,7 @@ TEST(Dispatch, AWaitAbsorbsDelayAsFarAsTheLayersBelowCanCarryTheNext) {
     wait.kind = JobKind::kWait;
     wait.duration_s = 1000.0;
     wait.path = {};
-    wait.absorbs_delay = absorbs;
+    wait.absorbs = absorbs ? DelayAbsorption::kShortenWait : DelayAbsorption::kNone;
     std::vector<DispatchJob> out = {two_walls(10, 0, 0.0), wait, two_walls(30, 1, 1010.0)};
     out[0].z_top_m = out[2].z_bottom_m = 0.1;
     out[2].z_top_m = 0.2;
@@ -855,6 +855,61 @@ TEST(Dispatch, AWaitAbsorbsDelayAsFarAsTheLayersBelowCanCarryTheNext) {
       EXPECT_EQ(d.replans()[0].what, "absorbed");
       EXPECT_NEAR(d.replans()[0].delay_s, c.layer1_s - 1010.0, 1e-6);
       EXPECT_NEAR(d.replans()[0].duration_s, c.layer1_s - 130.0, 1e-6);
+    } else {
+      EXPECT_TRUE(d.replans().empty());
+    }
+  }
+}
+
+TEST(Dispatch, CrewWorkPlannedAfterASlackStartsOnceTheLateWorkBeforeItEnded) {
+  // Layer 0 clogs at 5 s: purged (120 s), its rest ends at 130 s, 120 s late. A slab
+  // stage (500 s of crew work) follows it, planned with slack before it (the next working
+  // hours, say), and layer 1 10 s after the slab.
+  const auto jobs = [](double slab_s, bool absorbs) {
+    DispatchJob slab = piece_job(20, -1, slab_s);
+    slab.kind = JobKind::kSlab;
+    slab.duration_s = 500.0;
+    slab.path = {};
+    slab.absorbs = absorbs ? DelayAbsorption::kStartWhenReady : DelayAbsorption::kNone;
+    std::vector<DispatchJob> out = {two_walls(10, 0, 0.0), slab, two_walls(30, 1, slab_s + 510.0)};
+    out[0].z_top_m = out[2].z_bottom_m = 0.1;
+    out[2].z_top_m = 0.2;
+    return out;
+  };
+  machine::SimOptions so = window(30.0, 5000.0);
+  so.clog_floor = so.clog_layer = 0;
+  const struct {
+    double slab_s;       // planned start of the slab stage
+    double carry_age_s;  // when layer 0 can carry layer 1 (0: never)
+    bool absorbs;
+    double slab_from_s;  // when the slab stage starts
+  } cases[] = {
+      {1000.0, 1.0, true, 1000.0},     // a slack longer than the delay: on time again
+      {130.0, 1.0, true, 130.0},       // a slack exactly the delay: on time again
+      {70.0, 1.0, true, 130.0},        // 60 s of slack: 60 s late after it
+      {1000.0, 1.0, false, 1120.0},    // work that may not absorb: 120 s late
+      {1000.0, 1420.0, true, 1040.0},  // layer 1 carried from 1,550 s: 40 s late after it
+      {1000.0, 0.0, true, 1120.0},     // never strong enough: nothing absorbed
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(::testing::Message() << c.slab_s << " " << c.carry_age_s << " " << c.absorbs);
+    const floors::MaterialProfile mix = mix_carrying_at(c.carry_age_s);
+    DispatchOptions o = LateRun::options(5000.0);
+    o.material = &mix;
+    Rig rig(so, jobs(c.slab_s, c.absorbs), ":memory:", o);
+    rig.run();
+    ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+    const Dispatcher& d = *rig.dispatcher;
+    EXPECT_NEAR(d.executed().at(20).first, c.slab_from_s, 1e-6);
+    EXPECT_NEAR(d.executed().at(20).second, c.slab_from_s + 500.0, 1e-6) << "as long as planned";
+    EXPECT_NEAR(d.executed().at(30).first, c.slab_from_s + 510.0, 1e-6);
+    const double late_s = c.slab_from_s - c.slab_s;
+    EXPECT_NEAR(d.delay_s(), late_s, 1e-6);
+    if (late_s < 120.0) {
+      ASSERT_EQ(d.replans().size(), 1u);
+      EXPECT_EQ(d.replans()[0].what, "absorbed");
+      EXPECT_EQ(d.replans()[0].job_id, 20);
+      EXPECT_NEAR(d.replans()[0].delay_s, late_s, 1e-6);
     } else {
       EXPECT_TRUE(d.replans().empty());
     }

@@ -135,12 +135,12 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
       jobs.push_back(
           job_of(JobKind::kWait, gantry_id(0), waited_from_s, wait_s, floor, layer, -1, "",
                  printf_string("wait before floor %d layer %d: %s", floor, layer, why.c_str())));
-      jobs.back().absorbs_delay =
-          !document.inputs.conditions &&
+      if (!document.inputs.conditions &&
           std::all_of(l.wait_reasons.begin(), l.wait_reasons.end(), [](const WaitReason& r) {
             return r.kind == WaitKind::kMinInterval || r.kind == WaitKind::kStrength ||
                    r.kind == WaitKind::kOffShift;
-          });
+          }))
+        jobs.back().absorbs = DelayAbsorption::kShortenWait;
     }
     const double moves_from_s = waited_from_s - move_s;
     for (auto& [nozzle, at] : where) {
@@ -215,6 +215,12 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
                                                          : JobKind::kWait;
     jobs.push_back(job_of(kind, gantry_id(0), e.start_s, e.end_s - e.start_s, e.floor, e.layer, -1,
                           "", e.detail));
+    // Crew work with nothing of the machines' to wait for: a slab stage and a lintel may
+    // start as soon as the work before them ended (not a planned joint's treatment: it
+    // waits for the age of the layer below).
+    if (e.kind == Event::Kind::kSlab || e.kind == Event::Kind::kPour ||
+        e.kind == Event::Kind::kLintel)
+      jobs.back().absorbs = DelayAbsorption::kStartWhenReady;
     if (e.kind == Event::Kind::kPipe && e.anchor) {
       jobs.back().unit = unit_name(e.anchor->unit);
       jobs.back().anchor = e.anchor->id;

@@ -78,8 +78,13 @@ void Dispatcher::replan(std::size_t index) {
   // Called before every job's first send: only deposits and absorbing waits go further.
   const DispatchJob& job = jobs_[index];
   const bool schedule_job = origin_[index] == index;
-  if (job.kind == JobKind::kWait && job.absorbs_delay && schedule_job) {
-    if (decided_.insert(job.job_id).second) absorb(index);
+  if (job.absorbs != DelayAbsorption::kNone && schedule_job) {
+    if (decided_.insert(job.job_id).second) {
+      if (job.absorbs == DelayAbsorption::kShortenWait)
+        absorb(index);
+      else
+        start_when_ready(index);
+    }
     return;
   }
   if (job.kind != JobKind::kDeposit || options_.max_interval_s <= 0.0) return;
@@ -149,10 +154,24 @@ void Dispatcher::replan(std::size_t index) {
   apply(r);
 }
 
+double Dispatcher::carried_from_s(const DispatchJob& deposit, std::string& bound) const {
+  const floors::MaterialProfile& mix = *options_.material;
+  double from_s = -std::numeric_limits<double>::infinity();
+  for (const auto& [key, bottom_end] : layer_end_) {
+    const double age_s =
+        mix.age_for_strength_s(mix.strength_to_carry_mpa(deposit.z_top_m - bottom_end.first));
+    if (!std::isfinite(age_s)) return std::numeric_limits<double>::infinity();
+    if (bottom_end.second + age_s > from_s) {
+      from_s = bottom_end.second + age_s;
+      bound = printf_string("the strength of floor %d layer %d", key.first, key.second);
+    }
+  }
+  return from_s;
+}
+
 void Dispatcher::absorb(std::size_t index) {
   const DispatchJob& wait = jobs_[index];
   if (!options_.material || delay_s_ <= kReplanSlack_s || options_.max_interval_s <= 0.0) return;
-  const floors::MaterialProfile& mix = *options_.material;
   // The layer it waits for: its deposits' planned start, and the jobs between (a planned
   // joint's treatment, a purge) keep their planned lengths.
   std::vector<std::size_t> layer;
@@ -172,15 +191,12 @@ void Dispatcher::absorb(std::size_t index) {
   // than the scheduler asks of the layer just below, which it checks piece end by piece
   // end); once no piece end below is covered sooner than the minimum interval.
   double start_s = std::max(planned_s, wait_from_s + between_s);
-  std::string bound = "its planned start";
-  for (const auto& [key, bottom_end] : layer_end_) {
-    const double age_s =
-        mix.age_for_strength_s(mix.strength_to_carry_mpa(first.z_top_m - bottom_end.first));
-    if (!std::isfinite(age_s)) return;
-    if (bottom_end.second + age_s > start_s) {
-      start_s = bottom_end.second + age_s;
-      bound = printf_string("the strength of floor %d layer %d", key.first, key.second);
-    }
+  std::string bound = "its planned start", carrying;
+  const double carried_s = carried_from_s(first, carrying);
+  if (!std::isfinite(carried_s) && carried_s > 0.0) return;
+  if (carried_s > start_s) {
+    start_s = carried_s;
+    bound = carrying;
   }
   const StartWindow w = window_below(layer);
   if (w.earliest_s > start_s) {
@@ -190,16 +206,59 @@ void Dispatcher::absorb(std::size_t index) {
   }
   const double absorbed_s = planned_s + delay_s_ - start_s;
   if (absorbed_s <= kReplanSlack_s) return;
+  record_absorbed(
+      index, wait_from_s, wait.duration_s - absorbed_s, delay_s_ - absorbed_s,
+      printf_string("%s: shortened by %.1f s of the run's %.1f s delay; floor %d layer %d starts "
+                    "at %.1f s, bound by %s",
+                    wait.detail.c_str(), absorbed_s, delay_s_, first.floor, first.layer, start_s,
+                    bound.c_str()));
+}
+
+void Dispatcher::start_when_ready(std::size_t index) {
+  const DispatchJob& work = jobs_[index];
+  if (!options_.material || delay_s_ <= kReplanSlack_s) return;
+  // It was released: every job planned to start before it has ended. It starts once the
+  // last of them did, never before its planned start (the crew is booked for then).
+  double start_s = work.start_s;
+  std::string bound = "its planned start";
+  for (const auto& [id, times] : executed_) {
+    const std::size_t k = index_of_.at(id);
+    if (jobs_[origin_[k]].start_s < work.start_s && times.second > start_s) {
+      start_s = times.second;
+      bound = printf_string("the end of job %lld (%s)", static_cast<long long>(id),
+                            jobs_[k].detail.c_str());
+    }
+  }
+  // The layer after it starts as much later than planned as this job: no sooner than the
+  // layers laid below can carry it (its minimum interval is re-checked when it goes out).
+  for (std::size_t k = index + 1; k < schedule_jobs_; ++k) {
+    if (jobs_[k].kind != JobKind::kDeposit) continue;
+    std::string carrying;
+    const double carried_s = carried_from_s(jobs_[k], carrying);
+    if (!std::isfinite(carried_s) && carried_s > 0.0) return;
+    if (carried_s - jobs_[k].start_s > start_s - work.start_s) {
+      start_s = work.start_s + (carried_s - jobs_[k].start_s);
+      bound = carrying + printf_string(" for floor %d layer %d", jobs_[k].floor, jobs_[k].layer);
+    }
+    break;
+  }
+  const double absorbed_s = work.start_s + delay_s_ - start_s;
+  if (absorbed_s <= kReplanSlack_s) return;
+  record_absorbed(index, start_s, work.duration_s, start_s - work.start_s,
+                  printf_string("%s: starts at %.1f s, %.1f s of the run's %.1f s delay "
+                                "absorbed, bound by %s",
+                                work.detail.c_str(), start_s, absorbed_s, delay_s_, bound.c_str()));
+}
+
+void Dispatcher::record_absorbed(std::size_t index, double start_s, double duration_s,
+                                 double delay_s, std::string detail) {
   Replan r;
-  r.job_id = wait.job_id;
+  r.job_id = jobs_[index].job_id;
   r.what = "absorbed";
-  r.start_s = wait_from_s;
-  r.delay_s = delay_s_ - absorbed_s;
-  r.duration_s = wait.duration_s - absorbed_s;
-  r.detail = printf_string(
-      "%s: shortened by %.1f s of the run's %.1f s delay; floor %d layer %d starts at %.1f s, "
-      "bound by %s",
-      wait.detail.c_str(), absorbed_s, delay_s_, first.floor, first.layer, start_s, bound.c_str());
+  r.start_s = start_s;
+  r.delay_s = delay_s;
+  r.duration_s = duration_s;
+  r.detail = std::move(detail);
   journal_.record_replan(r);  // before it is acted on
   apply(r);
 }
@@ -213,7 +272,8 @@ void Dispatcher::apply(const Replan& r) {
     delay_s_ = r.delay_s;
   else
     start_at_[index] = r.start_s;
-  if (r.what == "absorbed") {  // the wait starts as it would have, and ends sooner
+  if (r.what == "absorbed") {  // a wait starts as it would have and ends sooner; crew work
+                               // starts sooner
     start_at_[index] = r.start_s;
     duration_at_[index] = r.duration_s;  // (its planned end stays what lateness counts from)
   }

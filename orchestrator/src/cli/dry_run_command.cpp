@@ -559,8 +559,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         f.policy.c_str());
   // The re-plans of a late run (each journalled before it was applied).
   const auto& replans = dispatcher.replans();
-  int later = 0, joints = 0, treated = 0;
+  int absorbed = 0, later = 0, joints = 0, treated = 0;
   for (const auto& r : replans) {
+    absorbed += r.what == "absorbed";
     later += r.what == "later";
     joints += r.what == "planned joint";
     treated += r.treatment_job_id != 0 && dispatcher.executed().count(r.treatment_job_id) > 0;
@@ -570,9 +571,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       o.no_replan ? " (--no-replan: sent as planned)"
       : replans.empty()
           ? ""
-          : printf_string(
-                " (%d started later, %d on planned joints, their treatments ran %d of %d)", later,
-                joints, treated, joints)
+          : printf_string(" (%d absorbed delay, %d started later, %d on planned joints, their "
+                          "treatments ran %d of %d)",
+                          absorbed, later, joints, treated, joints)
                 .c_str());
   constexpr std::size_t kReplansListed = 10;
   for (std::size_t k = 0; k < replans.size() && k < kReplansListed; ++k)

@@ -25,6 +25,19 @@ std::string gantry_id(int nozzle);
 /// machine's, timed only.
 enum class JobKind { kDeposit, kTravel, kPipe, kClimbPhase, kSlab, kWait, kPurge };
 
+/// How a job may take up the run's delay instead of passing it on.
+enum class DelayAbsorption {
+  kNone,
+  /// A layer's wait before it, waiting only for the minimum interval, the strength of the
+  /// layers below or working hours (re-checked by the dispatcher from what the machines
+  /// laid), on a site without weather: shortened.
+  kShortenWait,
+  /// Crew work the schedule put later than the work before it ended (a slab's formwork or
+  /// pour, a lintel: the next working hours): started once that work has ended, never
+  /// before its planned start.
+  kStartWhenReady,
+};
+
 /// One job for one machine, as the dispatcher plans and journals it (it becomes a job
 /// message and its path chunks only when sent: job_messages.hpp).
 struct DispatchJob {
@@ -48,10 +61,8 @@ struct DispatchJob {
   std::string unit;    ///< the climbing unit a pipe is cast for or a phase moves, else ""
   std::string anchor;  ///< a pipe's anchor id, else ""
   double z_bottom_m = 0.0, z_top_m = 0.0;  ///< a deposit's layer, m
-  /// A layer's wait before it that may absorb the run's delay: it waits only for the
-  /// minimum interval, the strength of the layers below or working hours (which the
-  /// dispatcher re-checks from what the machines laid), on a site without weather.
-  bool absorbs_delay = false;
+  /// How the job may absorb the run's delay (docs/dispatch.md, "When the site runs late").
+  DelayAbsorption absorbs = DelayAbsorption::kNone;
 };
 
 /// Every job of `schedule` (as read_schedule gives it, re-validated), in the order they are

@@ -139,9 +139,9 @@ struct DispatchOptions {
   double min_interval_s = 0.0, max_interval_s = 0.0;
   /// A planned joint's treatment (s), and the age (s) the layer below must have first.
   double joint_treatment_s = 1800.0, joint_min_age_s = 0.0;
-  /// The mix, for the strength of the layers below: with it, a layer's wait that may
-  /// absorb delay (DispatchJob::absorbs_delay) is shortened as far as the layers the
-  /// machines laid can carry the layer and its joints keep the minimum (null: never).
+  /// The mix, for the strength of the layers below: with it, a job that may absorb delay
+  /// (DispatchJob::absorbs) takes up as much of it as the layers the machines laid can
+  /// carry the next layer and its joints keep the minimum (null: never).
   const floors::MaterialProfile* material = nullptr;
 };
 
@@ -248,6 +248,16 @@ class Dispatcher {
   StartWindow window_below(const std::vector<std::size_t>& deposits) const;
   /// The part of replan for a wait that may absorb delay: how far it can be shortened.
   void absorb(std::size_t index);
+  /// The part of replan for crew work that may start once the work before it ended.
+  void start_when_ready(std::size_t index);
+  /// When every layer the machines laid can carry the layer of `deposit` (from the end of
+  /// its last deposit, by the mix's strength curve): -inf when none was laid, +inf when
+  /// one never can; `bound` names the layer that binds.
+  double carried_from_s(const DispatchJob& deposit, std::string& bound) const;
+  /// Journals and applies "absorbed": the job at `index` starts at `start_s`, lasts
+  /// `duration_s`, and leaves the run `delay_s` behind.
+  void record_absorbed(std::size_t index, double start_s, double duration_s, double delay_s,
+                       std::string detail);
   /// Applies a re-plan (made now, or read from the journal on a restart).
   void apply(const Replan& replan);
   /// The jobs that start with the job at `index`: a schedule layer's deposits (else itself).
@@ -278,7 +288,7 @@ class Dispatcher {
   std::map<std::pair<int, int>, std::pair<double, double>> layer_end_;
   std::set<std::int64_t> decided_;             ///< jobs whose start was re-planned, or needed none
   std::map<std::size_t, double> start_at_;     ///< re-planned starts of jobs that run alone
-  std::map<std::size_t, double> duration_at_;  ///< re-planned lengths of absorbing waits
+  std::map<std::size_t, double> duration_at_;  ///< re-planned lengths of shortened waits
   std::vector<Replan> replans_;
   std::int64_t seq_ = 0;
   long resent_ = 0;
