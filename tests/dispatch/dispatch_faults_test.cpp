@@ -16,6 +16,7 @@
 
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 #include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/run_report.hpp"
 #include "ccbuild/dispatch/site_watchdog.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
@@ -931,6 +932,44 @@ TEST(Dispatch, ALayerThatWouldCoverAPieceEndTooSoonStartsLater) {
       EXPECT_DOUBLE_EQ(rig.dispatcher->delay_s(), 5.0);
     }
   }
+}
+
+TEST(RunReport, ALayerIsOffItsPlanFromOverASecond) {
+  // Layer 1, planned 30 s after layer 0, re-planned later to the minimum interval: 1 s
+  // late is on plan, 1.01 s late is off it.
+  for (const double min_s : {31.0, 31.01}) {
+    DispatchOptions o = LateRun::options(100.0);
+    o.min_interval_s = min_s;
+    Rig rig(window(min_s, 100.0), {piece_job(10, 0, 0.0), piece_job(20, 1, 30.0)}, ":memory:", o);
+    rig.run();
+    ASSERT_TRUE(rig.dispatcher->finished());
+    const RunReport r = report_of(*rig.dispatcher);
+    ASSERT_EQ(r.layers.size(), 2u);
+    EXPECT_NEAR(r.layers[1].deviation_s(), min_s - 30.0, 1e-9);
+    EXPECT_EQ(r.layers[1].off_plan(), min_s > 31.0);
+    EXPECT_EQ(r.off_plan, min_s > 31.0 ? 1 : 0);
+    ASSERT_EQ(r.floors.size(), 1u);
+    EXPECT_EQ(r.floors[0].layers, 2);
+    EXPECT_NEAR(r.floors[0].worst_s, min_s - 30.0, 1e-9);
+    EXPECT_NEAR(r.floors[0].ended_s, min_s + 5.0, 1e-9);
+    EXPECT_NEAR(r.finished_s, min_s + 5.0, 1e-9);
+    EXPECT_EQ(r.later, 1);
+  }
+}
+
+TEST(RunReport, CountsTheRecoveryJobsThatRanAndTheLayersThatDidNot) {
+  // The clog in layer 1 is purged (a purge the schedule did not plan); stopped after the
+  // first re-plan, layers 2 and 3 never ran.
+  LateRun late(100.0, ":memory:", LateRun::clogging(), 1);
+  const RunReport r = report_of(*late.rig.dispatcher);
+  EXPECT_EQ(r.crew_and_climber.at("purges").planned, 0);
+  EXPECT_EQ(r.crew_and_climber.at("purges").ran, 1);
+  ASSERT_EQ(r.layers.size(), 4u);
+  EXPECT_EQ(r.not_run, 2);
+  EXPECT_FALSE(r.layers[3].ran());
+  EXPECT_DOUBLE_EQ(r.layers[3].deviation_s(), 0.0);
+  EXPECT_EQ(r.planned_joints, 1);
+  EXPECT_EQ(r.treatments_ran, 0);
 }
 
 TEST(Dispatch, ARestartedDispatcherReplansIdenticallyFromItsJournal) {

@@ -22,6 +22,8 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/sha256.hpp"
 #include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/run_inputs.hpp"
+#include "ccbuild/dispatch/run_report.hpp"
 #include "ccbuild/dispatch/site_run.hpp"
 #include "ccbuild/dispatch/site_watchdog.hpp"
 #include "ccbuild/dispatch/supervisor.hpp"
@@ -34,7 +36,6 @@
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "dry_run_inputs.hpp"
 
 namespace ccbuild::cli {
 namespace {
@@ -105,7 +106,8 @@ constexpr double kSiteStatusPeriod_s = 0.02;
 
 void run_dry_run(const DryRunOptions& o, int& exit_code) {
   namespace lim = machine::sim_limits;
-  const Injected inject = injected(o.inject);  // its grammar, before any work
+  const dispatch::InjectedFaults inject =
+      dispatch::parse_injected(o.inject);  // its grammar, before any work
   // A schedule file read back and checked (its input files unchanged: the machines run
   // from them); a building scheduled first.
   schedule::ScheduleDocument schedule;
@@ -147,7 +149,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
       break;
     ids.push_back(id);
   }
-  check_injected(inject, schedule, jobs, ids);
+  dispatch::check_injected(inject, schedule, jobs, ids);
   const std::string profile = machine_profile(schedule, o, project);
   const machine::RailAxis rail_axis = machine_rec.rail_axis;
   const double gantry_width_m = machine_rec.gantry_width_m;
@@ -194,7 +196,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     for (const auto& id : ids)
       outputs.claim_read_write("--state-dir", fs::path(o.state_dir) / (id + ".state"));
     outputs.claim_file("--state-dir", fs::path(o.state_dir) / "schedule.sha256", true);
-    check_state_dir(o.state_dir, ids, schedule_sha256);
+    dispatch::check_state_dir(o.state_dir, ids, schedule_sha256);
   }
 
   // The planned gap between gantries, and how far they can close between two statuses.
@@ -225,15 +227,16 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     if (ec) throw InputError("", 0, "TMPDIR", "no temporary folder: " + ec.message());
     temporary.path = tmp / ("ccbuild-dry-run-" + std::to_string(::getpid()));
     fs::remove_all(temporary.path, ec);
-    check_writable_folder(temporary.path, {}, "TMPDIR");
+    dispatch::check_writable_folder(temporary.path, {}, "TMPDIR");
   }
   if (!o.state_dir.empty()) {
     std::vector<fs::path> records;
     for (const auto& id : ids) records.push_back(fs::path(o.state_dir) / (id + ".state"));
-    check_writable_folder(o.state_dir, records, "--state-dir");
+    dispatch::check_writable_folder(o.state_dir, records, "--state-dir");
   }
   if (!o.journal.empty())
-    check_writable_folder(fs::absolute(o.journal).parent_path(), {o.journal}, "--journal");
+    dispatch::check_writable_folder(fs::absolute(o.journal).parent_path(), {o.journal},
+                                    "--journal");
   const fs::path& work = temporary.path;
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
   dispatch::Journal journal(journal_path, schedule_sha256);
@@ -443,114 +446,48 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   machines.reset();
 
   // Planned against executed, layer by layer.
-  std::map<std::pair<int, int>, std::array<double, 4>> layers;  // planned start/end, started/ended
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < dispatcher.jobs().size(); ++k) {
-    const auto& j = dispatcher.jobs()[k];
-    if (j.kind != dispatch::JobKind::kDeposit) continue;
-    auto& l = layers.try_emplace({j.floor, j.layer}, std::array<double, 4>{inf, -inf, inf, -inf})
-                  .first->second;
-    if (dispatcher.origin_of(k) == k) {  // the schedule's, not a recovery job
-      l[0] = std::min(l[0], j.start_s);
-      l[1] = std::max(l[1], j.start_s + j.duration_s);
-    }
-    const auto it = dispatcher.executed().find(j.job_id);
-    if (it == dispatcher.executed().end()) continue;
-    l[2] = std::min(l[2], it->second.first);
-    l[3] = std::max(l[3], it->second.second);
-  }
-  double latest_s = 0.0;
-  for (const auto& [id, span] : dispatcher.executed()) latest_s = std::max(latest_s, span.second);
+  const dispatch::RunReport report = dispatch::report_of(dispatcher);
   std::cout << printf_string(
       "%s: %zu of %zu jobs executed on %zu machine(s) in %.1f s (%.0fx), finished at %s of "
       "schedule time\n",
       o.file.c_str(), dispatcher.executed().size(), dispatcher.jobs().size(), ids.size(), real_s,
-      o.speed, duration(latest_s).c_str());
-  long late_layers = 0, missing_layers = 0;
-  double worst_s = 0.0;
-  // Per floor: planned start and end, started and ended, its layers late and not run, its
-  // worst deviation.
-  struct FloorRow {
-    std::array<double, 4> span{inf, -inf, inf, -inf};
-    int layers = 0, late = 0, missing = 0;
-    double worst_s = 0.0;
-  };
-  std::map<int, FloorRow> floors;
-  if (o.by_layer)
+      o.speed, duration(report.finished_s).c_str());
+  const auto at = [](double t_s) { return std::isfinite(t_s) ? duration(t_s) : std::string("-"); };
+  if (o.by_layer) {
     std::cout
         << "layer            planned start  started        deviation   planned end    ended\n";
-  for (const auto& [key, l] : layers) {
-    const bool ran = std::isfinite(l[2]);
-    const double dev_s = ran ? l[2] - l[0] : 0.0;
-    late_layers += ran && std::abs(dev_s) > 1.0;
-    missing_layers += !ran;
-    worst_s = std::max(worst_s, std::abs(dev_s));
-    FloorRow& f = floors[key.first];
-    ++f.layers;
-    f.late += ran && std::abs(dev_s) > 1.0;
-    f.missing += !ran;
-    if (std::abs(dev_s) > std::abs(f.worst_s)) f.worst_s = dev_s;
-    f.span = {std::min(f.span[0], l[0]), std::max(f.span[1], l[1]), std::min(f.span[2], l[2]),
-              std::max(f.span[3], l[3])};
-    if (o.by_layer)
-      std::cout << printf_string(
-          "floor %2d layer %3d  %-13s  %-13s  %-10s  %-13s  %s\n", key.first, key.second,
-          duration(l[0]).c_str(), ran ? duration(l[2]).c_str() : "not run",
-          ran ? printf_string("%+.1f s", dev_s).c_str() : "-", duration(l[1]).c_str(),
-          std::isfinite(l[3]) ? duration(l[3]).c_str() : "-");
-  }
-  if (!o.by_layer) {
+    for (const auto& l : report.layers)
+      std::cout << printf_string("floor %2d layer %3d  %-13s  %-13s  %-10s  %-13s  %s\n", l.floor,
+                                 l.layer, duration(l.planned_start_s).c_str(),
+                                 l.ran() ? duration(l.started_s).c_str() : "not run",
+                                 l.ran() ? printf_string("%+.1f s", l.deviation_s()).c_str() : "-",
+                                 duration(l.planned_end_s).c_str(), at(l.ended_s).c_str());
+  } else {
     std::cout << "by floor (--by-layer for every layer): planned start and end, when its first "
                  "layer started and its last ended, its layers started over 1 s late or early, "
                  "its worst start deviation\n";
     std::cout << "floor  layers  planned start  started        planned end    ended          "
                  "off   not run  worst\n";
-    for (const auto& [floor, f] : floors) {
-      const auto at = [](double t_s) {
-        return std::isfinite(t_s) ? duration(t_s) : std::string("-");
-      };
-      std::cout << printf_string("%5d  %6d  %-13s  %-13s  %-13s  %-13s  %4d  %7d  %+.1f s\n", floor,
-                                 f.layers, at(f.span[0]).c_str(), at(f.span[2]).c_str(),
-                                 at(f.span[1]).c_str(), at(f.span[3]).c_str(), f.late, f.missing,
-                                 f.worst_s);
-    }
+    for (const auto& f : report.floors)
+      std::cout << printf_string("%5d  %6d  %-13s  %-13s  %-13s  %-13s  %4d  %7d  %+.1f s\n",
+                                 f.floor, f.layers, at(f.planned_start_s).c_str(),
+                                 at(f.started_s).c_str(), at(f.planned_end_s).c_str(),
+                                 at(f.ended_s).c_str(), f.off_plan, f.not_run, f.worst_s);
   }
-  // The crew's and the climber's jobs: planned, and how many ran (a pin tried again counts
-  // once more).
-  {
-    struct Count {
-      int planned = 0, ran = 0;
-    };
-    std::map<std::string, Count> kinds;
-    for (std::size_t k = 0; k < dispatcher.jobs().size(); ++k) {
-      const auto& j = dispatcher.jobs()[k];
-      const char* what =
-          j.kind == dispatch::JobKind::kPipe    ? "pipes"
-          : j.kind == dispatch::JobKind::kSlab  ? "slab stages"
-          : j.kind == dispatch::JobKind::kPurge ? "purges"
-          : j.kind == dispatch::JobKind::kClimbPhase
-              ? (j.phase == ccbuild_lcm::ccbuild_job_t::INSERT ? "pin insertions"
-                                                               : "other climb phases")
-              : nullptr;
-      if (!what) continue;
-      Count& c = kinds[what];
-      c.planned += dispatcher.origin_of(k) == k;
-      c.ran += dispatcher.executed().count(j.job_id) > 0;
-    }
-    if (!kinds.empty()) {
-      std::string line;
-      for (const auto& [what, c] : kinds)
-        line += printf_string("%s%s %d of %d", line.empty() ? "" : "; ", what.c_str(), c.ran,
-                              c.planned);
-      std::cout << "climbs, pipes and slabs (ran of planned): " << line << "\n";
-    }
+  // The crew's and the climber's jobs: planned, and how many ran.
+  if (!report.crew_and_climber.empty()) {
+    std::string line;
+    for (const auto& [what, c] : report.crew_and_climber)
+      line +=
+          printf_string("%s%s %d of %d", line.empty() ? "" : "; ", what.c_str(), c.ran, c.planned);
+    std::cout << "climbs, pipes and slabs (ran of planned): " << line << "\n";
   }
   std::cout << printf_string(
-      "deviations: %ld of %zu layers started more than 1 s off their planned start (worst "
-      "%s), %ld not run; %.1f s behind schedule at the end; jobs sent again: %ld; malformed "
+      "deviations: %d of %zu layers started more than 1 s off their planned start (worst "
+      "%s), %d not run; %.1f s behind schedule at the end; jobs sent again: %ld; malformed "
       "messages rejected here: %ld\n",
-      late_layers, layers.size(), duration(worst_s).c_str(), missing_layers, dispatcher.delay_s(),
-      dispatcher.resent(), malformed);
+      report.off_plan, report.layers.size(), duration(report.worst_s).c_str(), report.not_run,
+      dispatcher.delay_s(), dispatcher.resent(), malformed);
   std::cout << printf_string("faults: %ld\n", dispatcher.faults());
   for (const auto& f : dispatcher.fault_records())
     std::cout << printf_string(
@@ -559,13 +496,6 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         f.policy.c_str());
   // The re-plans of a late run (each journalled before it was applied).
   const auto& replans = dispatcher.replans();
-  int absorbed = 0, later = 0, joints = 0, treated = 0;
-  for (const auto& r : replans) {
-    absorbed += r.what == "absorbed";
-    later += r.what == "later";
-    joints += r.what == "planned joint";
-    treated += r.treatment_job_id != 0 && dispatcher.executed().count(r.treatment_job_id) > 0;
-  }
   std::cout << printf_string(
       "re-plans: %zu%s\n", replans.size(),
       o.no_replan ? " (--no-replan: sent as planned)"
@@ -573,7 +503,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
           ? ""
           : printf_string(" (%d absorbed delay, %d started later, %d on planned joints, their "
                           "treatments ran %d of %d)",
-                          absorbed, later, joints, treated, joints)
+                          report.absorbed, report.later, report.planned_joints,
+                          report.treatments_ran, report.planned_joints)
                 .c_str());
   constexpr std::size_t kReplansListed = 10;
   for (std::size_t k = 0; k < replans.size() && k < kReplansListed; ++k)

@@ -1,4 +1,4 @@
-#include "dry_run_inputs.hpp"
+#include "ccbuild/dispatch/run_inputs.hpp"
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 #include "ccbuild/machine/sim_limits.hpp"
 #include "ccbuild/machine/sim_machine.hpp"
 
-namespace ccbuild::cli {
+namespace ccbuild::dispatch {
 namespace fs = std::filesystem;
 namespace {
 
@@ -33,9 +33,9 @@ bool parse_whole(const std::string& text, Number& value) {
 
 }  // namespace
 
-Injected injected(const std::string& text) {
+InjectedFaults parse_injected(const std::string& text) {
   namespace lim = machine::sim_limits;
-  Injected out;
+  InjectedFaults out;
   std::size_t at = 0;
   while (at < text.size()) {
     const std::size_t end = std::min(text.find(',', at), text.size());
@@ -57,7 +57,7 @@ Injected injected(const std::string& text) {
     MachineFault f;
     f.item = item;
     f.name = name;
-    f.machine = dispatch::gantry_id(0);
+    f.machine = gantry_id(0);
     if (const std::size_t amp = value.find('@'); amp != std::string::npos) {
       f.machine = value.substr(0, amp);
       value = value.substr(amp + 1);
@@ -83,9 +83,8 @@ Injected injected(const std::string& text) {
   return out;
 }
 
-void check_injected(const Injected& inject, const schedule::ScheduleDocument& document,
-                    const std::vector<dispatch::DispatchJob>& jobs,
-                    const std::vector<std::string>& ids) {
+void check_injected(const InjectedFaults& inject, const schedule::ScheduleDocument& document,
+                    const std::vector<DispatchJob>& jobs, const std::vector<std::string>& ids) {
   std::string machines;
   for (const auto& id : ids) machines += (machines.empty() ? "" : ", ") + id;
   int inserts = 0;
@@ -102,8 +101,8 @@ void check_injected(const Injected& inject, const schedule::ScheduleDocument& do
     for (const auto& j : jobs) {
       if (j.machine_id != f.machine) continue;
       ++runs;
-      deposits = deposits || (j.kind == dispatch::JobKind::kDeposit && j.floor == f.floor &&
-                              j.layer == f.layer);
+      deposits =
+          deposits || (j.kind == JobKind::kDeposit && j.floor == f.floor && j.layer == f.layer);
     }
     if (f.name == "clog" && !deposits)
       throw bad_inject(f.item, printf_string("%s deposits nothing on floor %d layer %d of this "
@@ -111,9 +110,9 @@ void check_injected(const Injected& inject, const schedule::ScheduleDocument& do
                                              f.machine.c_str(), f.floor, f.layer));
     if (f.name == "pin" && inserts == 0)
       throw bad_inject(f.item, "the schedule has no climbs, so no pin is ever inserted");
-    if (f.name == "pin" && f.machine != dispatch::gantry_id(0))
-      throw bad_inject(f.item, "climbs run as jobs of " + dispatch::gantry_id(0) +
-                                   "; a pin can only miss there");
+    if (f.name == "pin" && f.machine != gantry_id(0))
+      throw bad_inject(f.item,
+                       "climbs run as jobs of " + gantry_id(0) + "; a pin can only miss there");
     if (f.name == "crash" && f.count > runs)
       throw bad_inject(f.item, printf_string("%s runs %ld jobs in this schedule, so it never "
                                              "reaches its %ld-th",
@@ -185,4 +184,4 @@ void check_writable_folder(const fs::path& dir, const std::vector<fs::path>& fil
   }
 }
 
-}  // namespace ccbuild::cli
+}  // namespace ccbuild::dispatch

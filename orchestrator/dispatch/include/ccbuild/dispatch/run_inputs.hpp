@@ -1,8 +1,9 @@
 #pragma once
-// What `ccbuild dry-run` checks before anything starts, besides the schedule itself: the
-// faults --inject asks for (their grammar, within what ccbuild-sim accepts, and against the
-// schedule's machines, layers and climbs) and the folder of machine records (--state-dir)
-// belonging to this schedule. Internal to the CLI.
+// What a dispatch run checks before anything starts, besides the schedule itself: the
+// faults to inject (their grammar, within what ccbuild-sim accepts, and against the
+// schedule's machines, layers and climbs), the folder of machine records belonging to this
+// schedule, and the folders of the journal and the records writable (docs/dispatch.md).
+// Errors name the flag of `ccbuild dry-run` that gave the value (--inject, --state-dir).
 
 #include <filesystem>
 #include <map>
@@ -15,7 +16,7 @@
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 
-namespace ccbuild::cli {
+namespace ccbuild::dispatch {
 
 /// One machine fault --inject asks for.
 struct MachineFault {
@@ -29,7 +30,7 @@ struct MachineFault {
 
 /// What --inject asks for: network faults with their probabilities, and machine faults
 /// with the machine they happen on.
-struct Injected {
+struct InjectedFaults {
   std::vector<std::pair<std::string, double>> network;  ///< drop, duplicate, reorder, delay
   std::vector<MachineFault> machine;
   /// machine -> its ccbuild-sim flags ("--clog-at", "0:3"), ...
@@ -51,15 +52,14 @@ struct Injected {
 /// --inject "drop=0.1,duplicate=0.1,reorder=0.1,clog=0:3,pin=1,crash=5,stall=gantry-2@60":
 /// each fault and its value, within what ccbuild-sim accepts. Throws InputError (field
 /// --inject) for anything else; check_injected() then holds it against the schedule.
-Injected injected(const std::string& text);
+InjectedFaults parse_injected(const std::string& text);
 
 /// Refuses (InputError, field --inject) a machine fault that could never happen on this
 /// schedule: on a machine it does not have, a layer that machine does not deposit, a pin
 /// where nothing climbs, a crash after more jobs than the machine runs, a stall after the
 /// schedule ends.
-void check_injected(const Injected& inject, const schedule::ScheduleDocument& document,
-                    const std::vector<dispatch::DispatchJob>& jobs,
-                    const std::vector<std::string>& ids);
+void check_injected(const InjectedFaults& inject, const schedule::ScheduleDocument& document,
+                    const std::vector<DispatchJob>& jobs, const std::vector<std::string>& ids);
 
 /// The folder of machine records (--state-dir) belongs to one schedule, named in its
 /// `schedule.sha256`: records of another schedule would be taken as jobs done. Checks each
@@ -76,4 +76,4 @@ void check_writable_folder(const std::filesystem::path& dir,
                            const std::vector<std::filesystem::path>& files,
                            const std::string& field);
 
-}  // namespace ccbuild::cli
+}  // namespace ccbuild::dispatch
