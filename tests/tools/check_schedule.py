@@ -22,8 +22,10 @@ ones, never used to compute them. It checks:
      the time between two layers is the events', the climbs' waits, the move and the
      wait, the pipes' as pipes_before_s; a purge exactly when the nozzle idled longer
      than its limit;
-  6. local intervals: per piece end, the time between the layer below depositing that
-     point of the wall and this layer depositing it, compared with the document and
+  6. local intervals: at each piece's ends and where a bead of either layer starts or
+     ends along it (each side of such a point with the beads on that side), the time
+     between the layer below depositing that point of the wall and this layer
+     depositing it, compared with the document and
      with the material's minimum and maximum (an infeasible schedule must say so and
      may exceed the maximum); local_interval_min_at and _max_at must name a piece end
      where the recomputed interval is that minimum or maximum;
@@ -328,12 +330,8 @@ class Plan:
                     self.airtime += dt
                     idle += dt
             self.max_idle = max(self.max_idle, idle)
-        # Both ends of every piece, with the times this plan deposits them.
-        self.ends = []          # (wall, piece, x, y, [times])
-        for piece in plan["pieces"]:
-            for x, y in (piece["start_m"], piece["end_m"]):
-                self.ends.append((piece["wall"], piece["piece"], x, y,
-                                  self.times_at(piece["wall"], x, y)))
+        # Every piece: (wall, piece, start, end).
+        self.pieces = [(p["wall"], p["piece"], p["start_m"], p["end_m"]) for p in plan["pieces"]]
         self.breakpoints = 0    # gantry breakpoints checked
         self.min_gap = None
 
@@ -722,18 +720,72 @@ def check_layers(doc, infos, problems):
             problems[index] += " (and in %d more layers using the plan)" % (count - 1)
 
 
+def spans_along(plan, wall, ax, ay, ex, ey, length):
+    """The spans of `plan` on `wall` along the piece from (ax, ay) in direction (ex, ey)
+    over `length`: both ends within ON_SPAN of its line and more than a point of it
+    covered. Each as (u at its start, u at its end, t at its start, t at its end), u in m
+    from the piece's start."""
+    out = []
+    for x0, y0, x1, y1, t0, t1 in plan.by_wall.get(wall, ()):
+        if abs((y0 - ay) * ex - (x0 - ax) * ey) > ON_SPAN or abs((y1 - ay) * ex - (x1 - ax) * ey) > ON_SPAN:
+            continue
+        ua, ub = (x0 - ax) * ex + (y0 - ay) * ey, (x1 - ax) * ex + (y1 - ay) * ey
+        if min(ua, ub) > length - ON_SPAN or max(ua, ub) < ON_SPAN:
+            continue
+        out.append((ua, ub, t0, t1))
+    return out
+
+
+def time_along(span, u):
+    ua, ub, ta, tb = span
+    if abs(ub - ua) < 1e-12:
+        return ta
+    return ta + min(1.0, max(0.0, (u - ua) / (ub - ua))) * (tb - ta)
+
+
+def checked_points(this, below):
+    """Where the local intervals of this plan over the plan below are taken: along each
+    piece, each layer's time is linear between the points where one of its spans starts
+    or ends; at both ends of every stretch between such points (and the piece's ends)
+    that both plans cover, with the spans that cover that stretch (a point where beads
+    meet is taken once from each side). Yields (wall, piece, x, y, this plan's times
+    there, the plan below's)."""
+    for wall, piece, (ax, ay), (bx, by) in this.pieces:
+        length = math.hypot(bx - ax, by - ay)
+        if length < 1e-12:
+            continue
+        ex, ey = (bx - ax) / length, (by - ay) / length
+        up = spans_along(this, wall, ax, ay, ex, ey, length)
+        low = spans_along(below, wall, ax, ay, ex, ey, length)
+        if not up or not low:
+            continue
+        cuts = sorted(min(length, max(0.0, u)) for s in up + low for u in s[:2])
+        kept = [0.0]
+        for u in cuts:
+            if u - kept[-1] > ON_SPAN and length - u > ON_SPAN:
+                kept.append(u)
+        kept.append(length)
+        for u0, u1 in zip(kept, kept[1:]):
+            def covers(s):
+                return min(s[0], s[1]) <= u0 + ON_SPAN and max(s[0], s[1]) >= u1 - ON_SPAN
+            cu, cl = [s for s in up if covers(s)], [s for s in low if covers(s)]
+            if not cu or not cl:
+                continue
+            for u in (u0, u1):
+                yield (wall, piece, ax + u * ex, ay + u * ey, [time_along(s, u) for s in cu],
+                       [time_along(s, u) for s in cl])
+
+
 def pair_intervals(this, below):
-    """This plan's piece ends on a wall the plan below deposits, with their intervals in
-    plan times (this time - below time; where a point is passed more than once, the
-    smallest difference counts for the minimum and the largest for the maximum).
+    """The points of this plan's pieces over walls the plan below deposits where the
+    intervals are taken (checked_points), with their intervals in plan times (this time -
+    below time; where a point is passed more than once, the smallest difference counts
+    for the minimum and the largest for the maximum).
     Returns (count, ends, low, high): ends maps (wall, piece) to [(x, y, smallest,
     largest)], low and high are (interval, wall, piece, x, y) at the extremes.
     Computed once per pair of plans."""
     count, ends, low, high = 0, {}, None, None
-    for wall, piece, x, y, own in this.ends:
-        under = below.times_at(wall, x, y)
-        if not under or not own:
-            continue
+    for wall, piece, x, y, own, under in checked_points(this, below):
         count += 1
         lo = min(own) - max(under)
         hi = max(own) - min(under)
@@ -810,15 +862,10 @@ def maturity_of(doc):
 
 
 def raw_ends(this, below):
-    """Per piece end of this plan on a wall the plan below deposits: (this plan's earliest
-    and latest time there, the plan below's earliest and latest), each in its own plan's
-    time."""
-    out = []
-    for wall, piece, x, y, own in this.ends:
-        under = below.times_at(wall, x, y)
-        if under and own:
-            out.append((min(own), max(own), min(under), max(under)))
-    return out
+    """Per point of checked_points: (this plan's earliest and latest time there, the plan
+    below's earliest and latest), each in its own plan's time."""
+    return [(min(own), max(own), min(under), max(under))
+            for _, _, _, _, own, under in checked_points(this, below)]
 
 
 def index_of(layers, floor, layer):

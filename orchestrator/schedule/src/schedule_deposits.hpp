@@ -58,22 +58,25 @@ DepositIndex index_of(const std::vector<std::vector<planner::Waypoint>>& nozzles
 /// The local intervals between a layer and the one it is deposited on, less the
 /// difference of their starts: interval at an end = start_above - start_below + offset.
 struct IntervalOffsets {
-  /// One piece end: when the upper plan passes it (earliest, latest) and when the lower
-  /// one did, each from its own layer's start.
+  /// One point where the interval is taken (a piece's end, or a bead's end along it, from
+  /// one side): when the upper plan passes it (earliest, latest) and when the lower one
+  /// did, each from its own layer's start, by the beads on that side.
   struct End {
     double up_lo_s = 0.0, up_hi_s = 0.0, low_lo_s = 0.0, low_hi_s = 0.0;
     PieceEnd at;
   };
   std::vector<End> each;  ///< every end counted in `ends`
-  int ends = 0;           ///< piece ends of the upper layer over a wall of the lower one
+  int ends = 0;           ///< points taken (two per stretch both layers cover)
   double min_offset_s = std::numeric_limits<double>::infinity();
   double max_offset_s = -std::numeric_limits<double>::infinity();
   PieceEnd min_at, max_at;
 };
 
-/// Over both ends of every piece of `upper` that lie on a wall deposited in the layer
-/// below; where a point is passed twice, the smaller interval for the minimum and the
-/// larger for the maximum.
+/// Along every piece of `upper` that lies on a wall deposited in the layer below: at both
+/// ends of each stretch between the points where a bead of either layer starts or ends
+/// (and the piece's ends) that both layers cover, with the beads covering that stretch;
+/// where a stretch is passed twice, the smaller interval for the minimum and the larger
+/// for the maximum (docs/schedule.md, "Intervals, per wall piece").
 IntervalOffsets interval_offsets(const floors::Layer& upper, const DepositIndex& upper_index,
                                  const DepositIndex& lower_index);
 

@@ -322,15 +322,22 @@ class Rules {
     return it->second;
   }
 
-  /// The layer's interval offsets at one piece end: (smallest, largest) over the times the
-  /// two plans pass it; unset when either does not.
-  std::optional<std::pair<double, double>> offsets_at(const PieceEnd& end, const DepositIndex& up,
-                                                      const DepositIndex& low) {
-    double up_lo = 0, up_hi = 0, low_lo = 0, low_hi = 0;
-    const Eigen::Vector2d p(end.x_m, end.y_m);
-    if (!up.times_at(end.wall, p, up_lo, up_hi) || !low.times_at(end.wall, p, low_lo, low_hi))
-      return std::nullopt;
-    return std::make_pair(up_lo - low_hi, up_hi - low_lo);
+  /// The layer's interval offsets at a point where they were taken (`offsets.each`, on
+  /// either side of it): (smallest, largest); unset when none was taken there (within the
+  /// rounding of a written position).
+  static std::optional<std::pair<double, double>> offsets_at(const PieceEnd& end,
+                                                             const IntervalOffsets& offsets) {
+    constexpr double kWritten_m = 2e-6;
+    std::optional<std::pair<double, double>> out;
+    for (const auto& e : offsets.each) {
+      if (e.at.wall != end.wall || e.at.piece != end.piece ||
+          std::abs(e.at.x_m - end.x_m) > kWritten_m || std::abs(e.at.y_m - end.y_m) > kWritten_m)
+        continue;
+      const double lo = e.up_lo_s - e.low_hi_s, hi = e.up_hi_s - e.low_lo_s;
+      out = out ? std::make_pair(std::min(out->first, lo), std::max(out->second, hi))
+                : std::make_pair(lo, hi);
+    }
+    return out;
   }
 
   void check_layers() {
@@ -429,7 +436,8 @@ class Rules {
       const IntervalOffsets offsets = interval_offsets(plan.layer, up, low);
       if (offsets.ends != l.piece_ends_checked)
         broken(at + "/piece_ends_checked", "local intervals",
-               printf_string("%d, but %d piece ends lie on walls of the layer below",
+               printf_string("%d, but the intervals are taken at %d points over walls of the "
+                             "layer below",
                              l.piece_ends_checked, offsets.ends));
       if (offsets.ends == 0) {
         if (l.local_interval_min_s)
@@ -449,7 +457,7 @@ class Rules {
       // are equal within the rounding).
       for (const bool is_min : {true, false}) {
         const PieceEnd& named = is_min ? l.local_min_at : l.local_max_at;
-        const auto there = offsets_at(named, up, low);
+        const auto there = offsets_at(named, offsets);
         const double extreme_s = is_min ? min_s : max_s;
         const double there_s = there ? shift_s + (is_min ? there->first : there->second) : NAN;
         if (!there || std::abs(there_s - extreme_s) > kStated_s)
@@ -460,8 +468,9 @@ class Rules {
                                      "%s %.6f s",
                                      static_cast<long long>(named.wall), named.piece, named.x_m,
                                      named.y_m, there_s, is_min ? "smallest" : "largest", extreme_s)
-                     : printf_string("wall %lld piece %d at (%.6f, %.6f) m is not a piece end "
-                                     "deposited in both layers",
+                     : printf_string("wall %lld piece %d at (%.6f, %.6f) m is not a point where "
+                                     "the intervals are taken (a piece's end or a bead's end "
+                                     "along it, deposited in both layers)",
                                      static_cast<long long>(named.wall), named.piece, named.x_m,
                                      named.y_m));
       }
