@@ -223,10 +223,11 @@ Building building_from_document(const Document& doc, const fs::path& path,
     building.slabs = read_slabs(*slabs, unit);
   }
   if (auto lintels = map.optional("lintels")) building.lintels = read_lintels(*lintels, unit);
-  building.material_profile =
-      resolve_reference(map.required("material"), base, building.material_source);
-  building.machine_profile =
-      resolve_reference(map.required("machine"), base, building.machine_source);
+  // Optional: without them the flags' or the bundled profiles are used (the project).
+  if (auto material = map.optional("material"))
+    building.material_profile = resolve_reference(*material, base, building.material_source);
+  if (auto machine = map.optional("machine"))
+    building.machine_profile = resolve_reference(*machine, base, building.machine_source);
 
   if (auto site = map.optional("site")) building.site = read_site(*site, unit);
   if (auto pattern = map.optional("wall_pattern")) {

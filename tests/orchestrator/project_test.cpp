@@ -54,6 +54,30 @@ TEST(Project, ALonePlanGetsTheBundledMachineAndMaterial) {
       "strength_mpa"));
 }
 
+TEST(Project, ABuildingWithoutProfilesGetsTheFlagsOrTheBundledOnes) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("ccbuild_noprofiles_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "b.yaml") << "units: m\nlayer_height: 0.5\nfloors:\n  - {height: 3, plan: "
+                                << testing::data("plans/cottage.yaml") << "}\n";
+  const Project bundled = open_project(dir / "b.yaml");
+  EXPECT_TRUE(bundled.is_building);
+  EXPECT_EQ(bundled.machine_model().name, "CC gantry, up to three nozzles");
+  EXPECT_TRUE(contains(bundled.machine_origin, "(bundled default)")) << bundled.machine_origin;
+  EXPECT_TRUE(contains(bundled.material_origin, "(bundled default)")) << bundled.material_origin;
+  ProjectOptions o;
+  o.machine_profile = testing::data("machines/two-gantries.yaml");
+  o.material_profile = testing::data("materials/quick-bond-mix.yaml");
+  const Project flagged = open_project(dir / "b.yaml", o);
+  EXPECT_TRUE(contains(flagged.machine_origin, "(--machine)")) << flagged.machine_origin;
+  EXPECT_TRUE(contains(flagged.material_origin, "(--material)")) << flagged.material_origin;
+  // One that names a profile that is not there is refused, naming the key's line.
+  std::ofstream(dir / "b.yaml", std::ios::app) << "material: missing.yaml\n";
+  EXPECT_TRUE(
+      contains(expect_input_error([&] { open_project(dir / "b.yaml"); }).what(), "missing.yaml"));
+  fs::remove_all(dir);
+}
+
 // A one-wall plan `length` long along x, `height` m tall, on a tiny machine.
 std::string fit_case(const fs::path& dir, double length_m, double floor_m, double thickness_m) {
   std::ofstream(dir / "plan.yaml")

@@ -90,7 +90,9 @@ struct Building {
   /// How every opening's lintel is made (`lintels:`); also in every floor's plan.
   LintelSpec lintels;
   std::vector<Floor> floors;
-  std::filesystem::path material_profile;  ///< resolved against the building file's folder
+  /// resolved against the building file's folder; empty when the building names none (the
+  /// flags' or the bundled profile is used)
+  std::filesystem::path material_profile;
   std::filesystem::path machine_profile;
   SourceRef material_source;
   SourceRef machine_source;
