@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "ccbuild/common/document.hpp"
@@ -196,6 +197,66 @@ SlabSpec read_slabs(const Field& field, LengthUnit unit) {
   return slab;
 }
 
+/// The errors of one building file, gathered so that all are reported in one run. A
+/// message about a floor's plan, repeated for every floor that shares the plan, is given
+/// once with the floors listed.
+class Findings {
+ public:
+  /// Runs `read`, keeping the errors it throws. `floor` names the floor it reads ("" for
+  /// the building's own keys); `prefix` is what that floor's checks put before a message.
+  template <class Read>
+  void attempt(Read&& read, const std::string& floor = "", const std::string& prefix = "") {
+    try {
+      read();
+    } catch (const InputError& error) {
+      for (Diagnostic d : error.diagnostics()) {
+        const bool prefixed = !prefix.empty() && d.message.rfind(prefix, 0) == 0;
+        if (prefixed) d.message.erase(0, prefix.size());
+        found_.push_back({std::move(d), floor, prefixed});
+      }
+    }
+  }
+  bool empty() const { return found_.empty(); }
+  /// Throws InputError with every error, merged; does nothing when there is none.
+  void throw_if_any() const {
+    if (found_.empty()) return;
+    std::vector<Diagnostic> out;
+    std::vector<bool> used(found_.size(), false);
+    for (std::size_t i = 0; i < found_.size(); ++i) {
+      if (used[i]) continue;
+      const Finding& f = found_[i];
+      std::vector<std::string> floors;
+      for (std::size_t k = i; k < found_.size(); ++k) {
+        const Finding& g = found_[k];
+        if (used[k] || g.prefixed != f.prefixed || g.d.file != f.d.file || g.d.line != f.d.line ||
+            g.d.field != f.d.field || g.d.message != f.d.message)
+          continue;
+        used[k] = true;
+        if (!g.floor.empty() && std::find(floors.begin(), floors.end(), g.floor) == floors.end())
+          floors.push_back(g.floor);
+      }
+      Diagnostic d = f.d;
+      std::string listed;
+      for (std::size_t k = 0; k < floors.size(); ++k)
+        listed += (k == 0 ? "" : k + 1 == floors.size() ? " and " : ", ") + ("'" + floors[k] + "'");
+      if (f.prefixed)
+        d.message = (floors.size() == 1 ? "floor " : "floors ") + listed + ": " + d.message;
+      else if (floors.size() > 1)
+        d.message += " (floors " + listed + ")";
+      out.push_back(std::move(d));
+    }
+    throw InputError(std::move(out));
+  }
+
+ private:
+  struct Finding {
+    Diagnostic d;
+    std::string floor;
+    bool prefixed = false;
+  };
+  std::vector<Finding> found_;
+};
+
 Building building_from_document(const Document& doc, const fs::path& path,
                                 const DrawingReader& drawings) {
   const Field root = Field::root(doc);
@@ -209,45 +270,65 @@ Building building_from_document(const Document& doc, const fs::path& path,
   building.source_file = path.string();
   building.files_read.push_back(path);
   if (auto name = map.optional("name")) building.name = name->as_string();
-  building.units = read_units(map.required("units"));
+  building.units = read_units(map.required("units"));  // every length depends on it
   const LengthUnit unit = building.units;
-  const Field layer_height = map.required("layer_height");
-  building.layer_height_m = read_length(layer_height, limits::kLayerHeight_m, unit);
-  if (auto slab = map.optional("slab_stage_h"))
-    building.slab_stage_s = slab->as_number_in(limits::kSlabStage_s, "h", 3600.0);
-  if (auto slabs = map.optional("slabs")) {
-    if (map.has("slab_stage_h"))
-      slabs->fail(
-          "give either slab_stage_h (a fixed stage between floors) or slabs (poured and cured "
-          "to a strength), not both");
-    building.slabs = read_slabs(*slabs, unit);
-  }
-  if (auto lintels = map.optional("lintels")) building.lintels = read_lintels(*lintels, unit);
+  // Every part is read on its own, and every error is reported at the end.
+  Findings findings;
+  std::optional<Field> layer_height;
+  findings.attempt([&] {
+    layer_height = map.required("layer_height");
+    building.layer_height_m = read_length(*layer_height, limits::kLayerHeight_m, unit);
+  });
+  findings.attempt([&] {
+    if (auto slab = map.optional("slab_stage_h"))
+      building.slab_stage_s = slab->as_number_in(limits::kSlabStage_s, "h", 3600.0);
+  });
+  findings.attempt([&] {
+    if (auto slabs = map.optional("slabs")) {
+      if (map.has("slab_stage_h"))
+        slabs->fail(
+            "give either slab_stage_h (a fixed stage between floors) or slabs (poured and cured "
+            "to a strength), not both");
+      building.slabs = read_slabs(*slabs, unit);
+    }
+  });
+  findings.attempt([&] {
+    if (auto lintels = map.optional("lintels")) building.lintels = read_lintels(*lintels, unit);
+  });
   // Optional: without them the flags' or the bundled profiles are used (the project).
-  if (auto material = map.optional("material"))
-    building.material_profile = resolve_reference(*material, base, building.material_source);
-  if (auto machine = map.optional("machine"))
-    building.machine_profile = resolve_reference(*machine, base, building.machine_source);
-
-  if (auto site = map.optional("site")) building.site = read_site(*site, unit);
-  if (auto pattern = map.optional("wall_pattern")) {
-    const auto parsed = parse_wall_pattern(pattern->as_string());
-    if (!parsed)
-      pattern->fail(
-          "expected skins, solid or skins-with-ties (what lies between a thick wall's "
-          "two skins), got '" +
-          pattern->as_string() + "'");
-    building.wall_pattern = *parsed;
-  }
-  if (auto climbs = map.optional("climbs")) {
-    const std::string where = climbs->as_string();
-    if (where != "between-floors" && where != "within-storey")
-      climbs->fail(
-          "expected between-floors (a climbing machine climbs at floor tops, the default) or "
-          "within-storey (wherever its legs allow), got '" +
-          where + "'");
-    building.climbs_within_storey = where == "within-storey";
-  }
+  findings.attempt([&] {
+    if (auto material = map.optional("material"))
+      building.material_profile = resolve_reference(*material, base, building.material_source);
+  });
+  findings.attempt([&] {
+    if (auto machine = map.optional("machine"))
+      building.machine_profile = resolve_reference(*machine, base, building.machine_source);
+  });
+  findings.attempt([&] {
+    if (auto site = map.optional("site")) building.site = read_site(*site, unit);
+  });
+  findings.attempt([&] {
+    if (auto pattern = map.optional("wall_pattern")) {
+      const auto parsed = parse_wall_pattern(pattern->as_string());
+      if (!parsed)
+        pattern->fail(
+            "expected skins, solid or skins-with-ties (what lies between a thick wall's "
+            "two skins), got '" +
+            pattern->as_string() + "'");
+      building.wall_pattern = *parsed;
+    }
+  });
+  findings.attempt([&] {
+    if (auto climbs = map.optional("climbs")) {
+      const std::string where = climbs->as_string();
+      if (where != "between-floors" && where != "within-storey")
+        climbs->fail(
+            "expected between-floors (a climbing machine climbs at floor tops, the default) or "
+            "within-storey (wherever its legs allow), got '" +
+            where + "'");
+      building.climbs_within_storey = where == "within-storey";
+    }
+  });
 
   const Field floors = map.required("floors");
   const auto floor_fields = floors.items();
@@ -255,81 +336,96 @@ Building building_from_document(const Document& doc, const fs::path& path,
   check_count(floors, floor_fields.size(), limits::kMaxFloors, "floors");
 
   std::map<fs::path, FloorPlan> plan_files;  // a plan shared by several floors is read once
-  DiagnosticSink sink;
   double elevation_m = 0.0;
   for (std::size_t i = 0; i < floor_fields.size(); ++i) {
     const Field& f = floor_fields[i];
-    MapReader fm(f, {"name", "height", "slab", "plan", "openings", "anchors"});
-    fm.reject_unknown();
     Floor floor;
     floor.index = static_cast<int>(i);
     floor.source = source_of(f);
-    floor.name = fm.has("name") ? fm.required("name").as_string() : "floor " + std::to_string(i);
-    floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
-    if (auto slab = fm.optional("slab"))
-      floor.slab_m = read_length(*slab, limits::kSlabThickness_m, unit);
-    else if (building.slabs)
-      floor.slab_m = building.slabs->thickness_m;  // the floor above stands on it
-    floor.base_elevation_m = elevation_m;
-    elevation_m += floor.height_m + floor.slab_m;
+    floor.name = "floor " + std::to_string(i);
+    bool read = false;
+    findings.attempt(
+        [&] {
+          MapReader fm(f, {"name", "height", "slab", "plan", "openings", "anchors"});
+          if (fm.has("name")) floor.name = fm.required("name").as_string();
+          fm.reject_unknown();
+          floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
+          if (auto slab = fm.optional("slab"))
+            floor.slab_m = read_length(*slab, limits::kSlabThickness_m, unit);
+          else if (building.slabs)
+            floor.slab_m = building.slabs->thickness_m;  // the floor above stands on it
+          floor.base_elevation_m = elevation_m;
+          elevation_m += floor.height_m + floor.slab_m;
 
-    const Field plan = fm.required("plan");
-    if (plan.is_map() && MapReader(plan, {}).has("dxf")) {
-      if (!drawings) plan.fail("a drawn plan (dxf) needs ccbuild's importer; this tool has none");
-      ImportedPlan imported = drawings(plan, base, unit);
-      for (auto& note : imported.notes)
-        building.import_notes.push_back("floor '" + floor.name + "': " + note);
-      if (std::find(building.files_read.begin(), building.files_read.end(), imported.file) ==
-          building.files_read.end())
-        building.files_read.push_back(imported.file);
-      floor.plan = std::move(imported.plan);
-    } else if (plan.is_map()) {
-      floor.plan = read_plan(plan, unit);
-    } else {
-      const std::string text = plan.as_string();
-      const fs::path plan_path = (base / text).lexically_normal();
-      std::error_code ec;
-      if (!fs::is_regular_file(plan_path, ec))
-        plan.fail("plan file '" + text + "' not found (looked for " + plan_path.string() + ")");
-      auto cached = plan_files.find(plan_path);
-      if (cached == plan_files.end()) {
-        cached = plan_files.emplace(plan_path, load_plan(plan_path, unit)).first;
-        building.files_read.push_back(plan_path);
-      }
-      floor.plan = cached->second;
-    }
-    if (auto openings = fm.optional("openings")) {
-      const auto items = openings->items();
-      check_count(*openings, items.size() + floor.plan.openings.size(), limits::kMaxOpenings,
-                  "openings");
-      for (const Field& item : items) floor.plan.openings.push_back(read_opening(item, unit));
-    }
-    if (auto anchors = fm.optional("anchors")) {
-      const auto items = anchors->items();
-      check_count(*anchors, items.size(), limits::kMaxAnchors, "anchors");
-      for (const Field& item : items) {
-        MapReader am(item, {"id", "wall", "offset"});
-        am.reject_unknown();
-        AnchorPoint anchor;
-        anchor.source = source_of(item);
-        anchor.id = am.required("id").as_string();
-        anchor.wall_id = read_id(am.required("wall"));
-        anchor.offset_m = read_length(am.required("offset"), limits::kAlongWall_m, unit);
-        floor.anchors.push_back(anchor);
-      }
-    }
+          const Field plan = fm.required("plan");
+          if (plan.is_map() && MapReader(plan, {}).has("dxf")) {
+            if (!drawings)
+              plan.fail("a drawn plan (dxf) needs ccbuild's importer; this tool has none");
+            ImportedPlan imported = drawings(plan, base, unit);
+            for (auto& note : imported.notes)
+              building.import_notes.push_back("floor '" + floor.name + "': " + note);
+            if (std::find(building.files_read.begin(), building.files_read.end(), imported.file) ==
+                building.files_read.end())
+              building.files_read.push_back(imported.file);
+            floor.plan = std::move(imported.plan);
+          } else if (plan.is_map()) {
+            floor.plan = read_plan(plan, unit);
+          } else {
+            const std::string text = plan.as_string();
+            const fs::path plan_path = (base / text).lexically_normal();
+            std::error_code ec;
+            if (!fs::is_regular_file(plan_path, ec))
+              plan.fail("plan file '" + text + "' not found (looked for " + plan_path.string() +
+                        ")");
+            auto cached = plan_files.find(plan_path);
+            if (cached == plan_files.end()) {
+              cached = plan_files.emplace(plan_path, load_plan(plan_path, unit)).first;
+              building.files_read.push_back(plan_path);
+            }
+            floor.plan = cached->second;
+          }
+          if (auto openings = fm.optional("openings")) {
+            const auto items = openings->items();
+            check_count(*openings, items.size() + floor.plan.openings.size(), limits::kMaxOpenings,
+                        "openings");
+            for (const Field& item : items) floor.plan.openings.push_back(read_opening(item, unit));
+          }
+          if (auto anchors = fm.optional("anchors")) {
+            const auto items = anchors->items();
+            check_count(*anchors, items.size(), limits::kMaxAnchors, "anchors");
+            for (const Field& item : items) {
+              MapReader am(item, {"id", "wall", "offset"});
+              am.reject_unknown();
+              AnchorPoint anchor;
+              anchor.source = source_of(item);
+              anchor.id = am.required("id").as_string();
+              anchor.wall_id = read_id(am.required("wall"));
+              anchor.offset_m = read_length(am.required("offset"), limits::kAlongWall_m, unit);
+              floor.anchors.push_back(anchor);
+            }
+          }
+          read = true;
+        },
+        floor.name);
+    if (!read) continue;  // its errors are kept; the floors after it are still read
     floor.plan.lintel = building.lintels;
     const std::string context = "floor '" + floor.name + "'";
-    try {
-      validate_plan(floor.plan, floor.height_m, context);
-      check_anchors(floor, context + ": ", sink);
-    } catch (const InputError& error) {
-      for (const auto& d : error.diagnostics()) sink.add(d);
-    }
+    findings.attempt(
+        [&] {
+          DiagnosticSink sink;
+          try {
+            validate_plan(floor.plan, floor.height_m, context);
+          } catch (const InputError& error) {
+            for (const auto& d : error.diagnostics()) sink.add(d);
+          }
+          check_anchors(floor, context + ": ", sink);
+          sink.throw_if_any();
+        },
+        floor.name, context + ": ");
     building.floors.push_back(std::move(floor));
   }
-  sink.throw_if_any();
-  check_layer_budget(building, doc.file, layer_height.line(), layer_height.path());
+  findings.throw_if_any();
+  check_layer_budget(building, doc.file, layer_height->line(), layer_height->path());
   return building;
 }
 

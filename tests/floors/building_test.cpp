@@ -130,6 +130,35 @@ TEST(Building, SlabStageInHoursWithItsDefault) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Building, EveryErrorOfTheFileInOneRunEachOnceWithItsFloors) {
+  // A plan with an opening past its wall's end, on two floors; a negative height; a
+  // missing plan; a bad wall pattern: all reported together, the plan's error once.
+  const auto dir = scratch();
+  std::filesystem::copy_file(data("broken/opening_off_wall.yaml"), dir / "off.yaml",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "b.yaml") << "units: m\nlayer_height: 0.5\nwall_pattern: hollow\nfloors:\n"
+                                   "  - {name: ground, height: 3, plan: off.yaml}\n"
+                                   "  - {name: first, height: -3, plan: off.yaml}\n"
+                                   "  - {name: second, height: 3, plan: nothere.yaml}\n"
+                                   "  - {name: third, height: 3, plan: off.yaml}\n";
+  const InputError e = testing::expect_input_error([&] { load_building(dir / "b.yaml"); });
+  ASSERT_EQ(e.diagnostics().size(), 4u) << e.what();
+  EXPECT_EQ(e.diagnostics()[0].field, "wall_pattern");
+  const auto& plan = e.diagnostics()[1];
+  EXPECT_EQ(plan.file, (dir / "off.yaml").string());
+  EXPECT_TRUE(testing::contains(plan.message, "does not fit on its wall")) << plan.message;
+  EXPECT_TRUE(testing::contains(plan.message, "(floors 'ground' and 'third')")) << plan.message;
+  EXPECT_EQ(e.diagnostics()[2].field, "floors[1].height");
+  EXPECT_EQ(e.diagnostics()[3].field, "floors[2].plan");
+  // One floor alone: no list.
+  std::ofstream(dir / "b.yaml") << "units: m\nlayer_height: 0.5\nfloors:\n"
+                                   "  - {name: ground, height: 3, plan: off.yaml}\n";
+  const InputError one = testing::expect_input_error([&] { load_building(dir / "b.yaml"); });
+  ASSERT_EQ(one.diagnostics().size(), 1u);
+  EXPECT_FALSE(testing::contains(one.first().message, "floors")) << one.first().message;
+  std::filesystem::remove_all(dir);
+}
+
 // A floor's `slab:` (from its walls' top to the next floor's base) lifts every floor above
 // it, in the file's unit; out of its range it is refused at its line.
 TEST(Building, AFloorsSlabLiftsTheFloorsAboveIt) {
