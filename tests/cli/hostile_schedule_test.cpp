@@ -252,6 +252,39 @@ TEST(HostileInput, OutputsNeverReplaceWhatTheyShouldNot) {
                  "--journal: cannot be written", "journal under /proc");
 }
 
+TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
+  const Site site("export");
+  const std::string s = site.schedule();
+  const std::string before = site.bytes("s.json");
+  expect_refused(run_bounded("export " + s + " --format csv -o " + s + " --force"),
+                 "output would overwrite an input file", "-o onto the schedule");
+  EXPECT_EQ(site.bytes("s.json"), before);
+  for (const std::string& start : {"2027-02-29T07:00", "2027-03-01", "1969-12-31 23:59",
+                                   "2027-03-01T24:00", "2027-03-01T07:00:00Z"})
+    expect_refused(
+        run_bounded("export " + s + " -o " + site.path("x.csv") + " --start '" + start + "'"),
+        "--start: expected a local date and time", start);
+  EXPECT_FALSE(fs::exists(site.path("x.csv")));
+  expect_refused(run_bounded("export " + s + " --format mpp -o " + site.path("x.csv")), "--format",
+                 "an unknown format");
+  // Both ends of the range, and a leap day.
+  for (const std::string& start : {"1970-01-01T00:00", "9999-12-31 23:59:59", "2028-02-29 07:00"}) {
+    const auto r = run_bounded("export " + s + " -o " + site.path("x.csv") + " --force --start '" +
+                               start + "'");
+    EXPECT_EQ(r.exit_code, 0) << start << r.err;
+  }
+  // A schedule on a site calendar is dated by it: --start is refused.
+  const std::string dated = site.path("dated.json");
+  const auto made =
+      run_bounded("schedule " + site.inputs() + " --site " +
+                  testing::source_path("config/sites/weekdays-berlin-2027.yaml").string() +
+                  " --quiet -o " + dated);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  expect_refused(
+      run_bounded("export " + dated + " -o " + site.path("y.csv") + " --start 2027-03-01T07:00"),
+      "--start: the schedule has a site calendar", "--start on a calendar");
+}
+
 TEST(HostileInput, DryRunFlagsAndFaultsAreCheckedAgainstTheMachinesAndTheSchedule) {
   const Site site("flags");
   const std::string s = site.schedule();

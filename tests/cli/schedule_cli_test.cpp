@@ -66,7 +66,7 @@ TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
   EXPECT_EQ(slurp(dir / "one.json"), slurp(dir / "two.json"));
   const auto doc = nlohmann::json::parse(slurp(dir / "one.json"));
   EXPECT_EQ(doc["format"], "ccbuild-schedule");
-  EXPECT_EQ(doc["schema_version"], 1);
+  EXPECT_EQ(doc["schema_version"], 2);
   EXPECT_EQ(doc["inputs"]["files"].size(), 6u);
   EXPECT_EQ(doc["inputs"]["files"][0]["sha256"].get<std::string>().size(), 64u);
   // The same schedule: diff agrees.
@@ -294,7 +294,7 @@ TEST(DiffCommand, NamesWhatChangedAndHonoursTheTolerance) {
 TEST(DiffCommand, RefusesWhatIsNotASchedule) {
   const fs::path dir = scratch("notschedule");
   std::ofstream(dir / "a.json") << "{\"format\": \"ccbuild-climbs-1\"}";
-  std::ofstream(dir / "b.json") << "{\"format\": \"ccbuild-schedule\",\n \"schema_version\": 1,";
+  std::ofstream(dir / "b.json") << "{\"format\": \"ccbuild-schedule\",\n \"schema_version\": 2,";
   const auto foreign =
       run_ccbuild("diff " + (dir / "a.json").string() + " " + (dir / "a.json").string());
   EXPECT_EQ(foreign.exit_code, 2);

@@ -1764,8 +1764,8 @@ def check(doc):
     if not isinstance(doc, dict) or doc.get("format") != "ccbuild-schedule":
         raise NotASchedule("format is %r, not \"ccbuild-schedule\"" % (
             doc.get("format") if isinstance(doc, dict) else type(doc).__name__))
-    if doc.get("schema_version") != 1 or isinstance(doc.get("schema_version"), bool):
-        raise NotASchedule("schema_version is %r, this checker reads 1" % doc.get("schema_version"))
+    if doc.get("schema_version") != 2 or isinstance(doc.get("schema_version"), bool):
+        raise NotASchedule("schema_version is %r, this checker reads 2" % doc.get("schema_version"))
     problems, notes = [], []
     stats = {"ends": 0, "layers": 0, "pairs": 0, "climbs": 0, "anchors": 0}
     check_structure(doc, problems)
@@ -1948,7 +1948,7 @@ def corruptions(doc):
     def path(d):
         return d["plans"][used]["nozzles"][nozzle]["waypoints"]
 
-    add("schema version 2", "NOT A SCHEDULE")(lambda d: d.update(schema_version=2))
+    add("schema version 3", "NOT A SCHEDULE")(lambda d: d.update(schema_version=3))
     skins = [(pc["length_m"], k2, j) for k2, p in plans.items() for j, pc in enumerate(p["pieces"])
              if pc.get("bead") == "skin"]
     if skins:

@@ -597,7 +597,11 @@ ScheduleDocument parse_schedule(const std::string& text, const std::string& file
     if (version != kScheduleSchemaVersion)
       root.at("schema_version")
           .refuse("expected schema_version " + std::to_string(kScheduleSchemaVersion) + ", got " +
-                  version.dump());
+                  version.dump() +
+                  (version.is_number_integer() && version.get<long long>() < kScheduleSchemaVersion
+                       ? ": a schedule from an older ccbuild; schedule the building again "
+                         "(`ccbuild schedule BUILDING -o FILE`)"
+                       : ""));
     RecordedInputs& in = doc.inputs;
     in = detail::read_inputs(root);
     const SiteCalendar* calendar = in.calendar.get();

@@ -130,6 +130,7 @@ int main(int argc, char** argv) {
   add_schedule_command(app, exit_code);
   add_diff_command(app, exit_code);
   add_report_command(app, exit_code);
+  add_export_command(app, exit_code);
   add_dry_run_command(app, exit_code);
 
   bool json = false;

@@ -1,5 +1,5 @@
 #pragma once
-// The schedule as JSON (docs/schedule.md, `schema_version` 1), both ways: the inputs
+// The schedule as JSON (docs/schedule.md, `schema_version` 2), both ways: the inputs
 // (every file read with its SHA-256, the seed, the machine's limits, the material), the
 // layers, the plans with every nozzle's timed path, the stages, the events, the totals and
 // whether it is feasible. The same inputs and seed give the same bytes: no wall-clock
@@ -20,7 +20,8 @@
 
 namespace ccbuild::schedule {
 
-inline constexpr int kScheduleSchemaVersion = 1;
+/// 2: local intervals taken where beads meet mid-piece too (piece_ends_checked counts them).
+inline constexpr int kScheduleSchemaVersion = 2;
 inline constexpr const char* kCcbuildVersion = "0.1.0";
 /// The largest schedule file read back, bytes. Reading one takes about 6 times its size
 /// in memory at the peak (docs/schedule.md); the ten-storey tower's is 2.1 MB.

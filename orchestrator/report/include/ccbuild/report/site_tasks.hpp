@@ -1,0 +1,30 @@
+#pragma once
+// A schedule as a site planner's task list: every layer, every wait with its reasons,
+// pipe, lintel, planned joint's treatment, purge, slab's formwork and pour, climb and
+// each of its phases, and every concrete delivery, in order of start. The exports
+// (exports.hpp) write it for the tools a site plans in. Times are schedule seconds.
+
+#include <string>
+#include <vector>
+
+#include "ccbuild/schedule/schedule_json.hpp"
+
+namespace ccbuild::report {
+
+struct SiteTask {
+  std::string id;    ///< unique in the list: "L0.12" (a layer), "W0.12" (its wait), "E17"
+                     ///< (event 17 of the schedule), "E17.3" (its phase 3), "D4" (delivery)
+  std::string kind;  ///< layer, wait, pipe, climb, climb-phase, slab, pour, purge, joint,
+                     ///< lintel, delivery
+  int floor = -1, layer = -1;         ///< -1 when not about one
+  double start_s = 0.0, end_s = 0.0;  ///< a delivery: both its due time
+  std::string who;  ///< "machine, 2 nozzles", "machine", "crew of 4", "machine and crew of 2"
+  int crew = 0;     ///< people on it
+  double concrete_m3 = 0.0;  ///< a layer's, a pour's, a delivery's
+  std::string detail;        ///< what and why, in words (a wait: its reasons)
+};
+
+/// The tasks of `schedule`, by start (then as listed above, for equal starts).
+std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& schedule);
+
+}  // namespace ccbuild::report

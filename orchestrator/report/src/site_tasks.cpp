@@ -1,0 +1,128 @@
+#include "ccbuild/report/site_tasks.hpp"
+
+#include <algorithm>
+
+#include "ccbuild/common/format.hpp"
+
+namespace ccbuild::report {
+
+using schedule::Event;
+
+namespace {
+
+std::string crew_text(int crew, bool machine) {
+  if (crew <= 0) return machine ? "machine" : "";
+  return printf_string("%screw of %d", machine ? "machine and " : "", crew);
+}
+
+}  // namespace
+
+std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
+  const schedule::Schedule& s = document.schedule;
+  const double purge_s = document.inputs.machine.purge_s;
+  const double treatment_s = document.inputs.material.planned_joint.treatment_s;
+  std::vector<SiteTask> tasks;
+  for (const auto& l : s.layers) {
+    const std::string key = printf_string("%d.%d", l.floor, l.layer);
+    if (l.wait_before_s > 0.0) {
+      // The wait ends where the layer's planned joint treatment, purge and deposit begin.
+      SiteTask w;
+      w.id = "W" + key;
+      w.kind = "wait";
+      w.floor = l.floor;
+      w.layer = l.layer;
+      w.end_s =
+          l.start_s - (l.purge_before ? purge_s : 0.0) - (l.planned_joint ? treatment_s : 0.0);
+      w.start_s = w.end_s - l.wait_before_s;
+      w.who = "machine";
+      for (const auto& r : l.wait_reasons)
+        w.detail += (w.detail.empty() ? "" : "; ") + schedule::to_string(r.kind) + ": " + r.detail;
+      w.detail = printf_string("before floor %d layer %d: ", l.floor, l.layer) + w.detail;
+      tasks.push_back(std::move(w));
+    }
+    SiteTask t;
+    t.id = "L" + key;
+    t.kind = "layer";
+    t.floor = l.floor;
+    t.layer = l.layer;
+    t.start_s = l.start_s;
+    t.end_s = l.end_s;
+    t.who = printf_string("machine, %d nozzle%s", l.nozzles, l.nozzles == 1 ? "" : "s");
+    t.concrete_m3 = l.concrete_m3;
+    t.detail = printf_string("floor %d layer %d (plan %s%s)", l.floor, l.layer, l.plan.c_str(),
+                             l.planned_joint ? ", on a planned joint" : "");
+    tasks.push_back(std::move(t));
+  }
+  for (std::size_t k = 0; k < s.events.size(); ++k) {
+    const Event& e = s.events[k];
+    const std::string id = "E" + std::to_string(k + 1);
+    const double waited_s = e.wait_before_s + (e.climb ? e.climb->wait_before_s : 0.0);
+    if (waited_s > 0.0) {
+      SiteTask w;
+      w.id = "W" + id;
+      w.kind = "wait";
+      w.floor = e.floor;
+      w.start_s = e.start_s - waited_s;
+      w.end_s = e.start_s;
+      w.who = "machine";
+      std::string why;
+      if (e.climb)
+        for (const auto& r : e.climb->wait_reasons)
+          why += (why.empty() ? "" : "; ") + schedule::to_string(r.kind) + ": " + r.detail;
+      w.detail = "before " + e.detail + (why.empty() ? "" : ": " + why);
+      tasks.push_back(std::move(w));
+    }
+    SiteTask t;
+    t.id = id;
+    t.kind = schedule::to_string(e.kind);
+    t.floor = e.floor;
+    t.start_s = e.start_s;
+    t.end_s = e.end_s;
+    const bool machine = e.kind == Event::Kind::kPipe || e.kind == Event::Kind::kPurge ||
+                         e.kind == Event::Kind::kClimb ||
+                         (e.kind == Event::Kind::kLintel && e.crew == 0);
+    t.crew = e.crew;
+    t.who = crew_text(e.crew, machine);
+    t.concrete_m3 = e.kind == Event::Kind::kPour ? e.concrete_m3 : 0.0;
+    t.detail = e.detail;
+    tasks.push_back(std::move(t));
+    if (e.climb) {
+      double at_s = e.start_s;
+      const auto& phases = e.climb->plan.phases;
+      for (std::size_t p = 0; p < phases.size(); ++p) {
+        SiteTask phase;
+        phase.id = id + "." + std::to_string(p + 1);
+        phase.kind = "climb-phase";
+        phase.floor = e.floor;
+        phase.start_s = at_s;
+        phase.end_s = at_s + phases[p].duration_s;
+        phase.who = "machine";
+        const int unit = phases[p].unit;
+        const auto& names = document.inputs.unit_names;
+        phase.detail = e.detail + ": " + climb::to_string(phases[p].kind) +
+                       (unit >= 0 && unit < static_cast<int>(names.size()) ? " " + names[unit]
+                                                                           : std::string());
+        at_s = phase.end_s;
+        tasks.push_back(std::move(phase));
+      }
+    }
+  }
+  for (std::size_t k = 0; k < s.deliveries.size(); ++k) {
+    const schedule::Delivery& d = s.deliveries[k];
+    SiteTask t;
+    t.id = "D" + std::to_string(k + 1);
+    t.kind = "delivery";
+    t.floor = d.floor;
+    t.layer = d.layer;
+    t.start_s = t.end_s = d.due_s;
+    t.concrete_m3 = d.m3;
+    t.detail =
+        printf_string("%.2f m3 of concrete due for floor %d layer %d", d.m3, d.floor, d.layer);
+    tasks.push_back(std::move(t));
+  }
+  std::stable_sort(tasks.begin(), tasks.end(),
+                   [](const SiteTask& a, const SiteTask& b) { return a.start_s < b.start_s; });
+  return tasks;
+}
+
+}  // namespace ccbuild::report
