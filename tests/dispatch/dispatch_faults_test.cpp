@@ -813,19 +813,27 @@ floors::MaterialProfile mix_carrying_at(double age_s) {
   return m;
 }
 
+/// Layer 0 (two walls, from 0 s; 0.1 m), then job 20 of `kind` (no path; about layer 1 when
+/// a wait) from `start_s` for `duration_s`, then layer 1 (to 0.2 m) from `layer1_s`.
+std::vector<DispatchJob> around(JobKind kind, double start_s, double duration_s,
+                                DelayAbsorption absorbs, double layer1_s) {
+  DispatchJob between = piece_job(20, kind == JobKind::kWait ? 1 : -1, start_s);
+  between.kind = kind;
+  between.duration_s = duration_s;
+  between.path = {};
+  between.absorbs = absorbs;
+  std::vector<DispatchJob> out = {two_walls(10, 0, 0.0), between, two_walls(30, 1, layer1_s)};
+  out[0].z_top_m = out[2].z_bottom_m = 0.1;
+  out[2].z_top_m = 0.2;
+  return out;
+}
+
 TEST(Dispatch, AWaitAbsorbsDelayAsFarAsTheLayersBelowCanCarryTheNext) {
   // Layer 0 clogs at 5 s: purged (120 s), its rest ends at 130 s, 120 s late. Layer 1 is
   // planned after a 1,000 s wait (working hours, say) at 1,010 s.
   const auto jobs = [](bool absorbs) {
-    DispatchJob wait = piece_job(20, 1, 10.0);
-    wait.kind = JobKind::kWait;
-    wait.duration_s = 1000.0;
-    wait.path = {};
-    wait.absorbs = absorbs ? DelayAbsorption::kShortenWait : DelayAbsorption::kNone;
-    std::vector<DispatchJob> out = {two_walls(10, 0, 0.0), wait, two_walls(30, 1, 1010.0)};
-    out[0].z_top_m = out[2].z_bottom_m = 0.1;
-    out[2].z_top_m = 0.2;
-    return out;
+    return around(JobKind::kWait, 10.0, 1000.0,
+                  absorbs ? DelayAbsorption::kShortenWait : DelayAbsorption::kNone, 1010.0);
   };
   machine::SimOptions so = window(30.0, 5000.0);
   so.clog_floor = so.clog_layer = 0;
@@ -867,15 +875,9 @@ TEST(Dispatch, CrewWorkPlannedAfterASlackStartsOnceTheLateWorkBeforeItEnded) {
   // stage (500 s of crew work) follows it, planned with slack before it (the next working
   // hours, say), and layer 1 10 s after the slab.
   const auto jobs = [](double slab_s, bool absorbs) {
-    DispatchJob slab = piece_job(20, -1, slab_s);
-    slab.kind = JobKind::kSlab;
-    slab.duration_s = 500.0;
-    slab.path = {};
-    slab.absorbs = absorbs ? DelayAbsorption::kStartWhenReady : DelayAbsorption::kNone;
-    std::vector<DispatchJob> out = {two_walls(10, 0, 0.0), slab, two_walls(30, 1, slab_s + 510.0)};
-    out[0].z_top_m = out[2].z_bottom_m = 0.1;
-    out[2].z_top_m = 0.2;
-    return out;
+    return around(JobKind::kSlab, slab_s, 500.0,
+                  absorbs ? DelayAbsorption::kStartWhenReady : DelayAbsorption::kNone,
+                  slab_s + 510.0);
   };
   machine::SimOptions so = window(30.0, 5000.0);
   so.clog_floor = so.clog_layer = 0;

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <optional>
 
@@ -164,6 +165,17 @@ std::string flag_for_field(const std::string& field) {
   };
   const auto it = flags.find(field);
   return it == flags.end() ? field : it->second;
+}
+
+schedule::ReadSchedule read_schedule_for(const std::string& file, bool allow_changed_inputs,
+                                         bool allow_path_digests, const std::string& who) {
+  schedule::ReadScheduleOptions read;
+  read.inputs = allow_changed_inputs ? schedule::RecordedInputCheck::kNote
+                                     : schedule::RecordedInputCheck::kRefuseChanged;
+  read.allow_path_digests = allow_path_digests;
+  schedule::ReadSchedule out = schedule::read_schedule(file, read);
+  for (const auto& note : out.notes) std::cerr << who << ": note: " << note << "\n";
+  return out;
 }
 
 }  // namespace ccbuild::cli

@@ -11,6 +11,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/schedule_json.hpp"
 
 namespace ccbuild::cli {
 
@@ -58,6 +59,12 @@ orchestrator::Project open_input(const std::string& file, const InputOptions& op
 /// most `max_m`. Throws InputError naming `flag`.
 double length_flag(const std::string& text, const char* flag, floors::LengthUnit unit,
                    double max_m = 1000.0);
+
+/// Reads back a schedule a command draws or exports (`ccbuild report`, `export`): refused
+/// when its recorded inputs changed, unless `allow_changed_inputs` (then each change is
+/// printed to stderr as "WHO: note: ..."). Throws InputError.
+schedule::ReadSchedule read_schedule_for(const std::string& file, bool allow_changed_inputs,
+                                         bool allow_path_digests, const std::string& who);
 
 /// The flag a library error's field stands for ("PlanOptions::time_limit_s" ->
 /// "--time-limit"); the field itself when no flag does.

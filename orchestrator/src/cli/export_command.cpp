@@ -26,12 +26,9 @@ struct ExportCommandOptions {
 void run_export(const ExportCommandOptions& o, int& exit_code) {
   OutputClaims outputs({o.schedule});
   outputs.claim_file("--output", o.output, o.force);
-  schedule::ReadScheduleOptions read;
-  read.inputs = o.allow_changed_inputs ? schedule::RecordedInputCheck::kNote
-                                       : schedule::RecordedInputCheck::kRefuseChanged;
-  read.allow_path_digests = true;  // a task list needs no tool paths (a golden exports too)
-  const schedule::ReadSchedule schedule = schedule::read_schedule(o.schedule, read);
-  for (const auto& note : schedule.notes) std::cerr << "export: note: " << note << "\n";
+  // A task list needs no tool paths: a regression golden (digests only) exports too.
+  const schedule::ReadSchedule schedule =
+      read_schedule_for(o.schedule, o.allow_changed_inputs, true, "export");
   const schedule::ScheduleDocument& document = schedule.document;
   report::ExportDates dates;
   if (!o.start.empty()) {

@@ -23,15 +23,10 @@ struct ReportCommandOptions {
 void run_report(const ReportCommandOptions& o, int& exit_code) {
   OutputClaims outputs({o.schedule});
   outputs.claim_file("--output", o.output, o.force);
-  schedule::ReadScheduleOptions read;
-  read.inputs = o.allow_changed_inputs ? schedule::RecordedInputCheck::kNote
-                                       : schedule::RecordedInputCheck::kRefuseChanged;
-  const schedule::ReadSchedule schedule = schedule::read_schedule(o.schedule, read);
+  const schedule::ReadSchedule schedule =
+      read_schedule_for(o.schedule, o.allow_changed_inputs, false, "report");
   report::ReportOptions options;
-  for (const auto& note : schedule.notes) {
-    std::cerr << "report: note: " << note << "\n";
-    options.notes.push_back(note);
-  }
+  options.notes = schedule.notes;
   const std::string html = report::schedule_report_html(schedule.document, options);
   write_file_atomically(o.output, html, o.force, {o.schedule});
   std::cout << printf_string(
