@@ -39,6 +39,8 @@ def main():
         for k in ("start_s", "end_s", "duration_s", "concrete_m3"):
             t[k] = float(t[k])
         t["crew"] = int(t["crew"])
+        if not t["who"]:
+            problems.append("%s: no one named in who" % t["id"])
         if abs(t["end_s"] - t["start_s"] - t["duration_s"]) > 3 * T:
             problems.append("%s: duration %.6f, end - start %.6f" % (
                 t["id"], t["duration_s"], t["end_s"] - t["start_s"]))

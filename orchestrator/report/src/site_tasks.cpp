@@ -11,7 +11,7 @@ using schedule::Event;
 namespace {
 
 std::string crew_text(int crew, bool machine) {
-  if (crew <= 0) return machine ? "machine" : "";
+  if (crew <= 0) return machine ? "machine" : "site";  // a fixed slab stage names no crew
   return printf_string("%screw of %d", machine ? "machine and " : "", crew);
 }
 
@@ -115,6 +115,7 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
     t.floor = d.floor;
     t.layer = d.layer;
     t.start_s = t.end_s = d.due_s;
+    t.who = "supplier";
     t.concrete_m3 = d.m3;
     t.detail =
         printf_string("%.2f m3 of concrete due for floor %d layer %d", d.m3, d.floor, d.layer);

@@ -18,8 +18,10 @@ struct SiteTask {
                      ///< lintel, delivery
   int floor = -1, layer = -1;         ///< -1 when not about one
   double start_s = 0.0, end_s = 0.0;  ///< a delivery: both its due time
-  std::string who;  ///< "machine, 2 nozzles", "machine", "crew of 4", "machine and crew of 2"
-  int crew = 0;     ///< people on it
+  /// "machine, 2 nozzles", "machine", "crew of 4", "machine and crew of 2", "site" (a fixed
+  /// slab stage), "supplier" (a delivery)
+  std::string who;
+  int crew = 0;              ///< people on it
   double concrete_m3 = 0.0;  ///< a layer's, a pour's, a delivery's
   std::string detail;        ///< what and why, in words (a wait: its reasons)
 };
