@@ -24,6 +24,14 @@ class Statement {
   sqlite3_stmt* stmt_ = nullptr;
 };
 
+/// Runs a prepared INSERT, counting it and the time since `started` in the journal's figures.
+void step_write(sqlite3* db, sqlite3_stmt* s, std::chrono::steady_clock::time_point started,
+                long& writes, double& write_s) {
+  CCBUILD_CHECK(sqlite3_step(s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db)));
+  ++writes;
+  write_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
 std::string text(sqlite3_stmt* s, int column) {
   const auto* t = sqlite3_column_text(s, column);
   return t ? reinterpret_cast<const char*>(t) : "";
@@ -111,9 +119,7 @@ void Journal::record(std::int64_t job_id, const JournalRow& row) {
   sqlite3_bind_double(*s, 5, row.finished_s);
   sqlite3_bind_int(*s, 6, row.stopped_at);
   sqlite3_bind_int64(*s, 7, machine::utime_now());
-  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
-  ++writes_;
-  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  step_write(db_, *s, started, writes_, write_s_);
 }
 
 void Journal::record_fault(const FaultRecord& f) {
@@ -127,9 +133,7 @@ void Journal::record_fault(const FaultRecord& f) {
   sqlite3_bind_text(*s, 4, f.message.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(*s, 5, f.policy.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_int64(*s, 6, machine::utime_now());
-  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
-  ++writes_;
-  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  step_write(db_, *s, started, writes_, write_s_);
 }
 
 void Journal::record_replan(const Replan& r) {
@@ -148,9 +152,7 @@ void Journal::record_replan(const Replan& r) {
   sqlite3_bind_double(*s, 8, r.treatment_s);
   sqlite3_bind_text(*s, 9, r.detail.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_int64(*s, 10, machine::utime_now());
-  CCBUILD_CHECK(sqlite3_step(*s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db_)));
-  ++writes_;
-  write_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  step_write(db_, *s, started, writes_, write_s_);
 }
 
 std::vector<Replan> Journal::replans() const {

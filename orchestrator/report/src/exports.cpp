@@ -81,11 +81,14 @@ std::string ExportDates::local(const schedule::ScheduleDocument& schedule, doubl
   return civil_text(*start_local_s + std::llround(t_s));
 }
 
-std::string tasks_csv(const schedule::ScheduleDocument& schedule, const ExportDates& dates) {
+std::string tasks_csv(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
+                      std::size_t* rows) {
   std::string out =
       "id,kind,floor,layer,start,end,start_s,end_s,duration_s,who,crew,concrete_m3,detail\r\n";
   const auto number = [](int v) { return v < 0 ? std::string() : std::to_string(v); };
-  for (const SiteTask& t : tasks_of(schedule)) {
+  const std::vector<SiteTask> tasks = tasks_of(schedule);
+  if (rows) *rows = tasks.size();
+  for (const SiteTask& t : tasks) {
     out += csv_field(t.id) + "," + t.kind + "," + number(t.floor) + "," + number(t.layer) + "," +
            dates.local(schedule, t.start_s) + "," + dates.local(schedule, t.end_s) + "," +
            printf_string("%.6f,%.6f,%.6f", t.start_s, t.end_s, t.end_s - t.start_s) + "," +

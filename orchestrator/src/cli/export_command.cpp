@@ -7,7 +7,6 @@
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/report/exports.hpp"
-#include "ccbuild/report/site_tasks.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -39,9 +38,10 @@ void run_export(const ExportCommandOptions& o, int& exit_code) {
                            ") that dates every task; --start is for a schedule made without one");
     dates.start_local_s = report::parse_local_start(o.start, "--start");
   }
-  const std::string text = report::tasks_csv(document, dates);
+  std::size_t rows = 0;
+  const std::string text = report::tasks_csv(document, dates, &rows);
   write_file_atomically(o.output, text, o.force, {o.schedule});
-  const std::size_t rows = report::tasks_of(document).size();
+
   std::cout << printf_string("%zu tasks of %s written to %s as CSV%s\n", rows, o.schedule.c_str(),
                              o.output.c_str(),
                              document.inputs.calendar || dates.start_local_s

@@ -3,6 +3,7 @@
 // list a spreadsheet opens. Dates are local: the schedule's site calendar, or a start
 // given at export for a schedule made without one.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -24,7 +25,9 @@ struct ExportDates {
 };
 
 /// RFC 4180 CSV, a header and a row per task (tasks_of): id, kind, floor, layer,
-/// start, end (local), start_s, end_s, duration_s, who, crew, concrete_m3, detail.
-std::string tasks_csv(const schedule::ScheduleDocument& schedule, const ExportDates& dates);
+/// start, end (local), start_s, end_s, duration_s, who, crew, concrete_m3, detail. `rows`,
+/// when given, is set to the number of tasks written.
+std::string tasks_csv(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
+                      std::size_t* rows = nullptr);
 
 }  // namespace ccbuild::report
