@@ -18,6 +18,9 @@ packages=(
   iproute2 util-linux
   python3
   libjs-three chromium   # the report inlines three.js; its test opens it in headless Chromium
+  # The exports' outside readers: iCalendar (python3-icalendar for Debian's python3, and
+  # ical2html on libical); MS Project XML through GNOME Planner's stylesheet (xsltproc).
+  python3-icalendar ical2html xsltproc planner-data
 )
 
 missing=()

@@ -259,7 +259,7 @@ TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
   expect_refused(run_bounded("export " + s + " --format csv -o " + s + " --force"),
                  "output would overwrite an input file", "-o onto the schedule");
   EXPECT_EQ(site.bytes("s.json"), before);
-  for (const std::string& start : {"2027-02-29T07:00", "2027-03-01", "1969-12-31 23:59",
+  for (const std::string start : {"2027-02-29T07:00", "2027-03-01", "1969-12-31 23:59",
                                    "2027-03-01T24:00", "2027-03-01T07:00:00Z"})
     expect_refused(
         run_bounded("export " + s + " -o " + site.path("x.csv") + " --start '" + start + "'"),
@@ -267,8 +267,14 @@ TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
   EXPECT_FALSE(fs::exists(site.path("x.csv")));
   expect_refused(run_bounded("export " + s + " --format mpp -o " + site.path("x.csv")), "--format",
                  "an unknown format");
+  // A calendar and a project file need dates: without a site calendar, --start.
+  for (const char* format : {"ical", "mspdi"}) {
+    expect_refused(run_bounded("export " + s + " --format " + format + " -o " + site.path("x.ics")),
+                   "--start: the schedule was made without a site calendar", format);
+    EXPECT_FALSE(fs::exists(site.path("x.ics"))) << format;
+  }
   // Both ends of the range, and a leap day.
-  for (const std::string& start : {"1970-01-01T00:00", "9999-12-31 23:59:59", "2028-02-29 07:00"}) {
+  for (const std::string start : {"1970-01-01T00:00", "9999-12-31 23:59:59", "2028-02-29 07:00"}) {
     const auto r = run_bounded("export " + s + " -o " + site.path("x.csv") + " --force --start '" +
                                start + "'");
     EXPECT_EQ(r.exit_code, 0) << start << r.err;
@@ -283,6 +289,58 @@ TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
   expect_refused(
       run_bounded("export " + dated + " -o " + site.path("y.csv") + " --start 2027-03-01T07:00"),
       "--start: the schedule has a site calendar", "--start on a calendar");
+}
+
+// `schedule --export` writes what `export` writes from the schedule it wrote, byte for byte;
+// refused before any planning: a format that needs dates without a site calendar, an
+// extension that names no format, an export onto an input.
+TEST(HostileInput, ScheduleExportsAreExportsOfItsScheduleAndRefusedBeforePlanning) {
+  const Site site("schedule-export");
+  const std::string on_site =
+      site.inputs() + " --site " +
+      testing::source_path("config/sites/weekdays-berlin-2027.yaml").string() + " --quiet";
+  const char* files[] = {"t.csv", "t.ics", "t.xml", "t.txt"};
+  std::string exports;
+  for (const char* f : files) exports += " --export " + site.path(f);
+  const auto made = run_bounded("schedule " + on_site + " -o " + site.path("s.json") + exports);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  for (const char* f : files) {
+    const std::string again = "again-" + std::string(f);
+    const std::string format = std::string(f).substr(2) == "csv"   ? "csv"
+                               : std::string(f).substr(2) == "ics" ? "ical"
+                               : std::string(f).substr(2) == "xml" ? "mspdi"
+                                                                   : "days";
+    const auto r = run_bounded("export " + site.path("s.json") + " --format " + format + " -o " +
+                               site.path(again));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(site.bytes(f), site.bytes(again)) << f;
+    EXPECT_FALSE(site.bytes(f).empty()) << f;
+  }
+  // Without a site calendar: a CSV only.
+  for (const char* f : {"u.ics", "u.xml", "u.txt"}) {
+    expect_refused(run_bounded("schedule " + site.inputs() + " --quiet -o " + site.path("u.json") +
+                               " --export " + site.path(f)),
+                   "needs dates, and the building has no site calendar", f);
+    EXPECT_FALSE(fs::exists(site.path("u.json"))) << f;
+    EXPECT_FALSE(fs::exists(site.path(f))) << f;
+  }
+  const auto csv =
+      run_bounded("schedule " + site.inputs() + " --quiet --export " + site.path("u.csv"));
+  EXPECT_EQ(csv.exit_code, 0) << csv.err;
+  EXPECT_TRUE(fs::exists(site.path("u.csv")));
+  expect_refused(run_bounded("schedule " + on_site + " --export " + site.path("t.pdf")),
+                 "the file's extension says what to export: .csv", "a .pdf");
+  // The site's weather is a CSV the run reads: never written over, even with --force.
+  const std::string weather =
+      testing::slurp(testing::source_path("tests/data/weather/berlin-spring-2027.csv"));
+  site.write("weather.csv", weather);
+  site.write("site.yaml",
+             "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\nworking_hours: {mon-fri: "
+             "07:00-17:00}\nweather: weather.csv\n");
+  expect_refused(run_bounded("schedule " + site.inputs() + " --site " + site.path("site.yaml") +
+                             " --quiet --force --export " + site.path("weather.csv")),
+                 "output would overwrite an input file", "--export onto the weather");
+  EXPECT_EQ(site.bytes("weather.csv"), weather);
 }
 
 TEST(HostileInput, DryRunFlagsAndFaultsAreCheckedAgainstTheMachinesAndTheSchedule) {

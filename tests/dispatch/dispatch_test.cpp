@@ -71,7 +71,9 @@ TEST(DispatchJobs, EveryLayerPathGoesOutWholeAndInOrder) {
     for (const auto& l : s.schedule.layers)
       if (l.floor == j.floor && l.layer == j.layer) layer = &l;
     // A layer on a planned joint (after the stop for lintels) says so on the wire.
-    if (layer) EXPECT_EQ(j.on_planned_joint, layer->planned_joint);
+    if (layer) {
+      EXPECT_EQ(j.on_planned_joint, layer->planned_joint);
+    }
     joints += j.on_planned_joint;
     ASSERT_NE(layer, nullptr);
     const SchedulePlan& plan = s.schedule.plans.at(j.plan);

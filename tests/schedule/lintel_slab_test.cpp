@@ -86,12 +86,13 @@ int check_lintels_precede_layers(const Schedule& s) {
       if (l.floor != e->floor) continue;
       // A mid-height within a micrometre of the head may fall either side of it.
       const double mid_m = 0.5 * (l.z_bottom_m + l.z_top_m);
-      if (mid_m >= e->lintel->head_z_m + 1e-6)
+      if (mid_m >= e->lintel->head_z_m + 1e-6) {
         EXPECT_GE(l.start_s, e->end_s - 1e-9) << "floor " << l.floor << " layer " << l.layer
                                               << " over opening " << e->lintel->opening;
-      else if (mid_m < e->lintel->head_z_m - 1e-6)
+      } else if (mid_m < e->lintel->head_z_m - 1e-6) {
         EXPECT_LE(l.end_s, e->start_s + 1e-9) << "floor " << l.floor << " layer " << l.layer
                                               << " under opening " << e->lintel->opening;
+      }
     }
   }
   return checked;

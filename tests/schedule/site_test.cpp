@@ -128,6 +128,38 @@ TEST(SiteCalendar, DaylightSavingChangesMoveTheWindowsByAnHour) {
   EXPECT_EQ(gap.timestamp(gap.windows()[0].from_s), "2027-03-28T03:00:00+02:00");
 }
 
+TEST(SiteCalendar, ZoneOffsetsListTheChangesUpToTheEndAndNoneAfter) {
+  // Mon 2027-03-01 07:00 CET (06:00 UTC). Summer time starts Sun 2027-03-28 01:00 UTC,
+  // 26 d 19 h later; CET has held since Sun 2026-10-25 01:00 UTC (+02:00 before).
+  const SiteCalendar c(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
+  const double change_s = 26 * 86400.0 + 19 * 3600.0;
+  const auto before = c.zone_offsets(0.0, change_s - 1.0);
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_EQ(before[0].abbreviation, "CET");
+  EXPECT_FALSE(before[0].daylight);
+  EXPECT_EQ(before[0].offset_s, 3600);
+  EXPECT_EQ(before[0].previous_offset_s, 7200);
+  EXPECT_EQ(before[0].from_utc_s, 1792890000);  // 2026-10-25T01:00:00Z
+  // Ending exactly at the change: the summer offset is not yet in force.
+  EXPECT_EQ(c.zone_offsets(0.0, change_s).size(), 1u);
+  const auto after = c.zone_offsets(0.0, change_s + 1.0);
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_EQ(after[1].abbreviation, "CEST");
+  EXPECT_TRUE(after[1].daylight);
+  EXPECT_EQ(after[1].from_utc_s, c.utc_of(change_s));
+  EXPECT_EQ(after[1].previous_offset_s, 3600);
+  EXPECT_EQ(after[1].offset_s, 7200);
+  // A zone without changes since before 1970 is said to start then, at its one offset.
+  for (const char* zone : {"UTC", "Asia/Tokyo"}) {
+    const SiteCalendar still(
+        programme("start: 2027-03-01 07:00\ntime_zone: " + std::string(zone) + "\n"));
+    const auto offsets = still.zone_offsets(0.0, 365 * 86400.0);
+    ASSERT_EQ(offsets.size(), 1u) << zone;
+    EXPECT_EQ(offsets[0].from_utc_s, 0) << zone;
+    EXPECT_EQ(offsets[0].previous_offset_s, offsets[0].offset_s) << zone;
+  }
+}
+
 TEST(SiteCalendar, SpansThatMeetAtMidnightAreOneWindow) {
   const SiteCalendar c(
       programme("start: 2027-03-01 22:00\ntime_zone: UTC\nworking_hours: {mon: [22:00-24:00], tue: "

@@ -23,16 +23,6 @@ long long days_from_civil(long long y, unsigned m, unsigned d) {
   return era * 146097 + static_cast<long long>(doe) - 719468;
 }
 
-/// "2027-03-01 07:00:00" of seconds since 1970-01-01 00:00 (no time zone).
-std::string civil_text(long long s) {
-  std::time_t t = static_cast<std::time_t>(s);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char out[32];
-  std::strftime(out, sizeof out, "%Y-%m-%d %H:%M:%S", &tm);
-  return out;
-}
-
 /// A CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180).
 std::string csv_field(const std::string& text) {
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
@@ -45,6 +35,15 @@ std::string csv_field(const std::string& text) {
 }
 
 }  // namespace
+
+std::string civil_text(long long s) {
+  std::time_t t = static_cast<std::time_t>(s);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char out[32];
+  std::strftime(out, sizeof out, "%Y-%m-%d %H:%M:%S", &tm);
+  return out;
+}
 
 long long parse_local_start(const std::string& text, const std::string& field) {
   int y = 0, mo = 0, d = 0, h = 0, mi = 0, sec = 0, used = 0;
@@ -79,6 +78,15 @@ std::string ExportDates::local(const schedule::ScheduleDocument& schedule, doubl
   }
   if (!start_local_s) return "";
   return civil_text(*start_local_s + std::llround(t_s));
+}
+
+void ExportDates::require(const schedule::ScheduleDocument& schedule,
+                          const std::string& format) const {
+  if (!dated(schedule))
+    throw InputError("", 0, "--start",
+                     "the schedule was made without a site calendar, and " + format +
+                         " needs dates: give the local date and time its second 0 is, as "
+                         "--start 2027-03-01T07:00 (or schedule it with --site FILE)");
 }
 
 std::string tasks_csv(const schedule::ScheduleDocument& schedule, const ExportDates& dates,

@@ -35,8 +35,10 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
           l.start_s - (l.purge_before ? purge_s : 0.0) - (l.planned_joint ? treatment_s : 0.0);
       w.start_s = w.end_s - l.wait_before_s;
       w.who = "machine";
-      for (const auto& r : l.wait_reasons)
+      for (const auto& r : l.wait_reasons) {
         w.detail += (w.detail.empty() ? "" : "; ") + schedule::to_string(r.kind) + ": " + r.detail;
+        w.reasons += (w.reasons.empty() ? "" : ", ") + schedule::to_string(r.kind);
+      }
       w.detail = printf_string("before floor %d layer %d: ", l.floor, l.layer) + w.detail;
       tasks.push_back(std::move(w));
     }
@@ -67,8 +69,12 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
       w.who = "machine";
       std::string why;
       if (e.climb)
-        for (const auto& r : e.climb->wait_reasons)
+        for (const auto& r : e.climb->wait_reasons) {
           why += (why.empty() ? "" : "; ") + schedule::to_string(r.kind) + ": " + r.detail;
+          w.reasons += (w.reasons.empty() ? "" : ", ") + schedule::to_string(r.kind);
+        }
+      // A crew's task waits for working hours; a climb says why it waited.
+      if (!e.climb) w.reasons = "off-shift";
       w.detail = "before " + e.detail + (why.empty() ? "" : ": " + why);
       tasks.push_back(std::move(w));
     }
@@ -124,6 +130,42 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
   std::stable_sort(tasks.begin(), tasks.end(),
                    [](const SiteTask& a, const SiteTask& b) { return a.start_s < b.start_s; });
   return tasks;
+}
+
+std::string title_of(const SiteTask& t) {
+  if (t.kind == "layer") return printf_string("Floor %d layer %d", t.floor, t.layer);
+  if (t.kind == "delivery") return printf_string("Concrete delivery, %.2f m³", t.concrete_m3);
+  if (t.kind == "walls-finished") return printf_string("Floor %d walls finished", t.floor);
+  std::string what = t.detail;
+  if (t.kind == "climb-phase") what = what.substr(what.find(": ") + 2);  // after the climb's
+  for (const char* stop : {" (", ": ", ", "}) what = what.substr(0, what.find(stop));
+  if (t.kind == "wait") return "Wait " + what;
+  if (t.kind == "purge") what = "purge the nozzle";
+  if (t.kind == "joint") what = "treat the planned joint";
+  if (!what.empty() && what[0] >= 'a' && what[0] <= 'z') what[0] = static_cast<char>(what[0] - 32);
+  return t.floor >= 0 && t.kind != "climb-phase"
+             ? printf_string("Floor %d: %s", t.floor, what.c_str())
+             : what;
+}
+
+std::vector<SiteTask> milestones_of(const schedule::ScheduleDocument& document) {
+  std::vector<SiteTask> milestones;
+  for (const auto& l : document.schedule.layers) {
+    if (milestones.empty() || milestones.back().floor != l.floor) {
+      SiteTask m;
+      m.id = printf_string("M%d", l.floor);
+      m.kind = "walls-finished";
+      m.floor = l.floor;
+      m.who = "machine";
+      milestones.push_back(std::move(m));
+    }
+    SiteTask& m = milestones.back();
+    m.layer = l.layer;
+    m.start_s = m.end_s = l.end_s;
+    m.detail =
+        printf_string("the walls of floor %d finished (layer %d, the last)", l.floor, l.layer);
+  }
+  return milestones;
 }
 
 }  // namespace ccbuild::report

@@ -353,6 +353,27 @@ std::int32_t SiteCalendar::local_day(double t_s) const {
   return static_cast<std::int32_t>(date::floor<date::days>(local).time_since_epoch().count());
 }
 
+std::vector<ZoneOffset> SiteCalendar::zone_offsets(double from_s, double to_s) const {
+  const auto* zone = static_cast<const date::time_zone*>(zone_);
+  std::vector<ZoneOffset> offsets;
+  const date::sys_seconds end = sys_at(start_utc_s_, to_s);
+  for (date::sys_seconds at = sys_at(start_utc_s_, from_s);;) {
+    const date::sys_info info = zone->get_info(at);
+    // An offset in force since before 1970 (a zone without changes since, or UTC, whose
+    // "since" is the beginning of time) is said to start then, as calendars write it.
+    const bool before_1970 = info.begin < date::sys_seconds{seconds(0)};
+    const int previous_offset_s =
+        before_1970 ? static_cast<int>(info.offset.count())
+                    : static_cast<int>(zone->get_info(info.begin - seconds(1)).offset.count());
+    offsets.push_back({before_1970 ? 0 : info.begin.time_since_epoch().count(),
+                       static_cast<int>(info.offset.count()), previous_offset_s,
+                       info.save.count() != 0, info.abbrev});
+    if (info.end >= end) break;
+    at = info.end;
+  }
+  return offsets;
+}
+
 std::string SiteCalendar::tzdb_version() const {
   std::string version = date::get_tzdb().version;
   if (version != "unknown") return version;

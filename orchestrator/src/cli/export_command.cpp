@@ -2,6 +2,7 @@
 // plans in (docs/schedule.md, "Exports").
 
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include "ccbuild/common/atomic_file.hpp"
@@ -9,6 +10,7 @@
 #include "ccbuild/report/exports.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "export_files.hpp"
 
 namespace ccbuild::cli {
 namespace {
@@ -38,42 +40,103 @@ void run_export(const ExportCommandOptions& o, int& exit_code) {
                            ") that dates every task; --start is for a schedule made without one");
     dates.start_local_s = report::parse_local_start(o.start, "--start");
   }
-  std::size_t rows = 0;
-  const std::string text = report::tasks_csv(document, dates, &rows);
-  write_file_atomically(o.output, text, o.force, {o.schedule});
-
-  std::cout << printf_string("%zu tasks of %s written to %s as CSV%s\n", rows, o.schedule.c_str(),
-                             o.output.c_str(),
-                             document.inputs.calendar || dates.start_local_s
-                                 ? ""
-                                 : " (no site calendar and no --start: the start and end "
-                                   "columns are empty; give --start 2027-03-01T07:00 to date "
-                                   "them)");
+  std::cout << write_export(document, dates, o.format, o.output, o.force, {o.schedule}) << "\n";
+  if (o.format == "csv" && !dates.dated(document))
+    std::cout << "  no site calendar and no --start: the start and end columns are empty; give "
+                 "--start 2027-03-01T07:00 to date them\n";
   exit_code = kExitOk;
 }
 
 }  // namespace
 
+const std::vector<std::string>& export_formats() {
+  static const std::vector<std::string> kFormats = {"csv", "ical", "mspdi", "days"};
+  return kFormats;
+}
+
+bool export_needs_dates(const std::string& format) {
+  return format != "csv";
+}
+
+std::string export_format_of(const std::filesystem::path& path, const std::string& field) {
+  static const std::map<std::string, std::string> kByExtension = {
+      {".csv", "csv"}, {".ics", "ical"}, {".xml", "mspdi"}, {".txt", "days"}};
+  const auto it = kByExtension.find(path.extension().string());
+  if (it == kByExtension.end())
+    throw InputError("", 0, field,
+                     "'" + path.string() +
+                         "': the file's extension says what to export: .csv (a task list), .ics "
+                         "(iCalendar), .xml (MS Project XML) or .txt (work packages by day)");
+  return it->second;
+}
+
+std::string write_export(const schedule::ScheduleDocument& document,
+                         const report::ExportDates& dates, const std::string& format,
+                         const std::filesystem::path& path, bool force,
+                         const std::vector<std::filesystem::path>& inputs) {
+  std::size_t count = 0, links = 0;
+  std::string text, what, as;
+  if (format == "csv") {
+    text = report::tasks_csv(document, dates, &count);
+    what = printf_string("%zu tasks", count);
+    as = "CSV";
+  } else if (format == "ical") {
+    text = report::tasks_ical(document, dates, &count);
+    what = printf_string("%zu crew tasks and milestones", count);
+    as = document.inputs.calendar ? "iCalendar"
+                                  : "iCalendar (floating local times: no site "
+                                    "calendar, so no time zone)";
+  } else if (format == "days") {
+    text = report::work_packages_text(document, dates, &count);
+    what = printf_string("the work packages of %zu days", count);
+    as = "text";
+  } else {
+    text = report::tasks_mspdi(document, dates, &count, &links);
+    what = printf_string("%zu tasks and %zu finish-to-start links", count, links);
+    as = "MS Project XML";
+  }
+  write_file_atomically(path, text, force, inputs);
+  return what + " written to " + path.string() + " as " + as;
+}
+
 void add_export_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ExportCommandOptions>();
   CLI::App* command = app.add_subcommand(
       "export",
-      "Write a schedule (from `ccbuild schedule -o`) for the tools a site plans in. csv: one "
-      "row per task, in order of start: every layer (its nozzles and concrete), every wait "
-      "(its reasons), pipe, lintel, planned joint's treatment, purge, slab formwork and pour, "
-      "climb and each of its phases, and every concrete delivery; columns id, kind, floor, "
-      "layer, start and end (local date and time), start_s, end_s and duration_s (schedule "
-      "seconds), who (machine, crew), crew (people), concrete_m3, detail. Dates come from the "
-      "schedule's site calendar, or for a schedule made without one from --start. The "
-      "schedule is read back and checked first, as by `ccbuild report`.\n"
+      "Write a schedule (from `ccbuild schedule -o`) for the tools a site plans in.\n"
+      "  csv: one row per task, in order of start: every layer (its nozzles and concrete), "
+      "every wait (its reasons), pipe, lintel, planned joint's treatment, purge, slab formwork "
+      "and pour, climb and each of its phases, and every concrete delivery; columns id, kind, "
+      "floor, layer, start and end (local date and time), start_s, end_s and duration_s "
+      "(schedule seconds), who (machine, crew), crew (people), concrete_m3, detail.\n"
+      "  ical: an iCalendar file (RFC 5545) for a shared calendar: the crew's tasks (pipes, "
+      "lintels, joint treatments, slab formwork and pours, climbs) and each floor's walls "
+      "finished, in the site's time zone.\n"
+      "  mspdi: an MS Project XML file (MS Project, ProjectLibre, GanttProject, Primavera, "
+      "Planner): a summary task per floor, every task with its dates and duration, "
+      "finish-to-start links in the order the site works, the working week and holidays.\n"
+      "  days: the work packages by day, as text: for each day the layers printed, the "
+      "concrete and its trucks, the crew's tasks with person-hours, the machine's, the waits "
+      "and where printing stopped.\n"
+      "Dates come from the schedule's site calendar, or for a schedule made without one from "
+      "--start (ical, mspdi and days need one of them). The schedule is read back and checked "
+      "first, "
+      "as by `ccbuild report`.\n"
       "Examples:\n"
       "  ccbuild schedule config/buildings/tower.yaml --site "
       "config/sites/weekdays-berlin-2027.yaml -o tower.json\n"
       "  ccbuild export tower.json --format csv -o tower.csv\n"
+      "  ccbuild export tower.json --format ical -o tower.ics\n"
+      "  ccbuild export tower.json --format mspdi -o tower.xml\n"
+      "  ccbuild export tower.json --format days -o tower-days.txt\n"
       "  ccbuild export house.json --format csv -o house.csv --start 2027-03-01T07:00");
   command->add_option("SCHEDULE", o->schedule, "A schedule JSON file")->required();
-  command->add_option("--format", o->format, "What to write: csv (a task list)")
-      ->check(CLI::IsMember({"csv"}))
+  command
+      ->add_option(
+          "--format", o->format,
+          "What to write: csv (a task list), ical (a calendar), mspdi (MS Project XML), days "
+          "(work packages by day)")
+      ->check(CLI::IsMember(export_formats()))
       ->capture_default_str();
   command->add_option("-o,--output", o->output, "The file to write")
       ->required()

@@ -7,12 +7,14 @@
 #include <thread>
 
 #include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/input_error.hpp"
 #include "ccbuild/report/report.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "ccbuild/schedule/what_if.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "export_files.hpp"
 
 namespace ccbuild::cli {
 namespace {
@@ -30,6 +32,7 @@ struct ScheduleCommandOptions {
   bool path_digests = false;
   std::string what_if;  ///< "anchors" or empty
   std::string objective = "fewest-nozzles";
+  std::vector<std::string> exports;  ///< files, their format by extension
 };
 
 // 1970-01-01, day 0, was a Thursday.
@@ -48,6 +51,19 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   OutputClaims outputs(inputs);  // every output checked before any planning
   if (!o.output.empty()) outputs.claim_file("--output", o.output, o.force);
   if (!o.report.empty()) outputs.claim_file("--report", o.report, o.force);
+  std::vector<std::string> export_formats_given;
+  for (const std::string& file : o.exports) {
+    const std::string format = export_format_of(file, "--export");
+    if (export_needs_dates(format) && !project.calendar)
+      throw InputError("", 0, "--export",
+                       "'" + file + "': " + format +
+                           " needs dates, and the building has no site calendar: schedule it "
+                           "with --site FILE, or export its schedule later with `ccbuild export "
+                           "SCHEDULE.json -o " +
+                           file + " --start 2027-03-01T07:00`");
+    outputs.claim_file("--export", file, o.force);
+    export_formats_given.push_back(format);
+  }
   schedule::ScheduleOptions options;
   options.seed = o.seed;
   options.jobs = o.jobs;
@@ -67,8 +83,12 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     if (options.progress) options.progress("what-if anchors: scheduling each change in full");
     changes = schedule::anchor_what_ifs(project, s, options, rapid ? &*rapid : nullptr);
   }
-  if (!o.output.empty() || !o.report.empty()) {
+  std::vector<std::string> exported;
+  if (!o.output.empty() || !o.report.empty() || !o.exports.empty()) {
     const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options), s};
+    for (std::size_t k = 0; k < o.exports.size(); ++k)
+      exported.push_back(
+          write_export(doc, {}, export_formats_given[k], o.exports[k], o.force, inputs));
     if (!o.output.empty())
       write_file_atomically(o.output,
                             schedule::schedule_json(doc.inputs, s, {o.path_digests}).dump(1) + "\n",
@@ -283,6 +303,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       s.plans_computed, s.climb_planning_s, s.bookkeeping_s);
   if (!o.output.empty()) std::cout << "schedule written to " << o.output << "\n";
   if (!o.report.empty()) std::cout << "report written to " << o.report << "\n";
+  for (const std::string& line : exported) std::cout << line << "\n";
 }
 
 }  // namespace
@@ -314,7 +335,10 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       "  ccbuild schedule config/buildings/apartment.yaml --machine "
       "config/machines/cc-climber.yaml\n"
       "  ccbuild schedule config/buildings/tower.yaml --site "
-      "config/sites/weekdays-berlin-2027-weather.yaml");
+      "config/sites/weekdays-berlin-2027-weather.yaml\n"
+      "  ccbuild schedule config/buildings/tower.yaml --site "
+      "config/sites/weekdays-berlin-2027.yaml -o tower.json --export tower.ics --export "
+      "tower.xml");
   command->add_option("BUILDING", o->file, "Building file (or a lone plan)")->required();
   command->add_option("-o,--output", o->output, "Write the schedule JSON here")
       ->check(output_path());
@@ -340,6 +364,13 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();
   command->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  command
+      ->add_option("--export", o->exports,
+                   "Also write the schedule for a site's tools, as `ccbuild export` does; the "
+                   "extension says what: .csv (a task list), .ics (iCalendar), .xml (MS "
+                   "Project XML), .txt (work packages by day). All but .csv need a site "
+                   "calendar (--site or the building's site:). May be given several times")
+      ->check(output_path());
   command->add_flag("--path-digests", o->path_digests,
                     "In -o, each nozzle's timed path as its digest (waypoint count and SHA-256) "
                     "instead of its waypoints: a schedule a fraction of the size that `diff` "

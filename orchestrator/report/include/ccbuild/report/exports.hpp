@@ -1,7 +1,8 @@
 #pragma once
 // The schedule for the tools a site plans in (docs/schedule.md, "Exports"): a CSV task
-// list a spreadsheet opens. Dates are local: the schedule's site calendar, or a start
-// given at export for a schedule made without one.
+// list a spreadsheet opens, an iCalendar file a calendar subscribes to, an MS Project XML
+// file project tools import, and the day-by-day work packages. Dates are local: the
+// schedule's site calendar, or a start given at export for a schedule made without one.
 
 #include <cstddef>
 #include <optional>
@@ -16,12 +17,22 @@ namespace ccbuild::report {
 /// anything else, or a year outside 1970-9999.
 long long parse_local_start(const std::string& text, const std::string& field);
 
+/// "2027-03-01 07:00:00" of seconds since 1970-01-01 00:00 of a clock without a time zone.
+std::string civil_text(long long s);
+
 /// How schedule seconds become local date-times: the schedule's calendar, else a start
 /// (parse_local_start), else none (the date columns stay empty).
 struct ExportDates {
   std::optional<long long> start_local_s;
   /// "2027-03-01 07:00:00", or "" when neither the schedule nor the start dates it.
   std::string local(const schedule::ScheduleDocument& schedule, double t_s) const;
+  /// Whether the schedule's times can be dated (a calendar or a start).
+  bool dated(const schedule::ScheduleDocument& schedule) const {
+    return schedule.inputs.calendar || start_local_s;
+  }
+  /// Throws InputError (field --start) when the schedule cannot be dated: `format` needs
+  /// dates.
+  void require(const schedule::ScheduleDocument& schedule, const std::string& format) const;
 };
 
 /// RFC 4180 CSV, a header and a row per task (tasks_of): id, kind, floor, layer,
@@ -29,5 +40,33 @@ struct ExportDates {
 /// when given, is set to the number of tasks written.
 std::string tasks_csv(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
                       std::size_t* rows = nullptr);
+
+/// iCalendar (RFC 5545): a VEVENT for each of the crew's tasks (crew > 0, slab stages,
+/// pours, climbs) and each milestone (milestones_of), in the site's time zone (a VTIMEZONE
+/// of the offsets over the schedule), or in floating local time from a start. `events`,
+/// when given, is set to the number of VEVENTs. Throws InputError when it cannot be dated.
+std::string tasks_ical(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
+                       std::size_t* events = nullptr);
+
+/// MS Project XML (MSPDI): a summary task per floor over its tasks (tasks_of and
+/// milestones_of; a climb over its phases), each with its local start and finish, its
+/// duration in whole seconds, a start-no-earlier-than constraint at its planned start, and
+/// its finish-to-start predecessors: on the site's one line of work, each task follows the
+/// one that ended last before it started; a floor's milestone follows its last layer; a
+/// climb follows the pipes it pins into. Two calendars: the site's working week with its
+/// holidays (tasks within one working window), and 24 hours (the rest, and every task of a
+/// schedule without a site calendar). `tasks` and `links`, when given, are set to the
+/// counts written. Throws InputError when it cannot be dated.
+std::string tasks_mspdi(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
+                        std::size_t* tasks = nullptr, std::size_t* links = nullptr);
+
+/// The work packages by day, as text for people: for each local day with work, the layers
+/// started (per floor: first start to last end, printing hours, m³), the concrete trucks
+/// due, the crew's tasks and the machine's own (like tasks run together on one line, with
+/// person-hours), the waits that start, and on a site calendar where printing stopped.
+/// `days`, when given, is set to the number of days. Throws InputError when it cannot be
+/// dated.
+std::string work_packages_text(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
+                               std::size_t* days = nullptr);
 
 }  // namespace ccbuild::report

@@ -24,9 +24,18 @@ struct SiteTask {
   int crew = 0;              ///< people on it
   double concrete_m3 = 0.0;  ///< a layer's, a pour's, a delivery's
   std::string detail;        ///< what and why, in words (a wait: its reasons)
+  std::string reasons;       ///< a wait: its reasons' kinds, "min-interval, strength"
 };
 
 /// The tasks of `schedule`, by start (then as listed above, for equal starts).
 std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& schedule);
+
+/// A short title for lists and calendars: "Floor 0 layer 12", "Wait before floor 0 layer
+/// 12", "Floor 0: formwork lintel over opening W1", "Concrete delivery, 6.00 m³".
+std::string title_of(const SiteTask& task);
+
+/// The milestones: each floor's walls finished (kind "walls-finished", id "M<floor>", at the
+/// end of its last layer: start_s equals end_s), by floor.
+std::vector<SiteTask> milestones_of(const schedule::ScheduleDocument& schedule);
 
 }  // namespace ccbuild::report

@@ -7,6 +7,7 @@
 // schedule runs around the clock from "day 1 00:00", as before.
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -59,6 +60,15 @@ struct WorkingWindow {
   double from_s = 0.0, to_s = 0.0;
 };
 
+/// A stretch of time over which the zone's offset from UTC holds.
+struct ZoneOffset {
+  std::int64_t from_utc_s = 0;  ///< when it took effect, seconds since the epoch (UTC)
+  int offset_s = 0;             ///< local time minus UTC
+  int previous_offset_s = 0;    ///< the offset before it took effect
+  bool daylight = false;        ///< daylight-saving (summer) time
+  std::string abbreviation;     ///< "CET", "CEST"
+};
+
 /// The programme's calendar: working windows, timestamps. Immutable once made (shared by
 /// threads).
 class SiteCalendar {
@@ -93,6 +103,11 @@ class SiteCalendar {
   /// The UTC time (seconds since the epoch) of a local time in the zone (a time in a
   /// spring-forward gap is the change; one that occurs twice, its first).
   std::int64_t utc_of_local(std::int64_t local_s) const;
+  /// The UTC time (seconds since the epoch) at `t_s`, rounded to the second.
+  std::int64_t utc_of(double t_s) const { return start_utc_s_ + std::llround(t_s); }
+  /// The zone's offsets in force from `from_s` to `to_s`: the first is the one in force at
+  /// `from_s` (it took effect before), then one per change, in order.
+  std::vector<ZoneOffset> zone_offsets(double from_s, double to_s) const;
   /// The version of the tzdata the windows were computed with ("2025b").
   std::string tzdb_version() const;
   /// "Mon-Fri 07:00-17:00", the week in words.

@@ -1,0 +1,185 @@
+// The exports at their boundaries, on schedules made by hand: iCalendar lines folded at
+// exactly 75 octets and never inside a UTF-8 character, a task that rounds to an instant
+// (no DTEND) and one that rounds across a second; MS Project XML links where a task ends
+// exactly when the next starts and where one overlaps it; the formats that need dates.
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <map>
+#include <regex>
+#include <set>
+
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/report/exports.hpp"
+#include "ccbuild/schedule/site.hpp"
+#include "test_support.hpp"
+
+namespace ccbuild::report {
+namespace {
+
+using schedule::Event;
+
+schedule::ScheduledLayer layer(int floor, int index, double start_s, double end_s) {
+  schedule::ScheduledLayer l;
+  l.floor = floor;
+  l.layer = index;
+  l.start_s = start_s;
+  l.end_s = end_s;
+  l.plan = "p";
+  l.concrete_m3 = 1.0;
+  return l;
+}
+
+Event event(Event::Kind kind, double start_s, double end_s, int crew, const std::string& detail) {
+  Event e;
+  e.kind = kind;
+  e.start_s = start_s;
+  e.end_s = end_s;
+  e.crew = crew;
+  e.detail = detail;
+  return e;
+}
+
+ExportDates from_start() {
+  ExportDates d;
+  d.start_local_s = parse_local_start("2027-03-01 07:00", "--start");
+  return d;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t at = 0;
+  for (std::size_t end; (end = text.find("\r\n", at)) != std::string::npos; at = end + 2)
+    lines.push_back(text.substr(at, end - at));
+  return lines;
+}
+
+TEST(ICalendar, LinesFoldAtSeventyFiveOctetsNeverInsideACharacter) {
+  // "X-WR-CALNAME:" is 13 octets: a 62-octet name makes a line of exactly 75 (kept whole),
+  // 63 octets one of 76 (folded); names of "³" (2 octets) put the fold inside one.
+  for (const std::string& name :
+       {std::string(62, 'a'), std::string(63, 'a'), std::string(61, 'a') + "³", [] {
+          std::string s;
+          for (int k = 0; k < 100; ++k) s += "³";
+          return s;
+        }()}) {
+    schedule::ScheduleDocument doc;
+    doc.inputs.name = name;
+    const std::string text = tasks_ical(doc, from_start());
+    std::string unfolded;
+    std::size_t folds = 0;
+    for (const std::string& line : lines_of(text)) {
+      EXPECT_LE(line.size(), 75u) << line;
+      if (!line.empty() && line[0] == ' ') {
+        ++folds;
+        ASSERT_GT(line.size(), 1u);
+        EXPECT_NE(static_cast<unsigned char>(line[1]) & 0xC0, 0x80) << "a fold inside a character";
+        unfolded += line.substr(1);
+      } else {
+        unfolded += "\n" + line;
+      }
+    }
+    EXPECT_TRUE(testing::contains(unfolded, "\nX-WR-CALNAME:" + name + "\n")) << name;
+    if (name.size() + 13 <= 75) {
+      EXPECT_EQ(folds, 0u) << name;
+    } else {
+      EXPECT_GE(folds, 1u) << name;
+    }
+    if (name.size() + 13 == 76) {
+      EXPECT_EQ(folds, 1u);
+    }
+  }
+}
+
+TEST(ICalendar, ATaskThatRoundsToAnInstantHasNoEndAndOneAcrossASecondHasOne) {
+  schedule::ScheduleDocument doc;
+  doc.inputs.name = "t";
+  doc.schedule.layers = {layer(0, 0, 0.0, 100.0)};
+  // 100.4 and 100.6 round to 100 and 101; 200.2 and 200.4 both to 200.
+  doc.schedule.events = {event(Event::Kind::kLintel, 100.4, 100.6, 2, "lintel a"),
+                         event(Event::Kind::kLintel, 200.2, 200.4, 2, "lintel b"),
+                         event(Event::Kind::kPurge, 300.0, 420.0, 0, "purge")};
+  std::size_t events = 0;
+  const std::string text = tasks_ical(doc, from_start(), &events);
+  EXPECT_EQ(events, 3u);  // two lintels and the floor's walls finished; the purge has no crew
+  const auto block = [&](const std::string& uid) {
+    const std::size_t at = text.find("UID:" + uid + "-");
+    return text.substr(at, text.find("END:VEVENT", at) - at);
+  };
+  EXPECT_TRUE(testing::contains(block("E1"), "DTSTART:20270301T070140\r\n"));
+  EXPECT_TRUE(testing::contains(block("E1"), "DTEND:20270301T070141\r\n"));
+  EXPECT_TRUE(testing::contains(block("E2"), "DTSTART:20270301T070320\r\n"));
+  EXPECT_FALSE(testing::contains(block("E2"), "DTEND"));
+  EXPECT_FALSE(testing::contains(block("M0"), "DTEND"));
+  EXPECT_TRUE(testing::contains(block("M0"), "DTSTART:20270301T070140\r\n"));
+  EXPECT_FALSE(testing::contains(text, "UID:E3-"));
+  EXPECT_FALSE(testing::contains(text, "VTIMEZONE"));  // floating times
+}
+
+/// The MSPDI file's links: ccbuild id -> ids of its predecessors.
+std::map<std::string, std::set<std::string>> links_of(const std::string& xml) {
+  std::map<std::string, std::string> id_of_uid;
+  std::map<std::string, std::set<std::string>> uid_links;
+  const std::regex task(R"(<Task>\s*<UID>(\d+)</UID>[\s\S]*?ccbuild task (\S+) [\s\S]*?</Task>)");
+  const std::regex link(R"(<PredecessorUID>(\d+)</PredecessorUID><Type>1</Type>)");
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), task); it != std::sregex_iterator();
+       ++it) {
+    id_of_uid[(*it)[1]] = (*it)[2];
+    const std::string body = (*it)[0];
+    for (auto l = std::sregex_iterator(body.begin(), body.end(), link); l != std::sregex_iterator();
+         ++l)
+      uid_links[(*it)[1]].insert((*l)[1]);
+  }
+  std::map<std::string, std::set<std::string>> out;
+  for (const auto& [uid, id] : id_of_uid) {
+    out[id];
+    for (const std::string& p : uid_links[uid]) out[id].insert(id_of_uid.at(p));
+  }
+  return out;
+}
+
+TEST(Mspdi, EachTaskFollowsTheOneThatEndedLastAtOrBeforeItsStart) {
+  schedule::ScheduleDocument doc;
+  doc.inputs.name = "t";
+  // L0.0 [0, 100]; a lintel [100, 160] ends exactly when L0.1 starts; a slab [150, 400]
+  // overlaps L0.1 [160, 260] and ends exactly when L0.2 starts [400, 500]; a second slab
+  // [399, 600] starts 1 s before the first slab ends, so follows L0.1 instead.
+  doc.schedule.layers = {layer(0, 0, 0.0, 100.0), layer(0, 1, 160.0, 260.0),
+                         layer(0, 2, 400.0, 500.0)};
+  doc.schedule.events = {event(Event::Kind::kLintel, 100.0, 160.0, 2, "lintel"),
+                         event(Event::Kind::kSlab, 150.0, 400.0, 4, "slab"),
+                         event(Event::Kind::kSlab, 399.0, 600.0, 4, "second slab")};
+  std::size_t tasks = 0, links = 0;
+  const std::string xml = tasks_mspdi(doc, from_start(), &tasks, &links);
+  const auto by = links_of(xml);
+  EXPECT_EQ(by.at("L0.0"), std::set<std::string>{});
+  EXPECT_EQ(by.at("E1"), std::set<std::string>{"L0.0"});  // ended at 100, its start
+  EXPECT_EQ(by.at("E2"), std::set<std::string>{"L0.0"});  // the lintel ends after 150
+  EXPECT_EQ(by.at("L0.1"), std::set<std::string>{"E1"});  // at 160; the slab runs on
+  EXPECT_EQ(by.at("L0.2"), std::set<std::string>{"E2"});  // at 400, later than L0.1
+  EXPECT_EQ(by.at("E3"), std::set<std::string>{"L0.1"});  // E2 ends 1 s after 399
+  EXPECT_EQ(by.at("M0"), std::set<std::string>{"L0.2"});  // the walls finished
+  EXPECT_EQ(by.at("F0"), std::set<std::string>{});
+  EXPECT_EQ(tasks, 1u + 3u + 3u + 1u);  // the floor, 3 layers, 3 events, the milestone
+  EXPECT_EQ(links, 6u);
+  // Durations in whole seconds, a milestone of none.
+  EXPECT_TRUE(testing::contains(xml, "<Duration>PT0H4M10S</Duration>"));  // the slab, 250 s
+  EXPECT_TRUE(testing::contains(xml, "<Milestone>1</Milestone>"));
+}
+
+TEST(Exports, ACalendarAProjectAndTheDaysNeedDatesACsvDoesNot) {
+  schedule::ScheduleDocument doc;
+  doc.schedule.layers = {layer(0, 0, 0.0, 100.0)};
+  const ExportDates none;
+  for (const auto& write : std::vector<std::function<void()>>{
+           [&] { tasks_ical(doc, none); }, [&] { tasks_mspdi(doc, none); },
+           [&] { work_packages_text(doc, none); }}) {
+    const InputError e = testing::expect_input_error(write);
+    EXPECT_EQ(e.first().field, "--start");
+  }
+  EXPECT_TRUE(testing::contains(tasks_csv(doc, none), "\r\nL0.0,layer,0,0,,,"));
+}
+
+}  // namespace
+}  // namespace ccbuild::report
