@@ -77,6 +77,30 @@ TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
   fs::remove_all(dir);
 }
 
+// The apartment on the climber keeps its limits by millimetres: the two-nozzle plan of
+// floors 1 and 2 keeps its 1.5 m gantries 1.524 m apart, and the last climb passes under a
+// millimetre from a wall. Both are warned in the text and in the JSON, saying where.
+TEST(Margins, TheApartmentsGantriesAndClimbAreWarned) {
+  const fs::path dir = scratch("margins");
+  const auto r = run_ccbuild(
+      "schedule config/buildings/apartment.yaml --machine config/machines/cc-climber.yaml "
+      "--quiet -o " +
+      (dir / "s.json").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string gantries =
+      "margin: the 2 gantries of plan g5n2 come within 24 mm of each other (1.524 m between "
+      "centres, 1.500 m wide), on floor 1 layers 7-16, floor 2 layers 7-16";
+  const std::string climb = "margin: 1 climb passes within 20 mm of a wall; the closest, from "
+                            "stage 3 to 4 (after floor 3 layer 24), passes 0.7 mm from it";
+  EXPECT_TRUE(contains(r.out, "warning: " + gantries)) << r.out;
+  EXPECT_TRUE(contains(r.out, "warning: " + climb)) << r.out;
+  const auto json = nlohmann::json::parse(slurp(dir / "s.json"));
+  std::string warnings;
+  for (const auto& w : json.at("warnings")) warnings += w.get<std::string>() + "\n";
+  EXPECT_TRUE(contains(warnings, gantries)) << warnings;
+  EXPECT_TRUE(contains(warnings, climb)) << warnings;
+}
+
 TEST(ScheduleCommand, NeverWritesOverAnInputNorAnOutputWithoutForce) {
   const fs::path dir = scratch("force");
   const fs::path out = dir / "s.json";

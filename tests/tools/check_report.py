@@ -24,7 +24,7 @@ import sys
 import tempfile
 import zlib
 
-SECTIONS = ["summary", "gantt", "intervals", "heatmap", "strength", "toolpaths", "playback"]
+SECTIONS = ["summary", "gantt", "days", "intervals", "heatmap", "strength", "toolpaths", "playback"]
 
 
 def chromium():
@@ -71,6 +71,32 @@ def png_not_blank(path):
     if share < 0.002:  # a blank page: 0.0002; the house report: 0.018
         return False, "%.4f of its bytes differ from their neighbours: blank" % share
     return True, "%dx%d, %.1f%% of bytes vary" % (width, height, 100 * share)
+
+
+def lab(colour):
+    """CIELAB (D65) of '#rrggbb'."""
+    r, g, b = [int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5)]
+    r, g, b = [c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4 for c in (r, g, b)]
+    x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047
+    y = 0.2126 * r + 0.7152 * g + 0.0722 * b
+    z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883
+    f = lambda t: t ** (1 / 3) if t > 0.008856 else 7.787 * t + 16 / 116
+    return 116 * f(y) - 16, 500 * (f(x) - f(y)), 200 * (f(y) - f(z))
+
+
+MIN_COLOUR_DISTANCE = 20.0  # CIE76: about 2.3 is just noticeable; 20 reads as another colour
+
+
+def alike(named):
+    """The pairs of {name: '#rrggbb'} closer than MIN_COLOUR_DISTANCE."""
+    names = sorted(named)
+    out = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            d = sum((p - q) ** 2 for p, q in zip(lab(named[a]), lab(named[b]))) ** 0.5
+            if d < MIN_COLOUR_DISTANCE:
+                out.append("%s %s and %s %s (distance %.1f)" % (a, named[a], b, named[b], d))
+    return out
 
 
 def main():
@@ -148,6 +174,36 @@ def main():
         if lintels and drawn == 0:
             problems.append("%d lintels, none drawn on the plans" % lintels)
         counts["lintels on plans"] = drawn
+    # The palette: no two legend entries alike, on this chart or anywhere in the report.
+    palette = re.search(r'<div id="palette"[^>]*data-colors="([^"]*)"', dom)
+    if not palette:
+        problems.append("no #palette in the DOM")
+    else:
+        named = json.loads(palette.group(1).replace("&quot;", '"').replace("&amp;", "&"))
+        problems += ["two palette colours look alike: " + p for p in alike(named)]
+        counts["palette colours"] = len(named)
+    legend = dict(re.findall(r'<span class="legend-entry" data-color="(#[0-9A-Fa-f]{6})"><i[^>]*></i>([^<]*)</span>', dom))
+    legend = {text: colour for colour, text in legend.items()}
+    problems += ["two legend entries look alike: " + p for p in alike(legend)]
+    if len(legend) < 2:
+        problems.append("the Gantt's legend has %d entries" % len(legend))
+    # The day view: one day's hours with its bars, the site's working time shaded on a
+    # site calendar, and the day's package as a table.
+    day_view = re.search(r'<svg[^>]*id="day-view"[^>]*data-date="([^"]+)"', dom)
+    if not day_view:
+        problems.append("no day view")
+    else:
+        counts["day-view bars"] = len(re.findall(r'class="day-bar', dom))
+        if counts["day-view bars"] == 0:
+            problems.append("the day view of %s has no bars" % day_view.group(1))
+        shaded = len(re.findall(r'class="day-working"', dom))
+        if data and schedule["inputs"].get("site") and shaded == 0:
+            problems.append("the day view of a site calendar shades no working hours")
+        if not re.search(r'<table class="day-package" id="day-package">.*?<td>print</td>', dom, re.S):
+            problems.append("the day's package has no print line")
+        ticks = re.findall(r'<text class="day-tick"[^>]*>(\d\d:\d\d)</text>', dom)
+        if not ticks or ticks[0] != "00:00":
+            problems.append("the day view's hours %r do not start at 00:00" % ticks[:3])
     canvas = re.search(r'<canvas id="playback-canvas"([^>]*)>', dom)
     if not canvas:
         problems.append("no playback canvas")

@@ -29,11 +29,15 @@
     return f && f.walls[String(wall)] ? f.walls[String(wall)] : null;
   }
   var NS = 'http://www.w3.org/2000/svg';
-  var COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf'];
-  var REASON_COLORS = { 'min-interval': '#f2a900', 'strength': '#8e44ad', 'anchor-strength': '#c0392b',
-                        'slab': '#7f8c8d', 'none': '#95a5a6' };
-  var EVENT_COLORS = { pipe: '#16a085', purge: '#e67e22', slab: '#7f8c8d', pour: '#4a235a', climb: '#2c3e50',
-                       joint: '#b7950b', lintel: '#a04000' };
+  // One palette for every legend of the report: no two entries alike (the report's test
+  // checks every pair's CIELAB distance). Layers by nozzle count, waits by reason, events.
+  var COLORS = ['#0067A5', '#008856', '#F032E6', '#000080', '#9A6324', '#469990', '#BCBD22', '#17BECF'];
+  var REASON_COLORS = { 'min-interval': '#F3C300', 'strength': '#FFD8B1', 'anchor-strength': '#BE0032',
+                        'slab': '#654522', 'off-shift': '#DCBEFF', 'joint': '#42D4F4', 'cold': '#AAFFC3',
+                        'wind': '#FF7F0E', 'none': '#95a5a6' };
+  var EVENT_COLORS = { pipe: '#808000', purge: '#4363D8', slab: '#875692', pour: '#848482', climb: '#F99379',
+                       joint: '#2CA02C', lintel: '#E68FAC' };
+  var DELIVERY_COLOR = '#2E2E2E';
   var mat = S.inputs.material;
   var machine = S.inputs.machine;
   var tooltip = document.getElementById('tooltip');
@@ -198,17 +202,9 @@
     row('other', 'waits ' + duration(T.waits_s) + ', climbs ' + duration(T.climbs_s) + ', slabs ' +
       duration(T.slabs_s) + ', pipes ' + duration(T.pipes_s) + ', purges ' + duration(T.purges_s) +
       ', moves ' + duration(T.moves_s));
+    // The schedule's own warnings: its margins (gantries, climbs, intervals, idle spells)
+    // among them, each saying where.
     var warnings = (S.warnings || []).slice();
-    var cold = layers.filter(function (l) {
-      return l.local_interval_max_s !== null && l.local_interval_max_s > 0.95 * mat.max_layer_interval_s &&
-        l.local_interval_max_s <= mat.max_layer_interval_s;
-    });
-    if (cold.length)
-      warnings.push(cold.length + ' layer(s) within 5% of the maximum interval (closest to a cold joint): ' +
-        cold.slice(0, 5).map(layerName).join(', ') + (cold.length > 5 ? ', ...' : ''));
-    var idle = layers.filter(function (l) { return l.max_idle_s > 0.8 * machine.nozzle_idle_limit_s; });
-    if (idle.length)
-      warnings.push(idle.length + ' layer(s) with an air move over 80% of the nozzle idle limit');
     if (warnings.length) {
       el('h3', {}, node, 'Warnings');
       var ul = el('ul', { 'class': 'warnings' }, node);
@@ -262,7 +258,7 @@
             e.wait_reasons.map(function (r) { return r.detail; }).slice(0, 4).join('\n'));
         var t = e.start_s;
         (e.climb.phases || []).forEach(function (p, i) {
-          add('climb', t, t + p.duration_s, i % 2 ? '#34495e' : '#5d6d7e',
+          add('climb', t, t + p.duration_s, i % 2 ? EVENT_COLORS.climb : '#FCC3B8',
             'climb ' + e.from_stage + ' -> ' + e.to_stage + ': ' + p.kind + (p.unit ? ' ' + p.unit : '') + ', ' +
             duration(p.duration_s) + (p.strokes ? ', ' + p.strokes + ' strokes' : ''), 'gantt-bar gantt-phase');
           t += p.duration_s;
@@ -311,13 +307,130 @@
       draw();
     });
     root.addEventListener('dblclick', function () { view = [0, makespan]; draw(); });
-    var legend = el('div', { 'class': 'legend' }, node);
-    for (var n = 1; n <= machine.nozzles; n++)
-      el('span', {}, legend).innerHTML = '<i style="background:' + COLORS[(n - 1) % COLORS.length] + '"></i>layer, ' + n + ' nozzle(s)';
-    Object.keys(REASON_COLORS).forEach(function (k) {
-      if (k !== 'none' && k !== 'slab') el('span', {}, legend).innerHTML = '<i style="background:' + REASON_COLORS[k] + '"></i>wait: ' + k;
+    // The legend: every colour on the chart, said once; the whole palette for the test.
+    var legend = el('div', { 'class': 'legend', id: 'gantt-legend' }, node);
+    function entry(color, text) {
+      var span = el('span', { 'class': 'legend-entry', 'data-color': color }, legend);
+      el('i', { style: 'background:' + color }, span);
+      span.appendChild(document.createTextNode(text));
+    }
+    for (var n = 1; n <= machine.nozzles; n++) entry(COLORS[(n - 1) % COLORS.length], 'layer, ' + n + ' nozzle' + (n > 1 ? 's' : ''));
+    var reasonsUsed = {};
+    layers.forEach(function (l) { l.wait_reasons.forEach(function (r) { reasonsUsed[r.kind] = true; }); });
+    S.events.forEach(function (e) { (e.wait_reasons || []).forEach(function (r) { reasonsUsed[r.kind] = true; }); });
+    Object.keys(REASON_COLORS).forEach(function (k) { if (reasonsUsed[k]) entry(REASON_COLORS[k], 'wait: ' + k); });
+    Object.keys(EVENT_COLORS).forEach(function (k) {
+      if (S.events.some(function (e) { return e.kind === k; })) entry(EVENT_COLORS[k], k);
     });
+    var palette = {};
+    COLORS.slice(0, 4).forEach(function (c, i) { palette['layer, ' + (i + 1) + ' nozzle(s)'] = c; });
+    Object.keys(REASON_COLORS).forEach(function (k) { if (k !== 'none') palette['wait: ' + k] = REASON_COLORS[k]; });
+    Object.keys(EVENT_COLORS).forEach(function (k) { palette[k] = EVENT_COLORS[k]; });
+    palette.delivery = DELIVERY_COLOR;
+    el('div', { id: 'palette', hidden: 'hidden', 'data-colors': JSON.stringify(palette) }, node);
     el('p', { 'class': 'hint' }, node, 'Wheel: zoom around the pointer. Drag: pan. Double-click: the whole build. Hover a bar for what, when and why.');
+  });
+
+  // ---------------------------------------------------------------- days --------
+  // One day's work package (the same as `ccbuild export --format days`) and its hours:
+  // the site's working time shaded, each line of the package a bar.
+  section('days', function (node) {
+    var days = S.day_packages || [];
+    if (!days.length) { el('p', {}, node, 'No work.'); return; }
+    var controls = el('div', { 'class': 'controls' }, node);
+    var prev = el('button', { id: 'day-prev' }, controls, '\u2190 day before');
+    var pick = el('select', { id: 'day-select' }, controls);
+    var next = el('button', { id: 'day-next' }, controls, 'day after \u2192');
+    days.forEach(function (d, i) {
+      var layersThatDay = d.print.reduce(function (a, e) { return a + e.count; }, 0);
+      var m3 = d.print.reduce(function (a, e) { return a + e.concrete_m3; }, 0);
+      el('option', { value: i }, pick, (d.weekday ? d.weekday + ' ' : '') + d.date + ': ' +
+        layersThatDay + ' layer(s), ' + m3.toFixed(2) + ' m\u00b3, ' + d.crew.length + ' crew line(s)');
+    });
+    var view = el('div', { id: 'day-view-wrap' }, node);
+    var table = el('table', { 'class': 'day-package', id: 'day-package' }, node);
+    el('p', { 'class': 'hint' }, node, 'Shaded: the site\'s working hours. Rows: print (layers ' +
+      'started that day, per floor), deliver (trucks due), crew (the crew\'s tasks; like ones run ' +
+      'together), machine (purges, climbs without a crew), wait (waits that start that day). Hover ' +
+      'a bar for what and who. The same packages: ccbuild export SCHEDULE.json --format days.');
+    var ROWS = [['print', 'print'], ['deliver', 'deliver'], ['crew', 'crew'], ['machine', 'machine'],
+                ['waits', 'wait']];
+    function hhmm(s) { return clock(s).slice(-5); }
+    function color(row, e) {
+      if (row === 'print') {  // the layers' nozzle count, as on the Gantt
+        var n = /(\d+) nozzle/.exec(e.who);
+        return COLORS[((n ? Number(n[1]) : 1) - 1) % COLORS.length];
+      }
+      if (row === 'deliver') return DELIVERY_COLOR;
+      if (row === 'waits') return REASON_COLORS[(e.reasons || 'none').split(', ')[0]] || REASON_COLORS.none;
+      return EVENT_COLORS[e.kind] || '#555';
+    }
+    function describe(e) {
+      var parts = [e.what, e.who, hhmm(e.start_s) + ' to ' + clock(e.end_s)];
+      if (e.printing_h) parts.push(e.printing_h.toFixed(2) + ' h printing');
+      if (e.concrete_m3) parts.push(e.concrete_m3.toFixed(2) + ' m\u00b3');
+      if (e.person_h) parts.push(e.person_h.toFixed(1) + ' person-h');
+      if (e.reasons) parts.push('why: ' + e.reasons);
+      return parts.join('\n');
+    }
+    function show(i) {
+      var d = days[i];
+      pick.value = String(i);
+      while (view.firstChild) view.removeChild(view.firstChild);
+      while (table.firstChild) table.removeChild(table.firstChild);
+      var W = Math.max(900, node.clientWidth - 40), left = 80, right = 10, rowH = 22;
+      var H = 30 + ROWS.length * rowH + 30;
+      var root = svg('svg', { width: W, height: H, id: 'day-view', 'data-date': d.date }, view);
+      var x = scale(d.from_s, d.to_s, left, W - right);
+      var clip = function (t) { return Math.max(d.from_s, Math.min(d.to_s, t)); };
+      d.working.forEach(function (w) {
+        svg('rect', { 'class': 'day-working', x: x(w[0]), y: 20, width: Math.max(1, x(w[1]) - x(w[0])),
+                      height: ROWS.length * rowH, fill: '#e3f4e1' }, root);
+      });
+      ROWS.forEach(function (r, k) {
+        var y = 20 + k * rowH;
+        svg('line', { x1: left, x2: W - right, y1: y + rowH, y2: y + rowH, stroke: '#dde1e7' }, root);
+        svg('text', { x: 4, y: y + 15 }, root, r[1]);
+        d[r[0]].forEach(function (e) {
+          var x0 = x(clip(e.start_s)), x1 = x(clip(e.end_s));
+          var bar = svg('rect', { 'class': 'day-bar day-' + r[1], x: x0, y: y + 3,
+                                  width: Math.max(r[0] === 'deliver' ? 3 : 1, x1 - x0), height: rowH - 6,
+                                  fill: color(r[0], e) }, root);
+          hover(bar, describe(e));
+        });
+      });
+      // The hours of the day: every two hours, in the site's local time.
+      for (var h = 0; h <= 24; h += 2) {
+        var t = d.from_s + h * 3600;
+        if (t > d.to_s + 1) break;
+        svg('line', { x1: x(t), x2: x(t), y1: 16, y2: 20 + ROWS.length * rowH, stroke: '#c8ced8' }, root);
+        svg('text', { 'class': 'day-tick', x: x(t) - 14, y: H - 16 }, root, hhmm(t));
+      }
+      svg('text', { x: left, y: H - 2, 'class': 'axis-title' }, root,
+        (d.weekday ? d.weekday + ' ' : '') + d.date + (site ? ' (' + site.time_zone + ')' : ''));
+      var head = el('tr', {}, el('thead', {}, table));
+      ['', 'from', 'to', 'what', 'who', 'concrete', 'person-h'].forEach(function (c) { el('th', {}, head, c); });
+      var body = el('tbody', {}, table);
+      ROWS.forEach(function (r) {
+        d[r[0]].forEach(function (e, k) {
+          var tr = el('tr', {}, body);
+          el('td', {}, tr, k ? '' : r[1]);
+          el('td', {}, tr, hhmm(e.start_s));
+          el('td', {}, tr, e.end_s - d.from_s >= d.to_s - d.from_s ? clock(e.end_s) : hhmm(e.end_s));
+          el('td', {}, tr, e.what + (e.reasons ? ' (' + e.reasons + ')' : ''));
+          el('td', {}, tr, e.who);
+          el('td', {}, tr, e.concrete_m3 ? e.concrete_m3.toFixed(2) + ' m\u00b3' : '');
+          el('td', {}, tr, e.person_h ? e.person_h.toFixed(1) : '');
+        });
+      });
+      if (d.stop) el('td', { colspan: 7 }, el('tr', {}, body), 'printing stopped ' + d.stop);
+      prev.disabled = i === 0;
+      next.disabled = i === days.length - 1;
+    }
+    pick.addEventListener('change', function () { show(Number(pick.value)); });
+    prev.addEventListener('click', function () { show(Math.max(0, Number(pick.value) - 1)); });
+    next.addEventListener('click', function () { show(Math.min(days.length - 1, Number(pick.value) + 1)); });
+    show(0);
   });
 
   // ---------------------------------------------------------------- intervals ---

@@ -1,61 +1,177 @@
 // The day-by-day work packages: for each local day with work, what is printed, the
 // concrete and its deliveries, the crew's tasks and the machine's, and the waits, for a
-// foreman's clipboard.
+// foreman's clipboard and for the report's day view.
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "ccbuild/common/format.hpp"
-#include "ccbuild/report/exports.hpp"
+#include "ccbuild/report/day_packages.hpp"
 #include "ccbuild/report/site_tasks.hpp"
-#include "ccbuild/schedule/site.hpp"
 
 namespace ccbuild::report {
 
 namespace {
 
-/// "Mon" of a "2027-03-01 ..." date.
-std::string weekday_of(const std::string& local) {
-  const long long day = parse_local_start(local.substr(0, 10) + " 00:00", "date") / 86400;
+const char* weekday_of_day(long long day) {
   static const char* kNames[] = {"Thu", "Fri", "Sat", "Sun", "Mon", "Tue", "Wed"};
   return kNames[((day % 7) + 7) % 7];  // 1970-01-01 was a Thursday
 }
 
-/// "07:00" of a local date-time; "Tue 07:00" when it is on another day than `day`.
-std::string clock_on(const std::string& local, const std::string& day) {
-  const std::string hhmm = local.substr(11, 5);
-  return local.compare(0, 10, day) == 0
-             ? hhmm
-             : weekday_of(local) + " " + local.substr(0, 10) + " " + hhmm;
-}
+/// The local day of schedule seconds, and its bounds: days since 1970-01-01 on a calendar
+/// or from a start, else whole days from second 0.
+struct DayClock {
+  const schedule::ScheduleDocument& schedule;
+  const ExportDates& dates;
+  long long day_of(double t_s) const {
+    if (const auto& c = schedule.inputs.calendar) return c->local_day(t_s);
+    if (dates.start_local_s)
+      return (*dates.start_local_s + std::llround(t_s)) / 86400;  // from 1970: not negative
+    return static_cast<long long>(std::floor(std::llround(t_s) / 86400.0));
+  }
+  double start_of(long long day) const {
+    if (const auto& c = schedule.inputs.calendar)
+      return c->seconds_of_utc(c->utc_of_local(day * 86400));
+    if (dates.start_local_s) return static_cast<double>(day * 86400 - *dates.start_local_s);
+    return day * 86400.0;
+  }
+  bool dated() const { return dates.dated(schedule); }
+};
 
 std::string plural(int n, const std::string& one, const std::string& many) {
   return printf_string("%d %s", n, (n == 1 ? one : many).c_str());
 }
 
-/// A run of like tasks on one line: same kind, floor and crew, back to back in the day.
-struct Run {
-  std::vector<const SiteTask*> tasks;
-  bool joins(const SiteTask& t) const {
-    const SiteTask& last = *tasks.back();
-    return t.kind == last.kind && t.floor == last.floor && t.crew == last.crew &&
-           t.start_s <= last.end_s + 1e-6;
-  }
-};
-
 }  // namespace
+
+std::vector<DayPackage> work_packages(const schedule::ScheduleDocument& schedule,
+                                      const ExportDates& dates) {
+  const DayClock clock{schedule, dates};
+  std::map<long long, std::vector<SiteTask>> by_day;  // tasks by start, per day
+  for (SiteTask& t : tasks_of(schedule))
+    if (t.kind != "climb-phase") by_day[clock.day_of(t.start_s)].push_back(std::move(t));
+  std::map<std::string, const schedule::WorkDay*> stops;
+  for (const schedule::WorkDay& d : schedule.schedule.days) stops[d.date] = &d;
+  const auto& calendar = schedule.inputs.calendar;
+
+  std::vector<DayPackage> packages;
+  for (const auto& [day, tasks] : by_day) {
+    DayPackage p;
+    if (clock.dated()) {
+      p.date = schedule::local_date_text(static_cast<std::int32_t>(day));
+      p.weekday = weekday_of_day(day);
+    } else {
+      p.date = printf_string("day %lld", day + 1);
+    }
+    p.from_s = clock.start_of(day);
+    p.to_s = clock.start_of(day + 1);
+    if (calendar)
+      for (const schedule::WorkingWindow& w : calendar->windows())
+        if (w.to_s > p.from_s && w.from_s < p.to_s)
+          p.working.push_back({std::max(w.from_s, p.from_s), std::min(w.to_s, p.to_s)});
+    // Printing, per floor.
+    std::map<int, DayEntry> print;
+    for (const SiteTask& t : tasks) {
+      if (t.kind != "layer") continue;
+      auto [it, first] = print.try_emplace(t.floor);
+      DayEntry& e = it->second;
+      if (first) {
+        e.kind = "print";
+        e.start_s = t.start_s;
+        e.count = 0;
+        e.who = t.who;
+        e.floor = t.floor;
+        e.first_layer = t.layer;
+      }
+      ++e.count;
+      e.last_layer = t.layer;
+      e.what = e.count == 1
+                   ? printf_string("floor %d layer %d", t.floor, t.layer)
+                   : printf_string("floor %d layers %d-%d", t.floor, e.first_layer, t.layer);
+      if (e.who != t.who) e.who = "machine";  // layers of different nozzle counts
+      e.end_s = std::max(e.end_s, t.end_s);
+      e.printing_h += (t.end_s - t.start_s) / 3600.0;
+      e.concrete_m3 += t.concrete_m3;
+    }
+    for (auto& [floor, e] : print) p.print.push_back(std::move(e));
+    // Deliveries.
+    for (const SiteTask& t : tasks) {
+      if (t.kind != "delivery") continue;
+      if (p.deliver.empty()) {
+        DayEntry e;
+        e.kind = "deliver";
+        e.who = "supplier";
+        e.start_s = t.start_s;
+        e.count = 0;
+        p.deliver.push_back(e);
+      }
+      DayEntry& e = p.deliver.back();
+      ++e.count;
+      e.end_s = t.start_s;
+      e.concrete_m3 += t.concrete_m3;
+      e.what = plural(e.count, "truck", "trucks");
+    }
+    // The crew's tasks and the machine's own, like ones back to back on one line.
+    for (const SiteTask& t : tasks) {
+      if (t.kind == "layer" || t.kind == "delivery") continue;
+      if (t.kind == "wait") {
+        DayEntry e;
+        e.kind = "wait";
+        e.floor = t.floor;
+        e.what = title_of(t);
+        e.who = t.who;
+        e.start_s = t.start_s;
+        e.end_s = t.end_s;
+        e.reasons = t.reasons;
+        p.waits.push_back(std::move(e));
+        continue;
+      }
+      const bool by_crew = t.crew > 0 || t.kind == "slab";
+      std::vector<DayEntry>& list = by_crew ? p.crew : p.machine;
+      const bool joins = !list.empty() && list.back().kind == t.kind &&
+                         list.back().floor == t.floor && list.back().who == t.who &&
+                         t.start_s <= list.back().end_s + 1e-6;
+      if (!joins) {
+        DayEntry e;
+        e.kind = t.kind;
+        e.floor = t.floor;
+        e.what = title_of(t);
+        e.who = t.who;
+        e.start_s = t.start_s;
+        e.count = 0;
+        list.push_back(std::move(e));
+      }
+      DayEntry& e = list.back();
+      ++e.count;
+      if (e.count > 1)
+        e.what = printf_string("Floor %d: %d × %s", t.floor, e.count, t.kind.c_str());
+      e.end_s = t.end_s;
+      e.person_h += t.crew * (t.end_s - t.start_s) / 3600.0;
+      if (t.kind == "pour") e.concrete_m3 += t.concrete_m3;
+    }
+    if (const auto it = stops.find(p.date); it != stops.end()) {
+      p.stop = it->second->detail;
+      if (p.stop.rfind("stopped ", 0) == 0) p.stop = p.stop.substr(8);
+    }
+    packages.push_back(std::move(p));
+  }
+  return packages;
+}
 
 std::string work_packages_text(const schedule::ScheduleDocument& schedule, const ExportDates& dates,
                                std::size_t* days) {
   dates.require(schedule, "the work packages by day");
   const auto& calendar = schedule.inputs.calendar;
-  std::map<std::string, std::vector<SiteTask>> by_day;  // "2027-03-01" -> tasks, by start
-  for (SiteTask& t : tasks_of(schedule))
-    if (t.kind != "climb-phase")
-      by_day[dates.local(schedule, t.start_s).substr(0, 10)].push_back(std::move(t));
-  std::map<std::string, const schedule::WorkDay*> stops;
-  for (const schedule::WorkDay& d : schedule.schedule.days) stops[d.date] = &d;
-
+  const std::vector<DayPackage> packages = work_packages(schedule, dates);
+  // "07:00"; "Tue 2027-03-02 07:00" when on another day than the package's.
+  const auto at = [&](double t_s, const DayPackage& p) {
+    const std::string local = dates.local(schedule, t_s);
+    return local.compare(0, 10, p.date) == 0
+               ? local.substr(11, 5)
+               : weekday_of_day(parse_local_start(local.substr(0, 10) + " 00:00", "date") / 86400) +
+                     std::string(" ") + local.substr(0, 16);
+  };
   std::string out = "Work packages by day: " + schedule.inputs.name + "\n";
   out += calendar
              ? "Times are local in " + calendar->programme().time_zone + " (" +
@@ -68,86 +184,39 @@ std::string work_packages_text(const schedule::ScheduleDocument& schedule, const
       "crew's tasks, like ones run together, with person-hours), machine (purges, climbs "
       "without a crew), wait (the waits that start that day and why), and on a site calendar "
       "where printing stopped.\n";
-  for (const auto& [day, tasks] : by_day) {
-    out += printf_string("\n%s %s\n", weekday_of(day).c_str(), day.c_str());
-    // Printing, per floor.
-    std::map<int, std::vector<const SiteTask*>> layers;
-    for (const SiteTask& t : tasks)
-      if (t.kind == "layer") layers[t.floor].push_back(&t);
-    for (const auto& [floor, list] : layers) {
-      double printing_s = 0.0, m3 = 0.0, end_s = 0.0;
-      for (const SiteTask* l : list)
-        printing_s += l->end_s - l->start_s, m3 += l->concrete_m3,
-            end_s = std::max(end_s, l->end_s);
-      out += printf_string(
-          "  print    %s-%s  floor %d %s (%s), %.2f h printing, %.2f m³\n",
-          clock_on(dates.local(schedule, list.front()->start_s), day).c_str(),
-          clock_on(dates.local(schedule, end_s), day).c_str(), floor,
-          list.size() == 1
-              ? printf_string("layer %d", list.front()->layer).c_str()
-              : printf_string("layers %d-%d", list.front()->layer, list.back()->layer).c_str(),
-          plural(static_cast<int>(list.size()), "layer", "layers").c_str(), printing_s / 3600.0,
-          m3);
-    }
-    // Deliveries.
-    std::vector<const SiteTask*> trucks;
-    for (const SiteTask& t : tasks)
-      if (t.kind == "delivery") trucks.push_back(&t);
-    if (!trucks.empty()) {
-      double m3 = 0.0;
-      for (const SiteTask* t : trucks) m3 += t->concrete_m3;
-      out += printf_string("  deliver  %s-%s  %s, %.2f m³\n",
-                           clock_on(dates.local(schedule, trucks.front()->start_s), day).c_str(),
-                           clock_on(dates.local(schedule, trucks.back()->start_s), day).c_str(),
-                           plural(static_cast<int>(trucks.size()), "truck", "trucks").c_str(), m3);
-    }
-    // The crew's tasks and the machine's own, like ones run together.
-    for (const bool crew : {true, false}) {
-      std::vector<Run> runs;
-      for (const SiteTask& t : tasks) {
-        if (t.kind == "layer" || t.kind == "delivery" || t.kind == "wait") continue;
-        if ((t.crew > 0 || t.kind == "slab") != crew) continue;
-        if (!runs.empty() && runs.back().joins(t))
-          runs.back().tasks.push_back(&t);
-        else
-          runs.push_back({{&t}});
-      }
+  for (const DayPackage& p : packages) {
+    out += printf_string("\n%s %s\n", p.weekday.c_str(), p.date.c_str());
+    const auto line = [&](const char* label, bool first, const DayEntry& e,
+                          const std::string& rest) {
+      out += printf_string("  %-7s  %s-%s  %s\n", first ? label : "", at(e.start_s, p).c_str(),
+                           at(e.end_s, p).c_str(), rest.c_str());
+    };
+    for (const DayEntry& e : p.print)
+      line("print", true, e,
+           printf_string("%s (%s), %.2f h printing, %.2f m³", e.what.c_str(),
+                         plural(e.count, "layer", "layers").c_str(), e.printing_h, e.concrete_m3));
+    for (const DayEntry& e : p.deliver)
+      line("deliver", true, e, printf_string("%s, %.2f m³", e.what.c_str(), e.concrete_m3));
+    for (const auto& [label, list] :
+         {std::pair<const char*, const std::vector<DayEntry>*>{"crew", &p.crew},
+          {"machine", &p.machine}}) {
       bool first = true;
-      for (const Run& r : runs) {
-        const SiteTask& a = *r.tasks.front();
-        const SiteTask& b = *r.tasks.back();
-        const int n = static_cast<int>(r.tasks.size());
-        const std::string what =
-            n == 1 ? title_of(a) : printf_string("Floor %d: %d × %s", a.floor, n, a.kind.c_str());
-        std::string line = printf_string(
-            "  %-7s  %s-%s  %s, %s", first ? (crew ? "crew" : "machine") : "",
-            clock_on(dates.local(schedule, a.start_s), day).c_str(),
-            clock_on(dates.local(schedule, b.end_s), day).c_str(), what.c_str(), a.who.c_str());
-        if (a.crew > 0)
-          line += printf_string(", %.1f person-h", a.crew * (b.end_s - a.start_s) / 3600.0);
-        if (a.kind == "pour") line += printf_string(", %.2f m³", a.concrete_m3);
-        out += line + "\n";
+      for (const DayEntry& e : *list) {
+        std::string rest = e.what + ", " + e.who;
+        if (e.person_h > 0.0) rest += printf_string(", %.1f person-h", e.person_h);
+        if (e.concrete_m3 > 0.0) rest += printf_string(", %.2f m³", e.concrete_m3);
+        line(label, first, e, rest);
         first = false;
       }
     }
-    // The waits that start this day.
     bool first = true;
-    for (const SiteTask& t : tasks) {
-      if (t.kind != "wait") continue;
-      out +=
-          printf_string("  %-7s  %s-%s  %s%s\n", first ? "wait" : "",
-                        clock_on(dates.local(schedule, t.start_s), day).c_str(),
-                        clock_on(dates.local(schedule, t.end_s), day).c_str(), title_of(t).c_str(),
-                        t.reasons.empty() ? "" : (" (" + t.reasons + ")").c_str());
+    for (const DayEntry& e : p.waits) {
+      line("wait", first, e, e.what + (e.reasons.empty() ? "" : " (" + e.reasons + ")"));
       first = false;
     }
-    if (const auto it = stops.find(day); it != stops.end())
-      out += "  stop     " +
-             (it->second->detail.rfind("stopped ", 0) == 0 ? it->second->detail.substr(8)
-                                                           : it->second->detail) +
-             "\n";
+    if (!p.stop.empty()) out += "  stop     " + p.stop + "\n";
   }
-  if (days) *days = by_day.size();
+  if (days) *days = packages.size();
   return out;
 }
 

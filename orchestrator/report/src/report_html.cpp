@@ -4,6 +4,7 @@
 #include <iterator>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/report/day_packages.hpp"
 #include "report_assets.hpp"
 #include "svg.hpp"
 
@@ -45,6 +46,38 @@ std::string schedule_report_html(const schedule::ScheduleDocument& document,
                                            {"feasible", w.feasible},
                                            {"makespan_s", w.makespan_s},
                                            {"anchor_waits_s", w.anchor_waits_s}});
+  // The work packages by day, for the day view: dated on a site calendar, else "day N".
+  for (const DayPackage& p : work_packages(document, ExportDates{})) {
+    const auto entries = [](const std::vector<DayEntry>& list) {
+      nlohmann::ordered_json out = nlohmann::ordered_json::array();
+      for (const DayEntry& e : list)
+        out.push_back({{"kind", e.kind},
+                       {"what", e.what},
+                       {"who", e.who},
+                       {"floor", e.floor},
+                       {"start_s", e.start_s},
+                       {"end_s", e.end_s},
+                       {"count", e.count},
+                       {"concrete_m3", e.concrete_m3},
+                       {"person_h", e.person_h},
+                       {"printing_h", e.printing_h},
+                       {"reasons", e.reasons}});
+      return out;
+    };
+    nlohmann::ordered_json working = nlohmann::ordered_json::array();
+    for (const auto& w : p.working) working.push_back({w.from_s, w.to_s});
+    schedule["day_packages"].push_back({{"date", p.date},
+                                        {"weekday", p.weekday},
+                                        {"from_s", p.from_s},
+                                        {"to_s", p.to_s},
+                                        {"working", working},
+                                        {"print", entries(p.print)},
+                                        {"deliver", entries(p.deliver)},
+                                        {"crew", entries(p.crew)},
+                                        {"machine", entries(p.machine)},
+                                        {"waits", entries(p.waits)},
+                                        {"stop", p.stop}});
+  }
   const std::string data = script_safe(schedule.dump());
   schedule = nlohmann::ordered_json();  // only its text is needed from here on
   std::string html;
@@ -60,6 +93,7 @@ std::string schedule_report_html(const schedule::ScheduleDocument& document,
   html += R"(<div id="verdict"></div>
 <section id="summary"><h2>Summary</h2></section>
 <section id="gantt"><h2>The build over time</h2></section>
+<section id="days"><h2>Work by day</h2></section>
 <section id="intervals"><h2>Intervals between layers</h2></section>
 <section id="heatmap"><h2>Local intervals of one layer, on its plan</h2></section>
 <section id="strength"><h2>Strength</h2></section>

@@ -1,4 +1,5 @@
 #include "ccbuild/schedule/schedule.hpp"
+#include "ccbuild/schedule/margins.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -934,6 +935,8 @@ Schedule Scheduler::run() {
   }
   schedule_.deliveries = deliveries_of(schedule_.layers, material_.delivery_batch_m3);
   schedule_.totals = totals_of(schedule_.layers, schedule_.events);
+  for (std::string& w : margin_warnings(schedule_, machine_, material_))
+    schedule_.warnings.push_back(std::move(w));
   if (calendar_)
     schedule_.days =
         work_days(schedule_.layers, schedule_.events, schedule_.deliveries, *calendar_);
