@@ -97,6 +97,56 @@ std::string Range::violation(double value, const std::string& got, const std::st
   return contains(value) ? "" : "must be " + describe(unit, per_unit) + ", got " + got;
 }
 
+TimeUnit time_unit_for(double s) {
+  s = std::abs(s);
+  if (s >= 2 * 86400.0) return TimeUnit::kDay;
+  if (s >= 2 * 3600.0) return TimeUnit::kHour;
+  if (s >= 120.0) return TimeUnit::kMinute;
+  return TimeUnit::kSecond;
+}
+
+const char* time_unit_symbol(TimeUnit unit) {
+  switch (unit) {
+    case TimeUnit::kDay:
+      return "d";
+    case TimeUnit::kHour:
+      return "h";
+    case TimeUnit::kMinute:
+      return "min";
+    case TimeUnit::kSecond:
+      break;
+  }
+  return "s";
+}
+
+std::string duration_in(double s, TimeUnit unit) {
+  switch (unit) {
+    case TimeUnit::kDay:
+      return printf_string("%.2f d", s / 86400.0);
+    case TimeUnit::kHour:
+      return printf_string("%.2f h", s / 3600.0);
+    case TimeUnit::kMinute:
+      return printf_string("%.1f min", s / 60.0);
+    case TimeUnit::kSecond:
+      break;
+  }
+  return printf_string("%.1f s", s);
+}
+
+std::string duration_text(double s) {
+  return duration_in(s, time_unit_for(s));
+}
+
+std::string day_clock_text(double t_s, bool with_seconds) {
+  const long long total = std::llround(t_s);  // to the second; the minutes drop the seconds
+  const long long day = total >= 0 ? total / 86400 : (total - 86399) / 86400;
+  const long long rest = total - day * 86400;
+  return with_seconds
+             ? printf_string("day %lld %02lld:%02lld:%02lld", day + 1, rest / 3600, rest / 60 % 60,
+                             rest % 60)
+             : printf_string("day %lld %02lld:%02lld", day + 1, rest / 3600, rest / 60 % 60);
+}
+
 std::string metres(double value_m, int decimals) {
   return printf_string("%.*f m", decimals, value_m);
 }

@@ -90,8 +90,9 @@ TEST(Margins, TheApartmentsGantriesAndClimbAreWarned) {
   const std::string gantries =
       "margin: the 2 gantries of plan g5n2 come within 24 mm of each other (1.524 m between "
       "centres, 1.500 m wide), on floor 1 layers 7-16, floor 2 layers 7-16";
-  const std::string climb = "margin: 1 climb passes within 20 mm of a wall; the closest, from "
-                            "stage 3 to 4 (after floor 3 layer 24), passes 0.7 mm from it";
+  const std::string climb =
+      "margin: 1 climb passes within 20 mm of a wall; the closest, from "
+      "stage 3 to 4 (after floor 3 layer 24), passes 0.7 mm from it";
   EXPECT_TRUE(contains(r.out, "warning: " + gantries)) << r.out;
   EXPECT_TRUE(contains(r.out, "warning: " + climb)) << r.out;
   const auto json = nlohmann::json::parse(slurp(dir / "s.json"));

@@ -174,6 +174,33 @@ def main():
         if lintels and drawn == 0:
             problems.append("%d lintels, none drawn on the plans" % lintels)
         counts["lintels on plans"] = drawn
+    # The plan drawings: one per plan the layers use (none for a plan no layer uses), each
+    # as plan-layer --svg draws one: axes with tick labels, a scale bar, wall ids, the
+    # nozzles' paths; zoomable. The heat map rings the piece its caption names, labels the
+    # walls, and separates its pieces by colour.
+    drawings = re.findall(r'<div class="plan-drawing">(.*?)</svg>', dom, re.S)
+    if data:
+        used = len({l["plan"] for l in schedule["layers"]})
+        if len(drawings) != used:
+            problems.append("%d plan drawings for the %d plans the layers use" % (len(drawings), used))
+    for n, d in enumerate(drawings):
+        for what, pattern in (("axes", r'id="axes"'), ("tick labels", r'class="tick-label"'),
+                              ("a scale bar", r'id="scale-bar"'), ("wall ids", r'class="wall-id"'),
+                              ("zoom", r'data-zoomable="yes"')):
+            if not re.search(pattern, d):
+                problems.append("plan drawing %d has no %s" % (n + 1, what))
+    counts["plan drawings"] = len(drawings)
+    heat = re.search(r'<svg[^>]*id="heatmap-svg".*?</svg>', dom, re.S)
+    if heat:
+        h = heat.group(0)
+        if 'id="heatmap-worst"' not in h:
+            problems.append("the heat map does not ring the piece its caption names")
+        if 'class="wall-id"' not in h:
+            problems.append("the heat map labels no wall")
+        colours = set(re.findall(r'class="heat-piece"[^>]*stroke="([^"]+)"', h))
+        if len(re.findall(r'class="heat-piece"', h)) >= 6 and len(colours) < 3:
+            problems.append("the heat map's pieces share %d colour(s): its scale separates nothing" % len(colours))
+        counts["heat-map colours"] = len(colours)
     # The palette: no two legend entries alike, on this chart or anywhere in the report.
     palette = re.search(r'<div id="palette"[^>]*data-colors="([^"]*)"', dom)
     if not palette:

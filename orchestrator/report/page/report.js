@@ -57,6 +57,16 @@
     if (parent) parent.appendChild(e);
     return e;
   }
+  // The building's own length unit (feet for a building drawn in feet) for drawings.
+  var LENGTH_UNIT = S.inputs.units === 'ft' ? 'ft' : 'm', LENGTH_PER = LENGTH_UNIT === 'ft' ? 0.3048 : 1;
+  // [seconds per unit, symbol] for an axis or a column whose largest value is s.
+  function timeUnit(s) {
+    var a = Math.abs(s);
+    if (a >= 2 * 86400) return [86400, 'd'];
+    if (a >= 2 * 3600) return [3600, 'h'];
+    if (a >= 120) return [60, 'min'];
+    return [1, 's'];
+  }
   function duration(s) {
     if (s === null || s === undefined || !isFinite(s)) return '-';
     var a = Math.abs(s);
@@ -94,6 +104,36 @@
   function hover(node, text) {
     node.addEventListener('mousemove', function (e) { showTip(e, typeof text === 'function' ? text() : text); });
     node.addEventListener('mouseleave', hideTip);
+  }
+  // Wheel to zoom around the pointer, drag to pan, double-click for the whole drawing.
+  function zoomable(root) {
+    if (!root) return;
+    var full = root.getAttribute('viewBox').split(' ').map(Number), view = full.slice();
+    function set() { root.setAttribute('viewBox', view.map(function (v) { return v.toFixed(1); }).join(' ')); }
+    function at(e) {
+      var box = root.getBoundingClientRect();
+      return [view[0] + (e.clientX - box.left) / box.width * view[2],
+              view[1] + (e.clientY - box.top) / box.height * view[3]];
+    }
+    root.addEventListener('wheel', function (e) {
+      e.preventDefault();
+      var p = at(e), f = e.deltaY > 0 ? 1.25 : 0.8;
+      var w = Math.min(full[2], Math.max(full[2] / 40, view[2] * f)), k = w / view[2];
+      view = [p[0] - (p[0] - view[0]) * k, p[1] - (p[1] - view[1]) * k, w, view[3] * k];
+      set();
+    }, { passive: false });
+    var drag = null;
+    root.addEventListener('mousedown', function (e) { drag = { x: e.clientX, y: e.clientY, view: view.slice() }; e.preventDefault(); });
+    window.addEventListener('mouseup', function () { drag = null; });
+    window.addEventListener('mousemove', function (e) {
+      if (!drag) return;
+      var box = root.getBoundingClientRect();
+      view[0] = drag.view[0] - (e.clientX - drag.x) / box.width * view[2];
+      view[1] = drag.view[1] - (e.clientY - drag.y) / box.height * view[3];
+      set();
+    });
+    root.addEventListener('dblclick', function () { view = full.slice(); set(); });
+    root.setAttribute('data-zoomable', 'yes');
   }
   function strengthAt(age) {  // linear between points, flat outside
     var c = mat.strength_curve;
@@ -442,9 +482,11 @@
     var x = scale(0, layers.length, left, W - 10), y = scale(0, ymax, H - bottom, 10);
     svg('rect', { x: left, width: W - 10 - left, y: y(mat.max_layer_interval_s),
                   height: y(mat.min_layer_interval_s) - y(mat.max_layer_interval_s), fill: '#e3f2e5' }, root);
-    ticks(0, ymax, 6).forEach(function (v) {
-      svg('line', { x1: left, x2: W - 10, y1: y(v), y2: y(v), stroke: '#e3e6ea' }, root);
-      svg('text', { x: 4, y: y(v) + 4 }, root, duration(v));
+    // One unit on the axis, the one its top is read in.
+    var yUnit = timeUnit(ymax);
+    ticks(0, ymax / yUnit[0], 6).forEach(function (v) {
+      svg('line', { x1: left, x2: W - 10, y1: y(v * yUnit[0]), y2: y(v * yUnit[0]), stroke: '#e3e6ea' }, root);
+      svg('text', { x: 4, y: y(v * yUnit[0]) + 4, 'class': 'tick-label' }, root, String(+v.toFixed(2)) + ' ' + yUnit[1]);
     });
     [[mat.min_layer_interval_s, 'min'], [mat.max_layer_interval_s, 'max']].forEach(function (m) {
       svg('line', { x1: left, x2: W - 10, y1: y(m[0]), y2: y(m[0]), stroke: '#2e7d32', 'stroke-dasharray': '4 3' }, root);
@@ -476,7 +518,8 @@
     layers.forEach(function (l, i) {
       if (l.local_interval_max_s === null) return;
       candidates.push(i);
-      el('option', { value: String(i) }, select, layerName(l) + ' (up to ' + duration(l.local_interval_max_s) + ')');
+      el('option', { value: String(i) }, select, layerName(l) + ' (up to ' + duration(l.local_interval_max_s) + ')' +
+        (l.planned_joint ? ', on a planned joint' : ''));
     });
     var holder = el('div', {}, node);
     var note = el('p', { 'class': 'hint' }, node);
@@ -487,45 +530,104 @@
       plan.pieces.forEach(function (p) { pts.push(p.start_m, p.end_m); });
       var xs = pts.map(function (p) { return p[0]; }), ys = pts.map(function (p) { return p[1]; });
       var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs), y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
-      var W = Math.max(700, node.clientWidth - 40);
-      var k = Math.min((W - 40) / Math.max(x1 - x0, 1e-6), 520 / Math.max(y1 - y0, 1e-6)), H = (y1 - y0) * k + 40;
-      var root = svg('svg', { width: W, height: H, id: 'heatmap-svg' }, holder);
-      var X = function (v) { return 20 + (v - x0) * k; }, Y = function (v) { return H - 20 - (v - y0) * k; };
-      var lo = mat.min_layer_interval_s, hi = mat.max_layer_interval_s;
-      function color(v) {
-        if (v === null) return '#bbb';
-        var u = Math.max(0, Math.min(1, (v - lo) / (hi - lo)));
-        if (v > hi + 1e-6) return '#7b0000';
-        var r = Math.round(u < 0.5 ? 60 + 390 * u : 255), g = Math.round(u < 0.5 ? 180 : 180 - 300 * (u - 0.5));
-        return 'rgb(' + r + ',' + Math.max(0, g) + ',60)';
-      }
-      var worst = null;
-      plan.pieces.forEach(function (p) {
+      var W = Math.max(700, Math.min(1100, node.clientWidth - 40)), left = 60, top = 16;
+      var k = Math.min((W - left - 20) / Math.max(x1 - x0, 1e-6), 520 / Math.max(y1 - y0, 1e-6));
+      var H = (y1 - y0) * k + top + 70;
+      var root = svg('svg', { width: W, height: H, viewBox: '0 0 ' + W + ' ' + H, id: 'heatmap-svg' }, holder);
+      var X = function (v) { return left + (v - x0) * k; }, Y = function (v) { return top + (y1 - v) * k; };
+      // Axes in the building's unit.
+      svg('rect', { x: X(x0), y: Y(y1), width: (x1 - x0) * k, height: (y1 - y0) * k, fill: 'none', stroke: '#ccd1d9' }, root);
+      ticks(x0 / LENGTH_PER, x1 / LENGTH_PER, 6).forEach(function (v) {
+        svg('text', { x: X(v * LENGTH_PER), y: Y(y0) + 14, 'text-anchor': 'middle', 'class': 'tick-label' }, root, String(+v.toFixed(2)));
+      });
+      ticks(y0 / LENGTH_PER, y1 / LENGTH_PER, 5).forEach(function (v) {
+        svg('text', { x: left - 6, y: Y(v * LENGTH_PER) + 4, 'text-anchor': 'end', 'class': 'tick-label' }, root, String(+v.toFixed(2)));
+      });
+      svg('text', { x: X(x1), y: Y(y0) + 28, 'text-anchor': 'end', 'class': 'axis-title' }, root, 'x (' + LENGTH_UNIT + ')');
+      svg('text', { x: 4, y: Y(y1) + 10, 'class': 'axis-title' }, root, 'y (' + LENGTH_UNIT + ')');
+      var hi = mat.max_layer_interval_s;
+      var values = plan.pieces.map(function (p) {
         var ends = [p.start_m, p.end_m].map(function (pt) {
           var up = timesAt(l.plan, p.wall, pt[0], pt[1]), down = timesAt(below.plan, p.wall, pt[0], pt[1]);
           if (!up || !down) return null;
           return l.start_s + up[1] - (below.start_s + down[0]);
         }).filter(function (v) { return v !== null; });
-        var v = ends.length ? Math.max.apply(null, ends) : null;
+        return ends.length ? Math.max.apply(null, ends) : null;
+      });
+      // The scale: this layer's own range, so that its pieces stand apart (a layer whose
+      // intervals all lie near the maximum is not all one colour); over the maximum dark red.
+      // A layer on a planned joint has no maximum; with site weather the maximum bounds the
+      // equivalent age, not these times: then the layer's own range only.
+      var weather = l.equivalent_interval_max_s !== undefined && l.equivalent_interval_max_s !== null;
+      var bound = !l.planned_joint && !weather;
+      var known = values.filter(function (v) { return v !== null; });
+      var lo = known.length ? Math.min.apply(null, known) : 0;
+      var top_v = known.length ? Math.max.apply(null, known) : 1;
+      if (bound) top_v = Math.min(hi, top_v);
+      if (top_v - lo < 1) top_v = lo + 1;
+      function color(v) {
+        if (v === null) return '#bbb';
+        if (bound && v > hi + 1e-6) return '#7b0000';
+        var u = Math.max(0, Math.min(1, (v - lo) / (top_v - lo)));
+        // blue (the shortest of the layer) through yellow to red (its longest)
+        var r = Math.round(u < 0.5 ? 40 + 430 * u : 255), g = Math.round(u < 0.5 ? 120 + 200 * u : 220 - 300 * (u - 0.5)),
+            b = Math.round(u < 0.5 ? 200 - 360 * u : 20);
+        return 'rgb(' + r + ',' + Math.max(0, g) + ',' + Math.max(0, b) + ')';
+      }
+      var worst = null, labelled = {};
+      plan.pieces.forEach(function (p, pi) {
+        var v = values[pi];
         if (v !== null && (worst === null || v > worst.v)) worst = { v: v, p: p };
         var line = svg('line', { 'class': 'heat-piece', x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]),
-                                 y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': p.width_m ? Math.max(1, p.width_m * k - 1) : 5,
-                                 'stroke-linecap': p.width_m ? 'butt' : 'round' }, root);
+                                 y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': p.width_m ? Math.max(2, p.width_m * k - 1) : 6,
+                                 'stroke-linecap': p.width_m ? 'butt' : 'round', 'data-wall': p.wall, 'data-piece': p.piece }, root);
         var guid = guidOf(l.floor, p.wall);
         hover(line, 'wall ' + p.wall + ' piece ' + p.piece + (p.bead ? ' (' + p.bead + ' bead, ' + (p.width_m * 1000).toFixed(0) + ' mm wide)' : '') +
           (guid ? '\nIFC GlobalId ' + guid : '') +
           '\n' + (v === null ? 'no wall under it' :
           'covered ' + duration(v) + ' after the piece under it (maximum ' + duration(hi) + ')'));
       });
-      note.textContent = 'Each piece coloured by its longest local interval, from green (the minimum, ' + duration(lo) +
-        ') to red (the maximum, ' + duration(hi) + '); dark red: over it; grey: over an opening.' +
-        (worst ? ' Closest to a cold joint: wall ' + worst.p.wall + ' piece ' + worst.p.piece + ', ' + duration(worst.v) + '.' : '');
+      // Each wall's id once, beside its first piece.
+      plan.pieces.forEach(function (p) {
+        if (labelled[p.wall]) return;
+        labelled[p.wall] = true;
+        svg('text', { 'class': 'wall-id', x: (X(p.start_m[0]) + X(p.end_m[0])) / 2 + 3, y: (Y(p.start_m[1]) + Y(p.end_m[1])) / 2 - 3,
+                      'font-size': 10, fill: '#333' }, root, String(p.wall));
+      });
+      // The piece the caption names: ringed and labelled where it lies.
+      if (worst) {
+        var mx = (X(worst.p.start_m[0]) + X(worst.p.end_m[0])) / 2, my = (Y(worst.p.start_m[1]) + Y(worst.p.end_m[1])) / 2;
+        svg('circle', { id: 'heatmap-worst', cx: mx, cy: my, r: 12, fill: 'none', stroke: '#000', 'stroke-width': 2 }, root);
+        svg('text', { x: mx + 15, y: my - 12, 'font-weight': 'bold', 'font-size': 11 }, root,
+            'wall ' + worst.p.wall + ' piece ' + worst.p.piece + ': ' + duration(worst.v));
+      }
+      // The colour bar, in one unit.
+      var bar = svg('g', { id: 'heatmap-scale' }, root), bw = 240, by = H - 26, u = timeUnit(top_v);
+      for (var q = 0; q < 24; q++)
+        svg('rect', { x: left + q * bw / 24, y: by, width: bw / 24 + 0.5, height: 10, fill: color(lo + (top_v - lo) * (q + 0.5) / 24) }, bar);
+      svg('text', { x: left, y: by + 22, 'class': 'tick-label' }, bar, (lo / u[0]).toFixed(u[0] === 1 ? 0 : 2) + ' ' + u[1]);
+      svg('text', { x: left + bw, y: by + 22, 'text-anchor': 'end', 'class': 'tick-label' }, bar, (top_v / u[0]).toFixed(u[0] === 1 ? 0 : 2) + ' ' + u[1]);
+      svg('text', { x: left + bw + 10, y: by + 9, 'class': 'tick-label' }, bar,
+          'this layer\'s intervals, shortest to longest' + (bound ? ' (maximum ' + duration(hi) + '; dark red: over it' :
+            l.planned_joint ? ' (on a planned joint: no maximum' :
+            ' (site weather: the maximum ' + duration(hi) + ' bounds the equivalent age, at most ' +
+            duration(l.equivalent_interval_max_s) + ' here') + '; grey: over an opening)');
+      zoomable(root);
+      note.textContent = 'Each piece coloured by its longest local interval on this layer\'s own scale (the bar under the plan).' +
+        (worst ? (bound ? ' Closest to a cold joint: wall ' : ' The longest: wall ') +
+          worst.p.wall + ' piece ' + worst.p.piece + ', ' + duration(worst.v) + (bound ? ' of the ' + duration(hi) + ' allowed' : '') +
+          ', ringed on the plan.' : '') + ' Wheel to zoom, drag to pan, double-click for all of it.';
     }
     select.addEventListener('change', function () { draw(+select.value); });
     if (!candidates.length) { el('p', {}, node, 'No layer stands on another layer of its floor.'); return; }
-    // The layer closest to a cold joint, or the infeasible one.
-    var pick = candidates[0];
-    candidates.forEach(function (i) { if (layers[i].local_interval_max_s > layers[pick].local_interval_max_s) pick = i; });
+    // The layer closest to a cold joint (a planned joint has no maximum), or the infeasible one.
+    var bounded = candidates.filter(function (i) { return !layers[i].planned_joint; });
+    var pool = bounded.length ? bounded : candidates, pick = pool[0];
+    function closeness(l) {  // what the maximum bounds: the equivalent age with site weather
+      return l.equivalent_interval_max_s !== undefined && l.equivalent_interval_max_s !== null ?
+        l.equivalent_interval_max_s : l.local_interval_max_s;
+    }
+    pool.forEach(function (i) { if (closeness(layers[i]) > closeness(layers[pick])) pick = i; });
     if (!S.feasible && S.infeasibility)
       candidates.forEach(function (i) {
         if (layers[i].floor === S.infeasibility.floor && layers[i].layer === S.infeasibility.layer) pick = i;
@@ -644,76 +746,43 @@
     Object.keys(S.plans).forEach(function (key) {
       var plan = S.plans[key];
       var users = layers.filter(function (l) { return l.plan === key; });
+      if (!users.length) return;  // planned, but no layer uses it
       var card = el('div', { 'class': 'plan-card layer-plan' }, box);
       el('h3', {}, card, key + ': ' + plan.nozzles_used + ' nozzle(s), ' + plan.method + ', ' + duration(plan.layer_time_s) +
-        ', ' + users.length + ' layer(s)');
+        ' a layer, ' + users.length + ' layer(s)');
+      // The drawing ccbuild made of it, as plan-layer --svg draws a plan: axes and a scale
+      // bar in the building's unit, wall ids, each nozzle's path with its direction.
+      var holder = el('div', { 'class': 'plan-drawing' }, card);
+      holder.innerHTML = S.plan_drawings[key];
+      zoomable(holder.querySelector('svg'));
       var xs = [], ys = [];
       plan.pieces.forEach(function (p) { xs.push(p.start_m[0], p.end_m[0]); ys.push(p.start_m[1], p.end_m[1]); });
       var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs), y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
-      var W = 420, k = (W - 20) / Math.max(x1 - x0, y1 - y0, 1e-6), H = (y1 - y0) * k + 20;
-      var root = svg('svg', { width: W, height: H }, card);
-      var X = function (v) { return 10 + (v - x0) * k; }, Y = function (v) { return H - 10 - (v - y0) * k; };
-      plan.pieces.forEach(function (p) {
-        svg('line', { x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]), y2: Y(p.end_m[1]), stroke: '#d5d9e0',
-                      'stroke-width': p.width_m ? Math.max(1, p.width_m * k - 0.5) : 4 }, root);
-      });
-      // The lintels set before one of its layers (at or over their heads), as they lie.
-      S.events.forEach(function (e) {
-        if (e.kind !== 'lintel' || !e.lintel.start_m) return;
-        var before = users.some(function (l) { return l.floor === e.floor && l.layer === e.after_layer + 1; });
-        if (!before) return;
-        var a = e.lintel.start_m, b = e.lintel.end_m;
-        hover(svg('line', { x1: X(a[0]), y1: Y(a[1]), x2: X(b[0]), y2: Y(b[1]), stroke: EVENT_COLORS.lintel,
-                            'stroke-width': 6, opacity: 0.8, 'class': 'lintel' }, root),
-          e.lintel.type + ' lintel over opening ' + e.lintel.opening + ' (wall ' + e.lintel.wall + '), head at ' +
-          e.lintel.head_z_m.toFixed(2) + ' m, set ' + clock(e.start_s) + ' before this plan\'s layer ' + (e.after_layer + 1));
-      });
-      // Several nozzles: each one's section along the rails, tinted behind its walls.
-      var railX = machine.rail_axis !== 'y';
-      if (plan.nozzles.length > 1)
-        plan.nozzles.forEach(function (n, ni) {
-          var lo = Infinity, hi = -Infinity;
-          n.waypoints.forEach(function (p) { if (p.extruding) { var r = railX ? p.x_m : p.y_m; lo = Math.min(lo, r); hi = Math.max(hi, r); } });
-          if (lo > hi) return;
-          var band = railX ? { x: X(lo), y: Y(y1), width: X(hi) - X(lo), height: Y(y0) - Y(y1) }
-                           : { x: X(x0), y: Y(hi), width: X(x1) - X(x0), height: Y(lo) - Y(hi) };
-          band.fill = COLORS[ni % COLORS.length]; band.opacity = 0.08; band['class'] = 'nozzle-section';
-          hover(svg('rect', band, root), 'nozzle ' + (ni + 1) + ' works between ' + lo.toFixed(2) + ' and ' + hi.toFixed(2) + ' m along the rails');
-        });
-      plan.nozzles.forEach(function (n, ni) {
-        var w = n.waypoints, color = COLORS[ni % COLORS.length];
-        var dep = '', air = '', lifted = '';
-        for (var j = 0; j + 1 < w.length; j++) {
-          var seg = 'M' + X(w[j].x_m).toFixed(1) + ' ' + Y(w[j].y_m).toFixed(1) + 'L' + X(w[j + 1].x_m).toFixed(1) + ' ' + Y(w[j + 1].y_m).toFixed(1);
-          if (w[j].extruding) dep += seg;
-          else if (w[j].x_m !== w[j + 1].x_m || w[j].y_m !== w[j + 1].y_m) {
-            // Raised over walls already built in this layer: the nozzle is above the top.
-            if (w[j].z_m > plan.z_top_m + 1e-6 || w[j + 1].z_m > plan.z_top_m + 1e-6) lifted += seg; else air += seg;
-          }
-        }
-        svg('path', { d: dep, stroke: color, 'stroke-width': 1.6, fill: 'none' }, root);
-        var a = svg('path', { d: air, stroke: color, 'stroke-width': 0.8, 'stroke-dasharray': '3 2', fill: 'none', opacity: 0.7 }, root);
-        if (lifted) hover(svg('path', { d: lifted, stroke: '#c62828', 'stroke-width': 1.2, 'stroke-dasharray': '3 2', fill: 'none' }, root),
-          'nozzle ' + (ni + 1) + ': lifted over built walls (red dashed)');
-        if (w.length) {
-          var s = svg('circle', { cx: X(w[0].x_m), cy: Y(w[0].y_m), r: 4, fill: '#fff', stroke: color, 'stroke-width': 2 }, root);
-          hover(s, 'nozzle ' + (ni + 1) + ' starts here');
-        }
-        hover(a, 'nozzle ' + (ni + 1) + ': air moves (dashed)');
-      });
+      var W = 1000;
       // x/t (or y/t) of each nozzle over the layer: the gantries' positions on the rails.
       var axis = machine.rail_axis === 'y' ? 'y_m' : 'x_m';
       var TH = 120, tx = scale(0, plan.layer_time_s || 1, 40, W - 6), r0 = axis === 'x_m' ? x0 : y0, r1 = axis === 'x_m' ? x1 : y1;
-      var ty = scale(r0, r1, TH - 16, 6);
+      var ty = scale(r0, r1, TH - 22, 8);
       var chart = svg('svg', { width: W, height: TH, 'class': 'xt-chart' }, card);
-      svg('text', { x: 2, y: 12 }, chart, axis[0] + ' (m)');
-      svg('text', { x: W - 60, y: TH - 3 }, chart, 't: ' + duration(plan.layer_time_s));
+      // The rail position in the building's unit, the layer's time in one unit.
+      ticks(r0 / LENGTH_PER, r1 / LENGTH_PER, 3).forEach(function (v) {
+        svg('line', { x1: 40, x2: W - 6, y1: ty(v * LENGTH_PER), y2: ty(v * LENGTH_PER), stroke: '#eceff3' }, chart);
+        svg('text', { x: 2, y: ty(v * LENGTH_PER) + 4, 'class': 'tick-label' }, chart, String(+v.toFixed(2)));
+      });
+      var tUnit = timeUnit(plan.layer_time_s);
+      ticks(0, plan.layer_time_s / tUnit[0], 6).forEach(function (v) {
+        svg('text', { x: tx(v * tUnit[0]), y: TH - 4, 'text-anchor': 'middle', 'class': 'tick-label' }, chart,
+            String(+v.toFixed(2)));
+      });
+      svg('text', { x: 2, y: 10, 'class': 'axis-title' }, chart, axis[0] + ' (' + LENGTH_UNIT + ')');
+      svg('text', { x: W - 6, y: TH - 14, 'text-anchor': 'end', 'class': 'axis-title' }, chart,
+          'layer time (' + tUnit[1] + ')');
       plan.nozzles.forEach(function (n, ni) {
         var d = n.waypoints.map(function (p, j) { return (j ? 'L' : 'M') + tx(p.t_s).toFixed(1) + ' ' + ty(p[axis]).toFixed(1); }).join('');
         svg('path', { d: d, stroke: COLORS[ni % COLORS.length], fill: 'none', 'stroke-width': 1.2 }, chart);
       });
     });
-    el('p', { 'class': 'hint' }, node, 'Each distinct plan: deposition solid, air moves dashed (red: lifted over walls built), each nozzle\'s start a circle and its section tinted, the lintels set before its first layer over them thick brown; beside it, each gantry\'s position on the rails over the layer\'s time.');
+    el('p', { 'class': 'hint' }, node, 'Each plan the layers use: deposition solid with arrows in its direction, air moves dashed (red: lifted over walls built), each nozzle\'s start a circle, the lintels set before its layers thick pink; under it, each gantry\'s position on the rails over the layer\'s time. Wheel over a drawing to zoom around the pointer, drag to pan, double-click for all of it.');
   });
 
   // ---------------------------------------------------------------- 3-D ---------
@@ -922,5 +991,14 @@
     canvas.setAttribute('data-frame-ms', ((performance.now() - began) / 6).toFixed(1));
   });
 
+  // A link to a section (report.html#days) lands on it once everything is drawn;
+  // report.html?only=days shows that section alone (for a picture of it).
+  if (location.hash && document.getElementById(location.hash.slice(1)))
+    document.getElementById(location.hash.slice(1)).scrollIntoView();
+  var only = /[?&]only=([\w-]+)/.exec(location.search);
+  if (only && document.getElementById(only[1]))
+    Array.prototype.forEach.call(document.querySelectorAll('main > section, #verdict'), function (s) {
+      if (s.id !== only[1]) s.style.display = 'none';
+    });
   document.body.setAttribute('data-ready', 'yes');
 })();

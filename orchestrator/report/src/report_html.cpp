@@ -2,9 +2,11 @@
 
 #include <fstream>
 #include <iterator>
+#include <map>
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/report/day_packages.hpp"
+#include "plan_drawing.hpp"
 #include "report_assets.hpp"
 #include "svg.hpp"
 
@@ -46,6 +48,35 @@ std::string schedule_report_html(const schedule::ScheduleDocument& document,
                                            {"feasible", w.feasible},
                                            {"makespan_s", w.makespan_s},
                                            {"anchor_waits_s", w.anchor_waits_s}});
+  // Every plan the layers use, drawn as plan-layer --svg draws one, in the building's unit.
+  const floors::LengthUnit unit =
+      floors::parse_length_unit(inputs.units).value_or(floors::LengthUnit::kMeter);
+  const std::vector<std::string> nozzle_colours = {"#0067A5", "#008856", "#F032E6", "#000080",
+                                                   "#9A6324", "#469990", "#BCBD22", "#17BECF"};
+  std::map<std::string, std::vector<const schedule::ScheduledLayer*>> users;
+  for (const auto& l : document.schedule.layers) users[l.plan].push_back(&l);
+  for (const auto& [key, plan] : document.schedule.plans) {
+    if (!users.count(key)) continue;
+    std::vector<detail::PlanLintel> lintels;
+    for (const auto& e : document.schedule.events) {
+      if (!e.lintel) continue;
+      for (const auto* l : users.at(key))
+        if (l->floor == e.floor && l->layer == e.layer + 1) {
+          lintels.push_back({e.lintel->start_m, e.lintel->end_m,
+                             "lintel over opening " + e.lintel->opening + ", set before floor " +
+                                 std::to_string(l->floor) + " layer " + std::to_string(l->layer)});
+          break;
+        }
+    }
+    const auto& first = *users.at(key).front();
+    schedule["plan_drawings"][key] = detail::schedule_plan_svg(
+        plan,
+        key + ": " + std::to_string(plan.nozzles) + " nozzle" + (plan.nozzles == 1 ? "" : "s") +
+            ", " + plan.method + ", " + std::to_string(users.at(key).size()) +
+            " layer(s) from floor " + std::to_string(first.floor) + " layer " +
+            std::to_string(first.layer),
+        unit, nozzle_colours, lintels);
+  }
   // The work packages by day, for the day view: dated on a site calendar, else "day N".
   for (const DayPackage& p : work_packages(document, ExportDates{})) {
     const auto entries = [](const std::vector<DayEntry>& list) {

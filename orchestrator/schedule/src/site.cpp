@@ -342,9 +342,14 @@ std::string SiteCalendar::local_date(double t_s) const {
   return date::format("%F", date::make_zoned(zone, sys_at(start_utc_s_, t_s)));
 }
 
-std::string SiteCalendar::local_text(double t_s) const {
+std::string SiteCalendar::local_text(double t_s, bool with_seconds) const {
   const auto* zone = static_cast<const date::time_zone*>(zone_);
-  return date::format("%a %F %H:%M", date::make_zoned(zone, sys_at(start_utc_s_, t_s)));
+  return date::format(with_seconds ? "%a %F %H:%M:%S" : "%a %F %H:%M",
+                      date::make_zoned(zone, sys_at(start_utc_s_, t_s)));
+}
+
+std::string time_text(const SiteCalendar* calendar, double t_s, bool with_seconds) {
+  return calendar ? calendar->local_text(t_s, with_seconds) : day_clock_text(t_s, with_seconds);
 }
 
 std::int32_t SiteCalendar::local_day(double t_s) const {

@@ -95,12 +95,6 @@ std::string machine_profile(const schedule::ScheduleDocument& schedule, const Dr
                        "' is not among the schedule's files here; name it with --machine");
 }
 
-std::string duration(double s) {
-  if (s >= 2 * 86400.0) return printf_string("%.2f d", s / 86400.0);
-  if (s >= 2 * 3600.0) return printf_string("%.2f h", s / 3600.0);
-  return printf_string("%.1f s", s);
-}
-
 /// The site clock's resolution: the rail guard's finest step, schedule s.
 constexpr double kSiteStatusPeriod_s = 0.02;
 
@@ -415,7 +409,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
               : "",
           done, dispatcher.jobs().size(),
           100.0 * done / std::max<std::size_t>(1, dispatcher.jobs().size()),
-          duration(eta_s).c_str());
+          duration_text(eta_s).c_str());
       // A machine heard but not answering the clock runs on a clock of its own (a real
       // machine, or ccbuild-sim --own-clock): say so rather than wait in silence.
       if (site && site->clock().waited_s() > 2.0)
@@ -447,31 +441,37 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
 
   // Planned against executed, layer by layer.
   const dispatch::RunReport report = dispatch::report_of(dispatcher);
+  const schedule::SiteCalendar* calendar = schedule.inputs.calendar.get();
   std::cout << printf_string(
       "%s: %zu of %zu jobs executed on %zu machine(s) in %.1f s (%.0fx), finished at %s of "
       "schedule time\n",
       o.file.c_str(), dispatcher.executed().size(), dispatcher.jobs().size(), ids.size(), real_s,
-      o.speed, duration(report.finished_s).c_str());
-  const auto at = [](double t_s) { return std::isfinite(t_s) ? duration(t_s) : std::string("-"); };
+      o.speed, schedule::time_text(calendar, report.finished_s, true).c_str());
+  // Every time to the second, as a date on a site calendar, else as "day 3 07:05:09".
+  const auto at = [calendar](double t_s) {
+    return std::isfinite(t_s) ? schedule::time_text(calendar, t_s, true) : std::string("-");
+  };
+  const int width = calendar ? 23 : 15;
   if (o.by_layer) {
-    std::cout
-        << "layer            planned start  started        deviation   planned end    ended\n";
+    std::cout << printf_string("layer               %-*s  %-*s  deviation   %-*s  ended\n", width,
+                               "planned start", width, "started", width, "planned end");
     for (const auto& l : report.layers)
-      std::cout << printf_string("floor %2d layer %3d  %-13s  %-13s  %-10s  %-13s  %s\n", l.floor,
-                                 l.layer, duration(l.planned_start_s).c_str(),
-                                 l.ran() ? duration(l.started_s).c_str() : "not run",
+      std::cout << printf_string("floor %2d layer %3d  %-*s  %-*s  %-10s  %-*s  %s\n", l.floor,
+                                 l.layer, width, at(l.planned_start_s).c_str(), width,
+                                 l.ran() ? at(l.started_s).c_str() : "not run",
                                  l.ran() ? printf_string("%+.1f s", l.deviation_s()).c_str() : "-",
-                                 duration(l.planned_end_s).c_str(), at(l.ended_s).c_str());
+                                 width, at(l.planned_end_s).c_str(), at(l.ended_s).c_str());
   } else {
     std::cout << "by floor (--by-layer for every layer): planned start and end, when its first "
                  "layer started and its last ended, its layers started over 1 s late or early, "
                  "its worst start deviation\n";
-    std::cout << "floor  layers  planned start  started        planned end    ended          "
-                 "off   not run  worst\n";
+    std::cout << printf_string("floor  layers  %-*s  %-*s  %-*s  %-*s  off   not run  worst\n",
+                               width, "planned start", width, "started", width, "planned end",
+                               width, "ended");
     for (const auto& f : report.floors)
-      std::cout << printf_string("%5d  %6d  %-13s  %-13s  %-13s  %-13s  %4d  %7d  %+.1f s\n",
-                                 f.floor, f.layers, at(f.planned_start_s).c_str(),
-                                 at(f.started_s).c_str(), at(f.planned_end_s).c_str(),
+      std::cout << printf_string("%5d  %6d  %-*s  %-*s  %-*s  %-*s  %4d  %7d  %+.1f s\n", f.floor,
+                                 f.layers, width, at(f.planned_start_s).c_str(), width,
+                                 at(f.started_s).c_str(), width, at(f.planned_end_s).c_str(), width,
                                  at(f.ended_s).c_str(), f.off_plan, f.not_run, f.worst_s);
   }
   // The crew's and the climber's jobs: planned, and how many ran.
@@ -484,10 +484,10 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   }
   std::cout << printf_string(
       "deviations: %d of %zu layers started more than 1 s off their planned start (worst "
-      "%s), %d not run; %.1f s behind schedule at the end; jobs sent again: %ld; malformed "
+      "%+.1f s), %d not run; %.1f s behind schedule at the end; jobs sent again: %ld; malformed "
       "messages rejected here: %ld\n",
-      report.off_plan, report.layers.size(), duration(report.worst_s).c_str(), report.not_run,
-      dispatcher.delay_s(), dispatcher.resent(), malformed);
+      report.off_plan, report.layers.size(), report.worst_s, report.not_run, dispatcher.delay_s(),
+      dispatcher.resent(), malformed);
   std::cout << printf_string("faults: %ld\n", dispatcher.faults());
   for (const auto& f : dispatcher.fault_records())
     std::cout << printf_string(
@@ -561,7 +561,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (dispatcher.stopped())
     std::cout << "STOPPED safely: " << *dispatcher.stopped() << "\n";
   else if (!complete)
-    std::cout << "NOT complete: timed out after " << duration(o.timeout_s) << "\n";
+    std::cout << "NOT complete: timed out after " << duration_text(o.timeout_s) << "\n";
   if (!schedule.schedule.feasible)
     std::cout << "the schedule itself is NOT feasible: " << schedule.schedule.infeasibility->message
               << "\n";

@@ -38,11 +38,12 @@ struct ScheduleCommandOptions {
 // 1970-01-01, day 0, was a Thursday.
 constexpr const char* kWeekdays[7] = {"Mon", "Tue", "Wed", "Thu", "Fri", "Sat", "Sun"};
 
-std::string duration(double s) {
-  if (s >= 2 * 86400.0) return printf_string("%.2f d", s / 86400.0);
-  if (s >= 2 * 3600.0) return printf_string("%.2f h", s / 3600.0);
-  if (s >= 120.0) return printf_string("%.1f min", s / 60.0);
-  return printf_string("%.1f s", s);
+/// The unit of a column: the one its largest value is read in.
+template <typename T, typename Seconds>
+TimeUnit column_unit(const T& rows, Seconds seconds_of) {
+  double largest_s = 0.0;
+  for (const auto& r : rows) largest_s = std::max(largest_s, std::abs(seconds_of(r)));
+  return time_unit_for(largest_s);
 }
 
 void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
@@ -108,9 +109,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   if (!s.feasible) std::cout << "not feasible: " << s.infeasibility->message << "\n";
   // Times of day on a site calendar, else time from the start.
   const schedule::SiteCalendar* calendar = project.calendar.get();
-  const auto when = [calendar](double t_s) {
-    return calendar ? calendar->local_text(t_s) : duration(t_s);
-  };
+  const auto when = [calendar](double t_s) { return schedule::time_text(calendar, t_s); };
   if (calendar) {
     const schedule::SiteProgramme& p = calendar->programme();
     std::cout << printf_string(
@@ -142,32 +141,44 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       for (const auto& r : l.wait_reasons) f.reasons[schedule::to_string(r.kind)] += 1;
     }
   }
-  const int width = calendar ? 20 : 10;
-  std::cout << printf_string("floor  layers  nozzles  %-*s  %-*s  waits\n", width, "start", width,
-                             "end");
+  const int width = calendar ? 20 : 11;
+  const TimeUnit waited_unit =
+      column_unit(floors, [](const auto& entry) { return entry.second.wait_s; });
+  std::cout << printf_string("floor  layers  nozzles  %-*s  %-*s  waits  %10s  why\n", width,
+                             "start", width, "end", "waited");
   for (const auto& [floor, f] : floors) {
     std::string why;
     for (const auto& [kind, n] : f.reasons)
-      why += (why.empty() ? " (" : ", ") + printf_string("%s x%.0f", kind.c_str(), n);
-    if (!why.empty()) why += ")";
-    std::cout << printf_string("%5d  %6d  %7d  %-*s  %-*s  %d, %s%s\n", floor, f.layers,
+      why += (why.empty() ? "" : ", ") + printf_string("%s x%.0f", kind.c_str(), n);
+    std::cout << printf_string("%5d  %6d  %7d  %-*s  %-*s  %5d  %10s  %s\n", floor, f.layers,
                                f.max_nozzles, width, when(f.start_s).c_str(), width,
-                               when(f.end_s).c_str(), f.waits, duration(f.wait_s).c_str(),
-                               why.c_str());
+                               when(f.end_s).c_str(), f.waits,
+                               duration_in(f.wait_s, waited_unit).c_str(), why.c_str());
   }
+  std::cout << "  (nozzles: the most a layer of the floor uses; waits: how many of its layers "
+               "waited before they started, waited: those waits summed, why: the reasons and "
+               "how many layers waited for each, a layer may wait for several)\n";
   if (!s.days.empty()) {
     std::cout << printf_string("%zu working days with printing:\n", s.days.size());
+    const TimeUnit printing_unit =
+        column_unit(s.days, [](const schedule::WorkDay& d) { return d.printing_s; });
     for (const auto& d : s.days)
       std::cout << printf_string(
           "  %s %s  %3d layer%s, %s printing, %.2f m³, %d deliver%s, "
           "%.1f crew person-hours: %s\n",
           kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7], d.date.c_str(), d.layers,
-          d.layers == 1 ? " " : "s", duration(d.printing_s).c_str(), d.concrete_m3, d.deliveries,
-          d.deliveries == 1 ? "y" : "ies", d.crew_h, d.detail.c_str());
+          d.layers == 1 ? " " : "s", duration_in(d.printing_s, printing_unit).c_str(),
+          d.concrete_m3, d.deliveries, d.deliveries == 1 ? "y" : "ies", d.crew_h, d.detail.c_str());
   }
-  for (const auto& e : s.events) {
-    if (e.kind != schedule::Event::Kind::kClimb) continue;
-    const auto& c = *e.climb;
+  std::vector<const schedule::Event*> climbs;
+  for (const auto& e : s.events)
+    if (e.kind == schedule::Event::Kind::kClimb) climbs.push_back(&e);
+  const TimeUnit climb_wait_unit =
+      column_unit(climbs, [](const schedule::Event* e) { return e->climb->wait_before_s; });
+  const TimeUnit climb_motion_unit =
+      column_unit(climbs, [](const schedule::Event* e) { return e->climb->plan.duration_s; });
+  for (const schedule::Event* e : climbs) {
+    const auto& c = *e->climb;
     std::string why;
     for (const auto& r : c.wait_reasons)
       if (why.find(schedule::to_string(r.kind)) == std::string::npos)
@@ -175,9 +186,10 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     std::cout << printf_string(
         "climb %d -> %d after floor %d layer %d: starts at %s after a wait of %s%s, %s of "
         "motion\n",
-        c.from_stage, c.to_stage, e.floor, e.layer, when(e.start_s).c_str(),
-        duration(c.wait_before_s).c_str(), why.empty() ? "" : (" (" + why + ")").c_str(),
-        duration(c.plan.duration_s).c_str());
+        c.from_stage, c.to_stage, e->floor, e->layer, when(e->start_s).c_str(),
+        duration_in(c.wait_before_s, climb_wait_unit).c_str(),
+        why.empty() ? "" : (" (" + why + ")").c_str(),
+        duration_in(c.plan.duration_s, climb_motion_unit).c_str());
   }
   // The climb critical path: what each climb waited for, and the changes that shorten it.
   const auto waits = schedule::anchor_waits(project, s);
@@ -187,19 +199,21 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     std::cout << printf_string(
         "anchors: each climb waits for its latest pipe to reach %.1f MPa (%s after casting)\n",
         waits.front().required_mpa,
-        duration(waits.front().strong_s - waits.front().cast_s).c_str());
+        duration_text(waits.front().strong_s - waits.front().cast_s).c_str());
+    const TimeUnit waited_unit =
+        column_unit(waits, [](const schedule::AnchorWait& w) { return w.wait_s; });
     for (const auto& w : waits)
       std::cout << printf_string(
           "  climb %d -> %d: pipe %s cast at %s (floor %d layer %d), strong at %s; the build "
           "was ready at %s and waited %s\n",
-          w.from_stage, w.to_stage, w.anchor.c_str(), duration(w.cast_s).c_str(), w.cast_floor,
-          w.cast_layer, duration(w.strong_s).c_str(), duration(w.ready_s).c_str(),
-          duration(w.wait_s).c_str());
+          w.from_stage, w.to_stage, w.anchor.c_str(), when(w.cast_s).c_str(), w.cast_floor,
+          w.cast_layer, when(w.strong_s).c_str(), when(w.ready_s).c_str(),
+          duration_in(w.wait_s, waited_unit).c_str());
   }
   if (anchor_wait_s > 0.0 && s.totals.makespan_s > 0.0) {
     std::cout << printf_string(
-        "anchor waits: %s of the %s (%.0f%%)", duration(anchor_wait_s).c_str(),
-        duration(s.totals.makespan_s).c_str(), 100.0 * anchor_wait_s / s.totals.makespan_s);
+        "anchor waits: %s of the %s (%.0f%%)", duration_text(anchor_wait_s).c_str(),
+        duration_text(s.totals.makespan_s).c_str(), 100.0 * anchor_wait_s / s.totals.makespan_s);
     if (o.what_if.empty())
       std::cout << "; `--what-if anchors` computes the changes that would shorten them";
     std::cout << "\n";
@@ -209,24 +223,33 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       std::cout << "what-if anchors: no climb waits for its anchors; nothing to shorten\n";
     else
       std::cout << "what-if anchors (each change scheduled in full):\n";
+    const TimeUnit makespan_unit =
+        column_unit(changes, [](const schedule::AnchorWhatIf& w) { return w.makespan_s; });
+    const TimeUnit change_unit = column_unit(changes, [&](const schedule::AnchorWhatIf& w) {
+      return s.totals.makespan_s - w.makespan_s;
+    });
+    const TimeUnit waits_unit =
+        column_unit(changes, [](const schedule::AnchorWhatIf& w) { return w.anchor_waits_s; });
     for (const auto& w : changes)
-      std::cout << printf_string("  %s: %s (%.0f s)%s, %s%s, anchor waits %s\n", w.change.c_str(),
-                                 duration(w.makespan_s).c_str(), w.makespan_s,
-                                 w.feasible ? "" : " NOT feasible",
-                                 w.makespan_s <= s.totals.makespan_s ? "-" : "+",
-                                 duration(std::abs(s.totals.makespan_s - w.makespan_s)).c_str(),
-                                 duration(w.anchor_waits_s).c_str());
+      std::cout << printf_string(
+          "  %s: %s (%.0f s)%s, %s%s, anchor waits %s\n", w.change.c_str(),
+          duration_in(w.makespan_s, makespan_unit).c_str(), w.makespan_s,
+          w.feasible ? "" : " NOT feasible", w.makespan_s <= s.totals.makespan_s ? "-" : "+",
+          duration_in(std::abs(s.totals.makespan_s - w.makespan_s), change_unit).c_str(),
+          duration_in(w.anchor_waits_s, waits_unit).c_str());
   }
   const auto& t = s.totals;
   std::cout << printf_string(
-      "total: %s from the first layer to the last%s (machine busy %s): deposition %s, airtime "
-      "%s, waits %s, climbs %s, slabs %s, pipes %s, purges %s, lintels %s, joints %s\n",
-      duration(t.makespan_s).c_str(),
+      "total: %s from the first layer to the last%s (machine busy %s: layers, moves, pipes, "
+      "purges, climbs); summed over the nozzles: deposition %s, airtime %s; waits %s, climbs "
+      "%s, slabs %s, pipes %s, purges %s, lintels %s, joints %s\n",
+      duration_text(t.makespan_s).c_str(),
       calendar ? (", finished " + calendar->local_text(t.makespan_s)).c_str() : "",
-      duration(t.machine_s).c_str(), duration(t.deposition_s).c_str(),
-      duration(t.airtime_s).c_str(), duration(t.waits_s).c_str(), duration(t.climbs_s).c_str(),
-      duration(t.slabs_s).c_str(), duration(t.pipes_s).c_str(), duration(t.purges_s).c_str(),
-      duration(t.lintels_s).c_str(), duration(t.joints_s).c_str());
+      duration_text(t.machine_s).c_str(), duration_text(t.deposition_s).c_str(),
+      duration_text(t.airtime_s).c_str(), duration_text(t.waits_s).c_str(),
+      duration_text(t.climbs_s).c_str(), duration_text(t.slabs_s).c_str(),
+      duration_text(t.pipes_s).c_str(), duration_text(t.purges_s).c_str(),
+      duration_text(t.lintels_s).c_str(), duration_text(t.joints_s).c_str());
   {
     // Crew tasks: how many of each kind, and the person-hours they take.
     std::map<std::string, std::pair<int, double>> by_kind;  // count, person-hours
@@ -288,7 +311,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     };
     const auto line = [&](const schedule::Schedule& x, schedule::Objective which) {
       return printf_string("%s %s%s (up to %d nozzle%s)", to_string(which).c_str(),
-                           duration(x.totals.makespan_s).c_str(),
+                           duration_text(x.totals.makespan_s).c_str(),
                            x.feasible ? "" : ", NOT feasible", most_nozzles(x),
                            most_nozzles(x) == 1 ? "" : "s");
     };

@@ -42,6 +42,23 @@ struct Range {
                         double per_unit = 1.0) const;
 };
 
+/// The units a time is read in.
+enum class TimeUnit { kSecond, kMinute, kHour, kDay };
+/// The unit people read `s` seconds in (or a column whose largest value is `s`): seconds
+/// under 2 min, minutes under 2 h, hours under 2 days, else days.
+TimeUnit time_unit_for(double s);
+/// "s", "min", "h", "d".
+const char* time_unit_symbol(TimeUnit unit);
+/// `s` in `unit` with its symbol, at the precision the unit deserves: "12.5 s", "3.3 min",
+/// "19.32 h", "2.05 d". Every figure of a column goes through one unit.
+std::string duration_in(double s, TimeUnit unit);
+/// The one duration formatter of ccbuild's text: duration_in(s, time_unit_for(|s|)).
+std::string duration_text(double s);
+/// "day 3 07:05" ("day 3 07:05:09" with seconds): `t_s` seconds after day 1 00:00, as
+/// times are told without a site calendar. Rounded to the second; without seconds, the
+/// minute it falls in (as a clock shows it).
+std::string day_clock_text(double t_s, bool with_seconds = false);
+
 /// "4.500 m" (3 decimals by default).
 std::string metres(double value_m, int decimals = 3);
 /// "12.5 s" (1 decimal by default).

@@ -92,8 +92,8 @@ class SiteCalendar {
   std::string timestamp(double t_s) const;
   /// "2027-03-01": the local date at `t_s`.
   std::string local_date(double t_s) const;
-  /// "Mon 2027-03-01 07:00": for people.
-  std::string local_text(double t_s) const;
+  /// "Mon 2027-03-01 07:00" ("Mon 2027-03-01 07:00:09" with seconds): for people.
+  std::string local_text(double t_s, bool with_seconds = false) const;
   /// Days since 1970-01-01 of the local date at `t_s`.
   std::int32_t local_day(double t_s) const;
   /// Schedule seconds of a UTC time (seconds since the epoch).
@@ -120,6 +120,11 @@ class SiteCalendar {
   std::vector<WorkingWindow> windows_;
   double longest_window_s_ = 0.0;
 };
+
+/// A schedule time for people: the calendar's local date and time when there is one
+/// ("Mon 2027-03-01 07:00"), else the day and time from day 1 00:00 ("day 3 07:00");
+/// seconds too when asked.
+std::string time_text(const SiteCalendar* calendar, double t_s, bool with_seconds = false);
 
 /// "07:00-17:00".
 std::string to_string(const WorkingHours& hours);
