@@ -197,9 +197,16 @@ def main():
             problems.append("the heat map does not ring the piece its caption names")
         if 'class="wall-id"' not in h:
             problems.append("the heat map labels no wall")
-        colours = set(re.findall(r'class="heat-piece"[^>]*stroke="([^"]+)"', h))
-        if len(re.findall(r'class="heat-piece"', h)) >= 6 and len(colours) < 3:
-            problems.append("the heat map's pieces share %d colour(s): its scale separates nothing" % len(colours))
+        # Its own scale: the shortest and the longest interval of the layer in two colours
+        # (a layer whose pieces are all covered alike is one colour, rightly; pieces over
+        # the maximum are all one dark red).
+        pieces = [(float(v), c) for c, v in re.findall(
+            r'class="heat-piece"[^>]*stroke="([^"]+)"[^>]*data-interval-s="([0-9.]+)"'
+            r' data-over="no"', h)]
+        colours = {c for _, c in pieces}
+        if pieces and max(pieces)[0] - min(pieces)[0] > 1.0 and max(pieces)[1] == min(pieces)[1]:
+            problems.append("the heat map paints its shortest (%.1f s) and longest (%.1f s) "
+                            "intervals alike" % (min(pieces)[0], max(pieces)[0]))
         counts["heat-map colours"] = len(colours)
     # The palette: no two legend entries alike, on this chart or anywhere in the report.
     palette = re.search(r'<div id="palette"[^>]*data-colors="([^"]*)"', dom)

@@ -580,7 +580,9 @@
         if (v !== null && (worst === null || v > worst.v)) worst = { v: v, p: p };
         var line = svg('line', { 'class': 'heat-piece', x1: X(p.start_m[0]), y1: Y(p.start_m[1]), x2: X(p.end_m[0]),
                                  y2: Y(p.end_m[1]), stroke: color(v), 'stroke-width': p.width_m ? Math.max(2, p.width_m * k - 1) : 6,
-                                 'stroke-linecap': p.width_m ? 'butt' : 'round', 'data-wall': p.wall, 'data-piece': p.piece }, root);
+                                 'stroke-linecap': p.width_m ? 'butt' : 'round', 'data-wall': p.wall, 'data-piece': p.piece,
+                                 'data-interval-s': v === null ? '' : v.toFixed(1),
+                                 'data-over': bound && v !== null && v > hi + 1e-6 ? 'yes' : 'no' }, root);
         var guid = guidOf(l.floor, p.wall);
         hover(line, 'wall ' + p.wall + ' piece ' + p.piece + (p.bead ? ' (' + p.bead + ' bead, ' + (p.width_m * 1000).toFixed(0) + ' mm wide)' : '') +
           (guid ? '\nIFC GlobalId ' + guid : '') +

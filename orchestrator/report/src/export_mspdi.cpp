@@ -10,6 +10,7 @@
 #include "ccbuild/report/exports.hpp"
 #include "ccbuild/report/site_tasks.hpp"
 #include "ccbuild/schedule/site.hpp"
+#include "svg.hpp"
 
 namespace ccbuild::report {
 
@@ -17,29 +18,6 @@ namespace {
 
 constexpr int kSiteCalendarUid = 1;
 constexpr int kAroundTheClockUid = 2;
-
-std::string xml_text(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 /// "PT52H3M4S": whole seconds, the form every MSPDI reader takes.
 std::string duration_text(long long s) {
@@ -169,7 +147,7 @@ std::string tasks_mspdi(const schedule::ScheduleDocument& schedule, const Export
       "<?xml version=\"1.0\" encoding=\"UTF-8\" standalone=\"yes\"?>\n"
       "<Project xmlns=\"http://schemas.microsoft.com/project\">\n"
       "  <SaveVersion>14</SaveVersion>\n";
-  out += "  <Title>" + xml_text(schedule.inputs.name) + "</Title>\n";
+  out += "  <Title>" + svg::escape(schedule.inputs.name) + "</Title>\n";
   out += "  <ScheduleFromStart>1</ScheduleFromStart>\n";
   out += "  <StartDate>" + date_at(0.0) + "</StartDate>\n";
   double last_s = 0.0;
@@ -183,7 +161,7 @@ std::string tasks_mspdi(const schedule::ScheduleDocument& schedule, const Export
     out += printf_string(
         "    <Calendar>\n      <UID>%d</UID>\n      <Name>Site: %s</Name>\n"
         "      <IsBaseCalendar>1</IsBaseCalendar>\n      <WeekDays>\n",
-        kSiteCalendarUid, xml_text(calendar->week_text()).c_str());
+        kSiteCalendarUid, svg::escape(calendar->week_text()).c_str());
     for (int day_type = 1; day_type <= 7; ++day_type) {
       // MSPDI counts from Sunday (1); the programme from Monday.
       const auto& spans = p.week[(day_type + 5) % 7];
@@ -234,8 +212,8 @@ std::string tasks_mspdi(const schedule::ScheduleDocument& schedule, const Export
     out += "    <Task>\n";
     out += printf_string("      <UID>%d</UID>\n      <ID>%d</ID>\n", r.uid, r.uid);
     out += "      <Name>" +
-           xml_text(r.summary && t.kind == "floor" ? printf_string("Floor %d", t.floor)
-                                                   : title_of(t)) +
+           svg::escape(r.summary && t.kind == "floor" ? printf_string("Floor %d", t.floor)
+                                                      : title_of(t)) +
            "</Name>\n";
     out += "      <Type>1</Type>\n      <IsNull>0</IsNull>\n";
     out += "      <WBS>" + r.outline + "</WBS>\n      <OutlineNumber>" + r.outline +
@@ -255,8 +233,8 @@ std::string tasks_mspdi(const schedule::ScheduleDocument& schedule, const Export
     out += printf_string("      <CalendarUID>%d</CalendarUID>\n",
                          on_site_hours ? kSiteCalendarUid : kAroundTheClockUid);
     out += "      <Notes>" +
-           xml_text("ccbuild task " + t.id + " (" + t.kind + "), by " +
-                    (t.who.empty() ? std::string("-") : t.who) + ": " + t.detail) +
+           svg::escape("ccbuild task " + t.id + " (" + t.kind + "), by " +
+                       (t.who.empty() ? std::string("-") : t.who) + ": " + t.detail) +
            "</Notes>\n";
     for (const int p : r.predecessors) {
       out += printf_string(

@@ -81,21 +81,22 @@ double Scheduler::strength_ready_s(int i, int first_checked, double earliest_s, 
       impossible = true;
       reason.kind = WaitKind::kStrength;
       reason.detail = printf_string(
-          "%s would carry %.3f m of wall: %.4f MPa with the safety factor %.2f, more than the "
+          "%s would carry %s of wall: %.4f MPa with the safety factor %.2f, more than the "
           "material ever reaches (%.4f MPa)",
           where_text(slices_[j].floor, slices_[j].layer.index).c_str(),
-          top_m - slices_[j].layer.z_bottom_m, required_mpa, material_.safety_factor,
-          material_.strength_curve.back().strength_mpa);
+          project_.length(top_m - slices_[j].layer.z_bottom_m).c_str(), required_mpa,
+          material_.safety_factor, material_.strength_curve.back().strength_mpa);
       return kInf;
     }
     if (aged_s(layer_end_s_[j], age_s) > ready_s) {
       ready_s = aged_s(layer_end_s_[j], age_s);
       reason.kind = WaitKind::kStrength;
       reason.detail = printf_string(
-          "%s carries %.3f m of wall above its bottom: %.4f MPa with the safety factor %.2f; "
+          "%s carries %s of wall above its bottom: %.4f MPa with the safety factor %.2f; "
           "its concrete reaches that %.1f s after it was deposited",
           where_text(slices_[j].floor, slices_[j].layer.index).c_str(),
-          top_m - slices_[j].layer.z_bottom_m, required_mpa, material_.safety_factor, age_s);
+          project_.length(top_m - slices_[j].layer.z_bottom_m).c_str(), required_mpa,
+          material_.safety_factor, age_s);
     }
   }
   return ready_s;
@@ -176,15 +177,16 @@ void Scheduler::prepare() {
         if (i == 0) {
           // Under the building's first layer: no layer is ever cut by it.
           schedule_.warnings.push_back(
-              printf_string("floor %d: opening %s has its head at %.3f m, under the first layer's "
+              printf_string("floor %d: opening %s has its head at %s, under the first layer's "
                             "mid-height: no layer leaves it open, and it gets no lintel",
-                            f.index, o.id.c_str(), o.head_m));
+                            f.index, o.id.c_str(), project_.length(o.head_m).c_str()));
           break;
         }
         LintelTask task;
-        task.opening = !o.id.empty() ? o.id
-                                     : printf_string("wall %lld at %.3f m",
-                                                     static_cast<long long>(o.wall_id), o.offset_m);
+        task.opening = !o.id.empty()
+                           ? o.id
+                           : printf_string("wall %lld at %s", static_cast<long long>(o.wall_id),
+                                           project_.length(o.offset_m).c_str());
         task.wall = o.wall_id;
         task.offset_m = o.offset_m;
         task.width_m = o.width_m;
@@ -343,10 +345,10 @@ bool Scheduler::schedule_layer(int i) {
     inf.floor = slice.floor;
     inf.layer = slice.layer.index;
     inf.message = printf_string(
-        "%s: floor %d layer %d would carry %.3f m of wall, more than the material ever "
+        "%s: floor %d layer %d would carry %s of wall, more than the material ever "
         "carries with the safety factor %.2f",
         where_text(slice.floor, slice.layer.index).c_str(), below->floor, below->layer,
-        slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor);
+        project_.length(slice.layer.z_top_m - below->z_bottom_m).c_str(), material_.safety_factor);
     inf.fix = "a stronger material, or thinner layers";
     fail(inf);
   }
@@ -408,12 +410,12 @@ bool Scheduler::schedule_layer(int i) {
                               material_.min_layer_interval_s));
         if (std::isfinite(below_age_s))
           require(below->start_s + below_age_s - c.offsets.min_offset_s, WaitKind::kStrength,
-                  printf_string("%s (floor %d layer %d) would carry %.3f m of wall %.1f s "
+                  printf_string("%s (floor %d layer %d) would carry %s of wall %.1f s "
                                 "after it was deposited; with the safety factor %.2f its "
                                 "concrete needs %.1f s",
                                 piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
-                                slice.layer.z_top_m - below->z_bottom_m, earliest_local_s,
-                                material_.safety_factor, below_age_s));
+                                project_.length(slice.layer.z_top_m - below->z_bottom_m).c_str(),
+                                earliest_local_s, material_.safety_factor, below_age_s));
       } else if (c.offsets.ends > 0) {
         // In equivalent age, piece end by piece end: each may be covered once the concrete
         // deposited there last is old enough.
@@ -434,11 +436,11 @@ bool Scheduler::schedule_layer(int i) {
                               piece_text(min_at).c_str(), material_.min_layer_interval_s));
         if (std::isfinite(below_age_s))
           require(strength_need_s, WaitKind::kStrength,
-                  printf_string("%s (floor %d layer %d) would carry %.3f m of wall; with the "
+                  printf_string("%s (floor %d layer %d) would carry %s of wall; with the "
                                 "safety factor %.2f its concrete needs %.1f s of equivalent age",
                                 piece_text(strength_at).c_str(), below->floor, below->layer,
-                                slice.layer.z_top_m - below->z_bottom_m, material_.safety_factor,
-                                below_age_s));
+                                project_.length(slice.layer.z_top_m - below->z_bottom_m).c_str(),
+                                material_.safety_factor, below_age_s));
       }
     }
     if (!below && slab_ready_s_ > earliest_s + 1e-9)
@@ -935,7 +937,8 @@ Schedule Scheduler::run() {
   }
   schedule_.deliveries = deliveries_of(schedule_.layers, material_.delivery_batch_m3);
   schedule_.totals = totals_of(schedule_.layers, schedule_.events);
-  for (std::string& w : margin_warnings(schedule_, machine_, material_))
+  for (std::string& w :
+       margin_warnings(schedule_, machine_, material_, {}, project_.building.units))
     schedule_.warnings.push_back(std::move(w));
   if (calendar_)
     schedule_.days =

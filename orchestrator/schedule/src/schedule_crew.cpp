@@ -65,10 +65,11 @@ double Scheduler::place_lintels(int next, double t_s) {
     e.floor = schedule_.layers.back().floor;
     e.layer = schedule_.layers.back().layer;
     e.detail = printf_string(
-        "%s lintel over opening %s (wall %lld, %.3f to %.3f m), head at %.3f m, by %s, before "
+        "%s lintel over opening %s (wall %lld, %s to %s), head at %s, by %s, before "
         "floor %d layer %d",
         floors::to_string(task.type).c_str(), task.opening.c_str(),
-        static_cast<long long>(task.wall), task.from_m, task.to_m, task.head_z_m,
+        static_cast<long long>(task.wall), project_.length(task.from_m).c_str(),
+        project_.length(task.to_m).c_str(), project_.length(task.head_z_m).c_str(),
         task.by_arm ? "the arm" : printf_string("a crew of %d", spec.crew).c_str(), before.floor,
         before.layer.index);
     e.lintel = task;
@@ -105,8 +106,8 @@ double Scheduler::pour_slab(const ScheduledLayer& top, bool roof, double t_s) {
   pour.layer = top.layer;
   pour.roof = roof;
   pour.concrete_m3 = m3;
-  pour.detail = printf_string("pour of %s: %.2f m³ (%.3f m thick) at %.1f m³/h", what.c_str(), m3,
-                              thickness_m, spec.pour_rate_m3_s * 3600.0);
+  pour.detail = printf_string("pour of %s: %.2f m³ (%s thick) at %.1f m³/h", what.c_str(), m3,
+                              project_.length(thickness_m).c_str(), spec.pour_rate_m3_s * 3600.0);
   const double pour_end_s = pour.end_s;
   schedule_.events.push_back(std::move(pour));
   if (!roof) {

@@ -36,7 +36,9 @@ std::string layers_text(const std::vector<const ScheduledLayer*>& layers) {
 std::vector<std::string> margin_warnings(const Schedule& schedule,
                                          const machine::MachineModel& machine,
                                          const floors::MaterialProfile& material,
-                                         const MarginThresholds& t) {
+                                         const MarginThresholds& t, floors::LengthUnit unit) {
+  const double per = floors::meters_per(unit);
+  const std::string unit_name = floors::to_string(unit);
   std::vector<std::string> out;
   // Gantries: per plan with several nozzles, its nearest approach less the gantry width.
   std::map<std::string, std::vector<const ScheduledLayer*>> users;
@@ -91,10 +93,10 @@ std::vector<std::string> margin_warnings(const Schedule& schedule,
     out.push_back(printf_string(
         "margin: %d layer%s cover a piece after more than %.0f%% of the material's maximum "
         "interval of %.1f s; the closest, floor %d layer %d, covers wall %lld piece %d at "
-        "(%.3f, %.3f) m after %.1f s%s (%.1f%%)",
+        "(%.3f, %.3f) %s after %.1f s%s (%.1f%%)",
         tight_layers, tight_layers == 1 ? "" : "s", t.interval_share * 100.0, max_s,
         closest_layer->floor, closest_layer->layer, static_cast<long long>(at.wall), at.piece,
-        at.x_m, at.y_m, closest_interval_s,
+        at.x_m / per, at.y_m / per, unit_name.c_str(), closest_interval_s,
         closest_layer->equivalent_interval_max_s ? " of equivalent age" : "",
         100.0 * closest_interval_s / max_s));
   }

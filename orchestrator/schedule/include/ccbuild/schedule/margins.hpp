@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ccbuild/floors/material.hpp"
+#include "ccbuild/floors/units.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 
@@ -19,17 +20,19 @@ struct MarginThresholds {
   /// A climbing link's nearest approach to a wall (the bundled climber's links keep 40 mm
   /// where nothing forces them closer).
   double climb_clearance_m = 0.02;
-  double interval_share = 0.9;       ///< a local interval over this share of the maximum
-  double idle_share = 0.9;           ///< an idle (air) move over this share of its limit
+  double interval_share = 0.9;  ///< a local interval over this share of the maximum
+  double idle_share = 0.9;      ///< an idle (air) move over this share of its limit
 };
 
 /// The tight margins of `schedule` as warnings, each saying where, by how much, and the
 /// threshold: one per plan whose gantries come closer than the threshold (with the layers
 /// that use it), and one per other kind naming the closest case and how many there are.
-/// A layer on a planned joint has no maximum interval. Lengths in metres (mm when small).
+/// A layer on a planned joint has no maximum interval. The machine's sizes in metres (mm
+/// when small), places on the building in `unit`, the building's own.
 std::vector<std::string> margin_warnings(const Schedule& schedule,
                                          const machine::MachineModel& machine,
                                          const floors::MaterialProfile& material,
-                                         const MarginThresholds& thresholds = {});
+                                         const MarginThresholds& thresholds = {},
+                                         floors::LengthUnit unit = floors::LengthUnit::kMeter);
 
 }  // namespace ccbuild::schedule
