@@ -260,7 +260,7 @@ TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
                  "output would overwrite an input file", "-o onto the schedule");
   EXPECT_EQ(site.bytes("s.json"), before);
   for (const std::string start : {"2027-02-29T07:00", "2027-03-01", "1969-12-31 23:59",
-                                   "2027-03-01T24:00", "2027-03-01T07:00:00Z"})
+                                  "2027-03-01T24:00", "2027-03-01T07:00:00Z"})
     expect_refused(
         run_bounded("export " + s + " -o " + site.path("x.csv") + " --start '" + start + "'"),
         "--start: expected a local date and time", start);

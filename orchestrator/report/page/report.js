@@ -31,7 +31,7 @@
   var NS = 'http://www.w3.org/2000/svg';
   // One palette for every legend of the report: no two entries alike (the report's test
   // checks every pair's CIELAB distance). Layers by nozzle count, waits by reason, events.
-  var COLORS = ['#0067A5', '#008856', '#F032E6', '#000080', '#9A6324', '#469990', '#BCBD22', '#17BECF'];
+  var COLORS = S.nozzle_colours;  // the same list the report's plan drawings were made with
   var REASON_COLORS = { 'min-interval': '#F3C300', 'strength': '#FFD8B1', 'anchor-strength': '#BE0032',
                         'slab': '#654522', 'off-shift': '#DCBEFF', 'joint': '#42D4F4', 'cold': '#AAFFC3',
                         'wind': '#FF7F0E', 'none': '#95a5a6' };

@@ -165,12 +165,12 @@ std::string work_packages_text(const schedule::ScheduleDocument& schedule, const
   const auto& calendar = schedule.inputs.calendar;
   const std::vector<DayPackage> packages = work_packages(schedule, dates);
   // "07:00"; "Tue 2027-03-02 07:00" when on another day than the package's.
+  const DayClock clock{schedule, dates};
   const auto at = [&](double t_s, const DayPackage& p) {
     const std::string local = dates.local(schedule, t_s);
     return local.compare(0, 10, p.date) == 0
                ? local.substr(11, 5)
-               : weekday_of_day(parse_local_start(local.substr(0, 10) + " 00:00", "date") / 86400) +
-                     std::string(" ") + local.substr(0, 16);
+               : weekday_of_day(clock.day_of(t_s)) + std::string(" ") + local.substr(0, 16);
   };
   std::string out = "Work packages by day: " + schedule.inputs.name + "\n";
   out += calendar

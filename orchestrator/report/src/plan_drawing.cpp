@@ -55,10 +55,9 @@ std::string schedule_plan_svg(const schedule::SchedulePlan& plan, const std::str
       const Eigen::Vector2d& a = w[k].position_m;
       const Eigen::Vector2d& b = w[k + 1].position_m;
       if ((b - a).norm() < 1e-9) continue;
-      const std::string seg =
-          printf_string("M%s %sL%s %s", svg::px(view.X(a.x())).c_str(),
-                        svg::px(view.Y(a.y())).c_str(), svg::px(view.X(b.x())).c_str(),
-                        svg::px(view.Y(b.y())).c_str());
+      const std::string seg = printf_string(
+          "M%s %sL%s %s", svg::px(view.X(a.x())).c_str(), svg::px(view.Y(a.y())).c_str(),
+          svg::px(view.X(b.x())).c_str(), svg::px(view.Y(b.y())).c_str());
       if (w[k].extruding) {
         deposit += seg;
         if ((b - a).norm() * view.scale_px_per_m > 24.0) arrows += arrowhead(view, a, b, colour);

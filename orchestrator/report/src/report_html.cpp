@@ -51,8 +51,10 @@ std::string schedule_report_html(const schedule::ScheduleDocument& document,
   // Every plan the layers use, drawn as plan-layer --svg draws one, in the building's unit.
   const floors::LengthUnit unit =
       floors::parse_length_unit(inputs.units).value_or(floors::LengthUnit::kMeter);
+  // The nozzles' colours, one list for the drawings made here and the page's script.
   const std::vector<std::string> nozzle_colours = {"#0067A5", "#008856", "#F032E6", "#000080",
                                                    "#9A6324", "#469990", "#BCBD22", "#17BECF"};
+  schedule["nozzle_colours"] = nozzle_colours;
   std::map<std::string, std::vector<const schedule::ScheduledLayer*>> users;
   for (const auto& l : document.schedule.layers) users[l.plan].push_back(&l);
   for (const auto& [key, plan] : document.schedule.plans) {
