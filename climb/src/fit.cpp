@@ -54,15 +54,19 @@ Member build_member(const machine::ClimbingFamily& family, const machine::Fitted
   return member;
 }
 
-std::string describe_member(const machine::ClimbingFamily& family,
-                            const machine::FittedPlatform& p) {
+std::string describe_member(const machine::ClimbingFamily& family, const machine::FittedPlatform& p,
+                            floors::LengthUnit unit) {
   std::string units;
   for (const auto& u : p.units)
-    units += printf_string("%s%s %s at (%.2f, %.2f)", units.empty() ? "" : ", ", u.name.c_str(),
-                           machine::to_string(u.beam).c_str(), u.position_m.x(), u.position_m.y());
-  return printf_string("%.2f m x %.2f m platform, %zu units (%s), %.0f kg",
-                       p.length_m() + family.beam_section_m, p.width_m() + family.beam_section_m,
-                       p.units.size(), units.c_str(), p.mass_kg(family));
+    units +=
+        printf_string("%s%s %s at (%.2f, %.2f)", units.empty() ? "" : ", ", u.name.c_str(),
+                      machine::to_string(u.beam).c_str(), floors::length_in(u.position_m.x(), unit),
+                      floors::length_in(u.position_m.y(), unit));
+  return printf_string("%s x %s platform, %zu units (%s %s), %.0f kg",
+                       floors::length_text(p.length_m() + family.beam_section_m, unit, 2).c_str(),
+                       floors::length_text(p.width_m() + family.beam_section_m, unit, 2).c_str(),
+                       p.units.size(), units.c_str(), floors::to_string(unit).c_str(),
+                       p.mass_kg(family));
 }
 
 // The point `s` metres around the beams' rectangle (anticlockwise from the south-west).
@@ -152,6 +156,8 @@ FitResult fit_climbing_machine(const floors::Building& building,
   auto say = [&](const std::string& what) {
     if (options.progress) options.progress(what);
   };
+  // Lengths in messages in the building's unit; the profile written stays in metres.
+  auto L = [&](double m) { return floors::length_text(m, building.units, 2); };
   const floors::Envelope env = floors::envelope(building);
   const double clearance = family.beam_clearance_m, section = family.beam_section_m;
 
@@ -172,18 +178,19 @@ FitResult fit_climbing_machine(const floors::Building& building,
     if (outer_m > largest + 1e-9) {
       const double extent = env.size_m()[axis];
       r.status = {ClimbStatus::Code::kTooLarge,
-                  printf_string("the building is %.2f m along %s; with the beams %.2f m outside "
-                                "its outermost walls the platform's %s would be %.2f m, and the "
-                                "family's largest is %.2f m",
-                                extent, axis == 0 ? "x" : "y", clearance, name, outer_m, largest)};
+                  printf_string("the building is %s along %s; with the beams %s outside "
+                                "its outermost walls the platform's %s would be %s, and the "
+                                "family's largest is %s",
+                                L(extent).c_str(), axis == 0 ? "x" : "y", L(clearance).c_str(),
+                                name, L(outer_m).c_str(), L(largest).c_str())};
       r.reasons.push_back(r.status.reason());
       r.nearest_change +=
           std::string(r.nearest_change.empty() ? "" : "; ") +
           printf_string(
-              "a family whose platform %s reaches %.2f m (`family.platform.%s`), or a "
-              "building at most %.2f m along %s",
-              name, outer_m, axis == 0 ? "length_m" : "width_m", largest - section - 2 * clearance,
-              axis == 0 ? "x" : "y");
+              "a family whose platform %s reaches %s (`family.platform.%s`: %.2f), or a "
+              "building at most %s along %s",
+              name, L(outer_m).c_str(), axis == 0 ? "length_m" : "width_m", outer_m,
+              L(largest - section - 2 * clearance).c_str(), axis == 0 ? "x" : "y");
     } else if (outer_m < smallest) {
       lo -= 0.5 * (smallest - outer_m);
       hi += 0.5 * (smallest - outer_m);
@@ -331,16 +338,16 @@ FitResult fit_climbing_machine(const floors::Building& building,
       const auto& level = events[e].levels[best];
       r.reasons.push_back(
           printf_string(
-              "stage %d (pipes at %.2f m, %s): no unit, wherever mounted on the "
+              "stage %d (pipes at %s, %s): no unit, wherever mounted on the "
               "beams, reaches solid wall",
-              events[e].stage, level.z_m,
+              events[e].stage, L(level.z_m).c_str(),
               level.floor < 0
                   ? "in the foundation"
                   : printf_string("floor %d layer %d", level.floor, level.layer).c_str()) +
           (std::isfinite(nearest_m)
-               ? printf_string(": the nearest is %.2f m inside the beams, and a unit's boom "
-                               "reaches %.2f m",
-                               nearest_m, family.reach_max_m)
+               ? printf_string(": the nearest is %s inside the beams, and a unit's boom "
+                               "reaches %s",
+                               L(nearest_m).c_str(), L(family.reach_max_m).c_str())
                : std::string(": that layer has no solid wall clear of ends and openings")));
     }
   }
@@ -449,8 +456,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
       ++r.members_tried;
       ++tried_here;
       say(printf_string("%d units: least margin %s (%s)", k,
-                        std::isfinite(margin) ? printf_string("%.2f m", margin).c_str() : "-",
-                        why.c_str()));
+                        std::isfinite(margin) ? L(margin).c_str() : "-", why.c_str()));
       if (margin > last_margin || last_why.empty()) {
         last_margin = margin;
         last_why = why;
@@ -476,7 +482,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
         if (!plan.status)
           why = printf_string("climb %zu -> %zu: ", c, c + 1) + plan.status.to_string();
       }
-      say(printf_string("%d units, least margin %.2f m: %s", k, candidate.margin_m,
+      say(printf_string("%d units, least margin %s: %s", k, L(candidate.margin_m).c_str(),
                         why.empty() ? "every climb planned" : why.c_str()));
       if (why.empty()) {
         chosen_member = &candidate;
@@ -495,23 +501,24 @@ FitResult fit_climbing_machine(const floors::Building& building,
     r.platform = best_p;
     r.least_margin_m = best_margin;
     r.mass_kg = best_p.mass_kg(family);
-    r.summary = describe_member(family, best_p);
-    const std::string description = "fitted to " +
-                                    (building.name.empty() ? building.source_file : building.name) +
-                                    ": " + describe_member(family, best_p);
+    r.summary = describe_member(family, best_p, building.units);
+    const std::string description =
+        "fitted to " + (building.name.empty() ? building.source_file : building.name) + ": " +
+        describe_member(family, best_p, floors::LengthUnit::kMeter);
     Member member = build_member(family, best_p, options, description);
     r.profile_yaml = std::move(member.profile_yaml);
     r.urdf_xml = std::move(member.urdf_xml);
     r.profile = std::move(member.profile);
     r.optimised = printf_string(
-        "the smallest platform around the building (%.2f m x %.2f m, the beams %.2f m outside "
+        "the smallest platform around the building (%s x %s, the beams %s outside "
         "its outermost walls), then the fewest units (%d; %d to %d allowed) that reach solid "
         "wall at all %d stages with every transfer and every printing position stable by the "
-        "%.2f m margin%s, then among %d sets of %d the most stable (least margin %.2f m); %.0f kg",
-        best_p.length_m() + section, best_p.width_m() + section, clearance, k, family.units_min,
-        family.units_max, r.stages, pm.stability_margin_m,
-        options.plan_climbs ? " and every climb planned (OMPL)" : "", tried_here, k, best_margin,
-        r.mass_kg);
+        "%s margin%s, then among %d sets of %d the most stable (least margin %s); %.0f kg",
+        L(best_p.length_m() + section).c_str(), L(best_p.width_m() + section).c_str(),
+        L(clearance).c_str(), k, family.units_min, family.units_max, r.stages,
+        L(pm.stability_margin_m).c_str(),
+        options.plan_climbs ? " and every climb planned (OMPL)" : "", tried_here, k,
+        L(best_margin).c_str(), r.mass_kg);
     return r;
   }
   if (!blocked_why.empty()) {
@@ -526,16 +533,16 @@ FitResult fit_climbing_machine(const floors::Building& building,
         "wall";
     return r;
   }
-  r.status = {ClimbStatus::Code::kUnstable,
-              "no set of " + std::to_string(fewest) + " to " + std::to_string(family.units_max) +
-                  " units on the " + std::to_string(r.mounts_reaching) +
-                  " mount positions that reach solid wall at every stage keeps the platform "
-                  "stable by the margin: " +
-                  (last_why.empty() ? std::string("none could be placed")
-                                    : (std::isfinite(last_margin)
-                                           ? printf_string("at best %.2f m, ", last_margin)
-                                           : std::string()) +
-                                          last_why)};
+  r.status = {
+      ClimbStatus::Code::kUnstable,
+      "no set of " + std::to_string(fewest) + " to " + std::to_string(family.units_max) +
+          " units on the " + std::to_string(r.mounts_reaching) +
+          " mount positions that reach solid wall at every stage keeps the platform "
+          "stable by the margin: " +
+          (last_why.empty()
+               ? std::string("none could be placed")
+               : (std::isfinite(last_margin) ? "at best " + L(last_margin) + ", " : std::string()) +
+                     last_why)};
   r.reasons.push_back(r.status.reason());
   r.nearest_change =
       "more mount positions that reach wall near the platform's corners (solid wall or "

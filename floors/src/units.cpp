@@ -21,6 +21,26 @@ std::string length_text(double value_m, LengthUnit unit, int decimals) {
   return printf_string("%.*f %s", decimals, value_m / meters_per(unit), to_string(unit).c_str());
 }
 
+std::string fine_length_text(double value_m, LengthUnit unit) {
+  if (unit == LengthUnit::kFoot) {
+    const double inches = value_m / kMetersPerFoot * 12.0;
+    return printf_string(std::abs(inches) < 1.0 ? "%.2f in" : "%.1f in", inches);
+  }
+  return printf_string(std::abs(value_m) < 0.01 ? "%.1f mm" : "%.0f mm", value_m * 1000.0);
+}
+
+std::string volume_unit(LengthUnit unit) {
+  return unit == LengthUnit::kFoot ? "yd³" : "m³";
+}
+
+std::string volume_text(double value_m3, LengthUnit unit, int decimals) {
+  return printf_string("%.*f %s", decimals, volume_in(value_m3, unit), volume_unit(unit).c_str());
+}
+
+std::string speed_text(double value_m_s, LengthUnit unit, int decimals) {
+  return printf_string("%.*f %s/s", decimals, length_in(value_m_s, unit), to_string(unit).c_str());
+}
+
 std::optional<double> parse_length_m(const std::string& text, LengthUnit default_unit) {
   std::size_t begin = text.find_first_not_of(" \t");
   if (begin == std::string::npos) return std::nullopt;

@@ -76,6 +76,11 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
                                      options.plan_floor_height_m, options.plan_layer_height_m);
     }
   }
+  project.file_unit = project.building.units;
+  if (options.shown_unit) {
+    project.building.units = *options.shown_unit;
+    for (floors::Floor& floor : project.building.floors) floor.plan.units = *options.shown_unit;
+  }
   const floors::Building& b = project.building;
 
   // --machine, else the building's, else the bundled profile (else built-in defaults

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -29,6 +31,54 @@ TEST(Cli, ValidateJsonAgreesWithTheModel) {
   EXPECT_EQ(j["units"], "ft");
   EXPECT_EQ(j["totals"]["layer_count"], 125);
   EXPECT_GE(j["floors"][0]["wall_count"].get<int>(), 180);
+}
+
+// A building drawn in feet is shown in feet; --units m shows it in metres (and says so),
+// and a plan file without its own unit is read in --units.
+TEST(ShownUnits, AFeetBuildingInFeetUnlessMetresAreAskedFor) {
+  const auto feet = run_ccbuild("validate config/buildings/apartment.yaml");
+  ASSERT_EQ(feet.exit_code, 0) << feet.err;
+  EXPECT_TRUE(contains(feet.out, "  units      ft in the file, metres inside\n")) << feet.out;
+  EXPECT_TRUE(contains(feet.out, "size       128.00 ft x 52.00 ft, 50.00 ft tall")) << feet.out;
+  const auto metres = run_ccbuild("validate config/buildings/apartment.yaml --units m");
+  ASSERT_EQ(metres.exit_code, 0) << metres.err;
+  EXPECT_TRUE(contains(metres.out, "units      ft in the file, metres inside, shown in m"))
+      << metres.out;
+  EXPECT_TRUE(contains(metres.out, "size       39.01 m x 15.85 m, 15.24 m tall")) << metres.out;
+  EXPECT_FALSE(std::regex_search(metres.out, std::regex("[0-9] ft"))) << metres.out;
+  const auto json = run_ccbuild("validate config/buildings/apartment.yaml --units m --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["units"], "ft");
+  EXPECT_EQ(j["shown_in"], "m");
+  // The metric house in feet: its 3 m floors are 9.843 ft.
+  const auto house = run_ccbuild("validate config/buildings/house.yaml --units ft");
+  ASSERT_EQ(house.exit_code, 0) << house.err;
+  EXPECT_TRUE(contains(house.out, "9.843 ft")) << house.out;
+  EXPECT_FALSE(std::regex_search(house.out, std::regex("[0-9] m\\b"))) << house.out;
+}
+
+// A schedule's exports and report take the schedule's unit, or --units: the apartment's
+// concrete in cubic yards, or in cubic metres on request (16 trucks of 8 m³ are 167.42 yd³).
+TEST(ShownUnits, ExportsOfAFeetScheduleInCubicYardsUnlessMetresAreAskedFor) {
+  const std::filesystem::path dir = testing::scratch_dir("cli", "shown_units");
+  const std::string golden = "tests/regression/apartment.schedule.json";
+  const std::string days = "export " + golden + " --format days --start 2027-03-01T07:00 -o ";
+  const auto yards = run_ccbuild(days + (dir / "yd.txt").string());
+  ASSERT_EQ(yards.exit_code, 0) << yards.err;
+  const std::string yards_text = testing::slurp(dir / "yd.txt");
+  EXPECT_TRUE(contains(yards_text, "deliver  07:00-23:49  16 trucks, 167.42 yd³"))
+      << yards_text.substr(0, 2000);
+  EXPECT_FALSE(contains(yards_text, "m³"));
+  const auto metres = run_ccbuild(days + (dir / "m.txt").string() + " --units m");
+  ASSERT_EQ(metres.exit_code, 0) << metres.err;
+  const std::string metres_text = testing::slurp(dir / "m.txt");
+  EXPECT_TRUE(contains(metres_text, "deliver  07:00-23:49  16 trucks, 128.00 m³"))
+      << metres_text.substr(0, 2000);
+  EXPECT_FALSE(contains(metres_text, "yd³"));
+  EXPECT_EQ(run_ccbuild(days + (dir / "x.txt").string() + " --units yd").exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.txt"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Cli, ValidatePlanInEachEncoding) {

@@ -79,7 +79,8 @@ TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
 
 // The apartment on the climber keeps its limits by millimetres: the two-nozzle plan of
 // floors 1 and 2 keeps its 1.5 m gantries 1.524 m apart, and the last climb passes under a
-// millimetre from a wall. Both are warned in the text and in the JSON, saying where.
+// millimetre from a wall. Both are warned in the text and in the JSON, saying where, in the
+// building's feet (small lengths in inches: 24 mm is 0.93 in, 0.7 mm 0.03 in).
 TEST(Margins, TheApartmentsGantriesAndClimbAreWarned) {
   const fs::path dir = scratch("margins");
   const auto r = run_ccbuild(
@@ -88,11 +89,11 @@ TEST(Margins, TheApartmentsGantriesAndClimbAreWarned) {
       (dir / "s.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string gantries =
-      "margin: the 2 gantries of plan g5n2 come within 24 mm of each other (1.524 m between "
-      "centres, 1.500 m wide), on floor 1 layers 7-16, floor 2 layers 7-16";
+      "margin: the 2 gantries of plan g5n2 come within 0.93 in of each other (4.999 ft between "
+      "centres, 4.921 ft wide), on floor 1 layers 7-16, floor 2 layers 7-16; warned under 2.0 in";
   const std::string climb =
-      "margin: 1 climb passes within 20 mm of a wall; the closest, from "
-      "stage 3 to 4 (after floor 3 layer 24), passes 0.7 mm from it";
+      "margin: 1 climb passes within 0.79 in of a wall; the closest, from "
+      "stage 3 to 4 (after floor 3 layer 24), passes 0.03 in from it";
   EXPECT_TRUE(contains(r.out, "warning: " + gantries)) << r.out;
   EXPECT_TRUE(contains(r.out, "warning: " + climb)) << r.out;
   const auto json = nlohmann::json::parse(slurp(dir / "s.json"));

@@ -57,6 +57,27 @@ TEST(PlanFormats, UnitsParseWithSuffixes) {
   EXPECT_FALSE(parse_length_m("nan", LengthUnit::kMeter));
 }
 
+// A feet building's small lengths in inches, its concrete in cubic yards; at the
+// boundaries where the decimals change.
+TEST(PlanFormats, FineLengthsAndVolumesSpeakTheBuildingsUnit) {
+  EXPECT_EQ(fine_length_text(0.024, LengthUnit::kMeter), "24 mm");
+  EXPECT_EQ(fine_length_text(0.01, LengthUnit::kMeter), "10 mm");     // whole from 10 mm
+  EXPECT_EQ(fine_length_text(0.0099, LengthUnit::kMeter), "9.9 mm");  // a decimal under it
+  EXPECT_EQ(fine_length_text(0.0003, LengthUnit::kMeter), "0.3 mm");
+  EXPECT_EQ(fine_length_text(0.0254, LengthUnit::kFoot), "1.0 in");   // one decimal from 1 in
+  EXPECT_EQ(fine_length_text(0.0253, LengthUnit::kFoot), "1.00 in");  // 0.996 in: two under it
+  EXPECT_EQ(fine_length_text(0.024, LengthUnit::kFoot), "0.94 in");
+  EXPECT_EQ(fine_length_text(0.05, LengthUnit::kFoot), "2.0 in");
+  EXPECT_EQ(volume_text(8.0, LengthUnit::kMeter), "8.00 m³");
+  EXPECT_EQ(volume_text(kCubicMetersPerCubicYard, LengthUnit::kFoot), "1.00 yd³");
+  EXPECT_EQ(volume_text(8.0, LengthUnit::kFoot), "10.46 yd³");
+  EXPECT_NEAR(volume_in(0.9144 * 0.9144 * 0.9144, LengthUnit::kFoot), 1.0, 1e-12);  // a yard cubed
+  EXPECT_EQ(volume_unit(LengthUnit::kFoot), "yd³");
+  EXPECT_EQ(speed_text(0.3048, LengthUnit::kFoot), "1.000 ft/s");
+  EXPECT_EQ(speed_text(0.1, LengthUnit::kMeter), "0.100 m/s");
+  EXPECT_DOUBLE_EQ(length_in(3.048, LengthUnit::kFoot), 10.0);
+}
+
 TEST(PlanFormats, BundledExampleBuildingsLoad) {
   const Building house = load_building(testing::source_path("config/buildings/house.yaml"));
   ASSERT_EQ(house.floors.size(), 2u);

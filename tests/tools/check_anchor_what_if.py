@@ -53,7 +53,9 @@ def main():
         earlier = [c for c in changes if "a storey earlier" in c[0]]
         if not earlier:
             sys.exit("the earlier-pipes change is not listed:\n" + out)
-        extra = float(re.search(r"legs reach ([0-9.]+) m longer", earlier[0][0]).group(1))
+        # In the building's unit (the tower is drawn in feet); the URDF is in metres.
+        longer = re.search(r"legs reach ([0-9.]+) (m|ft) longer", earlier[0][0])
+        extra = float(longer.group(1)) * (0.3048 if longer.group(2) == "ft" else 1.0)
         listed = float(earlier[0][1])
 
         # The variant by hand: the climber's URDF with every leg's stroke `extra` longer.

@@ -26,6 +26,10 @@ def main():
     doc = json.load(open(a.schedule))
     base = datetime.datetime.fromisoformat(a.start.replace(" ", "T")) if a.start else None
 
+    # Concrete in the building's unit: cubic yards for a building in feet.
+    volume_unit = "yd³" if doc["inputs"].get("units") == "ft" else "m³"
+    M3_PER = {"m³": 1.0, "yd³": 0.764554857984}
+
     site = doc["inputs"].get("site")
     if site:
         zone = zoneinfo.ZoneInfo(site["time_zone"])
@@ -72,13 +76,15 @@ def main():
                 label = line[2:9].strip()
             body = line[9:]
             if label == "print":
-                m = re.search(r"\((\d+) layers?\), [0-9.]+ h printing, ([0-9.]+) m³", body)
+                m = re.search(r"\((\d+) layers?\), [0-9.]+ h printing, ([0-9.]+) (m³|yd³)", body)
                 c["layers"] += int(m.group(1))
-                c["m3"] += float(m.group(2))
+                c["m3"] += float(m.group(2)) * M3_PER[m.group(3)]
+                if m.group(3) != volume_unit:
+                    problems.append("%s: concrete in %s, the building's unit is %s" % (day, m.group(3), volume_unit))
             elif label == "deliver":
-                m = re.search(r"(\d+) trucks?, ([0-9.]+) m³", body)
+                m = re.search(r"(\d+) trucks?, ([0-9.]+) (m³|yd³)", body)
                 c["trucks"] += int(m.group(1))
-                c["truck_m3"] += float(m.group(2))
+                c["truck_m3"] += float(m.group(2)) * M3_PER[m.group(3)]
             elif label == "wait":
                 c["waits"] += 1
             elif label in ("crew", "machine"):

@@ -59,6 +59,16 @@
   }
   // The building's own length unit (feet for a building drawn in feet) for drawings.
   var LENGTH_UNIT = S.inputs.units === 'ft' ? 'ft' : 'm', LENGTH_PER = LENGTH_UNIT === 'ft' ? 0.3048 : 1;
+  function length(m, digits) { return (m / LENGTH_PER).toFixed(digits === undefined ? 2 : digits) + ' ' + LENGTH_UNIT; }
+  // A small length (a bead, a gap): millimetres, or inches for a building in feet.
+  function fineLength(m) {
+    if (LENGTH_UNIT === 'ft') { var inch = m / 0.0254; return inch.toFixed(Math.abs(inch) < 1 ? 2 : 1) + ' in'; }
+    return (m * 1000).toFixed(Math.abs(m) < 0.01 ? 1 : 0) + ' mm';
+  }
+  // Concrete in cubic metres, or cubic yards for a building in feet (as ccbuild's text).
+  function volume(m3) {
+    return LENGTH_UNIT === 'ft' ? (m3 / 0.764554857984).toFixed(2) + ' yd\u00b3' : m3.toFixed(2) + ' m\u00b3';
+  }
   // [seconds per unit, symbol] for an axis or a column whose largest value is s.
   function timeUnit(s) {
     var a = Math.abs(s);
@@ -232,7 +242,7 @@
     function row(k, v) { var r = el('tr', {}, t); el('td', {}, r, k); el('td', {}, r, v); }
     row('building', S.inputs.name + ' (' + S.inputs.building + ', ' + layers.length + ' layers on ' + floors.length + ' floors)');
     row('machine', machine.name + ' - ' + machine.kind + ', up to ' + machine.nozzles + ' nozzle(s), gantries ' +
-      machine.gantry_width_m + ' m wide on ' + machine.rail_axis + ' rails');
+      length(machine.gantry_width_m, 3) + ' wide on ' + machine.rail_axis + ' rails');
     row('material', mat.name + ' - interval ' + mat.min_layer_interval_s + ' to ' + mat.max_layer_interval_s +
       ' s, safety factor ' + mat.safety_factor);
     row('seed', String(S.inputs.seed));
@@ -385,7 +395,7 @@
       var layersThatDay = d.print.reduce(function (a, e) { return a + e.count; }, 0);
       var m3 = d.print.reduce(function (a, e) { return a + e.concrete_m3; }, 0);
       el('option', { value: i }, pick, (d.weekday ? d.weekday + ' ' : '') + d.date + ': ' +
-        layersThatDay + ' layer(s), ' + m3.toFixed(2) + ' m\u00b3, ' + d.crew.length + ' crew line(s)');
+        layersThatDay + ' layer(s), ' + volume(m3) + ', ' + d.crew.length + ' crew line(s)');
     });
     var view = el('div', { id: 'day-view-wrap' }, node);
     var table = el('table', { 'class': 'day-package', id: 'day-package' }, node);
@@ -408,7 +418,7 @@
     function describe(e) {
       var parts = [e.what, e.who, hhmm(e.start_s) + ' to ' + clock(e.end_s)];
       if (e.printing_h) parts.push(e.printing_h.toFixed(2) + ' h printing');
-      if (e.concrete_m3) parts.push(e.concrete_m3.toFixed(2) + ' m\u00b3');
+      if (e.concrete_m3) parts.push(volume(e.concrete_m3));
       if (e.person_h) parts.push(e.person_h.toFixed(1) + ' person-h');
       if (e.reasons) parts.push('why: ' + e.reasons);
       return parts.join('\n');
@@ -459,7 +469,7 @@
           el('td', {}, tr, e.end_s - d.from_s >= d.to_s - d.from_s ? clock(e.end_s) : hhmm(e.end_s));
           el('td', {}, tr, e.what + (e.reasons ? ' (' + e.reasons + ')' : ''));
           el('td', {}, tr, e.who);
-          el('td', {}, tr, e.concrete_m3 ? e.concrete_m3.toFixed(2) + ' m\u00b3' : '');
+          el('td', {}, tr, e.concrete_m3 ? volume(e.concrete_m3) : '');
           el('td', {}, tr, e.person_h ? e.person_h.toFixed(1) : '');
         });
       });
@@ -584,7 +594,7 @@
                                  'data-interval-s': v === null ? '' : v.toFixed(1),
                                  'data-over': bound && v !== null && v > hi + 1e-6 ? 'yes' : 'no' }, root);
         var guid = guidOf(l.floor, p.wall);
-        hover(line, 'wall ' + p.wall + ' piece ' + p.piece + (p.bead ? ' (' + p.bead + ' bead, ' + (p.width_m * 1000).toFixed(0) + ' mm wide)' : '') +
+        hover(line, 'wall ' + p.wall + ' piece ' + p.piece + (p.bead ? ' (' + p.bead + ' bead, ' + fineLength(p.width_m) + ' wide)' : '') +
           (guid ? '\nIFC GlobalId ' + guid : '') +
           '\n' + (v === null ? 'no wall under it' :
           'covered ' + duration(v) + ' after the piece under it (maximum ' + duration(hi) + ')'));

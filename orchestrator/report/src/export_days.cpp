@@ -119,7 +119,7 @@ std::vector<DayPackage> work_packages(const schedule::ScheduleDocument& schedule
         DayEntry e;
         e.kind = "wait";
         e.floor = t.floor;
-        e.what = title_of(t);
+        e.what = title_of(t, shown_unit(schedule));
         e.who = t.who;
         e.start_s = t.start_s;
         e.end_s = t.end_s;
@@ -136,7 +136,7 @@ std::vector<DayPackage> work_packages(const schedule::ScheduleDocument& schedule
         DayEntry e;
         e.kind = t.kind;
         e.floor = t.floor;
-        e.what = title_of(t);
+        e.what = title_of(t, shown_unit(schedule));
         e.who = t.who;
         e.start_s = t.start_s;
         e.count = 0;
@@ -164,6 +164,7 @@ std::string work_packages_text(const schedule::ScheduleDocument& schedule, const
   dates.require(schedule, "the work packages by day");
   const auto& calendar = schedule.inputs.calendar;
   const std::vector<DayPackage> packages = work_packages(schedule, dates);
+  const floors::LengthUnit unit = shown_unit(schedule);
   // "07:00"; "Tue 2027-03-02 07:00" when on another day than the package's.
   const DayClock clock{schedule, dates};
   const auto at = [&](double t_s, const DayPackage& p) {
@@ -193,10 +194,11 @@ std::string work_packages_text(const schedule::ScheduleDocument& schedule, const
     };
     for (const DayEntry& e : p.print)
       line("print", true, e,
-           printf_string("%s (%s), %.2f h printing, %.2f m³", e.what.c_str(),
-                         plural(e.count, "layer", "layers").c_str(), e.printing_h, e.concrete_m3));
+           printf_string("%s (%s), %.2f h printing, %s", e.what.c_str(),
+                         plural(e.count, "layer", "layers").c_str(), e.printing_h,
+                         floors::volume_text(e.concrete_m3, unit).c_str()));
     for (const DayEntry& e : p.deliver)
-      line("deliver", true, e, printf_string("%s, %.2f m³", e.what.c_str(), e.concrete_m3));
+      line("deliver", true, e, e.what + ", " + floors::volume_text(e.concrete_m3, unit));
     for (const auto& [label, list] :
          {std::pair<const char*, const std::vector<DayEntry>*>{"crew", &p.crew},
           {"machine", &p.machine}}) {
@@ -204,7 +206,7 @@ std::string work_packages_text(const schedule::ScheduleDocument& schedule, const
       for (const DayEntry& e : *list) {
         std::string rest = e.what + ", " + e.who;
         if (e.person_h > 0.0) rest += printf_string(", %.1f person-h", e.person_h);
-        if (e.concrete_m3 > 0.0) rest += printf_string(", %.2f m³", e.concrete_m3);
+        if (e.concrete_m3 > 0.0) rest += ", " + floors::volume_text(e.concrete_m3, unit);
         line(label, first, e, rest);
         first = false;
       }

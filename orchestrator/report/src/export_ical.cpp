@@ -125,7 +125,7 @@ std::string tasks_ical(const schedule::ScheduleDocument& schedule, const ExportD
     // A milestone, or a task shorter than the second the times are rounded to, has no
     // DTEND: it ends where it starts (RFC 5545, 3.6.1).
     if (std::llround(t.end_s) > std::llround(t.start_s)) add_line(out, when("DTEND", t.end_s));
-    add_line(out, "SUMMARY:" + ical_text(title_of(t)));
+    add_line(out, "SUMMARY:" + ical_text(title_of(t, shown_unit(schedule))));
     std::string description = t.detail + "\nby: " + t.who + "\nccbuild task " + t.id;
     if (t.layer >= 0) description += printf_string(" (floor %d, layer %d)", t.floor, t.layer);
     add_line(out, "DESCRIPTION:" + ical_text(description));

@@ -213,7 +213,7 @@ std::string tasks_mspdi(const schedule::ScheduleDocument& schedule, const Export
     out += printf_string("      <UID>%d</UID>\n      <ID>%d</ID>\n", r.uid, r.uid);
     out += "      <Name>" +
            svg::escape(r.summary && t.kind == "floor" ? printf_string("Floor %d", t.floor)
-                                                      : title_of(t)) +
+                                                      : title_of(t, shown_unit(schedule))) +
            "</Name>\n";
     out += "      <Type>1</Type>\n      <IsNull>0</IsNull>\n";
     out += "      <WBS>" + r.outline + "</WBS>\n      <OutlineNumber>" + r.outline +

@@ -124,7 +124,8 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
     t.who = "supplier";
     t.concrete_m3 = d.m3;
     t.detail =
-        printf_string("%.2f m3 of concrete due for floor %d layer %d", d.m3, d.floor, d.layer);
+        printf_string("%s of concrete due for floor %d layer %d",
+                      floors::volume_text(d.m3, shown_unit(document)).c_str(), d.floor, d.layer);
     tasks.push_back(std::move(t));
   }
   std::stable_sort(tasks.begin(), tasks.end(),
@@ -132,9 +133,13 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
   return tasks;
 }
 
-std::string title_of(const SiteTask& t) {
+floors::LengthUnit shown_unit(const schedule::ScheduleDocument& schedule) {
+  return floors::parse_length_unit(schedule.inputs.units).value_or(floors::LengthUnit::kMeter);
+}
+
+std::string title_of(const SiteTask& t, floors::LengthUnit unit) {
   if (t.kind == "layer") return printf_string("Floor %d layer %d", t.floor, t.layer);
-  if (t.kind == "delivery") return printf_string("Concrete delivery, %.2f m³", t.concrete_m3);
+  if (t.kind == "delivery") return "Concrete delivery, " + floors::volume_text(t.concrete_m3, unit);
   if (t.kind == "walls-finished") return printf_string("Floor %d walls finished", t.floor);
   std::string what = t.detail;
   if (t.kind == "climb-phase") what = what.substr(what.find(": ") + 2);  // after the climb's

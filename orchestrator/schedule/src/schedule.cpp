@@ -138,8 +138,10 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer
   std::string fix =
       printf_string("a maximum layer interval of at least %.0f s", *inf.max_interval_needed_s);
   if (inf.deposition_speed_needed_m_s)
-    fix += printf_string("; or a deposition speed of at least %.3f m/s (now %.3f)",
-                         *inf.deposition_speed_needed_m_s, machine_.deposition_speed_m_s);
+    fix += printf_string(
+        "; or a deposition speed of at least %s (now %s)",
+        floors::speed_text(*inf.deposition_speed_needed_m_s, project_.building.units).c_str(),
+        floors::speed_text(machine_.deposition_speed_m_s, project_.building.units).c_str());
   if (inf.nozzles_needed)
     fix += printf_string("; or %d nozzles (the machine has %d)", *inf.nozzles_needed,
                          machine_.nozzles);
@@ -406,14 +408,15 @@ bool Scheduler::schedule_layer(int i) {
                 WaitKind::kMinInterval,
                 printf_string("%s would be covered %.1f s after it was deposited, under the "
                               "minimum interval of %.1f s",
-                              piece_text(c.offsets.min_at).c_str(), earliest_local_s,
-                              material_.min_layer_interval_s));
+                              piece_text(c.offsets.min_at, project_.building.units).c_str(),
+                              earliest_local_s, material_.min_layer_interval_s));
         if (std::isfinite(below_age_s))
           require(below->start_s + below_age_s - c.offsets.min_offset_s, WaitKind::kStrength,
                   printf_string("%s (floor %d layer %d) would carry %s of wall %.1f s "
                                 "after it was deposited; with the safety factor %.2f its "
                                 "concrete needs %.1f s",
-                                piece_text(c.offsets.min_at).c_str(), below->floor, below->layer,
+                                piece_text(c.offsets.min_at, project_.building.units).c_str(),
+                                below->floor, below->layer,
                                 project_.length(slice.layer.z_top_m - below->z_bottom_m).c_str(),
                                 earliest_local_s, material_.safety_factor, below_age_s));
       } else if (c.offsets.ends > 0) {
@@ -433,12 +436,14 @@ bool Scheduler::schedule_layer(int i) {
         require(min_need_s, WaitKind::kMinInterval,
                 printf_string("%s would be covered before its concrete is %.1f s old in "
                               "equivalent age at 20 °C, the minimum interval",
-                              piece_text(min_at).c_str(), material_.min_layer_interval_s));
+                              piece_text(min_at, project_.building.units).c_str(),
+                              material_.min_layer_interval_s));
         if (std::isfinite(below_age_s))
           require(strength_need_s, WaitKind::kStrength,
                   printf_string("%s (floor %d layer %d) would carry %s of wall; with the "
                                 "safety factor %.2f its concrete needs %.1f s of equivalent age",
-                                piece_text(strength_at).c_str(), below->floor, below->layer,
+                                piece_text(strength_at, project_.building.units).c_str(),
+                                below->floor, below->layer,
                                 project_.length(slice.layer.z_top_m - below->z_bottom_m).c_str(),
                                 material_.safety_factor, below_age_s));
       }
@@ -558,10 +563,11 @@ bool Scheduler::schedule_layer(int i) {
       c.ok = c.joint ||
              c.equivalent_max_s.value_or(c.local_max_s) <= material_.max_layer_interval_s + 1e-9;
       if (!c.ok)
-        refusals.push_back(printf_string(
-            "%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s", n,
-            n == 1 ? "" : "s", p.method.c_str(), piece_text(c.offsets.max_at).c_str(),
-            c.local_max_s, material_.max_layer_interval_s));
+        refusals.push_back(
+            printf_string("%d nozzle%s (%s): %s covered after %.1f s, over the maximum of %.1f s",
+                          n, n == 1 ? "" : "s", p.method.c_str(),
+                          piece_text(c.offsets.max_at, project_.building.units).c_str(),
+                          c.local_max_s, material_.max_layer_interval_s));
     } else {
       c.ok = true;
     }
@@ -652,8 +658,8 @@ bool Scheduler::schedule_layer(int i) {
         "%s: %s is covered %.1f s after it was deposited with %d nozzle%s (the best of the "
         "counts the machine allows), over the material's maximum interval of %.1f s by %.1f s",
         where_text(slice.floor, slice.layer.index).c_str(),
-        piece_text(best->offsets.max_at).c_str(), best->local_max_s, best->nozzles,
-        best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
+        piece_text(best->offsets.max_at, project_.building.units).c_str(), best->local_max_s,
+        best->nozzles, best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
         best->local_max_s - material_.max_layer_interval_s);
     if (schedule_.feasible) {  // the first one: compute its fixes
       const Planned& p = *best->planned;

@@ -9,11 +9,6 @@ namespace ccbuild::schedule {
 
 namespace {
 
-/// "24 mm"; "0.3 mm" under 10 mm, where a whole millimetre would hide it.
-std::string millimetres(double m) {
-  return printf_string(std::abs(m) < 0.01 ? "%.1f mm" : "%.0f mm", m * 1000.0);
-}
-
 /// "floor 0 layers 3-7, floor 1 layers 2-9": runs of the layers in building order.
 std::string layers_text(const std::vector<const ScheduledLayer*>& layers) {
   std::string out;
@@ -39,6 +34,7 @@ std::vector<std::string> margin_warnings(const Schedule& schedule,
                                          const MarginThresholds& t, floors::LengthUnit unit) {
   const double per = floors::meters_per(unit);
   const std::string unit_name = floors::to_string(unit);
+  auto fine = [unit](double m) { return floors::fine_length_text(m, unit); };
   std::vector<std::string> out;
   // Gantries: per plan with several nozzles, its nearest approach less the gantry width.
   std::map<std::string, std::vector<const ScheduledLayer*>> users;
@@ -47,12 +43,13 @@ std::vector<std::string> margin_warnings(const Schedule& schedule,
     if (plan.nozzles < 2 || !users.count(key)) continue;
     const double clearance_m = plan.min_gap_m - machine.gantry_width_m;
     if (clearance_m >= t.gantry_clearance_m) continue;
-    out.push_back(printf_string(
-        "margin: the %d gantries of plan %s come within %s of each other (%.3f m between "
-        "centres, %.3f m wide), on %s; warned under %s",
-        plan.nozzles, key.c_str(), millimetres(clearance_m).c_str(), plan.min_gap_m,
-        machine.gantry_width_m, layers_text(users.at(key)).c_str(),
-        millimetres(t.gantry_clearance_m).c_str()));
+    out.push_back(
+        printf_string("margin: the %d gantries of plan %s come within %s of each other (%s between "
+                      "centres, %s wide), on %s; warned under %s",
+                      plan.nozzles, key.c_str(), fine(clearance_m).c_str(),
+                      floors::length_text(plan.min_gap_m, unit).c_str(),
+                      floors::length_text(machine.gantry_width_m, unit).c_str(),
+                      layers_text(users.at(key)).c_str(), fine(t.gantry_clearance_m).c_str()));
   }
   // Climbs: the nearest approach of a moving link to a wall.
   const Event* closest_climb = nullptr;
@@ -69,9 +66,9 @@ std::vector<std::string> margin_warnings(const Schedule& schedule,
         "margin: %d climb%s pass%s within %s of a wall; the closest, from stage %d to %d (after "
         "floor %d layer %d), passes %s from it",
         tight_climbs, tight_climbs == 1 ? "" : "s", tight_climbs == 1 ? "es" : "",
-        millimetres(t.climb_clearance_m).c_str(), closest_climb->climb->from_stage,
+        fine(t.climb_clearance_m).c_str(), closest_climb->climb->from_stage,
         closest_climb->climb->to_stage, closest_climb->floor, closest_climb->layer,
-        millimetres(closest_climb->climb->plan.min_clearance_m).c_str()));
+        fine(closest_climb->climb->plan.min_clearance_m).c_str()));
   // Intervals: the longest local interval (in equivalent age with weather) against the
   // maximum, on the layers it binds.
   const ScheduledLayer* closest_layer = nullptr;

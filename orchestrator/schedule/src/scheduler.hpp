@@ -55,9 +55,11 @@ inline std::string where_text(int floor, int layer) {
   return "floor " + std::to_string(floor) + " layer " + std::to_string(layer);
 }
 
-inline std::string piece_text(const PieceEnd& e) {
-  return printf_string("wall %lld piece %d at (%.3f, %.3f) m", static_cast<long long>(e.wall),
-                       e.piece, e.x_m, e.y_m);
+/// "wall 82 piece 1 at (16.000, 36.000) ft": where a piece ends, in `unit`.
+inline std::string piece_text(const PieceEnd& e, floors::LengthUnit unit) {
+  return printf_string("wall %lld piece %d at (%.3f, %.3f) %s", static_cast<long long>(e.wall),
+                       e.piece, floors::length_in(e.x_m, unit), floors::length_in(e.y_m, unit),
+                       floors::to_string(unit).c_str());
 }
 
 class Scheduler {

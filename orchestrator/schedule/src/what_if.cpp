@@ -125,15 +125,19 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
       extra_m = std::max(extra_m, reach_m - below->second);
     }
     if (extra_m > 0.0) {
-      extra_m = std::ceil(extra_m * 100.0 - 1e-9) / 100.0;  // to the centimetre above
+      // Up to the hundredth of the building's unit above, so the figure said is the one used.
+      const double per_m = floors::meters_per(setup.building.units);
+      extra_m = std::ceil(extra_m / per_m * 100.0 - 1e-9) / 100.0 * per_m;
       const auto [stroke_min_m, stroke_max_m] = m.usable_range(m.units.front().joints[3]);
       (void)stroke_min_m;
       const AnchorWhatIf w = what_if(
           AnchorWhatIf::Kind::kEarlierPipes, extra_m,
           printf_string("cast each climb's pipes a storey earlier (in the top layers of the floor "
-                        "below), which the legs reach %.2f m longer (stroke to %.2f m, the "
-                        "URDF's upper limit +%.2f m)",
-                        extra_m, stroke_max_m + m.stroke_end_margin_m + extra_m, extra_m));
+                        "below), which the legs reach %s longer (stroke to %s, the "
+                        "URDF's upper limit +%s)",
+                        setup.length(extra_m, 2).c_str(),
+                        setup.length(stroke_max_m + m.stroke_end_margin_m + extra_m, 2).c_str(),
+                        setup.length(extra_m, 2).c_str()));
       out.push_back(
           scheduled(w, with_climber(setup, machine::with_longer_legs(m, extra_m)), options));
     }

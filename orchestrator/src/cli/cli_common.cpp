@@ -82,9 +82,10 @@ CLI::Validator output_path() {
 void add_input_options(CLI::App& command, InputOptions& options) {
   command
       .add_option("--units", options.units,
-                  "Length unit of a plan file that does not say its own `units` (m or ft)")
-      ->check(CLI::IsMember({"m", "ft"}))
-      ->capture_default_str();
+                  "Show lengths in m or ft (volumes in m³ or yd³), whatever unit the file is "
+                  "written in (default: the file's own); also the unit of a plan file that does "
+                  "not say its own `units` (default m)")
+      ->check(CLI::IsMember({"m", "ft"}));
   command
       .add_option("--floor-height", options.floor_height,
                   "For a plan file: the floor height in --units (default 3 m; " +
@@ -122,9 +123,24 @@ orchestrator::Project open_input(const std::string& file, const InputOptions& op
   return orchestrator::open_project(file, project_options(options));
 }
 
+void add_shown_units_option(CLI::App& command, std::optional<std::string>& units) {
+  command
+      .add_option("--units", units,
+                  "Show lengths in m or ft (volumes in m³ or yd³) (default: the unit the "
+                  "building's file is written in, as the schedule records it)")
+      ->check(CLI::IsMember({"m", "ft"}));
+}
+
+floors::LengthUnit shown_unit(const InputOptions& options, const std::string& recorded) {
+  return floors::parse_length_unit(options.units.value_or(recorded))
+      .value_or(floors::LengthUnit::kMeter);
+}
+
 orchestrator::ProjectOptions project_options(const InputOptions& options) {
   orchestrator::ProjectOptions project;
-  project.plan_unit = *floors::parse_length_unit(options.units);  // CLI11 checked it
+  // CLI11 checked the unit's name.
+  project.plan_unit = *floors::parse_length_unit(options.units.value_or("m"));
+  if (options.units) project.shown_unit = project.plan_unit;
   const double scale = floors::meters_per(project.plan_unit);
   project.plan_floor_height_m = options.floor_height ? *options.floor_height * scale : 3.0;
   project.plan_layer_height_m = options.layer_height * scale;

@@ -36,7 +36,9 @@ CLI::Validator output_path();
 
 /// Options every command that reads FILE shares.
 struct InputOptions {
-  std::string units = "m";             ///< for plan files without their own `units`
+  /// --units: the unit lengths are shown in, and of a plan file without its own `units`
+  /// (unset: the file's; m for a plan file that does not say)
+  std::optional<std::string> units;
   std::optional<double> floor_height;  ///< in `units`
   double layer_height = 0.1;           ///< in `units`
   std::string machine;                 ///< --machine: overrides the building's
@@ -48,6 +50,14 @@ struct InputOptions {
 /// Adds --units, --floor-height, --layer-height (for plan files) and --machine,
 /// --material, --place to a command.
 void add_input_options(CLI::App& command, InputOptions& options);
+
+/// --units for a command that reads a schedule: lengths shown in m or ft instead of the
+/// schedule's building unit.
+void add_shown_units_option(CLI::App& command, std::optional<std::string>& units);
+
+/// The unit lengths are shown in: --units if given, else `recorded` (a schedule's
+/// `inputs.units`; m when it names none).
+floors::LengthUnit shown_unit(const InputOptions& options, const std::string& recorded);
 
 /// The building-level API's options from the flags.
 orchestrator::ProjectOptions project_options(const InputOptions& options);

@@ -123,6 +123,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (!o.input.material.empty()) outputs.add_input(o.input.material);
   const schedule::RecordedMachine& machine_rec = schedule.inputs.machine;
   const floors::MaterialProfile& material = schedule.inputs.material;
+  const floors::LengthUnit unit = shown_unit(o.input, schedule.inputs.units);
+  auto L = [unit](double m) { return floors::length_text(m, unit); };
   if (!schedule.schedule.feasible && !o.allow_infeasible)
     throw InputError(o.file, 0, project ? "" : "/feasible",
                      "the schedule is not feasible (" + schedule.schedule.infeasibility->message +
@@ -324,25 +326,28 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (several && guard && site)
     std::cerr << printf_string(
         "dry-run: site watchdog guarding the rails on the site clock: a step of it only where "
-        "no two gantries can come closer than %.3f m whatever each does along its path, in "
-        "steps of %.3g s (two gantries close at most %.3f m within one)\n",
-        gantry_width_m, status_period_s, site->guard().margin_m(rail_speed_m_s));
+        "no two gantries can come closer than %s whatever each does along its path, in "
+        "steps of %.3g s (two gantries close at most %s within one)\n",
+        L(gantry_width_m).c_str(), status_period_s,
+        L(site->guard().margin_m(rail_speed_m_s)).c_str());
   else if (several && guard)
     std::cerr << printf_string(
-        "dry-run: site watchdog guarding the rails: every machine paused below %.3f m (the "
-        "gantry width %.3f m plus %.3f m the gantries can close between statuses every %.3g s "
+        "dry-run: site watchdog guarding the rails: every machine paused below %s (the "
+        "gantry width %s plus %s the gantries can close between statuses every %.3g s "
         "of machine time)\n",
-        gantry_width_m + margin_m, gantry_width_m, margin_m, status_period_s);
+        L(gantry_width_m + margin_m).c_str(), L(gantry_width_m).c_str(), L(margin_m).c_str(),
+        status_period_s);
   else if (several && o.no_watchdog)
     std::cerr << "dry-run: site watchdog off (--no-watchdog): gaps are measured, a collision "
                  "stops the run\n";
   else if (several)
     std::cerr << printf_string(
-        "dry-run: site watchdog %s: at %.0fx the gantries can close %.1f m between statuses, "
-        "more than the plans leave (%.3f m over the gantry width); gaps are measured where both "
+        "dry-run: site watchdog %s: at %.0fx the gantries can close %s between statuses, "
+        "more than the plans leave (%s over the gantry width); gaps are measured where both "
         "reported within 1 s of machine time, a collision stops the run (guarding needs a "
         "lower --speed)\n",
-        "cannot guard", o.speed, margin_m, planned_gap_m - gantry_width_m);
+        "cannot guard", o.speed, floors::length_text(margin_m, unit, 1).c_str(),
+        L(planned_gap_m - gantry_width_m).c_str());
   std::vector<std::string> events;
   const auto started = std::chrono::steady_clock::now();
   auto last = started, last_line = started;
@@ -519,13 +524,14 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (site && several) {
     const dispatch::RailGuard& rail_guard = site->guard();
     std::cout << printf_string(
-        "gantry gaps: %ld measured at the site clock's %lld ticks, the smallest %.3f m (gantry "
-        "width %.3f m)%s; %s\n",
+        "gantry gaps: %ld measured at the site clock's %lld ticks, the smallest %s (gantry "
+        "width %s)%s; %s\n",
         rail_guard.gaps_measured(), static_cast<long long>(site->clock().tick()),
-        rail_guard.smallest_gap_m(), gantry_width_m, collided ? ": COLLISION" : "",
+        L(rail_guard.smallest_gap_m()).c_str(), L(gantry_width_m).c_str(),
+        collided ? ": COLLISION" : "",
         guard ? printf_string("watchdog steps of %.3g s, within which two gantries close at most "
-                              "%.3f m",
-                              status_period_s, rail_guard.margin_m(rail_speed_m_s))
+                              "%s",
+                              status_period_s, L(rail_guard.margin_m(rail_speed_m_s)).c_str())
                     .c_str()
               : "no watchdog (--no-watchdog): steps of up to 0.5 s, unguarded");
   }
@@ -536,10 +542,11 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (watchdog) {
     collided = watchdog->smallest_gap_m() < gantry_width_m;
     std::cout << printf_string(
-        "gantry gaps: %ld measured from the machines' statuses%s, the smallest %.3f m (gantry "
-        "width %.3f m)%s\n",
+        "gantry gaps: %ld measured from the machines' statuses%s, the smallest %s (gantry "
+        "width %s)%s\n",
         watchdog->gaps_measured(), can_guard ? "" : " (only where both reported within 1 s)",
-        watchdog->smallest_gap_m(), gantry_width_m, collided ? ": COLLISION" : "");
+        L(watchdog->smallest_gap_m()).c_str(), L(gantry_width_m).c_str(),
+        collided ? ": COLLISION" : "");
   }
   // The default journal goes with the temporary folder: say so rather than print a path
   // that is gone when the run ends.

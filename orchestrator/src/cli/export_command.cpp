@@ -22,14 +22,16 @@ struct ExportCommandOptions {
   std::string start;
   bool force = false;
   bool allow_changed_inputs = false;
+  std::optional<std::string> units;  ///< --units: shown instead of the building's
 };
 
 void run_export(const ExportCommandOptions& o, int& exit_code) {
   OutputClaims outputs({o.schedule});
   outputs.claim_file("--output", o.output, o.force);
   // A task list needs no tool paths: a regression golden (digests only) exports too.
-  const schedule::ReadSchedule schedule =
+  schedule::ReadSchedule schedule =
       read_schedule_for(o.schedule, o.allow_changed_inputs, true, "export");
+  if (o.units) schedule.document.inputs.units = *o.units;
   const schedule::ScheduleDocument& document = schedule.document;
   report::ExportDates dates;
   if (!o.start.empty()) {
@@ -145,6 +147,7 @@ void add_export_command(CLI::App& app, int& exit_code) {
                       "For a schedule made without a site calendar: the local date and time "
                       "its second 0 is (2027-03-01T07:00 or \"2027-03-01 07:00\")");
   command->add_flag("--force", o->force, "Overwrite an existing output file");
+  add_shown_units_option(*command, o->units);
   command->add_flag("--allow-changed-inputs", o->allow_changed_inputs,
                     "Export a schedule whose input files changed since it was made");
   command->callback([o, &exit_code] { run_export(*o, exit_code); });

@@ -96,15 +96,19 @@ void run_fit(const FitCommandOptions& o, int& exit_code) {
   const auto& p = fit.platform;
   std::cout << printf_string("%s fitted to %s: %s\n", input.machine.c_str(), o.file.c_str(),
                              fit.summary.c_str());
+  const floors::LengthUnit unit = project.building.units;
+  auto L = [unit](double m) { return floors::length_text(m, unit, 2); };
+  auto in = [unit](double m) { return floors::length_in(m, unit); };
   std::cout << printf_string(
-      "  platform  beams at x %.2f to %.2f m, y %.2f to %.2f m; the gantry reaches x %.2f to "
-      "%.2f m, y %.2f to %.2f m\n",
-      p.x_min_m, p.x_max_m, p.y_min_m, p.y_max_m, p.gantry_x_min_m, p.gantry_x_max_m,
-      p.gantry_y_min_m, p.gantry_y_max_m);
+      "  platform  beams at x %.2f to %s, y %.2f to %s; the gantry reaches x %.2f to %s, y %.2f "
+      "to %s\n",
+      in(p.x_min_m), L(p.x_max_m).c_str(), in(p.y_min_m), L(p.y_max_m).c_str(),
+      in(p.gantry_x_min_m), L(p.gantry_x_max_m).c_str(), in(p.gantry_y_min_m),
+      L(p.gantry_y_max_m).c_str());
   for (const auto& u : p.units)
-    std::cout << printf_string("  %-4s      under the %s beam at (%.2f, %.2f) m\n", u.name.c_str(),
-                               machine::to_string(u.beam).c_str(), u.position_m.x(),
-                               u.position_m.y());
+    std::cout << printf_string("  %-4s      under the %s beam at (%.2f, %.2f) %s\n", u.name.c_str(),
+                               machine::to_string(u.beam).c_str(), in(u.position_m.x()),
+                               in(u.position_m.y()), floors::to_string(unit).c_str());
   std::cout << printf_string(
       "  checked   %d stages; %d mount positions on the beams, %d reaching solid wall at every "
       "stage; %d unit sets tried\n",

@@ -82,6 +82,11 @@ void run_layers(const LayersOptions& options, int& exit_code) {
                                  project.length(r.wall_length_m, 2).c_str());
     }
   }
+  std::cout
+      << "\n  (geometry: numbered across the building, one per distinct outline, as the "
+         "schedule's `geometry` and plan keys g<geometry>n<nozzles> name it; hash: its "
+         "digest, equal for the same walls at the same coordinates; pieces: the walls' stretches "
+         "between openings; wall length: the walls' centre lines summed)\n";
   exit_code = kExitOk;
 }
 

@@ -18,13 +18,15 @@ struct ReportCommandOptions {
   std::string output;
   bool force = false;
   bool allow_changed_inputs = false;
+  std::optional<std::string> units;  ///< --units: shown instead of the building's
 };
 
 void run_report(const ReportCommandOptions& o, int& exit_code) {
   OutputClaims outputs({o.schedule});
   outputs.claim_file("--output", o.output, o.force);
-  const schedule::ReadSchedule schedule =
+  schedule::ReadSchedule schedule =
       read_schedule_for(o.schedule, o.allow_changed_inputs, false, "report");
+  if (o.units) schedule.document.inputs.units = *o.units;
   report::ReportOptions options;
   options.notes = schedule.notes;
   const std::string html = report::schedule_report_html(schedule.document, options);
@@ -60,6 +62,7 @@ void add_report_command(CLI::App& app, int& exit_code) {
       ->required()
       ->check(output_path());
   command->add_flag("--force", o->force, "Overwrite an existing output file");
+  add_shown_units_option(*command, o->units);
   command->add_flag("--allow-changed-inputs", o->allow_changed_inputs,
                     "Draw a schedule whose input files changed since it was made (the report "
                     "then says which); by default it is refused, being out of date");

@@ -141,7 +141,10 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       for (const auto& r : l.wait_reasons) f.reasons[schedule::to_string(r.kind)] += 1;
     }
   }
-  const int width = calendar ? 20 : 11;
+  int width = 5;  // the widest time in the start and end columns ("day 10 02:03" is 12)
+  for (const auto& [floor, f] : floors)
+    width = std::max(
+        {width, static_cast<int>(when(f.start_s).size()), static_cast<int>(when(f.end_s).size())});
   const TimeUnit waited_unit =
       column_unit(floors, [](const auto& entry) { return entry.second.wait_s; });
   std::cout << printf_string("floor  layers  nozzles  %-*s  %-*s  waits  %10s  why\n", width,
@@ -164,11 +167,12 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
         column_unit(s.days, [](const schedule::WorkDay& d) { return d.printing_s; });
     for (const auto& d : s.days)
       std::cout << printf_string(
-          "  %s %s  %3d layer%s, %s printing, %.2f m³, %d deliver%s, "
+          "  %s %s  %3d layer%s, %s printing, %s, %d deliver%s, "
           "%.1f crew person-hours: %s\n",
           kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7], d.date.c_str(), d.layers,
           d.layers == 1 ? " " : "s", duration_in(d.printing_s, printing_unit).c_str(),
-          d.concrete_m3, d.deliveries, d.deliveries == 1 ? "y" : "ies", d.crew_h, d.detail.c_str());
+          floors::volume_text(d.concrete_m3, project.building.units).c_str(), d.deliveries,
+          d.deliveries == 1 ? "y" : "ies", d.crew_h, d.detail.c_str());
   }
   std::vector<const schedule::Event*> climbs;
   for (const auto& e : s.events)
@@ -268,7 +272,9 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     if (!by_kind.empty())
       std::cout << printf_string(
           "crew: %.1f person-hours (%s)%s\n", t.crew_h, kinds.c_str(),
-          slab_m3 > 0.0 ? printf_string("; slabs poured: %.2f m³", slab_m3).c_str() : "");
+          slab_m3 > 0.0
+              ? ("; slabs poured: " + floors::volume_text(slab_m3, project.building.units)).c_str()
+              : "");
   }
   {
     // Quantities: concrete per floor and in all, the pump's peak, the deliveries.
@@ -278,18 +284,20 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       per_floor[l.floor] += l.concrete_m3;
       peak_m3_s = std::max(peak_m3_s, l.peak_flow_m3_s);
     }
+    const floors::LengthUnit unit = project.building.units;
     std::string floors_text;
     for (const auto& [floor, m3] : per_floor)
-      floors_text += printf_string("%sfloor %d %.2f", floors_text.empty() ? "" : ", ", floor, m3);
+      floors_text += printf_string("%sfloor %d %.2f", floors_text.empty() ? "" : ", ", floor,
+                                   floors::volume_in(m3, unit));
+    auto per_hour = [unit](double m3_s) { return floors::volume_text(m3_s * 3600.0, unit) + "/h"; };
     std::cout << printf_string(
-        "concrete: %.2f m³ (%s); the nozzles draw at most %.2f m³/h%s; %zu deliveries of "
-        "%g m³\n",
-        t.concrete_m3, floors_text.c_str(), peak_m3_s * 3600.0,
+        "concrete: %s (%s); the nozzles draw at most %s%s; %zu deliveries of %s\n",
+        floors::volume_text(t.concrete_m3, unit).c_str(), floors_text.c_str(),
+        per_hour(peak_m3_s).c_str(),
         project.machine->pump_capacity_m3_s
-            ? printf_string(" (the pump: %.2f m³/h)", *project.machine->pump_capacity_m3_s * 3600.0)
-                  .c_str()
+            ? (" (the pump: " + per_hour(*project.machine->pump_capacity_m3_s) + ")").c_str()
             : "",
-        s.deliveries.size(), project.material.delivery_batch_m3);
+        s.deliveries.size(), floors::volume_text(project.material.delivery_batch_m3, unit).c_str());
   }
   {
     // The other objective, scheduled in full, for comparison.

@@ -43,7 +43,8 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     out["kind"] = project.is_building ? "building" : "plan";
     out["valid"] = true;
     out["name"] = b.name;
-    out["units"] = floors::to_string(b.units);
+    out["units"] = floors::to_string(project.file_unit);
+    out["shown_in"] = floors::to_string(b.units);
     out["layer_height_m"] = b.layer_height_m;
     out["material"] = {{"name", project.material.name}, {"origin", project.material_origin}};
     out["machine"] = {{"name", machine.name},
@@ -83,8 +84,10 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
   auto L = [&](double m) { return project.length(m, 2); };
   std::cout << options.file << ": valid " << (project.is_building ? "building" : "plan") << "\n";
   if (!b.name.empty()) std::cout << printf_string("  %-10s %s\n", "name", b.name.c_str());
-  std::cout << printf_string("  %-10s %s in the file, metres inside\n", "units",
-                             floors::to_string(b.units).c_str());
+  std::cout << printf_string(
+      "  %-10s %s in the file, metres inside%s\n", "units",
+      floors::to_string(project.file_unit).c_str(),
+      b.units == project.file_unit ? "" : (", shown in " + floors::to_string(b.units)).c_str());
   std::cout << printf_string("  %-10s %s\n", "layer", project.length(b.layer_height_m).c_str());
   std::cout << printf_string("  %-10s %s\n", "material", project.material_origin.c_str());
   std::cout << printf_string("  %-10s %s\n", "machine", project.machine_origin.c_str());
@@ -132,6 +135,9 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                                f.opening_count, f.anchor_count, f.layer_count,
                                f.distinct_geometries);
   }
+  std::cout << "  (openings: doors and windows; anchors: the points a climbing machine's pins go "
+               "into, listed in the file (0: placed by rule on solid wall); geometries: the "
+               "floor's distinct layer outlines, each planned once)\n";
   std::cout << "\n"
             << printf_string(
                    "  total: %zu floor(s), %d walls, %d openings, %d layers, %d distinct layer "

@@ -36,6 +36,9 @@ struct ProjectOptions {
   floors::LengthUnit plan_unit = floors::LengthUnit::kMeter;
   double plan_floor_height_m = 3.0;
   double plan_layer_height_m = 0.1;
+  /// --units given: lengths are shown in this unit (messages, the schedule's `units`, so
+  /// its report) whatever unit the file was written in. Unset: the file's own.
+  std::optional<floors::LengthUnit> shown_unit;
   /// Overrides of the building's profiles (empty: the building's, else the bundled ones).
   std::filesystem::path machine_profile;
   std::filesystem::path material_profile;
@@ -62,6 +65,8 @@ struct NoFit : std::runtime_error {
 /// was a building or a lone plan.
 struct Project : schedule::Setup {
   bool is_building = false;
+  /// The unit the file was written in; `building.units` is the unit it is shown in.
+  floors::LengthUnit file_unit = floors::LengthUnit::kMeter;
 };
 
 /// Opens FILE and everything it refers to, each file read and parsed once, and checks

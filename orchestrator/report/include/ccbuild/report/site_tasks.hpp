@@ -31,8 +31,12 @@ struct SiteTask {
 std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& schedule);
 
 /// A short title for lists and calendars: "Floor 0 layer 12", "Wait before floor 0 layer
-/// 12", "Floor 0: formwork lintel over opening W1", "Concrete delivery, 6.00 m³".
-std::string title_of(const SiteTask& task);
+/// 12", "Floor 0: formwork lintel over opening W1", "Concrete delivery, 6.00 m³" (yd³
+/// where `unit` is feet).
+std::string title_of(const SiteTask& task, floors::LengthUnit unit = floors::LengthUnit::kMeter);
+
+/// The unit a schedule's lengths are shown in (its `inputs.units`; m when it names none).
+floors::LengthUnit shown_unit(const schedule::ScheduleDocument& schedule);
 
 /// The milestones: each floor's walls finished (kind "walls-finished", id "M<floor>", at the
 /// end of its last layer: start_s equals end_s), by floor.
