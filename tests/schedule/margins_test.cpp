@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "ccbuild/schedule/margins.hpp"
 #include "test_support.hpp"
 
@@ -49,6 +51,26 @@ TEST(Margins, GantriesWarnedUnderFiftyMillimetresWithTheLayersThatUseThePlan) {
   ASSERT_EQ(w.size(), 1u) << (w.empty() ? "" : w[0]);
   EXPECT_TRUE(contains(w[0], "plan g2n2 come within 49 mm"));
   EXPECT_TRUE(contains(w[0], "on floor 0 layers 3-5, floor 1 layer 0; warned under 50 mm"));
+}
+
+// At the threshold itself, in binary-exact figures (1.55 - 1.5 is a hair over 0.05): a
+// clearance equal to the threshold is not warned, the next double under it is.
+TEST(Margins, AGantryClearanceExactlyAtTheThresholdIsNotWarned) {
+  Case c;
+  SchedulePlan at, under;
+  at.nozzles = under.nozzles = 2;
+  at.min_gap_m = c.machine.gantry_width_m + 0.0625;
+  under.min_gap_m = std::nextafter(at.min_gap_m, 0.0);
+  ASSERT_EQ(at.min_gap_m - c.machine.gantry_width_m, 0.0625);
+  MarginThresholds t;
+  t.gantry_clearance_m = 0.0625;
+  c.schedule.plans = {{"g1n2", at}};
+  c.add_layer(0, 0, "g1n2");
+  EXPECT_TRUE(margin_warnings(c.schedule, c.machine, c.material, t).empty());
+  c.schedule.plans = {{"g1n2", under}};
+  const auto w = margin_warnings(c.schedule, c.machine, c.material, t);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_TRUE(contains(w[0], "plan g1n2 come within 62 mm")) << w[0];
 }
 
 TEST(Margins, ClimbsWarnedUnderTwentyMillimetresNamingTheClosest) {
