@@ -132,6 +132,7 @@ int main(int argc, char** argv) {
   add_report_command(app, exit_code);
   add_export_command(app, exit_code);
   add_dry_run_command(app, exit_code);
+  add_study_command(app, exit_code);
 
   bool json = false;
   for (int k = 1; k < argc; ++k)

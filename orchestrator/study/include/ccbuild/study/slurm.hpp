@@ -1,0 +1,48 @@
+#pragma once
+// Running a study as a Slurm job array: one array task per chunk of variants, each running
+// `ccbuild study run <results> --task $SLURM_ARRAY_TASK_ID` (or, resubmitted, one variant
+// per task with --variant). Jobs submitted are listed in <results>/slurm/jobs.tsv so that
+// `collect` can ask Slurm what became of a task that left no result.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ccbuild/study/runner.hpp"
+
+namespace ccbuild::study {
+
+struct SlurmOptions {
+  std::string partition;  ///< --partition (empty: the cluster's default)
+  std::string time;       ///< --time per array task, Slurm's syntax ("30", "2:00:00")
+  int array_max = 0;      ///< at most this many tasks at once (the array's %K); 0: no limit
+};
+
+/// The sbatch script for `plan`: array tasks 0..chunks-1, or (variants given) one task per
+/// variant index. `name` names the script's job and its log files.
+std::string sbatch_script(const Plan& plan, const SlurmOptions& options,
+                          const std::filesystem::path& ccbuild,
+                          const std::vector<int>& variants = {});
+
+/// Submits `script` (a file) with sbatch; returns the job id and records it (with what its
+/// tasks run: "task" or "variant") in <results>/slurm/jobs.tsv. Throws std::runtime_error
+/// with sbatch's message when it refuses.
+std::string submit(const Plan& plan, const std::filesystem::path& script, const std::string& runs);
+
+/// Waits until none of the plan's jobs is in squeue; `progress` is told now and then.
+void wait_for_jobs(const Plan& plan, const std::function<void(const std::string&)>& progress);
+
+/// What Slurm says of the array task that ran variant `index` (sacct, else scontrol):
+/// "COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", ..., with the job id; nullopt when no
+/// job of the plan ran it or Slurm no longer knows it.
+struct TaskState {
+  std::string job;    ///< "123_4"
+  std::string state;  ///< Slurm's
+  std::filesystem::path log;
+};
+std::optional<TaskState> task_state(const Plan& plan, int index);
+
+/// Whether Slurm's client commands are on the PATH.
+bool slurm_available();
+
+}  // namespace ccbuild::study
