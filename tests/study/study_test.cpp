@@ -21,7 +21,8 @@ using testing::expect_input_error;
 
 /// A study file in a folder of its own, beside copies of the house and the bundled profiles.
 struct StudyFolder {
-  fs::path dir = testing::scratch_dir("study", ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::path dir = testing::scratch_dir(
+      "study", ::testing::UnitTest::GetInstance()->current_test_info()->name());
   StudyFolder() {
     fs::copy_file(testing::source_path("config/machines/cc-gantry.yaml"), dir / "gantry.yaml");
     fs::copy_file(testing::source_path("config/materials/standard-mix.yaml"), dir / "mix.yaml");
@@ -38,8 +39,9 @@ struct StudyFolder {
 
 TEST(StudyFile, TheGridVariesTheFirstAxisSlowest) {
   StudyFolder f;
-  const Study s = read_study(f.write("  machine.nozzles: [1, 2]\n  objective: [fewest-nozzles, shortest]\n"
-                                     "  material.max_layer_interval_s: {from: 1800, to: 2400, step: 300}\n"));
+  const Study s =
+      read_study(f.write("  machine.nozzles: [1, 2]\n  objective: [fewest-nozzles, shortest]\n"
+                         "  material.max_layer_interval_s: {from: 1800, to: 2400, step: 300}\n"));
   ASSERT_EQ(s.variants.size(), 12u);
   EXPECT_EQ(s.grid_size, 12);
   EXPECT_EQ(s.variants[0].id, "v0001");
@@ -48,7 +50,7 @@ TEST(StudyFile, TheGridVariesTheFirstAxisSlowest) {
   EXPECT_EQ(s.axes[2].values, (std::vector<std::string>{"1800", "2100", "2400"}));
   EXPECT_EQ(s.variants[0].settings[0].second, "1");
   EXPECT_EQ(s.variants[5].settings[0].second, "1");
-  EXPECT_EQ(s.variants[6].settings[0].second, "2");  // the first axis changes after 2 x 3
+  EXPECT_EQ(s.variants[6].settings[0].second, "2");     // the first axis changes after 2 x 3
   EXPECT_EQ(s.variants[1].settings[2].second, "2100");  // the last axis changes every time
   EXPECT_EQ(s.variants[3].objective, "shortest");
   ASSERT_EQ(s.variants[7].machine_keys.size(), 1u);
@@ -60,13 +62,21 @@ TEST(StudyFile, TheGridVariesTheFirstAxisSlowest) {
 TEST(StudyFile, ARangeThatStopsShortOfItsEndKeepsOnlyTheStepsWithin) {
   StudyFolder f;
   // 0.15 + 2 x 0.05 lands on 0.25 within rounding: three values; to 0.249: two.
-  EXPECT_EQ(read_study(f.write("  machine.deposition_speed_m_s: {from: 0.15, to: 0.25, step: 0.05}\n")).variants.size(), 3u);
-  EXPECT_EQ(read_study(f.write("  machine.deposition_speed_m_s: {from: 0.15, to: 0.249, step: 0.05}\n")).variants.size(), 2u);
+  EXPECT_EQ(
+      read_study(f.write("  machine.deposition_speed_m_s: {from: 0.15, to: 0.25, step: 0.05}\n"))
+          .variants.size(),
+      3u);
+  EXPECT_EQ(
+      read_study(f.write("  machine.deposition_speed_m_s: {from: 0.15, to: 0.249, step: 0.05}\n"))
+          .variants.size(),
+      2u);
 }
 
 TEST(StudyFile, ARandomSampleIsTheSameForTheSameSeedAndDistinct) {
   StudyFolder f;
-  const std::string axes = "  machine.deposition_speed_m_s: {from: 0.1, to: 0.5, step: 0.01}\n  objective: [fewest-nozzles, shortest]\n";
+  const std::string axes =
+      "  machine.deposition_speed_m_s: {from: 0.1, to: 0.5, step: 0.01}\n  objective: "
+      "[fewest-nozzles, shortest]\n";
   const Study a = read_study(f.write(axes, "sample: {random: 20, seed: 7}\n"));
   const Study b = read_study(f.write(axes, "sample: {random: 20, seed: 7}\n"));
   const Study c = read_study(f.write(axes, "sample: {random: 20, seed: 8}\n"));
@@ -82,7 +92,8 @@ TEST(StudyFile, ARandomSampleIsTheSameForTheSameSeedAndDistinct) {
   EXPECT_NE(sa, sc);
   // A sample as large as the grid is the grid.
   EXPECT_EQ(read_study(f.write(axes, "sample: {random: 82, seed: 3}\n")).variants.size(), 82u);
-  const InputError over = expect_input_error([&] { read_study(f.write(axes, "sample: {random: 83}\n")); });
+  const InputError over =
+      expect_input_error([&] { read_study(f.write(axes, "sample: {random: 83}\n")); });
   EXPECT_TRUE(contains(over.what(), "sample.random")) << over.what();
   EXPECT_TRUE(contains(over.what(), "only 82 variants")) << over.what();
 }
@@ -111,9 +122,12 @@ TEST(StudyFile, ErrorsNameTheFileTheLineAndTheField) {
   e = error("  objective: [fastest]\n");
   EXPECT_TRUE(contains(e, "fewest-nozzles or shortest")) << e;
   // Five axes of 10 values and one of 11: over the limit of variants, with the way out.
-  e = error("  machine.deposition_speed_m_s: {from: 1, to: 10, step: 1}\n  machine.travel_speed_m_s: {from: 1, to: 10, step: 1}\n"
-            "  machine.accel_delay_s: {from: 1, to: 10, step: 1}\n  machine.purge_s: {from: 1, to: 10, step: 1}\n"
-            "  machine.lift_height_m: {from: 1, to: 10, step: 1}\n  seed: {from: 1, to: 11, step: 1}\n");
+  e = error(
+      "  machine.deposition_speed_m_s: {from: 1, to: 10, step: 1}\n  machine.travel_speed_m_s: "
+      "{from: 1, to: 10, step: 1}\n"
+      "  machine.accel_delay_s: {from: 1, to: 10, step: 1}\n  machine.purge_s: {from: 1, to: 10, "
+      "step: 1}\n"
+      "  machine.lift_height_m: {from: 1, to: 10, step: 1}\n  seed: {from: 1, to: 11, step: 1}\n");
   EXPECT_TRUE(contains(e, "1100000 variants; at most 100000")) << e;
   EXPECT_TRUE(contains(e, "random")) << e;
   e = error("  machine.nozzles: [1]\n", "measures: [makespan_s, speed]\n");
@@ -125,20 +139,24 @@ TEST(StudyFile, TheInputsDigestFollowsTheFilesBytesAndTheSettings) {
   const Study s = read_study(f.write("  machine.nozzles: [1, 2]\n"));
   const std::string one = inputs_sha256(s.variants[0]);
   EXPECT_EQ(one, inputs_sha256(read_study(f.dir / "s.yaml").variants[0]));
-  EXPECT_NE(one, inputs_sha256(s.variants[1]));  // another number
+  EXPECT_NE(one, inputs_sha256(s.variants[1]));              // another number
   std::ofstream(f.dir / "mix.yaml", std::ios::app) << "\n";  // one byte more
   EXPECT_NE(one, inputs_sha256(s.variants[0]));
 }
 
 TEST(StudyResults, MeasuresOfTheHousesSchedule) {
-  const auto schedule = nlohmann::json::parse(read_text_file(testing::source_path("tests/regression/house.schedule.json")));
+  const auto schedule = nlohmann::json::parse(
+      read_text_file(testing::source_path("tests/regression/house.schedule.json")));
   const auto m = measures_of(schedule);
   EXPECT_EQ(m["makespan_s"].get<double>(), schedule["totals"]["makespan_s"].get<double>());
   int nozzles = 0;
   double idle = 0.0;
-  for (const auto& l : schedule["layers"]) nozzles = std::max(nozzles, l["nozzles"].get<int>()), idle = std::max(idle, l["max_idle_s"].get<double>());
+  for (const auto& l : schedule["layers"])
+    nozzles = std::max(nozzles, l["nozzles"].get<int>()),
+    idle = std::max(idle, l["max_idle_s"].get<double>());
   EXPECT_EQ(m["nozzles_max"].get<int>(), nozzles);
-  EXPECT_DOUBLE_EQ(m["idle_margin_s"].get<double>(), schedule["inputs"]["machine"]["nozzle_idle_limit_s"].get<double>() - idle);
+  EXPECT_DOUBLE_EQ(m["idle_margin_s"].get<double>(),
+                   schedule["inputs"]["machine"]["nozzle_idle_limit_s"].get<double>() - idle);
   EXPECT_EQ(m.size(), all_measures().size());
   std::size_t k = 0;
   for (const auto& [key, value] : m.items()) EXPECT_EQ(key, all_measures()[k++]);
@@ -148,7 +166,8 @@ TEST(StudyResults, TheParetoFrontKeepsTiesAndDropsWhatIsBeaten) {
   Collected c;
   // (cost, makespan): 0 and 1 tie; 2 is cheaper-slower's other end; 3 is beaten by 2;
   // 4 equals 2's makespan at a higher cost (beaten); 5 is infeasible.
-  const std::vector<std::pair<double, double>> points = {{1, 10}, {1, 10}, {2, 9}, {2, 12}, {3, 9}, {0, 1}};
+  const std::vector<std::pair<double, double>> points = {{1, 10}, {1, 10}, {2, 9},
+                                                         {2, 12}, {3, 9},  {0, 1}};
   for (std::size_t k = 0; k < points.size(); ++k) {
     nlohmann::ordered_json row;
     row["id"] = "v" + std::to_string(k);

@@ -106,6 +106,7 @@ grep -Eq "^  v0021 missing.*Slurm task ${job}_20 CANCELLED, log .*/slurm/${job}_
 cat "$work/collect2.txt"
 grep -Eq "^resubmitted 1 variant\(s\) as job" "$work/collect2.txt" || { echo "not resubmitted alone"; exit 1; }
 grep -q -- "--array=20$" "$work/slurm/slurm/resubmit-1.sbatch"
+[ -s "$work/slurm/slurm/${job}_0.out" ] || { echo "no log of array task ${job}_0"; ls "$work/slurm/slurm"; exit 1; }
 for f in results.csv results.json results.html; do
   cmp "$work/local/$f" "$work/slurm/$f" || { echo "$f differs between the local run and Slurm"; exit 1; }
 done

@@ -39,6 +39,6 @@ for f in $before; do
   cmp "$f" "$f.saved" && [ ! "$f" -nt "$f.saved" ] || { echo "$f was run again"; exit 1; }
   rm "$f.saved"
 done
-rows=$(grep -c ',feasible,' "$work/s/results.csv" || true)
+rows=$(tail -n +2 "$work/s/results.csv" | grep -c ',feasible,' || true)
 [ "$rows" -eq "$total" ] || { echo "$rows of $total variants feasible after the resume"; exit 1; }
 echo "study_resume_check: killed after $count of $total variants; resumed, none run twice, all $total feasible"

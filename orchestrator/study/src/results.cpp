@@ -62,7 +62,8 @@ nlohmann::ordered_json measures_of(const nlohmann::json& s) {
     if (e.value("kind", "") == "climb") ++climbs;
   m["climbs"] = climbs;
   m["machine_s"] = totals.value("machine_s", 0.0);
-  m["idle_margin_s"] = std::isfinite(idle_margin_s) ? nlohmann::ordered_json(idle_margin_s) : nullptr;
+  m["idle_margin_s"] =
+      std::isfinite(idle_margin_s) ? nlohmann::ordered_json(idle_margin_s) : nullptr;
   m["warnings"] = s.value("warnings", nlohmann::json::array()).size();
   return m;
 }
@@ -88,9 +89,10 @@ Collected collect(const Plan& plan) {
     if ((status == "feasible" || status == "infeasible") && !finished(plan, v.index)) status = "";
     row["status"] = status.empty() ? "missing" : status;
     if (status == "failed") row["reason"] = result.value("reason", "");
-    row["measures"] = result.is_object() && result.contains("measures") && !status.empty() && status != "failed"
-                          ? result["measures"]
-                          : nlohmann::ordered_json(nullptr);
+    row["measures"] =
+        result.is_object() && result.contains("measures") && !status.empty() && status != "failed"
+            ? result["measures"]
+            : nlohmann::ordered_json(nullptr);
     (status == "feasible"     ? c.feasible
      : status == "infeasible" ? c.infeasible
      : status == "failed"     ? c.failed
@@ -109,7 +111,8 @@ std::string results_csv(const Plan& plan, const Collected& c) {
   out += "\r\n";
   for (const auto& row : c.rows) {
     out += row["id"].get<std::string>();
-    for (const Axis& a : plan.study.axes) out += "," + csv_field(row["settings"][a.name].get<std::string>());
+    for (const Axis& a : plan.study.axes)
+      out += "," + csv_field(row["settings"][a.name].get<std::string>());
     out += "," + row["status"].get<std::string>();
     for (const auto& m : plan.study.measures)
       out += "," + (row["measures"].is_object() ? number_text(row["measures"][m]) : std::string());
@@ -123,7 +126,8 @@ std::string results_json(const Plan& plan, const Collected& c) {
   out["format"] = "ccbuild-study-results";
   out["name"] = plan.study.name;
   out["axes"] = nlohmann::ordered_json::array();
-  for (const Axis& a : plan.study.axes) out["axes"].push_back({{"name", a.name}, {"values", a.values}});
+  for (const Axis& a : plan.study.axes)
+    out["axes"].push_back({{"name", a.name}, {"values", a.values}});
   out["grid_size"] = plan.study.grid_size;
   out["counts"] = {{"variants", c.rows.size()},
                    {"feasible", c.feasible.size()},

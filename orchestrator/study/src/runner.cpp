@@ -66,12 +66,16 @@ void absolute_files(DocNode& node, const fs::path& folder) {
 }
 
 /// The profile with the variant's numbers set, written into its folder.
-fs::path patched_profile(const fs::path& profile, const std::vector<std::pair<std::string, double>>& keys,
+fs::path patched_profile(const fs::path& profile,
+                         const std::vector<std::pair<std::string, double>>& keys,
                          const fs::path& out) {
   Document doc = load_document(profile);
   absolute_files(doc.root, profile.parent_path());
   for (const auto& [key, value] : keys) set_number(doc.root, key, value);
-  write_file_atomically(out, to_yaml(doc.root, "Written by ccbuild study from " + profile.string() + ", with this variant's numbers"), true);
+  write_file_atomically(out,
+                        to_yaml(doc.root, "Written by ccbuild study from " + profile.string() +
+                                              ", with this variant's numbers"),
+                        true);
   return out;
 }
 
@@ -88,8 +92,10 @@ std::string inputs_sha256(const Variant& v) {
   file("site", v.site);
   text += "objective " + v.objective + "\nseed " + std::to_string(v.seed) + "\n";
   text += printf_string("layer_time_limit_s %.17g\n", v.layer_time_limit_s);
-  for (const auto& [k, value] : v.machine_keys) text += printf_string("machine.%s %.17g\n", k.c_str(), value);
-  for (const auto& [k, value] : v.material_keys) text += printf_string("material.%s %.17g\n", k.c_str(), value);
+  for (const auto& [k, value] : v.machine_keys)
+    text += printf_string("machine.%s %.17g\n", k.c_str(), value);
+  for (const auto& [k, value] : v.material_keys)
+    text += printf_string("material.%s %.17g\n", k.c_str(), value);
   return sha256_hex(text);
 }
 
@@ -114,7 +120,8 @@ Plan prepare(const Study& study, const fs::path& folder, int chunk, bool force) 
       old = nlohmann::json::parse(read_text_file(file));
     } catch (const nlohmann::json::exception&) {
     }
-    if (old.value("study_file", "") != json["study_file"] || old["variants"] != nlohmann::json(json["variants"]))
+    if (old.value("study_file", "") != json["study_file"] ||
+        old["variants"] != nlohmann::json(json["variants"]))
       throw InputError(file.string(), 0, "",
                        "the folder holds the results of another study (or of this one before its "
                        "axes changed); give another folder, or --force to start over there");
@@ -159,7 +166,8 @@ bool finished(const Plan& plan, int index) {
     const auto json = nlohmann::json::parse(read_text_file(result));
     const std::string status = json.value("status", "");
     if (status != "feasible" && status != "infeasible") return false;
-    if (json.value("inputs_sha256", "") != inputs_sha256(plan.study.variants.at(index))) return false;
+    if (json.value("inputs_sha256", "") != inputs_sha256(plan.study.variants.at(index)))
+      return false;
     // The files the schedule read besides those (plans, URDFs) unchanged too.
     schedule::ReadScheduleOptions read;
     read.inputs = schedule::RecordedInputCheck::kRefuseChangedOrMissing;
@@ -175,8 +183,9 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
   Outcome outcome;
   if (finished(plan, index)) {
     outcome.skipped = true;
-    outcome.status = nlohmann::json::parse(read_text_file(variant_folder(plan, index) / "result.json"))
-                         .value("status", "");
+    outcome.status =
+        nlohmann::json::parse(read_text_file(variant_folder(plan, index) / "result.json"))
+            .value("status", "");
     return outcome;
   }
   const fs::path dir = variant_folder(plan, index);
@@ -195,8 +204,10 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
   result["settings"] = settings_json(v);
   const auto start = std::chrono::steady_clock::now();
   try {
-    if (!v.machine_keys.empty()) machine = patched_profile(v.machine, v.machine_keys, dir / "machine.yaml");
-    if (!v.material_keys.empty()) material = patched_profile(v.material, v.material_keys, dir / "material.yaml");
+    if (!v.machine_keys.empty())
+      machine = patched_profile(v.machine, v.machine_keys, dir / "machine.yaml");
+    if (!v.material_keys.empty())
+      material = patched_profile(v.material, v.material_keys, dir / "material.yaml");
   } catch (const std::exception& e) {
     result["status"] = "failed";
     result["reason"] = std::string("the variant's profile cannot be written: ") + e.what();
@@ -205,44 +216,66 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
     if (!machine.empty()) argv.insert(argv.end(), {"--machine", machine.string()});
     if (!material.empty()) argv.insert(argv.end(), {"--material", material.string()});
     if (!v.site.empty()) argv.insert(argv.end(), {"--site", v.site.string()});
-    argv.insert(argv.end(), {"--objective", v.objective, "--seed", std::to_string(v.seed), "--jobs",
-                             "1", "--quiet", "--layer-time-limit",
-                             printf_string("%.17g", v.layer_time_limit_s), "-o",
-                             (dir / "schedule.json").string(), "--force"});
+    argv.insert(argv.end(),
+                {"--objective", v.objective, "--seed", std::to_string(v.seed), "--jobs", "1",
+                 "--quiet", "--layer-time-limit", printf_string("%.17g", v.layer_time_limit_s),
+                 "-o", (dir / "schedule.json").string(), "--force"});
     std::ofstream(log, std::ios::app) << "$";
     for (const auto& a : argv) std::ofstream(log, std::ios::app) << " " << a;
     std::ofstream(log, std::ios::app) << "\n";
-    const detail::ProcessResult r = detail::run_process(argv, log, plan.study.variant_timeout_s);
+    detail::ProcessResult r;
+    try {
+      r = detail::run_process(argv, log, plan.study.variant_timeout_s);
+    } catch (const std::exception& e) {
+      r.exit_code = -1;
+      std::ofstream(log, std::ios::app) << "cannot start it: " << e.what() << "\n";
+    }
     if (r.timed_out) {
       result["status"] = "failed";
-      result["reason"] = printf_string("timed out after %.0f s (variant_timeout_s)", plan.study.variant_timeout_s);
+      result["reason"] =
+          printf_string("timed out after %.0f s (variant_timeout_s)", plan.study.variant_timeout_s);
     } else if (r.signal) {
       result["status"] = "failed";
       result["reason"] = printf_string("killed by signal %d (%s)", r.signal, strsignal(r.signal));
-    } else if ((r.exit_code == 0 || r.exit_code == 1) && fs::is_regular_file(dir / "schedule.json", ec)) {
+    } else if ((r.exit_code == 0 || r.exit_code == 1) &&
+               fs::is_regular_file(dir / "schedule.json", ec)) {
       const auto schedule = nlohmann::json::parse(read_text_file(dir / "schedule.json"));
       result["status"] = schedule.value("feasible", false) ? "feasible" : "infeasible";
       result["measures"] = measures_of(schedule);
+    } else if (r.exit_code < 0) {
+      result["status"] = "failed";
+      result["reason"] = "ccbuild schedule could not be started (its log says why)";
     } else {
       result["status"] = "failed";
-      result["reason"] = printf_string("ccbuild schedule exited %d%s (its log says why)", r.exit_code,
-                                       r.exit_code == 2 ? ", bad input" : r.exit_code == 3 ? ", an internal error" : "");
+      result["reason"] =
+          printf_string("ccbuild schedule exited %d%s (its log says why)", r.exit_code,
+                        r.exit_code == 2   ? ", bad input"
+                        : r.exit_code == 3 ? ", an internal error"
+                                           : "");
     }
   }
   outcome.status = result["status"];
   outcome.reason = result.value("reason", "");
-  outcome.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(dir / "result.json", result.dump(2) + "\n", true);
   return outcome;
 }
 
-void run_variants(const Plan& plan, const std::vector<int>& indices, int jobs, const RunOptions& options,
+void run_variants(const Plan& plan, const std::vector<int>& indices, int jobs,
+                  const RunOptions& options,
                   const std::function<void(int, const Outcome&)>& progress) {
   std::atomic<std::size_t> next{0};
   std::mutex told;
   const auto worker = [&] {
     for (std::size_t k; (k = next++) < indices.size();) {
-      const Outcome outcome = run_variant(plan, indices[k], options);
+      Outcome outcome;
+      try {
+        outcome = run_variant(plan, indices[k], options);
+      } catch (const std::exception& e) {  // its folder cannot be written: say so, go on
+        outcome.status = "failed";
+        outcome.reason = e.what();
+      }
       std::lock_guard<std::mutex> lock(told);
       if (progress) progress(indices[k], outcome);
     }

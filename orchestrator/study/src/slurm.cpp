@@ -87,7 +87,8 @@ std::string sbatch_script(const Plan& plan, const SlurmOptions& o, const fs::pat
 }
 
 std::string submit(const Plan& plan, const fs::path& script, const std::string& runs) {
-  const detail::ProcessResult r = detail::run_process({"sbatch", "--parsable", script.string()}, {}, 120.0);
+  const detail::ProcessResult r =
+      detail::run_process({"sbatch", "--parsable", script.string()}, {}, 120.0);
   std::string out = r.output;
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   std::smatch m;
@@ -109,7 +110,8 @@ std::string submit(const Plan& plan, const fs::path& script, const std::string& 
         tasks = spec;
       }
     }
-  std::ofstream(plan.folder / "slurm" / "jobs.tsv", std::ios::app) << id << "\t" << runs << "\t" << tasks << "\n";
+  std::ofstream(plan.folder / "slurm" / "jobs.tsv", std::ios::app)
+      << id << "\t" << runs << "\t" << tasks << "\n";
   return id;
 }
 
@@ -124,12 +126,15 @@ void wait_for_jobs(const Plan& plan, const std::function<void(const std::string&
     std::istringstream lines(r.output);
     int running = 0, pending = 0;
     for (std::string line; std::getline(lines, line);) {
-      if (line.find("RUNNING") != std::string::npos) ++running;
-      else if (!line.empty()) ++pending;
+      if (line.find("RUNNING") != std::string::npos)
+        ++running;
+      else if (!line.empty())
+        ++pending;
     }
     if (r.exit_code == 0 && running == 0 && pending == 0) return;
     if (progress && std::chrono::steady_clock::now() - last > std::chrono::seconds(10)) {
-      progress(printf_string("slurm: %d array task(s) running, %d waiting (jobs %s)", running, pending, ids.c_str()));
+      progress(printf_string("slurm: %d array task(s) running, %d waiting (jobs %s)", running,
+                             pending, ids.c_str()));
       last = std::chrono::steady_clock::now();
     }
     std::this_thread::sleep_for(std::chrono::seconds(2));
@@ -154,8 +159,9 @@ std::optional<TaskState> task_state(const Plan& plan, int index) {
       if (r.exit_code == 0 && std::regex_search(r.output, m, std::regex("JobState=([A-Z_]+)")))
         state = m[1];
     }
-    s.state = state.empty() ? "not in Slurm's records (cancelled before it started, or forgotten since)"
-                            : state.substr(0, state.find(' '));
+    s.state = state.empty()
+                  ? "not in Slurm's records (cancelled before it started, or forgotten since)"
+                  : state.substr(0, state.find(' '));
     found = s;
   }
   return found;

@@ -14,12 +14,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kMeasures = {
-    "makespan_s",      "feasible",         "nozzles_max",        "waits_s",
-    "wait_min_interval_s", "wait_strength_s", "wait_anchor_strength_s", "wait_slab_s",
-    "wait_off_shift_s", "wait_joint_s",    "wait_cold_s",        "wait_wind_s",
-    "concrete_m3",     "crew_h",           "climbs",             "machine_s",
-    "idle_margin_s",   "warnings"};
+const std::vector<std::string> kMeasures = {"makespan_s",
+                                            "feasible",
+                                            "nozzles_max",
+                                            "waits_s",
+                                            "wait_min_interval_s",
+                                            "wait_strength_s",
+                                            "wait_anchor_strength_s",
+                                            "wait_slab_s",
+                                            "wait_off_shift_s",
+                                            "wait_joint_s",
+                                            "wait_cold_s",
+                                            "wait_wind_s",
+                                            "concrete_m3",
+                                            "crew_h",
+                                            "climbs",
+                                            "machine_s",
+                                            "idle_margin_s",
+                                            "warnings"};
 
 /// A file the study names, relative to the study file's folder; it must exist.
 fs::path study_path(const Field& field, const fs::path& folder) {
@@ -117,7 +129,9 @@ std::uint64_t seed_of(const Field& field) {
 
 }  // namespace
 
-const std::vector<std::string>& all_measures() { return kMeasures; }
+const std::vector<std::string>& all_measures() {
+  return kMeasures;
+}
 
 Study read_study(const fs::path& file) {
   const Document doc = load_document(file);
@@ -151,7 +165,8 @@ Study read_study(const fs::path& file) {
   // The axes, in the file's order; each value checked where it is written.
   const Field axes_field = top.required("axes");
   if (!axes_field.is_map() || axes_field.node().entries.empty())
-    axes_field.fail("expected a map of axes: `machine.nozzles: [1, 2, 3]`, `material: [a.yaml, b.yaml]`");
+    axes_field.fail(
+        "expected a map of axes: `machine.nozzles: [1, 2, 3]`, `material: [a.yaml, b.yaml]`");
   if (static_cast<int>(axes_field.node().entries.size()) > kMaxAxes)
     axes_field.fail("expected at most " + std::to_string(kMaxAxes) + " axes");
   std::vector<std::vector<Field>> value_fields;
@@ -171,7 +186,8 @@ Study read_study(const fs::path& file) {
     study.axes.push_back(std::move(axis));
   }
   if (!building_axis && base.building.empty())
-    base_field.fail("expected `building:` (or a `building` axis): the building every variant schedules");
+    base_field.fail(
+        "expected `building:` (or a `building` axis): the building every variant schedules");
 
   // Profile keys: a number at that path in every profile the variants use.
   for (std::size_t a = 0; a < study.axes.size(); ++a) {
@@ -208,8 +224,10 @@ Study read_study(const fs::path& file) {
     for (std::size_t v = 0; v < axis.values.size(); ++v) {
       if (value_fields[a].empty()) {  // a range: numbers made here
         const double value = std::stod(axis.values[v]);
-        if (axis.kind == AxisKind::kSeed && (value < 0 || value > 4294967295.0 || value != std::floor(value)))
-          axes_field.child(axes_field.node().entries[a].second, join_path(axes_field.path(), axis.name))
+        if (axis.kind == AxisKind::kSeed &&
+            (value < 0 || value > 4294967295.0 || value != std::floor(value)))
+          axes_field
+              .child(axes_field.node().entries[a].second, join_path(axes_field.path(), axis.name))
               .fail("expected whole seeds from 0 to 4294967295, the range gives " + axis.values[v]);
         continue;
       }
@@ -230,9 +248,10 @@ Study read_study(const fs::path& file) {
   const auto sample = top.optional("sample");
   if (!sample || (sample->is_scalar() && sample->as_string() == "grid")) {
     if (grid > kMaxVariants)
-      axes_field.fail(printf_string("the axes make %.0Lf variants; at most %lld (take a random "
-                                    "sample: `sample: {random: 500, seed: 1}`)",
-                                    grid, kMaxVariants));
+      axes_field.fail(
+          printf_string("the axes make %.0Lf variants; at most %lld (take a random "
+                        "sample: `sample: {random: 500, seed: 1}`)",
+                        grid, kMaxVariants));
     for (long long k = 0; k < static_cast<long long>(grid); ++k) chosen.push_back(k);
   } else {
     if (!sample->is_map()) sample->fail("expected `grid` or {random: N, seed: S}");
@@ -252,7 +271,8 @@ Study read_study(const fs::path& file) {
       const std::uint64_t range = static_cast<std::uint64_t>(n) + 1;
       const std::uint64_t limit = UINT64_MAX - UINT64_MAX % range;
       std::uint64_t r;
-      do r = random(); while (r >= limit);
+      do r = random();
+      while (r >= limit);
       return static_cast<long long>(r % range);
     };
     std::set<long long> picked;
@@ -298,14 +318,30 @@ Study read_study(const fs::path& file) {
       v.settings.emplace_back(axis.name, value);
       const fs::path path = (folder / value).lexically_normal();
       switch (axis.kind) {
-        case AxisKind::kBuilding: v.building = fs::absolute(path); break;
-        case AxisKind::kMachine: v.machine = fs::absolute(path); break;
-        case AxisKind::kMaterial: v.material = fs::absolute(path); break;
-        case AxisKind::kSite: v.site = value == "none" ? fs::path() : fs::absolute(path); break;
-        case AxisKind::kObjective: v.objective = value; break;
-        case AxisKind::kSeed: v.seed = std::stoull(value); break;
-        case AxisKind::kMachineKey: v.machine_keys.emplace_back(axis.name.substr(8), std::stod(value)); break;
-        case AxisKind::kMaterialKey: v.material_keys.emplace_back(axis.name.substr(9), std::stod(value)); break;
+        case AxisKind::kBuilding:
+          v.building = fs::absolute(path);
+          break;
+        case AxisKind::kMachine:
+          v.machine = fs::absolute(path);
+          break;
+        case AxisKind::kMaterial:
+          v.material = fs::absolute(path);
+          break;
+        case AxisKind::kSite:
+          v.site = value == "none" ? fs::path() : fs::absolute(path);
+          break;
+        case AxisKind::kObjective:
+          v.objective = value;
+          break;
+        case AxisKind::kSeed:
+          v.seed = std::stoull(value);
+          break;
+        case AxisKind::kMachineKey:
+          v.machine_keys.emplace_back(axis.name.substr(8), std::stod(value));
+          break;
+        case AxisKind::kMaterialKey:
+          v.material_keys.emplace_back(axis.name.substr(9), std::stod(value));
+          break;
       }
     }
     study.variants.push_back(std::move(v));

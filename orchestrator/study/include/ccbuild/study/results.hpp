@@ -21,7 +21,7 @@ nlohmann::ordered_json measures_of(const nlohmann::json& schedule);
 
 struct Collected {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();  ///< one per variant
-  std::vector<int> feasible, infeasible, failed, missing;          ///< variant indices
+  std::vector<int> feasible, infeasible, failed, missing;         ///< variant indices
 };
 
 /// Reads every variant's result.json (a result whose inputs changed since counts as

@@ -31,7 +31,7 @@ enum class AxisKind {
 
 struct Axis {
   AxisKind kind = AxisKind::kBuilding;
-  std::string name;                 ///< as the study names it: "machine", "material.max_layer_interval_s"
+  std::string name;  ///< as the study names it: "machine", "material.max_layer_interval_s"
   std::vector<std::string> values;  ///< as written (files relative to the study file)
 };
 
@@ -45,7 +45,8 @@ struct Variant {
   std::string objective = "fewest-nozzles";
   std::uint64_t seed = 1;
   double layer_time_limit_s = 60.0;  ///< the study's, as `schedule --layer-time-limit`
-  /// Numbers set in the profiles, by path below the profile's root ("climbing.anchor_strength_mpa").
+  /// Numbers set in the profiles, by path below the profile's root
+  /// ("climbing.anchor_strength_mpa").
   std::vector<std::pair<std::string, double>> machine_keys, material_keys;
 };
 
