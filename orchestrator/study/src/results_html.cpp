@@ -14,29 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 double measure(const nlohmann::ordered_json& row, const std::string& name) {
   const auto& m = row["measures"];
   return m.is_object() && m.contains(name) && m[name].is_number()
@@ -138,7 +115,7 @@ std::vector<Sensitivity> sensitivity(const Plan& plan, const Collected& c) {
 
 std::string results_html(const Plan& plan, const Collected& c) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" +
-                  escape(plan.study.name) +
+                  xml_escape(plan.study.name) +
                   " - ccbuild study</title>\n<style>\n"
                   "body{font:14px/1.4 system-ui,sans-serif;margin:24px;color:#222;max-width:1200px}"
                   "h1{font-size:22px}h2{font-size:17px;margin-top:28px}"
@@ -150,7 +127,7 @@ std::string results_html(const Plan& plan, const Collected& c) {
                   ".bar{fill:#9ecae1}.mean{fill:#1f77b4}.failed{color:#b00}.charts{display:flex;"
                   "flex-wrap:wrap;gap:16px}"
                   "</style></head><body>\n";
-  h += "<h1>" + escape(plan.study.name) + "</h1>\n";
+  h += "<h1>" + xml_escape(plan.study.name) + "</h1>\n";
   h += printf_string(
       "<p id=\"counts\">%zu variants of %lld combinations: %zu feasible, %zu infeasible, %zu "
       "failed, %zu not run.</p>\n",
@@ -188,7 +165,7 @@ std::string results_html(const Plan& plan, const Collected& c) {
                          W - 6, H - B + 14, printf_string("%.4g", x1).c_str());
       h += printf_string(
           "<text class=\"tick\" x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">%s</text>",
-          (L + W) / 2, H - 6, escape(label).c_str());
+          (L + W) / 2, H - 6, xml_escape(label).c_str());
       h += printf_string("<text class=\"tick\" x=\"%.0f\" y=\"%.0f\" text-anchor=\"end\">%s</text>",
                          L - 4, H - B, days(y0).c_str());
       h += printf_string("<text class=\"tick\" x=\"%.0f\" y=\"18\" text-anchor=\"end\">%s</text>",
@@ -208,8 +185,8 @@ std::string results_html(const Plan& plan, const Collected& c) {
              printf_string("\" cx=\"%.1f\" cy=\"%.1f\" r=\"%d\">", X(measure(row, cost)),
                            Y(measure(row, "makespan_s")), on_front ? 5 : 4) +
              "<title>" +
-             escape(id + ": " + settings_text(row) + "; " + days(measure(row, "makespan_s")) +
-                    ", " + label + " " + printf_string("%.4g", measure(row, cost))) +
+             xml_escape(id + ": " + settings_text(row) + "; " + days(measure(row, "makespan_s")) +
+                        ", " + label + " " + printf_string("%.4g", measure(row, cost))) +
              "</title></circle></a>";
       }
     } else {
@@ -226,10 +203,10 @@ std::string results_html(const Plan& plan, const Collected& c) {
   double top = 0.0;
   for (int i : c.feasible) top = std::max(top, measure(c.rows[i], "makespan_s"));
   for (const Sensitivity& s : sensitivity(plan, c)) {
-    h += "<h3 class=\"sensitivity\" data-axis=\"" + escape(s.axis) + "\">" + escape(s.axis) +
-         ": the means differ by " + days(s.spread_s) + "</h3>\n<table>";
+    h += "<h3 class=\"sensitivity\" data-axis=\"" + xml_escape(s.axis) + "\">" +
+         xml_escape(s.axis) + ": the means differ by " + days(s.spread_s) + "</h3>\n<table>";
     for (const auto& v : s.values) {
-      h += "<tr><td>" + escape(v.value) + "</td>";
+      h += "<tr><td>" + xml_escape(v.value) + "</td>";
       if (v.count && top > 0) {
         const double k = 300.0 / top;
         h += printf_string(
@@ -249,18 +226,18 @@ std::string results_html(const Plan& plan, const Collected& c) {
 
   // Every variant.
   h += "<h2>Variants</h2>\n<table id=\"variants\"><tr><th>id</th>";
-  for (const Axis& a : plan.study.axes) h += "<th>" + escape(a.name) + "</th>";
+  for (const Axis& a : plan.study.axes) h += "<th>" + xml_escape(a.name) + "</th>";
   h += "<th>status</th><th>makespan</th><th>nozzles</th><th>concrete m³</th><th>crew "
        "h</th><th>waits</th></tr>\n";
   for (const auto& row : c.rows) {
     const std::string id = row["id"], status = row["status"];
     h += "<tr data-id=\"" + id + "\"><td><a href=\"" + link_of(plan, id) + "\">" + id + "</a></td>";
     for (const Axis& a : plan.study.axes)
-      h += "<td>" + escape(row["settings"][a.name].get<std::string>()) + "</td>";
+      h += "<td>" + xml_escape(row["settings"][a.name].get<std::string>()) + "</td>";
     h += "<td" + std::string(status == "failed" || status == "missing" ? " class=\"failed\"" : "") +
-         ">" + escape(status) +
+         ">" + xml_escape(status) +
          (row.contains("reason") ? ": <a href=\"variants/" + id + "/log.txt\">" +
-                                       escape(row["reason"].get<std::string>()) + "</a>"
+                                       xml_escape(row["reason"].get<std::string>()) + "</a>"
                                  : "") +
          "</td>";
     if (row["measures"].is_object())

@@ -42,6 +42,10 @@ struct Range {
                         double per_unit = 1.0) const;
 };
 
+/// Text for XML and HTML (SVG, MSPDI, a results page): & < > " ' as entities, control
+/// characters XML 1.0 forbids dropped.
+std::string xml_escape(const std::string& text);
+
 /// The units a time is read in.
 enum class TimeUnit { kSecond, kMinute, kHour, kDay };
 /// The unit people read `s` seconds in (or a column whose largest value is `s`): seconds
