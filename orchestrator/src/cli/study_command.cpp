@@ -47,24 +47,24 @@ std::string minutes(double s) {
 
 /// Writes results.csv, results.json and results.html, after a report for each variant on a
 /// Pareto front (the page links to it); prints the counts and each variant without a
-/// result with its log. Returns the exit code: 0 when every variant has a result.
-int write_results(const study::Plan& plan, bool slurm) {
+/// result with its log. Returns those variants (failed or missing), by index.
+std::vector<int> write_results(const study::Plan& plan, bool slurm) {
   study::Collected c = study::collect(plan);
   std::vector<int> fronts;
   for (const auto& [cost, label] : study::front_costs())
     for (int i : study::pareto_front(c, cost)) fronts.push_back(i);
   std::sort(fronts.begin(), fronts.end());
   fronts.erase(std::unique(fronts.begin(), fronts.end()), fronts.end());
+  study::RunOptions run;
+  run.ccbuild = self();
   for (int i : fronts) {
-    const fs::path dir = plan.folder / "variants" / plan.study.variants[i].id;
     std::error_code ec;
-    if (fs::is_regular_file(dir / "report.html", ec)) continue;
-    const std::string command = "'" + self().string() + "' report '" +
-                                (dir / "schedule.json").string() + "' -o '" +
-                                (dir / "report.html").string() + "' --force > /dev/null 2>&1";
-    if (std::system(command.c_str()) != 0)
+    if (fs::is_regular_file(plan.folder / "variants" / plan.study.variants[i].id / "report.html",
+                            ec))
+      continue;
+    if (!study::write_report(plan, i, run))
       std::cerr << "study: no report for " << plan.study.variants[i].id
-                << " (ccbuild report failed)\n";
+                << " (ccbuild report failed; its log says why)\n";
   }
   write_file_atomically(plan.folder / "results.csv", study::results_csv(plan, c), true);
   write_file_atomically(plan.folder / "results.json", study::results_json(plan, c), true);
@@ -97,6 +97,10 @@ int write_results(const study::Plan& plan, bool slurm) {
   }
   std::cout << "results: " << (plan.folder / "results.csv").string()
             << ", results.json, results.html\n";
+  return lacking;
+}
+
+int exit_code_of(const std::vector<int>& lacking) {
   return lacking.empty() ? kExitOk : kExitNo;
 }
 
@@ -138,7 +142,7 @@ void run_study(const StudyOptions& o, int& exit_code) {
     std::vector<int> all(s.variants.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
     run_locally(plan, all, o.jobs, false);
-    exit_code = write_results(plan, false);
+    exit_code = exit_code_of(write_results(plan, false));
     return;
   }
   fs::create_directories(plan.folder / "slurm");
@@ -156,7 +160,7 @@ void run_study(const StudyOptions& o, int& exit_code) {
     throw InputError(
         "", 0, "--submit",
         "sbatch and squeue are not on the PATH (install slurm-client, or run without --slurm)");
-  const std::string job = study::submit(plan, script, "task");
+  const std::string job = study::submit(plan, script);
   std::cout << "submitted job " << job << " (" << script.string() << ")\n";
   if (!o.wait) {
     std::cout << "collect with `ccbuild study collect " << plan.folder.string()
@@ -165,7 +169,7 @@ void run_study(const StudyOptions& o, int& exit_code) {
     return;
   }
   study::wait_for_jobs(plan, [](const std::string& line) { std::cerr << line << "\n"; });
-  exit_code = write_results(plan, true);
+  exit_code = exit_code_of(write_results(plan, true));
 }
 
 void run_task(const StudyOptions& o, int& exit_code) {
@@ -194,12 +198,9 @@ void run_collect(const StudyOptions& o, int& exit_code) {
   const bool slurm = fs::exists(plan.folder / "slurm" / "jobs.tsv", ec);
   if (slurm && o.wait)
     study::wait_for_jobs(plan, [](const std::string& line) { std::cerr << line << "\n"; });
-  exit_code = write_results(plan, slurm);
-  if (!o.resubmit || exit_code == kExitOk) return;
-  study::Collected c = study::collect(plan);
-  std::vector<int> again = c.failed;
-  again.insert(again.end(), c.missing.begin(), c.missing.end());
-  std::sort(again.begin(), again.end());
+  const std::vector<int> again = write_results(plan, slurm);
+  exit_code = exit_code_of(again);
+  if (!o.resubmit || again.empty()) return;
   fs::create_directories(plan.folder / "slurm");
   int earlier = 0;  // resubmit-1.sbatch, resubmit-2.sbatch, ...
   for (const auto& entry : fs::directory_iterator(plan.folder / "slurm"))
@@ -209,12 +210,12 @@ void run_collect(const StudyOptions& o, int& exit_code) {
   if (!study::slurm_available())
     throw InputError("", 0, "--resubmit",
                      "sbatch and squeue are not on the PATH (install slurm-client)");
-  const std::string job = study::submit(plan, script, "variant");
+  const std::string job = study::submit(plan, script, again);
   std::cout << printf_string("resubmitted %zu variant(s) as job %s (%s)\n", again.size(),
                              job.c_str(), script.c_str());
   if (!o.wait) return;
   study::wait_for_jobs(plan, [](const std::string& line) { std::cerr << line << "\n"; });
-  exit_code = write_results(plan, true);
+  exit_code = exit_code_of(write_results(plan, true));
 }
 
 void add_slurm_options(CLI::App& command, StudyOptions& o) {

@@ -220,9 +220,12 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
                 {"--objective", v.objective, "--seed", std::to_string(v.seed), "--jobs", "1",
                  "--quiet", "--layer-time-limit", printf_string("%.17g", v.layer_time_limit_s),
                  "-o", (dir / "schedule.json").string(), "--force"});
-    std::ofstream(log, std::ios::app) << "$";
-    for (const auto& a : argv) std::ofstream(log, std::ios::app) << " " << a;
-    std::ofstream(log, std::ios::app) << "\n";
+    {
+      std::ofstream header(log, std::ios::app);
+      header << "$";
+      for (const auto& a : argv) header << " " << a;
+      header << "\n";
+    }
     detail::ProcessResult r;
     try {
       r = detail::run_process(argv, log, plan.study.variant_timeout_s);
@@ -260,6 +263,15 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(dir / "result.json", result.dump(2) + "\n", true);
   return outcome;
+}
+
+bool write_report(const Plan& plan, int index, const RunOptions& options) {
+  const fs::path dir = variant_folder(plan, index);
+  const detail::ProcessResult r =
+      detail::run_process({options.ccbuild.string(), "report", (dir / "schedule.json").string(),
+                           "-o", (dir / "report.html").string(), "--force"},
+                          dir / "log.txt", plan.study.variant_timeout_s);
+  return r.exit_code == 0;
 }
 
 void run_variants(const Plan& plan, const std::vector<int>& indices, int jobs,

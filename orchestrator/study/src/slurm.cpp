@@ -86,7 +86,14 @@ std::string sbatch_script(const Plan& plan, const SlurmOptions& o, const fs::pat
   return s;
 }
 
-std::string submit(const Plan& plan, const fs::path& script, const std::string& runs) {
+std::vector<int> array_tasks(const Plan& plan, const std::vector<int>& variants) {
+  if (!variants.empty()) return variants;
+  std::vector<int> chunks(chunks_of(plan));
+  for (std::size_t k = 0; k < chunks.size(); ++k) chunks[k] = static_cast<int>(k);
+  return chunks;
+}
+
+std::string submit(const Plan& plan, const fs::path& script, const std::vector<int>& variants) {
   const detail::ProcessResult r =
       detail::run_process({"sbatch", "--parsable", script.string()}, {}, 120.0);
   std::string out = r.output;
@@ -95,23 +102,10 @@ std::string submit(const Plan& plan, const fs::path& script, const std::string& 
   if (r.exit_code != 0 || !std::regex_search(out, m, std::regex("^([0-9]+)")))
     throw std::runtime_error("sbatch refused " + script.string() + ": " + out);
   const std::string id = m[1];
-  // The tasks, as the script's --array lists them.
   std::string tasks;
-  std::ifstream in(script);
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("#SBATCH --array=", 0) == 0) {
-      std::string spec = line.substr(16);
-      spec = spec.substr(0, spec.find('%'));
-      const auto dash = spec.find('-');
-      if (dash != std::string::npos) {
-        for (int k = std::stoi(spec.substr(0, dash)); k <= std::stoi(spec.substr(dash + 1)); ++k)
-          tasks += (tasks.empty() ? "" : ",") + std::to_string(k);
-      } else {
-        tasks = spec;
-      }
-    }
+  for (int t : array_tasks(plan, variants)) tasks += (tasks.empty() ? "" : ",") + std::to_string(t);
   std::ofstream(plan.folder / "slurm" / "jobs.tsv", std::ios::app)
-      << id << "\t" << runs << "\t" << tasks << "\n";
+      << id << "\t" << (variants.empty() ? "task" : "variant") << "\t" << tasks << "\n";
   return id;
 }
 

@@ -58,6 +58,10 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options);
 /// Whether variant `index` has a result with the same inputs (feasible or infeasible).
 bool finished(const Plan& plan, int index);
 
+/// Writes variant `index`'s report (report.html beside its schedule, `ccbuild report`'s
+/// output appended to its log). Returns whether it was written.
+bool write_report(const Plan& plan, int index, const RunOptions& options);
+
 /// Runs `indices` on `jobs` processes at once; `progress` is told after each one.
 void run_variants(const Plan& plan, const std::vector<int>& indices, int jobs,
                   const RunOptions& options,

@@ -24,10 +24,15 @@ std::string sbatch_script(const Plan& plan, const SlurmOptions& options,
                           const std::filesystem::path& ccbuild,
                           const std::vector<int>& variants = {});
 
-/// Submits `script` (a file) with sbatch; returns the job id and records it (with what its
-/// tasks run: "task" or "variant") in <results>/slurm/jobs.tsv. Throws std::runtime_error
-/// with sbatch's message when it refuses.
-std::string submit(const Plan& plan, const std::filesystem::path& script, const std::string& runs);
+/// The array tasks sbatch_script makes: the chunks 0..n-1, or the variants given.
+std::vector<int> array_tasks(const Plan& plan, const std::vector<int>& variants = {});
+
+/// Submits `script` (a file, as sbatch_script wrote it for `variants`) with sbatch; returns
+/// the job id and records it with its tasks (chunks, or variants when given) in
+/// <results>/slurm/jobs.tsv. Throws std::runtime_error with sbatch's message when it
+/// refuses.
+std::string submit(const Plan& plan, const std::filesystem::path& script,
+                   const std::vector<int>& variants = {});
 
 /// Waits until none of the plan's jobs is in squeue; `progress` is told now and then.
 void wait_for_jobs(const Plan& plan, const std::function<void(const std::string&)>& progress);
