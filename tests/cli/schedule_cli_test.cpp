@@ -74,6 +74,21 @@ TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
       run_ccbuild("diff " + (dir / "one.json").string() + " " + (dir / "two.json").string());
   EXPECT_EQ(same.exit_code, 0) << same.out;
   EXPECT_TRUE(contains(same.out, "agree"));
+  // The "objectives:" line compares with the other objective scheduled in full (from the
+  // plans this run made): the shortest schedule of its own says the same makespan.
+  // --no-compare leaves the line out.
+  const auto shortest =
+      run_ccbuild("schedule config/buildings/house.yaml --quiet --no-compare --objective shortest");
+  ASSERT_EQ(shortest.exit_code, 0) << shortest.err;
+  EXPECT_FALSE(contains(shortest.out, "objectives:")) << shortest.out;
+  const auto makespan = [](const std::string& out) {
+    const auto at = out.find("total: ");
+    return at == std::string::npos ? std::string("?")
+                                   : out.substr(at + 7, out.find(" from", at) - at - 7);
+  };
+  EXPECT_TRUE(contains(one.out, "objectives: fewest-nozzles " + makespan(one.out) + " (up to"))
+      << one.out;
+  EXPECT_TRUE(contains(one.out, "; shortest " + makespan(shortest.out) + " (up to")) << one.out;
   fs::remove_all(dir);
 }
 

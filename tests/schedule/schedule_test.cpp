@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -166,6 +167,51 @@ TEST(Schedule, TheSameWhateverTheJobs) {
   EXPECT_TRUE(contains(changes, "floor 0 layer 10")) << changes;
 }
 
+// A memo shared between schedules of the house changes none of their bytes; the same
+// options plan nothing again, another objective only the counts not yet planned, and a
+// gantry opened again (another object) or another seed plans everything again.
+TEST(Schedule, APlanMemoChangesNothingAndPlansNothingTwice) {
+  const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
+  const auto bytes = [&](const ScheduleOptions& o, const Schedule& s) {
+    ScheduleOptions recorded = o;
+    recorded.memo = nullptr;
+    return schedule_json(house, recorded, s).dump();
+  };
+  ScheduleOptions with = quick();
+  with.memo = make_plan_memo();
+  const Schedule first = build_schedule(house, with);
+  ASSERT_GT(first.plans_computed, 0);
+  EXPECT_EQ(bytes(with, first), bytes(quick(), build_schedule(house, quick())));
+  const Schedule again = build_schedule(house, with);
+  EXPECT_EQ(again.plans_computed, 0);
+  EXPECT_EQ(bytes(with, again), bytes(with, first));
+
+  ScheduleOptions shortest = with, plain_shortest = quick();
+  shortest.objective = plain_shortest.objective = Objective::kShortest;
+  const Schedule memo_shortest = build_schedule(house, shortest);
+  const Schedule fresh_shortest = build_schedule(house, plain_shortest);
+  EXPECT_LT(memo_shortest.plans_computed, fresh_shortest.plans_computed);
+  EXPECT_EQ(bytes(shortest, memo_shortest), bytes(plain_shortest, fresh_shortest));
+
+  const Project reopened = open_project(testing::source_path("config/buildings/house.yaml"));
+  EXPECT_EQ(build_schedule(reopened, with).plans_computed, first.plans_computed);
+  // The same gantry object and the same floors and layers, the walls 50 mm to the east.
+  Project moved = house;
+  for (auto& f : moved.building.floors)
+    for (auto& v : f.plan.vertices) v.position_m.x() += 0.05;
+  EXPECT_EQ(build_schedule(moved, with).plans_computed, first.plans_computed);
+  ScheduleOptions seed2 = with;
+  seed2.seed = 2;
+  EXPECT_EQ(build_schedule(house, seed2).plans_computed, build_schedule(house,
+                                                                        [] {
+                                                                          ScheduleOptions o =
+                                                                              quick();
+                                                                          o.seed = 2;
+                                                                          return o;
+                                                                        }())
+                                                             .plans_computed);
+}
+
 // A two-floor building of generated plans (seeded) with `material` and the bundled gantry.
 std::string generated_building(const fs::path& dir, std::uint64_t seed,
                                const std::string& material) {
@@ -275,14 +321,39 @@ TEST(Schedule, TheMaximumHoldsAtEqualityAndNotBeyond) {
   fs::remove_all(dir);
 }
 
+// The plans and climbs of the tower's schedule.
+const std::shared_ptr<PlanMemo>& tower_memo() {
+  static const std::shared_ptr<PlanMemo> memo = make_plan_memo();
+  return memo;
+}
+
 // The tower on the climbing machine, scheduled once for the tests that read it.
 const std::pair<Project, Schedule>& tower() {
   static const auto cached = [] {
     Project p = open_project(testing::source_path("config/buildings/tower.yaml"));
-    Schedule s = build_schedule(p, ScheduleOptions{});
+    ScheduleOptions o;
+    o.memo = tower_memo();
+    Schedule s = build_schedule(p, o);
     return std::make_pair(std::move(p), std::move(s));
   }();
   return cached;
+}
+
+// The tower's other objective with the climbs of the first from the memo: none planned
+// again, the same bytes as planned afresh.
+TEST(Schedule, TheTowersClimbsComeFromTheMemoUnchanged) {
+  const auto& [p, first] = tower();
+  ASSERT_GE(std::count_if(first.events.begin(), first.events.end(),
+                          [](const Event& e) { return e.kind == Event::Kind::kClimb; }),
+            2);
+  EXPECT_GT(first.climb_planning_s, 0.0);
+  ScheduleOptions shortest, plain;
+  shortest.memo = tower_memo();
+  shortest.objective = plain.objective = Objective::kShortest;
+  const Schedule reused = build_schedule(p, shortest);
+  EXPECT_EQ(reused.climb_planning_s, 0.0);
+  EXPECT_EQ(schedule_json(p, plain, reused).dump(),
+            schedule_json(p, plain, build_schedule(p, plain)).dump());
 }
 
 TEST(Schedule, TheTowerClimbsOnlyOnStrongAnchors) {

@@ -3,14 +3,18 @@
 // schedule and the Pareto front.
 
 #include <gtest/gtest.h>
+#include <signal.h>
 
+#include <chrono>
 #include <fstream>
 #include <set>
+#include <thread>
 
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/study/results.hpp"
 #include "ccbuild/study/study.hpp"
+#include "process.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::study {
@@ -176,6 +180,46 @@ TEST(StudyResults, TheParetoFrontKeepsTiesAndDropsWhatIsBeaten) {
     if (k < 5) c.feasible.push_back(static_cast<int>(k));
   }
   EXPECT_EQ(pareto_front(c, "concrete_m3"), (std::vector<int>{0, 1, 2}));
+}
+
+// A variant's process: its exit code, the signal that ended it (a crash), and, past its
+// time, killed with every process it started (a variant that hangs cannot hold a worker or
+// leave a child behind). Each is then a failed variant, listed and resubmitted.
+TEST(StudyProcess, ExitCodesSignalsAndTimeoutsAreTold) {
+  const fs::path dir = testing::scratch_dir("study", "process");
+  const auto sh = [&](const std::string& script, double timeout_s) {
+    return detail::run_process({"/bin/sh", "-c", script}, dir / "log.txt", timeout_s);
+  };
+  const detail::ProcessResult exited = sh("echo to the log; exit 3", 30);
+  EXPECT_EQ(exited.exit_code, 3);
+  EXPECT_EQ(exited.signal, 0);
+  EXPECT_FALSE(exited.timed_out);
+  EXPECT_TRUE(contains(testing::slurp(dir / "log.txt"), "to the log"));
+  const detail::ProcessResult crashed = sh("ulimit -c 0; kill -SEGV $$", 30);
+  EXPECT_EQ(crashed.signal, SIGSEGV);
+  EXPECT_FALSE(crashed.timed_out);
+
+  const auto began = std::chrono::steady_clock::now();
+  const detail::ProcessResult hung =
+      sh("sleep 60 & echo $! > " + (dir / "child").string() + "; wait", 1.0);
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  EXPECT_TRUE(hung.timed_out);
+  EXPECT_EQ(hung.signal, SIGKILL);
+  EXPECT_GE(took_s, 1.0);
+  EXPECT_LT(took_s, 20.0);
+  // Its child was killed with it (gone, or a zombie waiting for its new parent).
+  const std::string child = testing::slurp(dir / "child");
+  ASSERT_FALSE(child.empty());
+  const pid_t pid = std::stoi(child);
+  bool gone = false;
+  for (int k = 0; k < 100 && !gone; ++k) {
+    const std::string stat = testing::slurp("/proc/" + std::to_string(pid) + "/stat");
+    gone = stat.empty() || contains(stat, ") Z ");
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_TRUE(gone) << "pid " << pid << " still runs";
+  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -4,7 +4,9 @@ made by hand, outside ccbuild: the earlier-pipes change is listed with its makes
 scheduling the tower on a copy of the climber whose URDF legs are that much longer (edited
 here with Python's XML parser) gives the same makespan, with each climb's pipes cast in the
 storey below the one they were cast in before; every change listed shortens the build; the
-lower anchor strength leaves no climb waiting.
+lower anchor strength leaves no climb waiting. The what-if schedule itself is re-checked by
+check_schedule.py and its report (a strength curve per climb, the what-ifs' table) by
+check_report.py in headless Chromium.
 
 Usage: check_anchor_what_if.py CCBUILD SOURCE_DIR"""
 
@@ -33,7 +35,15 @@ def main():
     mix = ["--material", os.path.join(source, "tests/data/materials/slow-anchor-mix.yaml")]
     with tempfile.TemporaryDirectory() as tmp:
         base = run([ccbuild, "schedule", tower, "--quiet", "--what-if", "anchors"] + mix + [
-                    "-o", os.path.join(tmp, "base.json")], tmp)
+                    "-o", os.path.join(tmp, "base.json"), "--report", os.path.join(tmp, "base.html")],
+                   tmp)
+        here = os.path.dirname(os.path.abspath(__file__))
+        for checker, target in (("check_schedule.py", "base.json"), ("check_report.py", "base.html")):
+            r = subprocess.run([sys.executable, os.path.join(here, checker), os.path.join(tmp, target)],
+                               capture_output=True, text=True, timeout=600)
+            print(r.stdout, end="")
+            if r.returncode != 0:
+                sys.exit("%s %s: exit %d\n%s" % (checker, target, r.returncode, r.stderr))
         out = base.stdout
         base_doc = json.load(open(os.path.join(tmp, "base.json")))
         base_makespan = base_doc["totals"]["makespan_s"]

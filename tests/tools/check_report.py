@@ -18,6 +18,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import struct
 import subprocess
 import sys
@@ -36,16 +37,36 @@ def chromium():
              "scripts/install-deps.sh installs it)")
 
 
+CHROMIUM_TIMEOUT_S = 90  # a run takes 5 s here, 13 s with both cores busy
+CHROMIUM_ATTEMPTS = 3
+
+
 def run_chromium(browser, url, extra, out_dir):
-    # The background-networking flags keep Chromium from reaching for the network, which
-    # the test machines refuse.
-    cmd = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
-           "--disable-background-networking", "--disable-component-update", "--disable-sync",
-           "--disable-quic", "--no-first-run",
-           "--enable-unsafe-swiftshader", "--hide-scrollbars", "--window-size=1400,2400",
-           "--virtual-time-budget=20000", "--user-data-dir=" + os.path.join(out_dir, "profile")] + extra + [url]
-    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=240,
-                          cwd=out_dir, env=dict(os.environ, HOME=out_dir))
+    """Chromium's CompletedProcess for the page. Headless Chromium now and then hangs
+    before it writes anything (seen once in hundreds of runs, the same page taking 5 s
+    the next time), so a run that outlives CHROMIUM_TIMEOUT_S is killed with its
+    children and tried again with a fresh profile, up to CHROMIUM_ATTEMPTS times."""
+    for attempt in range(1, CHROMIUM_ATTEMPTS + 1):
+        profile = os.path.join(out_dir, "profile-%d" % attempt)
+        # The background-networking flags keep Chromium from reaching for the network,
+        # which the test machines refuse.
+        cmd = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
+               "--disable-background-networking", "--disable-component-update", "--disable-sync",
+               "--disable-quic", "--no-first-run",
+               "--enable-unsafe-swiftshader", "--hide-scrollbars", "--window-size=1400,2400",
+               "--virtual-time-budget=20000", "--user-data-dir=" + profile] + extra + [url]
+        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=out_dir,
+                                env=dict(os.environ, HOME=out_dir), start_new_session=True)
+        try:
+            out, err = proc.communicate(timeout=CHROMIUM_TIMEOUT_S)
+            return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.communicate()
+            print("check_report: chromium %s did not finish in %d s (attempt %d of %d)%s" % (
+                " ".join(extra), CHROMIUM_TIMEOUT_S, attempt, CHROMIUM_ATTEMPTS,
+                "; trying again" if attempt < CHROMIUM_ATTEMPTS else ""), file=sys.stderr)
+    sys.exit("check_report: chromium hung %d times on %s" % (CHROMIUM_ATTEMPTS, url))
 
 
 def png_not_blank(path):
@@ -112,15 +133,15 @@ def main():
     problems = []
     with tempfile.TemporaryDirectory() as out:
         url = "file://" + report
-        dom_run = run_chromium(browser, url, ["--dump-dom"], out)
-        dom = dom_run.stdout.decode("utf-8", "replace")
-        if dom_run.returncode != 0 or "<body" not in dom:
-            sys.exit("check_report: chromium --dump-dom failed (%d): %s" % (
-                dom_run.returncode, dom_run.stderr.decode("utf-8", "replace")[-2000:]))
         shot = os.path.join(out, "shot.png")
-        shot_run = run_chromium(browser, url, ["--screenshot=" + shot], out)
+        # One run gives both: the DOM after the scripts ran and the screenshot.
+        run = run_chromium(browser, url, ["--dump-dom", "--screenshot=" + shot], out)
+        dom = run.stdout.decode("utf-8", "replace")
+        if run.returncode != 0 or "<body" not in dom:
+            sys.exit("check_report: chromium --dump-dom failed (%d): %s" % (
+                run.returncode, run.stderr.decode("utf-8", "replace")[-2000:]))
         if not os.path.exists(shot):
-            problems.append("no screenshot (chromium exit %d)" % shot_run.returncode)
+            problems.append("no screenshot (chromium exit %d)" % run.returncode)
         else:
             ok, why = png_not_blank(shot)
             if not ok:

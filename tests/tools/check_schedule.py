@@ -821,15 +821,21 @@ class Maturity:
         for i in range(1, len(self.t)):
             f.append(f[-1] + self.rate[i - 1] * (self.t[i] - self.t[i - 1]))
         self.f = f
+        self.memo = {}
         zero = self.at(0.0)
         self.f = [v - zero for v in f]
+        self.memo = {}
 
     def index(self, t):
         return max(bisect.bisect_right(self.t, t) - 1, 0)
 
     def at(self, t):
-        i = self.index(t)
-        return self.f[i] + self.rate[i] * (t - self.t[i])
+        # The same ends and starts are asked about for every layer above them.
+        v = self.memo.get(t)
+        if v is None:
+            i = self.index(t)
+            v = self.memo[t] = self.f[i] + self.rate[i] * (t - self.t[i])
+        return v
 
     def age(self, a, b):
         return self.at(b) - self.at(a)

@@ -4,7 +4,9 @@
 # a temporary folder); the same study run locally. One array task is cancelled while it
 # runs: `collect` must list its variant with the task's state and log, `collect
 # --resubmit --wait` must run it alone, and then the results must be the same bytes as the
-# local run's. Exit 77 (skipped) where the Slurm packages are missing or not root.
+# local run's. Another task's variant is killed with SIGKILL while it schedules (a crash,
+# as the kernel's out-of-memory killer would end it): `collect` must list it as failed with
+# the signal and its log, and resubmit it alone with the cancelled one. Exit 77 (skipped) where the Slurm packages are missing or not root.
 # Usage: slurm_study_check.sh CCBUILD STUDY
 set -euo pipefail
 ccbuild=$(realpath "$1") study=$(realpath "$2")
@@ -90,6 +92,13 @@ echo "slurm_study_check: one-node cluster up (controller port $ctld_port, node p
 job=$(sed -n 's/^submitted job \([0-9]*\).*/\1/p' "$work/submit.txt")
 [ -n "$job" ] || { echo "no job id printed"; exit 1; }
 grep -q -- "--array=0-23%2" "$work/slurm/slurm/study.sbatch"
+# Variant v0006 (task 5) crashes: its `ccbuild schedule` killed while it runs.
+crashed=no
+for _ in $(seq 1 1500); do
+  if pkill -KILL -f -- "/variants/v0006/schedule.json"; then crashed=yes; break; fi
+  sleep 0.1
+done
+[ "$crashed" = yes ] || { echo "variant v0006 never ran"; exit 1; }
 # Cancelled while it runs (Slurm keeps no record of a task cancelled before it starts).
 for _ in $(seq 1 1500); do
   [ "$(squeue -h -j "${job}_20" -o %T 2>/dev/null)" = RUNNING ] && break
@@ -102,12 +111,14 @@ cat "$work/collect1.txt"
 [ "$rc" -eq 1 ] || { echo "collect with a cancelled task exited $rc, expected 1"; exit 1; }
 grep -Eq "^  v0021 missing.*Slurm task ${job}_20 CANCELLED, log .*/slurm/${job}_20.out" "$work/collect1.txt" ||
   { echo "the cancelled task's variant is not listed with its state and log"; exit 1; }
+grep -Eq "^  v0006 failed: killed by signal 9 \(Killed\); log .*/variants/v0006/log.txt; Slurm task ${job}_5 [A-Z]+, log .*/slurm/${job}_5.out" "$work/collect1.txt" ||
+  { echo "the crashed variant is not listed as failed with its signal and logs"; exit 1; }
 "$ccbuild" study collect "$work/slurm" --resubmit --wait > "$work/collect2.txt" 2>&1 || { cat "$work/collect2.txt"; exit 1; }
 cat "$work/collect2.txt"
-grep -Eq "^resubmitted 1 variant\(s\) as job" "$work/collect2.txt" || { echo "not resubmitted alone"; exit 1; }
-grep -q -- "--array=20$" "$work/slurm/slurm/resubmit-1.sbatch"
+grep -Eq "^resubmitted 2 variant\(s\) as job" "$work/collect2.txt" || { echo "not resubmitted alone"; exit 1; }
+grep -q -- "--array=5,20$" "$work/slurm/slurm/resubmit-1.sbatch"
 [ -s "$work/slurm/slurm/${job}_0.out" ] || { echo "no log of array task ${job}_0"; ls "$work/slurm/slurm"; exit 1; }
 for f in results.csv results.json results.html; do
   cmp "$work/local/$f" "$work/slurm/$f" || { echo "$f differs between the local run and Slurm"; exit 1; }
 done
-echo "slurm_study_check: 24 variants on Slurm (one cancelled, resubmitted alone) give the local run's bytes"
+echo "slurm_study_check: 24 variants on Slurm (one crashed, one cancelled, both resubmitted alone) give the local run's bytes"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # A local study killed part way (SIGKILL to it and its variants' processes) resumes: run
 # again, no variant finished before is run again (its result untouched) and the rest
-# are. (That a resumed study gives a whole run's bytes, Study.OnAOneNodeSlurmCluster...
-# shows: its Slurm run is resumed by `collect --resubmit`.)
+# are; its results page, in headless Chromium, shows what results.json holds. (That a
+# resumed study gives a whole run's bytes, Study.OnAOneNodeSlurmCluster... shows: its
+# Slurm run is resumed by `collect --resubmit`.)
 # Usage: study_resume_check.sh CCBUILD STUDY
 set -euo pipefail
 ccbuild=$(realpath "$1") study=$(realpath "$2")
@@ -41,4 +42,6 @@ for f in $before; do
 done
 rows=$(tail -n +2 "$work/s/results.csv" | grep -c ',feasible,' || true)
 [ "$rows" -eq "$total" ] || { echo "$rows of $total variants feasible after the resume"; exit 1; }
+# The results page, opened in headless Chromium, against results.json.
+python3 "$(dirname "$0")/check_study_page.py" "$work/s"
 echo "study_resume_check: killed after $count of $total variants; resumed, none run twice, all $total feasible"

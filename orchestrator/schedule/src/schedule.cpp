@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <thread>
 #include <unordered_map>
@@ -165,6 +166,38 @@ void Scheduler::prepare() {
                      "nothing to print: no layer of any floor has a wall outside its openings");
   const int count = static_cast<int>(slices_.size());
   layer_end_s_.assign(count, 0.0);
+  {
+    // The memo's scopes: the layers in order (their floor, geometry and height), the
+    // machines by identity, the seed and the limits.
+    std::uint64_t digest = 1469598103934665603ull;
+    const auto mix = [&digest](std::uint64_t v) {
+      digest ^= v + 0x9e3779b97f4a7c15ull + (digest << 6) + (digest >> 2);
+    };
+    const auto bits = [](double v) {
+      std::uint64_t u = 0;
+      std::memcpy(&u, &v, sizeof u);
+      return u;
+    };
+    mix(static_cast<std::uint64_t>(b.units));
+    mix(bits(b.layer_height_m));
+    for (const auto& f : b.floors) {
+      mix(bits(f.base_elevation_m));
+      mix(bits(f.height_m));
+    }
+    for (const auto& sl : slices_) {
+      mix(static_cast<std::uint64_t>(sl.floor));
+      mix(static_cast<std::uint64_t>(sl.layer.index));
+      mix(static_cast<std::uint64_t>(sl.geometry));
+      mix(floors::GeometryKey(sl.layer).hash());
+    }
+    layer_scope_ = {project_.machine.get(), digest, options_.seed, options_.layer_time_limit_s,
+                    options_.max_kicks.value_or(-1)};
+    climb_scope_ = {project_.climber.get(), digest, options_.seed, options_.climb_time_limit_s};
+    if (options_.memo) {
+      options_.memo->kept.push_back(project_.machine);
+      if (project_.climber) options_.memo->kept.push_back(project_.climber);
+    }
+  }
 
   // Each opening's lintel goes in before the first layer of its floor whose mid-height is
   // at or over its head (the slicer's rule: that layer is no longer cut by the opening).
@@ -232,11 +265,20 @@ void Scheduler::prepare() {
   {
     std::vector<std::function<void()>> tasks;
     std::vector<std::pair<int, int>> first;
-    for (int g = 0; g < static_cast<int>(reps_.size()); ++g) first.push_back({g, 1});
+    for (int g = 0; g < static_cast<int>(reps_.size()); ++g)
+      if (!recall(g, 1)) first.push_back({g, 1});
     std::vector<Planned> results(first.size());
     for (std::size_t k = 0; k < first.size(); ++k)
       tasks.push_back([&, k] { results[k] = plan(first[k].first, 1); });
-    for (int c = 0; c < climb_count; ++c)
+    std::vector<int> climbs_planned;
+    for (int c = 0; c < climb_count; ++c) {
+      if (options_.memo)
+        if (auto it = options_.memo->climbs.find({climb_scope_, c});
+            it != options_.memo->climbs.end()) {
+          climbs_[c] = it->second;
+          continue;
+        }
+      climbs_planned.push_back(c);
       tasks.push_back([&, c] {
         const auto t0 = Clock::now();
         climb::ClimbOptions o;
@@ -246,19 +288,28 @@ void Scheduler::prepare() {
                                        schedule_.stages[c + 1], o);
         climb_planning_s[c] = seconds_since(t0);
       });
+    }
     const auto t0 = Clock::now();
-    run_parallel(tasks, jobs_, [&](int done, int total) {
-      progress(printf_string("planning %zu layer geometries and %d climbs: %d of %d done (%.1f s)",
-                             reps_.size(), climb_count, done, total, seconds_since(t0)));
-    });
-    for (std::size_t k = 0; k < first.size(); ++k) planned_[first[k]] = std::move(results[k]);
+    if (!tasks.empty())
+      run_parallel(tasks, jobs_, [&](int done, int total) {
+        progress(
+            printf_string("planning %zu layer geometries and %zu climbs: %d of %d done "
+                          "(%.1f s)",
+                          first.size(), climbs_planned.size(), done, total, seconds_since(t0)));
+      });
+    for (std::size_t k = 0; k < first.size(); ++k) {
+      planned_[first[k]] = std::move(results[k]);
+      remember(first[k].first, first[k].second);
+    }
+    if (options_.memo)
+      for (int c : climbs_planned) options_.memo->climbs[{climb_scope_, c}] = climbs_[c];
     schedule_.plans_computed += static_cast<int>(first.size());
     double climb_s = 0.0;
     for (double s : climb_planning_s) climb_s += s;
     // Wall-clock shares: the climbs' part of the batch by their summed time.
     const double batch_s = seconds_since(t0);
     double layer_sum_s = 0.0;
-    for (const auto& r : planned_) layer_sum_s += r.second.planning_s;
+    for (const auto& k : first) layer_sum_s += planned_.at(k).planning_s;
     const double share = climb_s + layer_sum_s > 0 ? climb_s / (climb_s + layer_sum_s) : 0.0;
     schedule_.climb_planning_s += batch_s * share;
     schedule_.layer_planning_s += batch_s * (1.0 - share);
@@ -955,6 +1006,10 @@ Schedule Scheduler::run() {
 }
 
 }  // namespace detail
+
+std::shared_ptr<PlanMemo> make_plan_memo() {
+  return std::make_shared<PlanMemo>();
+}
 
 Schedule build_schedule(const Setup& project, const ScheduleOptions& options) {
   detail::Scheduler scheduler(project, options);

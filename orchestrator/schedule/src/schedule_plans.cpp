@@ -141,7 +141,8 @@ void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
                            const std::string& what) {
   std::vector<std::pair<int, int>> todo;
   for (const auto& w : wanted)
-    if (!planned_.count(w) && std::find(todo.begin(), todo.end(), w) == todo.end())
+    if (!planned_.count(w) && !recall(w.first, w.second) &&
+        std::find(todo.begin(), todo.end(), w) == todo.end())
       todo.push_back(w);
   if (todo.empty()) return;
   std::vector<Planned> results(todo.size());
@@ -153,9 +154,25 @@ void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
     progress(printf_string("%s: %d of %d planned (%.1f s)", what.c_str(), done, total,
                            seconds_since(started)));
   });
-  for (std::size_t k = 0; k < todo.size(); ++k) planned_[todo[k]] = std::move(results[k]);
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    planned_[todo[k]] = std::move(results[k]);
+    remember(todo[k].first, todo[k].second);
+  }
   schedule_.layer_planning_s += seconds_since(started);
   schedule_.plans_computed += static_cast<int>(todo.size());
+}
+
+bool Scheduler::recall(int geometry, int nozzles) {
+  if (!options_.memo) return false;
+  const auto it = options_.memo->layers.find({layer_scope_, geometry, nozzles});
+  if (it == options_.memo->layers.end()) return false;
+  planned_[{geometry, nozzles}] = it->second;
+  return true;
+}
+
+void Scheduler::remember(int geometry, int nozzles) {
+  if (options_.memo)
+    options_.memo->layers[{layer_scope_, geometry, nozzles}] = planned_.at({geometry, nozzles});
 }
 
 const Planned& Scheduler::planned(int geometry, int nozzles) {

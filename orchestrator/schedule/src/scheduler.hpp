@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 #include "ccbuild/common/format.hpp"
@@ -50,6 +51,39 @@ struct Planned {
   std::vector<std::vector<planner::Waypoint>> waypoints;  ///< per nozzle, layer time
   double planning_s = 0.0;
 };
+
+}  // namespace ccbuild::schedule::detail
+
+namespace ccbuild::schedule {
+
+class PlanMemo {
+ public:
+  /// What a layer plan depends on besides its geometry and nozzle count.
+  struct LayerScope {
+    const void* machine = nullptr;  ///< the gantry model
+    std::uint64_t building = 0;     ///< digest of the building's layers (geometry order)
+    std::uint64_t seed = 0;
+    double time_limit_s = 0.0;
+    long max_kicks = -1;  ///< -1: chosen from the layer's size
+    auto operator<=>(const LayerScope&) const = default;
+  };
+  /// What a climb depends on besides its stages.
+  struct ClimbScope {
+    const void* climber = nullptr;
+    std::uint64_t building = 0;
+    std::uint64_t seed = 0;
+    double time_limit_s = 0.0;
+    auto operator<=>(const ClimbScope&) const = default;
+  };
+  std::map<std::tuple<LayerScope, int, int>, detail::Planned> layers;  ///< geometry, nozzles
+  std::map<std::pair<ClimbScope, int>, climb::ClimbPlan> climbs;       ///< climb index
+  /// The machines the scopes point at, kept alive so that no other takes their address.
+  std::vector<std::shared_ptr<const void>> kept;
+};
+
+}  // namespace ccbuild::schedule
+
+namespace ccbuild::schedule::detail {
 
 inline std::string where_text(int floor, int layer) {
   return "floor " + std::to_string(floor) + " layer " + std::to_string(layer);
@@ -200,6 +234,13 @@ class Scheduler {
                          machine_.nozzle_idle_limit_s);
   }
   int jobs_;
+
+  /// The memo's keys for this schedule (set by prepare, once the layers are known).
+  PlanMemo::LayerScope layer_scope_;
+  PlanMemo::ClimbScope climb_scope_;
+  /// The memo's plan of `geometry` at `nozzles`, copied into planned_; false when none.
+  bool recall(int geometry, int nozzles);
+  void remember(int geometry, int nozzles);
 
   std::vector<Slice> slices_;
   std::vector<floors::Layer> reps_;  ///< each geometry's first layer

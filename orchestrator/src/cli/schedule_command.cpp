@@ -29,6 +29,7 @@ struct ScheduleCommandOptions {
   int jobs = 0;
   double layer_time_limit_s = 60.0;
   bool quiet = false;
+  bool no_compare = false;  ///< no "objectives:" line (the other objective not scheduled)
   bool path_digests = false;
   std::string what_if;  ///< "anchors" or empty
   std::string objective = "fewest-nozzles";
@@ -72,6 +73,8 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   options.objective = o.objective == "shortest" ? schedule::Objective::kShortest
                                                 : schedule::Objective::kFewestNozzles;
   if (!o.quiet) options.progress = [](const std::string& line) { std::cerr << line << "\n"; };
+  // The comparison of objectives and the what-ifs take the plans and climbs this one made.
+  options.memo = schedule::make_plan_memo();
   const schedule::Schedule s = schedule::build_schedule(project, options);
   std::vector<schedule::AnchorWhatIf> changes;
   if (!o.what_if.empty()) {
@@ -299,7 +302,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
             : "",
         s.deliveries.size(), floors::volume_text(project.material.delivery_batch_m3, unit).c_str());
   }
-  {
+  if (!o.no_compare) {
     // The other objective, scheduled in full, for comparison.
     schedule::ScheduleOptions other = options;
     other.objective = options.objective == schedule::Objective::kShortest
@@ -395,6 +398,10 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       ->check(number_in(Range::above(0.0, 86400.0), "s"))
       ->capture_default_str();
   command->add_flag("--quiet", o->quiet, "No progress lines on stderr");
+  command->add_flag("--no-compare", o->no_compare,
+                    "Skip the \"objectives:\" line: the other objective is not scheduled for "
+                    "comparison (it reuses this schedule's plans, but its own nozzle counts are "
+                    "planned; a study, whose objective is an axis, runs with this)");
   command
       ->add_option("--export", o->exports,
                    "Also write the schedule for a site's tools, as `ccbuild export` does; the "

@@ -216,10 +216,10 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
     if (!machine.empty()) argv.insert(argv.end(), {"--machine", machine.string()});
     if (!material.empty()) argv.insert(argv.end(), {"--material", material.string()});
     if (!v.site.empty()) argv.insert(argv.end(), {"--site", v.site.string()});
-    argv.insert(argv.end(),
-                {"--objective", v.objective, "--seed", std::to_string(v.seed), "--jobs", "1",
-                 "--quiet", "--layer-time-limit", printf_string("%.17g", v.layer_time_limit_s),
-                 "-o", (dir / "schedule.json").string(), "--force"});
+    argv.insert(argv.end(), {"--objective", v.objective, "--seed", std::to_string(v.seed), "--jobs",
+                             "1", "--quiet", "--no-compare", "--layer-time-limit",
+                             printf_string("%.17g", v.layer_time_limit_s), "-o",
+                             (dir / "schedule.json").string(), "--force"});
     {
       std::ofstream header(log, std::ios::app);
       header << "$";

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,14 @@
 #include "ccbuild/schedule/setup.hpp"
 
 namespace ccbuild::schedule {
+
+/// Layer plans and climbs one schedule planned, for the next schedule of the same building
+/// to take instead of planning them again (make_plan_memo).
+class PlanMemo;
+/// An empty memo, to share between schedules of one building that differ in objective,
+/// material, site or climbing machine: the CLI's comparison of objectives, the anchor
+/// what-ifs. Shared with another building or another gantry it is simply not used.
+std::shared_ptr<PlanMemo> make_plan_memo();
 
 /// What the scheduler optimises layer by layer.
 enum class Objective {
@@ -53,6 +62,11 @@ struct ScheduleOptions {
   double climb_time_limit_s = 20.0;
   /// Progress lines ("planned 12 of 30 layer plans"), called from the calling thread.
   std::function<void(const std::string&)> progress;
+  /// Plans and climbs to reuse and to add to (null: none). A layer plan is reused for the
+  /// same layers of the building, the same gantry model (the same object), seed and
+  /// limits; a climb also for the same climbing machine (the same object). Plans do not
+  /// depend on the objective, the material or the site. One schedule at a time.
+  std::shared_ptr<PlanMemo> memo;
 };
 
 /// Which constraint made a layer (or a climb) wait.
