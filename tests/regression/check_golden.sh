@@ -13,7 +13,7 @@ trap 'rm -f "$out"' EXIT
 digests=()
 grep -q '"waypoints_digest"' "$golden" && digests=(--path-digests)
 rc=0
-"$ccbuild" schedule "$building" --quiet --force "${digests[@]}" -o "$out" >/dev/null || rc=$?
+"$ccbuild" schedule "$building" --quiet --no-compare --force "${digests[@]}" -o "$out" >/dev/null || rc=$?
 if [ "$rc" -gt 1 ]; then
   echo "check_golden: ccbuild schedule $building failed with exit code $rc" >&2
   exit 1

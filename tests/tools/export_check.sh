@@ -17,7 +17,7 @@ start=()
 if [ "${1:-}" = --start ]; then start=(--start "$2"); shift 2; fi
 schedule=$source
 if [[ "$source" == *.yaml ]]; then
-  "$ccbuild" schedule "$source" "$@" --quiet -o "$out/schedule.json" > /dev/null
+  "$ccbuild" schedule "$source" "$@" --quiet --no-compare -o "$out/schedule.json" > /dev/null
   schedule=$out/schedule.json
 fi
 case $format in

@@ -18,7 +18,7 @@ grep -q "Successfully Parsed XML" "$out/check_urdf.txt"
 
 "$ccbuild" climb "$building" --machine "$out/fitted.yaml" --json > "$out/climbs.json"
 "$python" "$here/check_climbs.py" "$out/climbs.json"
-"$ccbuild" schedule "$building" --machine "$out/fitted.yaml" --quiet -o "$out/schedule.json" > /dev/null
+"$ccbuild" schedule "$building" --machine "$out/fitted.yaml" --quiet --no-compare -o "$out/schedule.json" > /dev/null
 "$python" "$here/check_schedule.py" "$out/schedule.json"
 "$ccbuild" climb "$building" --machine "$family" --json > "$out/on_the_fly.json"
 

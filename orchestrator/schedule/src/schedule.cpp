@@ -194,8 +194,10 @@ void Scheduler::prepare() {
                     options_.max_kicks.value_or(-1)};
     climb_scope_ = {project_.climber.get(), digest, options_.seed, options_.climb_time_limit_s};
     if (options_.memo) {
-      options_.memo->kept.push_back(project_.machine);
-      if (project_.climber) options_.memo->kept.push_back(project_.climber);
+      auto& kept = options_.memo->kept;
+      for (std::shared_ptr<const void> m : {std::shared_ptr<const void>(project_.machine),
+                                            std::shared_ptr<const void>(project_.climber)})
+        if (m && std::find(kept.begin(), kept.end(), m) == kept.end()) kept.push_back(m);
     }
   }
 
