@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <thread>
 #include <unordered_map>
@@ -166,40 +165,7 @@ void Scheduler::prepare() {
                      "nothing to print: no layer of any floor has a wall outside its openings");
   const int count = static_cast<int>(slices_.size());
   layer_end_s_.assign(count, 0.0);
-  {
-    // The memo's scopes: the layers in order (their floor, geometry and height), the
-    // machines by identity, the seed and the limits.
-    std::uint64_t digest = 1469598103934665603ull;
-    const auto mix = [&digest](std::uint64_t v) {
-      digest ^= v + 0x9e3779b97f4a7c15ull + (digest << 6) + (digest >> 2);
-    };
-    const auto bits = [](double v) {
-      std::uint64_t u = 0;
-      std::memcpy(&u, &v, sizeof u);
-      return u;
-    };
-    mix(static_cast<std::uint64_t>(b.units));
-    mix(bits(b.layer_height_m));
-    for (const auto& f : b.floors) {
-      mix(bits(f.base_elevation_m));
-      mix(bits(f.height_m));
-    }
-    for (const auto& sl : slices_) {
-      mix(static_cast<std::uint64_t>(sl.floor));
-      mix(static_cast<std::uint64_t>(sl.layer.index));
-      mix(static_cast<std::uint64_t>(sl.geometry));
-      mix(floors::GeometryKey(sl.layer).hash());
-    }
-    layer_scope_ = {project_.machine.get(), digest, options_.seed, options_.layer_time_limit_s,
-                    options_.max_kicks.value_or(-1)};
-    climb_scope_ = {project_.climber.get(), digest, options_.seed, options_.climb_time_limit_s};
-    if (options_.memo) {
-      auto& kept = options_.memo->kept;
-      for (std::shared_ptr<const void> m : {std::shared_ptr<const void>(project_.machine),
-                                            std::shared_ptr<const void>(project_.climber)})
-        if (m && std::find(kept.begin(), kept.end(), m) == kept.end()) kept.push_back(m);
-    }
-  }
+  set_memo_scopes();
 
   // Each opening's lintel goes in before the first layer of its floor whose mid-height is
   // at or over its head (the slicer's rule: that layer is no longer cut by the opening).

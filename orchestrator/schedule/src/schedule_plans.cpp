@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/common/sha256.hpp"
 #include "ccbuild/planner/follow_below.hpp"
 #include "ccbuild/planner/plan_nozzles.hpp"
 #include "scheduler.hpp"
@@ -160,6 +161,26 @@ void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
   }
   schedule_.layer_planning_s += seconds_since(started);
   schedule_.plans_computed += static_cast<int>(todo.size());
+}
+
+void Scheduler::set_memo_scopes() {
+  // The building as its layers, in order: floor, layer, geometry label and hash, heights.
+  const floors::Building& b = project_.building;
+  std::string layers = printf_string("%d %.17g", static_cast<int>(b.units), b.layer_height_m);
+  for (const auto& f : b.floors)
+    layers += printf_string(" f%.17g,%.17g", f.base_elevation_m, f.height_m);
+  for (const auto& sl : slices_)
+    layers += printf_string(" %d,%d,%d,%llx", sl.floor, sl.layer.index, sl.geometry,
+                            static_cast<unsigned long long>(sl.layer.geometry_hash));
+  const std::string building = sha256_hex(layers);
+  layer_scope_ = {project_.machine.get(), building, options_.seed, options_.layer_time_limit_s,
+                  options_.max_kicks.value_or(-1)};
+  climb_scope_ = {project_.climber.get(), building, options_.seed, options_.climb_time_limit_s};
+  if (!options_.memo) return;
+  auto& kept = options_.memo->kept;
+  for (std::shared_ptr<const void> m : {std::shared_ptr<const void>(project_.machine),
+                                        std::shared_ptr<const void>(project_.climber)})
+    if (m && std::find(kept.begin(), kept.end(), m) == kept.end()) kept.push_back(m);
 }
 
 bool Scheduler::recall(int geometry, int nozzles) {

@@ -61,7 +61,7 @@ class PlanMemo {
   /// What a layer plan depends on besides its geometry and nozzle count.
   struct LayerScope {
     const void* machine = nullptr;  ///< the gantry model
-    std::uint64_t building = 0;     ///< digest of the building's layers (geometry order)
+    std::string building;           ///< SHA-256 of the building's layers, in order
     std::uint64_t seed = 0;
     double time_limit_s = 0.0;
     long max_kicks = -1;  ///< -1: chosen from the layer's size
@@ -70,7 +70,7 @@ class PlanMemo {
   /// What a climb depends on besides its stages.
   struct ClimbScope {
     const void* climber = nullptr;
-    std::uint64_t building = 0;
+    std::string building;
     std::uint64_t seed = 0;
     double time_limit_s = 0.0;
     auto operator<=>(const ClimbScope&) const = default;
@@ -236,6 +236,7 @@ class Scheduler {
   int jobs_;
 
   /// The memo's keys for this schedule (set by prepare, once the layers are known).
+  void set_memo_scopes();
   PlanMemo::LayerScope layer_scope_;
   PlanMemo::ClimbScope climb_scope_;
   /// The memo's plan of `geometry` at `nozzles`, copied into planned_; false when none.
