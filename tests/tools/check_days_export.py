@@ -3,7 +3,8 @@
 without ccbuild's code: one block per local day with work, in date order, each with its
 weekday; per day, the layers started (count and concrete, per floor), the trucks due
 (count and m³), every event started that day on a crew or machine line (a line "N × kind"
-counts N), and every wait started that day; the local day of a task is the schedule's own
+counts N), and every wait started that day (a layer's with the kinds of its reasons, each
+once, in the schedule's order); the local day of a task is the schedule's own
 timestamp on a site calendar, else --start plus the schedule seconds.
 Usage: check_days_export.py SCHEDULE.json DAYS.txt [--start T]
 Exit 1 with every problem found."""
@@ -42,6 +43,7 @@ def main():
         return (base + datetime.timedelta(seconds=round(t_s))).strftime("%Y-%m-%d")
 
     want = collections.defaultdict(collections.Counter)
+    reasons = {}  # (floor, layer) -> the kinds of its wait's reasons, as listed
     purge_s = doc["inputs"]["machine"]["purge_s"]
     treatment_s = doc["inputs"]["material"].get("planned_joint", {}).get("treatment_s", 0.0)
     for l in doc["layers"]:
@@ -53,6 +55,9 @@ def main():
             end = l["start_s"] - (purge_s if l["purge_before"] else 0) - \
                 (treatment_s if l["planned_joint"] else 0)
             want[day_of(end - l["wait_before_s"])]["waits"] += 1
+            # Its reasons, each kind once, in the schedule's order.
+            reasons[(l["floor"], l["layer"])] = ", ".join(
+                dict.fromkeys(r["kind"] for r in l["wait_reasons"]))
     for dl in doc.get("deliveries", []):
         want[day_of(dl["due_s"])]["trucks"] += 1
         want[day_of(dl["due_s"])]["truck_m3"] += dl["m3"]
@@ -87,6 +92,11 @@ def main():
                 c["truck_m3"] += float(m.group(2)) * M3_PER[m.group(3)]
             elif label == "wait":
                 c["waits"] += 1
+                m = re.search(r"Wait before floor (\d+) layer (\d+) \(([^)]*)\)", body)
+                if m and m.group(3) != reasons.get((int(m.group(1)), int(m.group(2)))):
+                    problems.append("%s: the wait before floor %s layer %s for '%s', the schedule "
+                                    "'%s'" % (day, m.group(1), m.group(2), m.group(3),
+                                              reasons.get((int(m.group(1)), int(m.group(2))))))
             elif label in ("crew", "machine"):
                 m = re.search(r": (\d+) × ", body)
                 c["events"] += int(m.group(1)) if m else 1

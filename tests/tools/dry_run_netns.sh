@@ -8,7 +8,8 @@
 # (one extended regular expression per line); EXPECT_EXIT=1 for a run that must stop
 # (then jobs may be left, but none may run twice or go unreported). CHECK_JOINTS checks
 # every joint between layers from the machines' messages (check_joints.py). The summary
-# speaks one unit per column (check_units.py), lengths in LENGTHS (ft or m) when set.
+# speaks one unit per column (check_units.py), lengths in LENGTHS (ft or m) when set, and
+# explains every table's columns.
 # Usage: [EXPECT=...] dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
 set -euo pipefail
 # As root, a network namespace; otherwise a user namespace with one (needs unprivileged
@@ -78,7 +79,10 @@ if [ -n "${CHECK_JOINTS:-}" ]; then
 fi
 # One unit per column and per recurring figure in the summary (check_units.py); with
 # LENGTHS=ft (or m) every length in that system.
-python3 "$(dirname "$0")/check_units.py" ${LENGTHS:+--lengths "$LENGTHS"} "$out/summary.txt"
+# Every table's columns explained once, in a legend line or in --help.
+"$ccbuild" dry-run --help > "$out/help.txt"
+python3 "$(dirname "$0")/check_units.py" ${LENGTHS:+--lengths "$LENGTHS"} \
+  --help-text "$out/help.txt" "$out/summary.txt"
 while IFS= read -r pattern; do
   [ -z "$pattern" ] && continue
   grep -Eq -- "$pattern" "$out/summary.txt" "$out/progress.txt" ||

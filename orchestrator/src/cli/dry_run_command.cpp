@@ -458,18 +458,23 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   };
   const int width = calendar ? 23 : 15;
   if (o.by_layer) {
+    std::cout << "by layer (planned start, planned end: the schedule's; started, ended: when the "
+                 "layer's jobs started and the last of them ended; deviation: started less planned "
+                 "start)\n";
     std::cout << printf_string("layer               %-*s  %-*s  deviation   %-*s  ended\n", width,
                                "planned start", width, "started", width, "planned end");
     for (const auto& l : report.layers)
-      std::cout << printf_string("floor %2d layer %3d  %-*s  %-*s  %-10s  %-*s  %s\n", l.floor,
-                                 l.layer, width, at(l.planned_start_s).c_str(), width,
+      std::cout << printf_string("%-18s  %-*s  %-*s  %-10s  %-*s  %s\n",
+                                 printf_string("floor %d layer %d", l.floor, l.layer).c_str(),
+                                 width, at(l.planned_start_s).c_str(), width,
                                  l.ran() ? at(l.started_s).c_str() : "not run",
                                  l.ran() ? printf_string("%+.1f s", l.deviation_s()).c_str() : "-",
                                  width, at(l.planned_end_s).c_str(), at(l.ended_s).c_str());
   } else {
-    std::cout << "by floor (--by-layer for every layer): planned start and end, when its first "
-                 "layer started and its last ended, its layers started over 1 s late or early, "
-                 "its worst start deviation\n";
+    std::cout << "by floor (--by-layer for every layer; planned start, planned end: the "
+                 "schedule's; started, ended: when the floor's first layer started and its last "
+                 "ended; off: its layers started over 1 s late or early; not run: its layers never "
+                 "started; worst: its worst start deviation)\n";
     std::cout << printf_string("floor  layers  %-*s  %-*s  %-*s  %-*s  off   not run  worst\n",
                                width, "planned start", width, "started", width, "planned end",
                                width, "ended");

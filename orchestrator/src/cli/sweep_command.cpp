@@ -241,20 +241,25 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
         "zone, D delay, - none)\n",
         o.file.c_str(), total_layers, distinct.size());
     std::cout << printf_string("  %-13s %s\n", "machine", project.machine_origin.c_str());
-    std::cout << printf_string("%-8s %-5s %10s %10s  %-8s %16s %16s %9s\n", "nozzles", "rails",
-                               ("platform " + u).c_str(), ("gantry " + u).c_str(), "methods",
-                               "construction min", "machine min", "vertices");
+    std::cout << printf_string("%-7s  %-5s  %10s  %10s  %-8s  %16s  %11s  %8s\n", "nozzles",
+                               "rails", ("platform " + u).c_str(), ("gantry " + u).c_str(),
+                               "methods", "construction min", "machine min", "vertices");
     auto width = [&](const std::optional<double>& v) {
       return v ? printf_string("%.1f", *v / per_unit) : std::string("-");
     };
     for (const auto& r : rows) {
       std::cout << printf_string(
-          "%-8d %-5s %10s %10s  %-8s %16s %16s %9d\n", r.nozzles,
+          "%-7d  %-5s  %10s  %10s  %-8s  %16s  %11s  %8d\n", r.nozzles,
           r.rail_axis.empty() ? "-" : r.rail_axis.c_str(), width(r.platform_m).c_str(),
           width(r.gantry_m).c_str(), r.methods.c_str(),
           r.status ? printf_string("%.1f", r.construction_s / 60).c_str() : "none",
           r.status ? printf_string("%.1f", r.machine_s / 60).c_str() : "none", r.vertices);
     }
+    std::cout << "  (rails: the axis the gantries run along; platform, gantry: their widths across "
+                 "the rails; methods: the letters above, one per platform stage; construction: the "
+                 "layers' times summed, the "
+                 "nozzles working together; machine: the nozzles' busy times summed; vertices: "
+                 "the largest layer's, after splitting walls at the platform's sections)\n";
     for (const auto& r : rows)
       if (!r.status)
         std::cout << printf_string("  %d nozzles, %s, platform %s, gantry %s: %s\n", r.nozzles,

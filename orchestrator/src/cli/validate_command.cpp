@@ -127,10 +127,10 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
   }
   for (const auto& note : b.import_notes) std::cout << "  import     " << note << "\n";
   std::cout << "\n"
-            << printf_string("  %-5s %-16s %12s %6s %9s %8s %7s %11s\n", "floor", "name", "height",
-                             "walls", "openings", "anchors", "layers", "geometries");
+            << printf_string("  %-5s  %-16s  %12s  %6s  %9s  %8s  %7s  %11s\n", "floor", "name",
+                             "height", "walls", "openings", "anchors", "layers", "geometries");
   for (const auto& f : summary.floors) {
-    std::cout << printf_string("  %-5d %-16s %12s %6d %9d %8d %7d %11d\n", f.floor_index,
+    std::cout << printf_string("  %-5d  %-16s  %12s  %6d  %9d  %8d  %7d  %11d\n", f.floor_index,
                                f.name.c_str(), project.length(f.height_m).c_str(), f.wall_count,
                                f.opening_count, f.anchor_count, f.layer_count,
                                f.distinct_geometries);
