@@ -37,6 +37,11 @@ std::string volume_text(double value_m3, LengthUnit unit, int decimals) {
   return printf_string("%.*f %s", decimals, volume_in(value_m3, unit), volume_unit(unit).c_str());
 }
 
+std::string flow_text(double value_m3_s, LengthUnit unit, int decimals) {
+  return printf_string("%.*f %s/h", decimals, volume_in(value_m3_s * 3600.0, unit),
+                       volume_unit(unit).c_str());
+}
+
 std::string speed_text(double value_m_s, LengthUnit unit, int decimals) {
   return printf_string("%.*f %s/s", decimals, length_in(value_m_s, unit), to_string(unit).c_str());
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A local study killed part way (SIGKILL to it and its variants' processes) resumes: run
 # again, no variant finished before is run again (its result untouched) and the rest
-# are; its results page, in headless Chromium, shows what results.json holds. (That a
+# are; its results page, in headless Chromium, shows what results.json holds; what
+# `study collect` prints passes check_units.py. (That a
 # resumed study gives a whole run's bytes, Study.OnAOneNodeSlurmCluster... shows: its
 # Slurm run is resumed by `collect --resubmit`.)
 # Usage: study_resume_check.sh CCBUILD STUDY
@@ -44,4 +45,9 @@ rows=$(tail -n +2 "$work/s/results.csv" | grep -c ',feasible,' || true)
 [ "$rows" -eq "$total" ] || { echo "$rows of $total variants feasible after the resume"; exit 1; }
 # The results page, opened in headless Chromium, against results.json.
 python3 "$(dirname "$0")/check_study_page.py" "$work/s"
+# What collect prints speaks one unit per figure and explains its tables (check_units.py).
+"$ccbuild" study collect "$work/s" > "$work/collect.txt"
+"$ccbuild" study --help > "$work/help.txt"
+python3 "$(dirname "$0")/check_units.py" --lengths m --help-text "$work/help.txt" "$work/collect.txt" ||
+  { cat "$work/collect.txt"; exit 1; }
 echo "study_resume_check: killed after $count of $total variants; resumed, none run twice, all $total feasible"

@@ -247,8 +247,11 @@
       ' s, safety factor ' + mat.safety_factor);
     row('seed', String(S.inputs.seed));
     var T = S.totals;
-    row('makespan', duration(T.makespan_s) + ' (machine busy ' + duration(T.machine_s) + ')');
-    row('nozzle time', 'deposition ' + duration(T.deposition_s) + ', airtime ' + duration(T.airtime_s));
+    row('makespan', duration(T.makespan_s) + ' (machine busy ' + duration(T.machine_s) +
+      ': layers, moves, pipes, purges, climbs)');
+    // Several nozzles work at once, so their times summed may exceed the machine's busy time.
+    row('nozzle time', 'deposition ' + duration(T.deposition_s) + ', airtime ' + duration(T.airtime_s) +
+      ', summed over the nozzles');
     row('other', 'waits ' + duration(T.waits_s) + ', climbs ' + duration(T.climbs_s) + ', slabs ' +
       duration(T.slabs_s) + ', pipes ' + duration(T.pipes_s) + ', purges ' + duration(T.purges_s) +
       ', moves ' + duration(T.moves_s));

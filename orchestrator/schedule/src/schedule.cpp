@@ -407,8 +407,9 @@ bool Scheduler::schedule_layer(int i) {
     if (machine_.pump_capacity_m3_s &&
         peak_flow_of(c.key) > *machine_.pump_capacity_m3_s * (1 + 1e-9)) {
       refusals.push_back(printf_string(
-          "%d nozzle%s: together they draw %.2f m³/h, more than the pump's %.2f m³/h", n,
-          n == 1 ? "" : "s", peak_flow_of(c.key) * 3600.0, *machine_.pump_capacity_m3_s * 3600.0));
+          "%d nozzle%s: together they draw %s, more than the pump's %s", n, n == 1 ? "" : "s",
+          floors::flow_text(peak_flow_of(c.key), project_.building.units, 2).c_str(),
+          floors::flow_text(*machine_.pump_capacity_m3_s, project_.building.units, 2).c_str()));
       return false;
     }
     c.move_s = previous_key_.empty() ? 0.0 : move_between(previous_key_, c.key);

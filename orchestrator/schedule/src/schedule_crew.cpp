@@ -106,8 +106,11 @@ double Scheduler::pour_slab(const ScheduledLayer& top, bool roof, double t_s) {
   pour.layer = top.layer;
   pour.roof = roof;
   pour.concrete_m3 = m3;
-  pour.detail = printf_string("pour of %s: %.2f m³ (%s thick) at %.1f m³/h", what.c_str(), m3,
-                              project_.length(thickness_m).c_str(), spec.pour_rate_m3_s * 3600.0);
+  pour.detail =
+      printf_string("pour of %s: %s (%s thick) at %s", what.c_str(),
+                    floors::volume_text(m3, project_.building.units).c_str(),
+                    project_.length(thickness_m).c_str(),
+                    floors::flow_text(spec.pour_rate_m3_s, project_.building.units).c_str());
   const double pour_end_s = pour.end_s;
   schedule_.events.push_back(std::move(pour));
   if (!roof) {

@@ -6,6 +6,7 @@
 
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/units.hpp"
 #include "ccbuild/report/climb_report.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -45,6 +46,10 @@ void run_climb(const ClimbOptions& o, int& exit_code) {
     return;
   }
   auto L = [&](double value_m) { return project.length(value_m, 2); };
+  // Clearances are what a reader checks to the millimetre (or the inch's hundredth).
+  auto clearance = [&](double value_m) {
+    return floors::fine_length_text(value_m, project.building.units);
+  };
   if (report.fixed_gantry) {
     const double top_m = floors::envelope(project.building).top_m;
     std::cout << o.file << " on " << project.machine_origin << ": a fixed gantry; the building ("
@@ -71,6 +76,10 @@ void run_climb(const ClimbOptions& o, int& exit_code) {
                                            L(a.centre_m.z()).c_str()));
     std::cout << "       " << pins << "\n";
   }
+  if (!report.stages.stages.empty())
+    std::cout << "  (U1->A1: unit U1 pins into the pipe of anchor A1 while the stage prints; "
+                 "foundation: into the ground slab; cast after: the layer the pipe is set on; "
+                 "at: the pipe's height)\n";
   for (const auto& c : report.climbs) {
     std::cout << printf_string(
         "climb %d -> %d: %s, %s of motion, planned in %.3f s, nearest wall "
@@ -78,13 +87,13 @@ void run_climb(const ClimbOptions& o, int& exit_code) {
         c.from_stage, c.to_stage,
         c.status ? "feasible" : ("NOT feasible: " + c.status.to_string()).c_str(),
         minutes(c.duration_s).c_str(), c.planning_s,
-        std::isfinite(c.min_clearance_m) ? L(c.min_clearance_m).c_str() : "-");
+        std::isfinite(c.min_clearance_m) ? clearance(c.min_clearance_m).c_str() : "-");
     for (const auto& p : c.phases) {
       const std::string who = p.unit >= 0 ? " " + m.units[p.unit].name : "";
       std::cout << printf_string(
           "  %-8s%-4s %10s  %zu waypoints, nearest wall %s%s\n", climb::to_string(p.kind).c_str(),
           who.c_str(), minutes(p.duration_s).c_str(), p.path.size(),
-          std::isfinite(p.min_clearance_m) ? L(p.min_clearance_m).c_str() : "-",
+          std::isfinite(p.min_clearance_m) ? clearance(p.min_clearance_m).c_str() : "-",
           p.strokes ? printf_string(", %d strokes", p.strokes).c_str() : "");
     }
   }

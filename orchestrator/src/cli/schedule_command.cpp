@@ -292,7 +292,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
     for (const auto& [floor, m3] : per_floor)
       floors_text += printf_string("%sfloor %d %.2f", floors_text.empty() ? "" : ", ", floor,
                                    floors::volume_in(m3, unit));
-    auto per_hour = [unit](double m3_s) { return floors::volume_text(m3_s * 3600.0, unit) + "/h"; };
+    auto per_hour = [unit](double m3_s) { return floors::flow_text(m3_s, unit, 2); };
     std::cout << printf_string(
         "concrete: %s (%s); the nozzles draw at most %s%s; %zu deliveries of %s\n",
         floors::volume_text(t.concrete_m3, unit).c_str(), floors_text.c_str(),
@@ -360,7 +360,10 @@ void add_schedule_command(CLI::App& app, int& exit_code) {
       "planned joint; with weather, concrete ages in equivalent age at 20 degrees C, printing "
       "waits out the cold and climbs the wind. A summary per day follows the floors.\n"
       "Prints a summary per floor; -o writes the schedule JSON (docs/schedule.md), the same "
-      "bytes for the same inputs and seed whatever --jobs. Progress goes to stderr.\n"
+      "bytes for the same inputs and seed whatever --jobs. Progress goes to stderr. A layer "
+      "plan is named g<geometry>n<nozzles> (g5n2: the fifth distinct layer outline, on two "
+      "nozzles; `ccbuild layers` lists the outlines); margin warnings name what comes close to "
+      "a limit and where, with the threshold they are warned under.\n"
       "Exit code 1 when the building cannot be built within its constraints: the summary (and "
       "the JSON, marked \"feasible\": false) says where, by how much, and the fix.\n"
       "Examples:\n"

@@ -46,6 +46,9 @@ constexpr double volume_in(double value_m3, LengthUnit unit) {
 /// "823.65 m³", "1077.30 yd³".
 std::string volume_text(double value_m3, LengthUnit unit, int decimals = 2);
 
+/// A flow of concrete for messages, per hour: "30.0 m³/h", "39.2 yd³/h".
+std::string flow_text(double value_m3_s, LengthUnit unit, int decimals = 1);
+
 /// A speed for messages: "0.100 m/s", "0.328 ft/s".
 std::string speed_text(double value_m_s, LengthUnit unit, int decimals = 3);
 
