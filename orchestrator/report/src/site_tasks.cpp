@@ -10,13 +10,6 @@ using schedule::Event;
 
 namespace {
 
-/// Adds a reason's kind to a wait's list once: a layer may wait for strength twice (the
-/// piece below and the layer's bottom), which a planner reads as one reason.
-void add_reason(std::string& reasons, const std::string& kind) {
-  if ((", " + reasons + ", ").find(", " + kind + ", ") != std::string::npos) return;
-  reasons += (reasons.empty() ? "" : ", ") + kind;
-}
-
 std::string crew_text(int crew, bool machine) {
   if (crew <= 0) return machine ? "machine" : "site";  // a fixed slab stage names no crew
   return printf_string("%screw of %d", machine ? "machine and " : "", crew);
@@ -42,10 +35,9 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
           l.start_s - (l.purge_before ? purge_s : 0.0) - (l.planned_joint ? treatment_s : 0.0);
       w.start_s = w.end_s - l.wait_before_s;
       w.who = "machine";
-      for (const auto& r : l.wait_reasons) {
+      for (const auto& r : l.wait_reasons)
         w.detail += (w.detail.empty() ? "" : "; ") + schedule::to_string(r.kind) + ": " + r.detail;
-        add_reason(w.reasons, schedule::to_string(r.kind));
-      }
+      w.reasons = schedule::reason_kinds_text(l.wait_reasons);
       w.detail = printf_string("before floor %d layer %d: ", l.floor, l.layer) + w.detail;
       tasks.push_back(std::move(w));
     }
@@ -76,12 +68,10 @@ std::vector<SiteTask> tasks_of(const schedule::ScheduleDocument& document) {
       w.who = "machine";
       std::string why;
       if (e.climb)
-        for (const auto& r : e.climb->wait_reasons) {
+        for (const auto& r : e.climb->wait_reasons)
           why += (why.empty() ? "" : "; ") + schedule::to_string(r.kind) + ": " + r.detail;
-          add_reason(w.reasons, schedule::to_string(r.kind));
-        }
       // A crew's task waits for working hours; a climb says why it waited.
-      if (!e.climb) w.reasons = "off-shift";
+      w.reasons = e.climb ? schedule::reason_kinds_text(e.climb->wait_reasons) : "off-shift";
       w.detail = "before " + e.detail + (why.empty() ? "" : ": " + why);
       tasks.push_back(std::move(w));
     }

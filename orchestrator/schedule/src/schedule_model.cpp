@@ -35,6 +35,17 @@ std::string to_string(WaitKind kind) {
   return "?";
 }
 
+std::string reason_kinds_text(const std::vector<WaitReason>& reasons) {
+  std::vector<WaitKind> listed;
+  std::string text;
+  for (const auto& r : reasons) {
+    if (std::find(listed.begin(), listed.end(), r.kind) != listed.end()) continue;
+    listed.push_back(r.kind);
+    text += (text.empty() ? "" : ", ") + to_string(r.kind);
+  }
+  return text;
+}
+
 std::optional<WaitKind> wait_kind_named(const std::string& name) {
   for (WaitKind k :
        {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab,

@@ -186,10 +186,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       column_unit(climbs, [](const schedule::Event* e) { return e->climb->plan.duration_s; });
   for (const schedule::Event* e : climbs) {
     const auto& c = *e->climb;
-    std::string why;
-    for (const auto& r : c.wait_reasons)
-      if (why.find(schedule::to_string(r.kind)) == std::string::npos)
-        why += (why.empty() ? "" : ", ") + schedule::to_string(r.kind);
+    const std::string why = schedule::reason_kinds_text(c.wait_reasons);
     std::cout << printf_string(
         "climb %d -> %d after floor %d layer %d: starts at %s after a wait of %s%s, %s of "
         "motion\n",

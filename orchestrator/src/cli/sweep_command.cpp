@@ -257,8 +257,8 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
     }
     std::cout << "  (rails: the axis the gantries run along; platform, gantry: their widths across "
                  "the rails; methods: the letters above, one per platform stage; construction: the "
-                 "layers' times summed, the "
-                 "nozzles working together; machine: the nozzles' busy times summed; vertices: "
+                 "layers' times summed, the nozzles working together; machine: the nozzles' busy "
+                 "times summed; vertices: "
                  "the largest layer's, after splitting walls at the platform's sections)\n";
     for (const auto& r : rows)
       if (!r.status)

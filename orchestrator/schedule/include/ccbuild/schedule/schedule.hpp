@@ -92,6 +92,10 @@ struct WaitReason {
   std::string detail;       ///< the numbers, in words
 };
 
+/// The kinds of `reasons`, each once, in their order: "min-interval, strength" (a wait may
+/// have two strength reasons, the piece below and the layer's bottom).
+std::string reason_kinds_text(const std::vector<WaitReason>& reasons);
+
 /// One wall piece's end, where the local interval is extreme.
 struct PieceEnd {
   std::int64_t wall = 0;
