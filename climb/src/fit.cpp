@@ -54,6 +54,17 @@ Member build_member(const machine::ClimbingFamily& family, const machine::Fitted
   return member;
 }
 
+/// `p` with one unit in the middle of each beam: a member whose loading checks the
+/// family's keys as a machine; its units stand in for any mount on their beams.
+machine::FittedPlatform probe_platform(machine::FittedPlatform p) {
+  const Eigen::Vector2d mid(0.5 * (p.x_min_m + p.x_max_m), 0.5 * (p.y_min_m + p.y_max_m));
+  p.units = {machine::mount_on(Beam::kSouth, {mid.x(), p.y_min_m}, "U1"),
+             machine::mount_on(Beam::kEast, {p.x_max_m, mid.y()}, "U2"),
+             machine::mount_on(Beam::kNorth, {mid.x(), p.y_max_m}, "U3"),
+             machine::mount_on(Beam::kWest, {p.x_min_m, mid.y()}, "U4")};
+  return p;
+}
+
 std::string describe_member(const machine::ClimbingFamily& family, const machine::FittedPlatform& p,
                             floors::LengthUnit unit) {
   std::string units;
@@ -196,7 +207,24 @@ FitResult fit_climbing_machine(const floors::Building& building,
       hi += 0.5 * (smallest - outer_m);
     }
   }
-  if (!r.status) return r;
+  if (!r.status) {
+    // A key of the family out of its range is bad input whatever the building: checked on
+    // the family's largest member before the answer that none fits (exit 1, not 2).
+    machine::FittedPlatform largest = p;
+    const double half_length = 0.5 * (family.length_max_m - section),
+                 half_width = 0.5 * (family.width_max_m - section);
+    const Eigen::Vector2d centre(0.5 * (p.x_min_m + p.x_max_m), 0.5 * (p.y_min_m + p.y_max_m));
+    largest.x_min_m = centre.x() - half_length;
+    largest.x_max_m = centre.x() + half_length;
+    largest.y_min_m = centre.y() - half_width;
+    largest.y_max_m = centre.y() + half_width;
+    largest.gantry_x_min_m = largest.x_min_m;
+    largest.gantry_x_max_m = largest.x_max_m;
+    largest.gantry_y_min_m = largest.y_min_m;
+    largest.gantry_y_max_m = largest.y_max_m;
+    build_member(family, probe_platform(largest), options, "probe");
+    return r;
+  }
   // The gantry reaches half a metre past the outermost walls, within the beams.
   p.gantry_x_min_m = std::max(p.x_min_m, env.min_m.x() - 0.5);
   p.gantry_x_max_m = std::min(p.x_max_m, env.max_m.x() + 0.5);
@@ -206,13 +234,8 @@ FitResult fit_climbing_machine(const floors::Building& building,
 
   // 2. A probe: one unit in the middle of each beam. Loading it checks the family's keys
   // as a machine; its units stand in for any mount on their beams.
-  machine::FittedPlatform probe_p = p;
   const Eigen::Vector2d mid(0.5 * (p.x_min_m + p.x_max_m), 0.5 * (p.y_min_m + p.y_max_m));
-  probe_p.units = {machine::mount_on(Beam::kSouth, {mid.x(), p.y_min_m}, "U1"),
-                   machine::mount_on(Beam::kEast, {p.x_max_m, mid.y()}, "U2"),
-                   machine::mount_on(Beam::kNorth, {mid.x(), p.y_max_m}, "U3"),
-                   machine::mount_on(Beam::kWest, {p.x_min_m, mid.y()}, "U4")};
-  const Member probe = build_member(family, probe_p, options, "probe");
+  const Member probe = build_member(family, probe_platform(p), options, "probe");
   const machine::ClimbingMachine& pm = *probe.profile.climbing;
   const detail::StageFrames frames = detail::stage_frames(building, pm);
   r.stages = static_cast<int>(frames.frames.size());

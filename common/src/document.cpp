@@ -1,5 +1,8 @@
 #include "ccbuild/common/document.hpp"
 
+#include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/format.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -267,11 +270,11 @@ std::string index_path(const std::string& parent, std::size_t index) {
 }
 
 namespace {
-std::atomic<std::size_t> files_read{0};
+std::atomic<std::size_t> text_files_count{0};
 }  // namespace
 
 std::size_t text_files_read() {
-  return files_read.load();
+  return text_files_count.load();
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
@@ -309,7 +312,8 @@ std::string read_text_file(const std::filesystem::path& path) {
                      "is larger than " +
                          std::to_string(limits::kMaxInputFileBytes / (1024 * 1024)) +
                          " MiB, the most ccbuild reads");
-  ++files_read;
+  ++text_files_count;
+  note_file_read(path);  // an input of this run: never one of its outputs
   return text;
 }
 
@@ -449,15 +453,17 @@ double Field::as_number() const {
   std::string lower;
   for (char c : text) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (lower == ".nan" || lower == ".inf" || lower == "-.inf")
-    fail("expected a finite number, got '" + node_->text + "' (NaN and infinity are not allowed)");
+    fail("expected a finite number, got '" + echoed(node_->text) +
+         "' (NaN and infinity are not allowed)");
   double value = 0.0;
   const char* begin = text.data();
   const char* end = begin + text.size();
   const auto [ptr, ec] = std::from_chars(begin, end, value);
   if (text.empty() || ec != std::errc() || ptr != end)
-    fail("expected a number, got '" + node_->text + "'");
+    fail("expected a number, got '" + echoed(node_->text) + "'");
   if (!std::isfinite(value))
-    fail("expected a finite number, got '" + node_->text + "' (NaN and infinity are not allowed)");
+    fail("expected a finite number, got '" + echoed(node_->text) +
+         "' (NaN and infinity are not allowed)");
   return value;
 }
 
@@ -478,7 +484,7 @@ std::int64_t Field::as_positive_id() const {
   const char* end = begin + node_->text.size();
   const auto [ptr, ec] = std::from_chars(begin, end, value);
   if (ec != std::errc() || ptr != end || value <= 0)
-    fail("expected a positive integer id, got '" + node_->text + "'");
+    fail("expected a positive integer id, got '" + echoed(node_->text) + "'");
   return value;
 }
 
@@ -490,7 +496,7 @@ std::int64_t Field::as_count() const {
   const char* end = begin + node_->text.size();
   const auto [ptr, ec] = std::from_chars(begin, end, value);
   if (ec != std::errc() || ptr != end || value < 0)
-    fail("expected a non-negative integer, got '" + node_->text + "'");
+    fail("expected a non-negative integer, got '" + echoed(node_->text) + "'");
   return value;
 }
 

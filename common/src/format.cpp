@@ -49,6 +49,74 @@ std::string nearest_word(const std::string& word, const std::vector<std::string>
   return best;
 }
 
+std::string yaml_quoted(const std::string& text) {
+  std::string out = "\"";
+  out.reserve(text.size() + 2);
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (u < 0x20 || u == 0x7f)
+          out += printf_string("\\x%02x", u);
+        else
+          out += c;
+    }
+  }
+  return out + "\"";
+}
+
+namespace {
+/// `text` on one line: control characters shown escaped; `--` split when `split_dashes`.
+std::string one_line(const std::string& text, bool split_dashes) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (c == '\r')
+      out += "\\r";
+    else if (u < 0x20 || u == 0x7f)
+      out += printf_string("\\x%02x", u);
+    else if (split_dashes && c == '-' && !out.empty() && out.back() == '-')
+      out += " -";  // "--" would end an XML comment
+    else
+      out += c;
+  }
+  return out;
+}
+}  // namespace
+
+std::string comment_text(const std::string& text) {
+  return one_line(text, true);
+}
+
+std::string echoed(const std::string& value, std::size_t max_chars) {
+  if (value.size() <= max_chars) return one_line(value, false);
+  // Cut at a character's start, never inside a UTF-8 sequence.
+  std::size_t cut = max_chars;
+  while (cut > 0 && (static_cast<unsigned char>(value[cut]) & 0xc0) == 0x80) --cut;
+  return one_line(value.substr(0, cut), false) +
+         printf_string("... (%zu bytes in all)", value.size());
+}
+
 std::string xml_escape(const std::string& text) {
   std::string out;
   out.reserve(text.size());

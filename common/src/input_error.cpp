@@ -1,7 +1,29 @@
 #include "ccbuild/common/input_error.hpp"
 
+#include "ccbuild/common/format.hpp"
+
 namespace ccbuild {
 namespace {
+
+/// The most diagnostics one error lists, and the longest message and field it shows: a
+/// hostile file can hold millions of mistakes, or one value of megabytes.
+constexpr std::size_t kMostDiagnostics = 25;
+constexpr std::size_t kLongestMessage = 2000, kLongestField = 200;
+
+std::vector<Diagnostic> bounded(std::vector<Diagnostic> diagnostics) {
+  if (diagnostics.size() > kMostDiagnostics) {
+    const std::size_t more = diagnostics.size() - (kMostDiagnostics - 1);
+    diagnostics.resize(kMostDiagnostics - 1);
+    diagnostics.push_back({diagnostics.front().file, 0, "",
+                           "and " + std::to_string(more) + " more problems (fix these first)"});
+  }
+  for (auto& d : diagnostics) {
+    if (d.message.size() > kLongestMessage) d.message = echoed(d.message, kLongestMessage);
+    if (d.field.size() > kLongestField) d.field = echoed(d.field, kLongestField);
+    if (d.file.size() > kLongestField) d.file = echoed(d.file, kLongestField);
+  }
+  return diagnostics;
+}
 std::string join(const std::vector<Diagnostic>& diagnostics) {
   std::string text;
   for (const auto& d : diagnostics) {
@@ -28,6 +50,9 @@ InputError::InputError(Diagnostic diagnostic)
     : InputError(std::vector<Diagnostic>{std::move(diagnostic)}) {}
 
 InputError::InputError(std::vector<Diagnostic> diagnostics)
+    : InputError(bounded(std::move(diagnostics)), 0) {}
+
+InputError::InputError(std::vector<Diagnostic> diagnostics, int)
     : std::runtime_error(join(diagnostics)), diagnostics_(std::move(diagnostics)) {
   if (diagnostics_.empty()) diagnostics_.push_back({});
 }

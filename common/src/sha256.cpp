@@ -1,5 +1,7 @@
 #include "ccbuild/common/sha256.hpp"
 
+#include "ccbuild/common/atomic_file.hpp"
+
 #include <array>
 #include <cstdint>
 #include <fstream>
@@ -88,6 +90,7 @@ std::string sha256_file_hex(const std::filesystem::path& path) {
   if (!in) throw InputError(path.string(), 0, "", "cannot be read to compute its SHA-256");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path.string(), 0, "", "cannot be read to compute its SHA-256");
+  note_file_read(path);  // an input of this run: never one of its outputs
   return sha256_hex(bytes);
 }
 

@@ -114,8 +114,8 @@ Site read_site(const Field& field, LengthUnit unit) {
     const std::string how = place->as_string();
     if (how != "centre" && how != "center")
       place->fail(
-          "expected `centre` (the building centred on the machine's x and y travel), got '" + how +
-          "'");
+          "expected `centre` (the building centred on the machine's x and y travel), got '" +
+          echoed(how) + "'");
     if (site.origin_m) place->fail("give either `origin` or `place: centre`, not both");
     site.centre = true;
   }
@@ -140,7 +140,7 @@ LintelSpec read_lintels(const Field& field, LengthUnit unit) {
       type->fail(
           "expected precast (an element set on bearings) or formwork (a soffit form the layers "
           "are printed over), got '" +
-          t + "'");
+          echoed(t) + "'");
     lintel.type = t == "precast" ? LintelSpec::Type::kPrecast : LintelSpec::Type::kFormwork;
   }
   if (auto height = map.optional("height")) {
@@ -158,7 +158,7 @@ LintelSpec read_lintels(const Field& field, LengthUnit unit) {
     const std::string who = by->as_string();
     if (who != "crew" && who != "arm")
       by->fail("expected crew (people set it, in working hours) or arm (the machine's arm), got '" +
-               who + "'");
+               echoed(who) + "'");
     lintel.by_arm = who == "arm";
     if (lintel.by_arm) lintel.crew = 0;
   }
@@ -314,7 +314,7 @@ Building building_from_document(const Document& doc, const fs::path& path,
         pattern->fail(
             "expected skins, solid or skins-with-ties (what lies between a thick wall's "
             "two skins), got '" +
-            pattern->as_string() + "'");
+            echoed(pattern->as_string()) + "'");
       building.wall_pattern = *parsed;
     }
   });
@@ -325,7 +325,7 @@ Building building_from_document(const Document& doc, const fs::path& path,
         climbs->fail(
             "expected between-floors (a climbing machine climbs at floor tops, the default) or "
             "within-storey (wherever its legs allow), got '" +
-            where + "'");
+            echoed(where) + "'");
       building.climbs_within_storey = where == "within-storey";
     }
   });

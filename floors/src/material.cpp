@@ -118,7 +118,7 @@ En1992Strength read_en1992_strength(const Field& field, const std::vector<std::s
       en.s = 0.38;
     else
       c->fail("expected R, N or S (EN 1992-1-1 §3.1.2: s = 0.20, 0.25, 0.38), got '" +
-              en.cement_class + "'");
+              echoed(en.cement_class) + "'");
   }
   if (e.has("from_h")) en.from_s = e.required("from_h").as_number_in(kJointAge_s, "h", 3600.0);
   return en;
@@ -201,7 +201,7 @@ MaterialProfile load_material_profile(const std::filesystem::path& path) {
       function.fail(
           "expected arrhenius or nurse-saul (the maturity method's age functions, ASTM "
           "C1074), got '" +
-          name + "'");
+          echoed(name) + "'");
     }
   }
   if (auto batch = map.optional("delivery_batch_m3"))

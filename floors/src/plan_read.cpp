@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "plan_internal.hpp"
@@ -14,7 +15,7 @@ namespace ccbuild::floors {
 LengthUnit read_units(const Field& field) {
   const std::string text = field.as_string();
   const auto unit = parse_length_unit(text);
-  if (!unit) field.fail("expected 'm' or 'ft', got '" + text + "'");
+  if (!unit) field.fail("expected 'm' or 'ft', got '" + echoed(text) + "'");
   return *unit;
 }
 
@@ -48,7 +49,8 @@ Opening read_opening(const Field& field, LengthUnit unit) {
   bool door = false;
   if (auto kind = map.optional("kind")) {
     const std::string k = kind->as_string();
-    if (k != "door" && k != "window") kind->fail("expected 'door' or 'window', got '" + k + "'");
+    if (k != "door" && k != "window")
+      kind->fail("expected 'door' or 'window', got '" + echoed(k) + "'");
     door = k == "door";
   }
   opening.wall_id = read_id(map.required("wall"));
@@ -134,7 +136,7 @@ class TableReader {
     std::int64_t value = 0;
     const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (ec != std::errc() || ptr != word.data() + word.size() || value <= 0)
-      fail(line, field, "expected a positive integer id, got '" + word + "'");
+      fail(line, field, "expected a positive integer id, got '" + echoed(word) + "'");
     if (value > limits::kMaxId)
       fail(line, field,
            "ids are 1 to " + std::to_string(limits::kMaxId) + ", got " + std::to_string(value));
@@ -148,10 +150,11 @@ class TableReader {
     double value = 0.0;
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
-      fail(line, field, "expected a number, got '" + word + "'");
+      fail(line, field, "expected a number, got '" + echoed(word) + "'");
     if (!std::isfinite(value))
       fail(line, field,
-           "expected a finite number, got '" + word + "' (NaN and infinity are not allowed)");
+           "expected a finite number, got '" + echoed(word) +
+               "' (NaN and infinity are not allowed)");
     const double value_m = value * meters_per(unit_);
     const std::string wrong = range_m.violation(value_m, word + " " + to_string(unit_),
                                                 to_string(unit_), meters_per(unit_));
@@ -194,8 +197,9 @@ FloorPlan parse_plan_table(const std::string& text, const std::string& file, Len
       continue;
     }
     if (section.empty())
-      reader.fail(number, "",
-                  "expected a section header 'vertices' before data, got '" + words[0] + "'");
+      reader.fail(
+          number, "",
+          "expected a section header 'vertices' before data, got '" + echoed(words[0]) + "'");
     if (section == "vertices") {
       if (words.size() != 3)
         reader.fail(

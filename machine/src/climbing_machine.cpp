@@ -101,7 +101,7 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
   const Field platform = map.required("platform");
   if (platform.as_string() != urdf.root_link)
     platform.fail("the platform must be the URDF's root link '" + urdf.root_link + "', got '" +
-                  platform.as_string() + "'");
+                  echoed(platform.as_string()) + "'");
   for (int k = 0; k < 4; ++k) m.gantry_joints[k] = robot.joint(gantry_joints[k]);
   const int bridge = robot.link(robot.joint_info(m.gantry_joints[0]).child_link);
   for (int l = 0; l < robot.link_count(); ++l)

@@ -187,7 +187,7 @@ MachineProfile load_machine_profile(const Document& doc, const fs::path& profile
   if (auto axis = map.optional("rail_axis")) {
     const std::string text = axis->as_string();
     const auto named = rail_axis_named(text);
-    if (!named) axis->fail("must be x or y, got '" + text + "'");
+    if (!named) axis->fail("must be x or y, got '" + echoed(text) + "'");
     m.rail_axis = *named;
   }
   if (auto purge = map.optional("purge_s")) m.purge_s = purge->as_number_in(kPurge_s, "s");

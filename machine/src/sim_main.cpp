@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/sim_limits.hpp"
@@ -114,7 +115,8 @@ int main(int argc, char** argv) {
     if (!clog_at.empty() &&
         !sim_limits::parse_floor_layer(clog_at, options.clog_floor, options.clog_layer))
       throw ccbuild::InputError(
-          "", 0, "--clog-at", "expected FLOOR:LAYER (whole numbers from 0), got '" + clog_at + "'");
+          "", 0, "--clog-at",
+          "expected FLOOR:LAYER (whole numbers from 0), got '" + ccbuild::echoed(clog_at) + "'");
     if (!profile.empty())
       options.model = std::make_shared<const ccbuild::machine::MachineModel>(
           ccbuild::machine::load_machine(profile));

@@ -206,21 +206,25 @@ TEST(HostileInput, OutputsNeverReplaceWhatTheyShouldNot) {
   EXPECT_TRUE(fs::is_fifo(fifo));
   expect_refused(run_bounded("report " + s + " --force -o " + site.path("sub")), "is a directory",
                  "folder");
-  // A character device is written into, never replaced; a write that fails says so.
-  const auto full = run_bounded("report " + s + " -o /dev/full");
-  expect_refused(full, "/dev/full: cannot write output file: No space left on device", "full");
+  // A character device is never an output: refused before any work, the device kept.
+  expect_refused(run_bounded("report " + s + " -o /dev/full"), "is a character device", "full");
   EXPECT_TRUE(fs::is_character_file("/dev/full"));
   const std::string device = site.path("null");
   if (::mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {  // as root: /dev/null's
-    const auto into = run_bounded("report " + s + " --force -o " + device);
-    EXPECT_EQ(into.exit_code, 0) << into.err;
+    expect_refused(run_bounded("report " + s + " --force -o " + device), "is a character device",
+                   "a device made here");
     EXPECT_TRUE(fs::is_character_file(device));
     // The dry-run's journal on a device: refused before SQLite leaves a file beside it.
     expect_refused(run_bounded("dry-run " + s + " --lcm-url memq:// --journal " + device),
-                   "--journal: is a device", "journal on a device");
+                   "--journal: is a character device", "journal on a device");
     EXPECT_FALSE(fs::exists(device + "-journal"));
     EXPECT_FALSE(fs::exists(device + "-wal"));
   }
+  // A write that fails (a file-size limit, as a full disk) names the file, leaves nothing.
+  const auto limited = run_shell("ulimit -f 64 && timeout 60 " + testing::ccbuild_binary() +
+                                 " report " + s + " -o " + site.path("limited.html"));
+  expect_refused(limited, "limited.html: cannot write output file: File too large", "ulimit -f");
+  EXPECT_FALSE(fs::exists(site.path("limited.html")));
   // The dry-run's log: never an input (the schedule, the machine's profile or URDF, by any
   // path), never the journal, never a FIFO.
   for (const std::string& log :
@@ -259,8 +263,8 @@ TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
   expect_refused(run_bounded("export " + s + " --format csv -o " + s + " --force"),
                  "output would overwrite an input file", "-o onto the schedule");
   EXPECT_EQ(site.bytes("s.json"), before);
-  for (const std::string start : {"2027-02-29T07:00", "2027-03-01", "1969-12-31 23:59",
-                                  "2027-03-01T24:00", "2027-03-01T07:00:00Z"})
+  for (const std::string start : {"2027-02-29T07:00", "2027-03-01", "1970-12-31 23:59",
+                                  "2201-01-01 00:00", "2027-03-01T24:00", "2027-03-01T07:00:00Z"})
     expect_refused(
         run_bounded("export " + s + " -o " + site.path("x.csv") + " --start '" + start + "'"),
         "--start: expected a local date and time", start);
@@ -273,8 +277,8 @@ TEST(HostileInput, ExportsRefuseBadStartsAndNeverReplaceTheirSchedule) {
                    "--start: the schedule was made without a site calendar", format);
     EXPECT_FALSE(fs::exists(site.path("x.ics"))) << format;
   }
-  // Both ends of the range, and a leap day.
-  for (const std::string start : {"1970-01-01T00:00", "9999-12-31 23:59:59", "2028-02-29 07:00"}) {
+  // Both ends of the range (the end within the last year), and a leap day.
+  for (const std::string start : {"1971-01-01T00:00", "2200-12-24 23:59:59", "2028-02-29 07:00"}) {
     const auto r = run_bounded("export " + s + " -o " + site.path("x.csv") + " --force --start '" +
                                start + "'");
     EXPECT_EQ(r.exit_code, 0) << start << r.err;

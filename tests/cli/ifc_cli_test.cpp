@@ -174,7 +174,7 @@ TEST(IfcCommands, ThePublicGymzaalIsRefusedForItsSizeAndItsWallThicknesses) {
   EXPECT_EQ(turned.exit_code, 2);
   EXPECT_FALSE(contains(turned.err, "the machine reaches")) << turned.err;
   EXPECT_TRUE(contains(turned.err,
-                       "gym.1.plan.yaml:78: walls[0].thickness: wall 1 is 0.270 m "
+                       "gym.1.plan.yaml:79: walls[0].thickness: wall 1 is 0.270 m "
                        "thick, but the nozzle of CC gantry"))
       << turned.err;
   EXPECT_TRUE(contains(turned.err, "wall 5 is 0.135 m thick")) << turned.err;

@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
+#include "ccbuild/common/document.hpp"
+
 namespace ccbuild {
 namespace {
 
@@ -35,6 +39,47 @@ TEST(DayClock, RoundsToTheSecondAndRollsOverAtMidnight) {
   EXPECT_EQ(day_clock_text(86399.6), "day 2 00:00");
   EXPECT_EQ(day_clock_text(86340.0 + 59.4), "day 1 23:59");  // the minute it falls in
   EXPECT_EQ(day_clock_text(2 * 86400.0 + 7 * 3600.0 + 5 * 60.0 + 9.0, true), "day 3 07:05:09");
+}
+
+TEST(TextOut, AQuotedYamlScalarReadsBackExactly) {
+  // Seeded, without std:: distributions (their algorithms differ between libraries).
+  std::uint64_t state = 49;
+  const auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<unsigned>(state >> 33);
+  };
+  const std::vector<std::string> pieces = {
+      "\n", "\r\n", "\t",   "\"",      "\\",   "#",    ": ", "- ",  "'",   "{", "}",
+      "[",  "]",    ",",    "&a",      "*a",   "!!",   "%",  "@",   "`",   "é", "€",
+      "𝄞",  " ",    "\x01", "\x1b[2J", "\x7f", "null", "~",  "yes", "0x1f"};
+  for (int n = 0; n < 500; ++n) {
+    std::string text;
+    const unsigned parts = next() % 8;
+    for (unsigned k = 0; k < parts; ++k) text += pieces[next() % pieces.size()];
+    const Document doc = parse_yaml("name: " + yaml_quoted(text) + "\n", "generated.yaml");
+    ASSERT_EQ(doc.root.kind, DocNode::Kind::kMap);
+    const Field name = MapReader(Field::root(doc), {"name"}).required("name");
+    EXPECT_EQ(name.as_string(), text) << yaml_quoted(text);
+  }
+}
+
+TEST(TextOut, ACommentStaysOnOneLineAndCannotCloseAnXmlComment) {
+  EXPECT_EQ(comment_text("a\nb\tc\r\x1b"), "a\\nb\\tc\\r\\x1b");
+  EXPECT_EQ(comment_text("x--y---z"), "x- -y- - -z");
+  EXPECT_EQ(comment_text("plain é"), "plain é");
+}
+
+TEST(TextOut, AnEchoedValueIsCutAtACharactersStart) {
+  EXPECT_EQ(echoed(std::string(80, 'x')), std::string(80, 'x'));  // at the limit: whole
+  const std::string long_value(10 * 1024 * 1024, 'y');
+  const std::string shown = echoed(long_value);
+  EXPECT_LT(shown.size(), 120u);
+  EXPECT_NE(shown.find("10485760 bytes in all"), std::string::npos);
+  // "é" is two bytes: a cut inside it moves back to its start.
+  const std::string accents = std::string(79, 'a') + "éé";
+  EXPECT_EQ(echoed(accents).substr(0, 80), std::string(79, 'a') + ".");
+  EXPECT_EQ(echoed("a\nb"), "a\\nb");
+  EXPECT_EQ(echoed("--time-limit"), "--time-limit");  // a flag stays as typed
 }
 
 }  // namespace

@@ -202,7 +202,7 @@ std::string checked_dxf_text(const std::string& text, const std::string& file) {
         std::string(end).find_first_not_of(" \t") != std::string::npos)
       throw InputError(
           file, line, "",
-          "expected a DXF group code (an integer), got '" + code_line.substr(0, 40) + "'");
+          "expected a DXF group code (an integer), got '" + echoed(code_line.substr(0, 40)) + "'");
     if (!std::getline(in, value))
       throw InputError(file, line, "", "the drawing ends after a group code: truncated?");
     ++line;
@@ -217,7 +217,7 @@ std::string checked_dxf_text(const std::string& text, const std::string& file) {
       if (end == trimmed.c_str() ||
           std::string(end).find_first_not_of(" \t") != std::string::npos || !std::isfinite(v))
         throw InputError(file, line, printf_string("group %ld", code),
-                         "expected a finite number, got '" + value.substr(0, 40) + "'");
+                         "expected a finite number, got '" + echoed(value.substr(0, 40)) + "'");
     }
     out += code_line;
     out += '\n';
@@ -574,12 +574,13 @@ floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path
     if (how == "centrelines" || how == "centerlines")
       o.wall_lines = DxfOptions::WallLines::kCentrelines;
     else if (how != "faces")
-      lines->fail("expected faces (each wall drawn as its two faces) or centrelines, got '" + how +
-                  "'");
+      lines->fail("expected faces (each wall drawn as its two faces) or centrelines, got '" +
+                  echoed(how) + "'");
   }
   if (auto u = map.optional("unit")) {
     o.metres_per_unit = unit_metres(u->as_string());
-    if (!o.metres_per_unit) u->fail("expected mm, cm, m, in or ft, got '" + u->as_string() + "'");
+    if (!o.metres_per_unit)
+      u->fail("expected mm, cm, m, in or ft, got '" + echoed(u->as_string()) + "'");
   }
   const std::string unit_name = floors::to_string(unit);
   const double per = floors::meters_per(unit);

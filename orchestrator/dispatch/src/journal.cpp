@@ -27,7 +27,14 @@ class Statement {
 /// Runs a prepared INSERT, counting it and the time since `started` in the journal's figures.
 void step_write(sqlite3* db, sqlite3_stmt* s, std::chrono::steady_clock::time_point started,
                 long& writes, double& write_s) {
-  CCBUILD_CHECK(sqlite3_step(s) == SQLITE_DONE, "journal: " + std::string(sqlite3_errmsg(db)));
+  // A write that fails (a full disk, a file-size limit) stops the run as bad input does,
+  // naming the journal: what was written before stays, and a resume starts from it.
+  if (sqlite3_step(s) != SQLITE_DONE) {
+    const char* file = sqlite3_db_filename(db, "main");
+    throw InputError(file ? file : "", 0, "--journal",
+                     "cannot write the journal: " + std::string(sqlite3_errmsg(db)) +
+                         " (a full disk?); every step written before it is kept");
+  }
   ++writes;
   write_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }

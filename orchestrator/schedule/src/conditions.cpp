@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "ccbuild/common/dates.hpp"
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -26,13 +27,9 @@ std::optional<std::int64_t> parse_timestamp(const std::string& text, const SiteC
   if (!text.empty() && (text.back() == 'Z' || text.back() == 'z')) {
     offset_s = 0;
     end -= 1;
-  } else if (text.size() > 6 && (text[text.size() - 6] == '+' || text[text.size() - 6] == '-') &&
-             text[text.size() - 3] == ':') {
-    int h = 0, m = 0, n = 0;
-    if (std::sscanf(text.c_str() + text.size() - 5, "%2d:%2d%n", &h, &m, &n) != 2 || n != 5 ||
-        h > 23 || m > 59)
-      return std::nullopt;
-    offset_s = (text[text.size() - 6] == '-' ? -1 : 1) * (h * 3600 + m * 60);
+  } else if (text.size() > 6 && (text[text.size() - 6] == '+' || text[text.size() - 6] == '-')) {
+    offset_s = parse_utc_offset(std::string_view(text).substr(text.size() - 6));
+    if (!offset_s) return std::nullopt;
     end -= 6;
   }
   const auto local = parse_local_start(text.substr(0, end));
@@ -72,7 +69,7 @@ SiteConditions read_weather_csv(const std::filesystem::path& path, const SiteCal
       if (cells != std::vector<std::string>{"timestamp", "temperature_c", "wind_m_s"})
         throw InputError(
             file, number, "header",
-            "expected the header `timestamp,temperature_c,wind_m_s`, got '" + line + "'");
+            "expected the header `timestamp,temperature_c,wind_m_s`, got '" + echoed(line) + "'");
       header = true;
       continue;
     }
@@ -91,7 +88,7 @@ SiteConditions read_weather_csv(const std::filesystem::path& path, const SiteCal
           file, number, "timestamp",
           "expected an ISO 8601 date and time, with an offset (2027-03-01T07:00:00+01:00) "
           "or local to the site's time zone (2027-03-01 07:00), got '" +
-              cells[0] + "'");
+              echoed(cells[0]) + "'");
     WeatherReading r;
     r.t_s = calendar.seconds_of_utc(*utc);
     const auto number_in = [&](const std::string& cell, const char* column, const Range& range,
@@ -99,7 +96,7 @@ SiteConditions read_weather_csv(const std::filesystem::path& path, const SiteCal
       char* stop = nullptr;
       const double v = std::strtod(cell.c_str(), &stop);
       if (cell.empty() || *stop != '\0' || !std::isfinite(v))
-        throw InputError(file, number, column, "expected a number, got '" + cell + "'");
+        throw InputError(file, number, column, "expected a number, got '" + echoed(cell) + "'");
       const std::string wrong = range.violation(v, cell, unit);
       if (!wrong.empty()) throw InputError(file, number, column, wrong);
       return v;

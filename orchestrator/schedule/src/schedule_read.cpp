@@ -8,6 +8,7 @@
 #include <iterator>
 #include <tuple>
 
+#include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/limits.hpp"
@@ -200,7 +201,7 @@ floors::Layer read_pieces(const JsonAt& list) {
       const std::string role = s.at("bead").string(16);
       const auto parsed = floors::parse_bead_role(role);
       if (!parsed || *parsed == floors::BeadRole::kPass)
-        s.at("bead").refuse("expected skin, core or tie, got '" + role + "'");
+        s.at("bead").refuse("expected skin, core or tie, got '" + echoed(role) + "'");
       seg.role = *parsed;
       seg.width_m = s.at("width_m").number(Range::above(0, 10), "m");
     }
@@ -666,6 +667,7 @@ ReadSchedule read_schedule(const std::filesystem::path& path, const ReadSchedule
   {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(file, 0, "", "cannot open file (permissions?)");
+    note_file_read(path);  // an input of this run: never one of its outputs
     text.reserve(static_cast<std::size_t>(size));
     char chunk[64 * 1024];
     while (in && text.size() <= kMaxScheduleBytes) {

@@ -1,6 +1,7 @@
 #include "ccbuild/schedule/site.hpp"
 
 #include <date/tz.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "ccbuild/common/dates.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 
@@ -27,27 +29,6 @@ const std::vector<std::string> kProgrammeKeys = {"start",         "time_zone", "
                                                  "holidays",      "printing",  "pipes",
                                                  "temperature_c", "wind_m_s",  "weather"};
 
-/// Days since 1970-01-01 of a valid "YYYY-MM-DD", or nothing.
-std::optional<std::int32_t> parse_date(const std::string& text, std::size_t& used) {
-  int y = 0, m = 0, d = 0, n = 0;
-  if (std::sscanf(text.c_str(), "%4d-%2d-%2d%n", &y, &m, &d, &n) != 3 || n != 10)
-    return std::nullopt;
-  const date::year_month_day ymd{date::year(y), date::month(static_cast<unsigned>(m)),
-                                 date::day(static_cast<unsigned>(d))};
-  if (!ymd.ok() || y < 1971 || y > 2200) return std::nullopt;
-  used = static_cast<std::size_t>(n);
-  return static_cast<std::int32_t>(date::sys_days(ymd).time_since_epoch().count());
-}
-
-/// Minutes after midnight of "HH:MM" (00:00 to 24:00), or nothing.
-std::optional<int> parse_clock(const std::string& text) {
-  int h = 0, m = 0, n = 0;
-  if (std::sscanf(text.c_str(), "%2d:%2d%n", &h, &m, &n) != 2 || n != static_cast<int>(text.size()))
-    return std::nullopt;
-  if (h < 0 || m < 0 || m > 59 || h > 24 || (h == 24 && m != 0)) return std::nullopt;
-  return h * 60 + m;
-}
-
 std::string clock_text(int minutes_of_day) {
   return printf_string("%02d:%02d", minutes_of_day / 60, minutes_of_day % 60);
 }
@@ -64,7 +45,8 @@ std::optional<std::pair<int, int>> split_span(const std::string& text) {
 WorkingHours read_span(const Field& f) {
   const std::string text = f.as_string();
   const auto span = split_span(text);
-  if (!span) f.fail("expected working hours as HH:MM-HH:MM (e.g. 07:00-17:00), got '" + text + "'");
+  if (!span)
+    f.fail("expected working hours as HH:MM-HH:MM (e.g. 07:00-17:00), got '" + echoed(text) + "'");
   if (span->second <= span->first)
     f.fail("'" + text +
            "' ends before it starts; a span lies within one day (a night shift is "
@@ -135,32 +117,15 @@ std::optional<WorkingHours> parse_working_hours(const std::string& text) {
 }
 
 std::optional<std::int64_t> parse_local_start(const std::string& text) {
-  std::size_t used = 0;
-  const auto day = parse_date(text, used);
-  if (!day || used >= text.size() || (text[used] != ' ' && text[used] != 'T')) return std::nullopt;
-  std::string rest = text.substr(used + 1);
-  int second = 0;
-  if (rest.size() == 8) {  // HH:MM:SS
-    int n = 0;
-    if (rest[5] != ':' || std::sscanf(rest.c_str() + 6, "%2d%n", &second, &n) != 1 || n != 2 ||
-        second < 0 || second > 59)
-      return std::nullopt;
-    rest.resize(5);
-  }
-  const auto clock = parse_clock(rest);
-  if (!clock || *clock >= 24 * 60) return std::nullopt;
-  return (static_cast<std::int64_t>(*day) * 1440 + *clock) * 60 + second;
+  return parse_date_time(text);
 }
 
 std::optional<std::int32_t> parse_local_date(const std::string& text) {
-  std::size_t used = 0;
-  const auto day = parse_date(text, used);
-  if (!day || used != text.size()) return std::nullopt;
-  return day;
+  return parse_date(text);
 }
 
 std::string local_date_text(std::int32_t day) {
-  return date::format("%F", date::sys_days{date::days{day}});
+  return date_text(day);
 }
 
 std::string local_start_text(std::int64_t local_s) {
@@ -192,7 +157,7 @@ std::optional<SiteProgramme> read_site_programme(const Field& site,
     start.fail(
         "expected the local date and time work starts, as YYYY-MM-DD HH:MM[:SS] (e.g. "
         "2027-03-01 07:00; the zone is time_zone's), got '" +
-        start.as_string() + "'");
+        echoed(start.as_string()) + "'");
   p.start_local_s = *local;
   const Field zone = map.required("time_zone");
   p.time_zone = zone.as_string();
@@ -214,7 +179,7 @@ std::optional<SiteProgramme> read_site_programme(const Field& site,
       holidays->fail(printf_string("at most %zu holidays, got %zu", kMostHolidays, items.size()));
     for (const auto& item : items) {
       const auto day = parse_local_date(item.as_string());
-      if (!day) item.fail("expected a date as YYYY-MM-DD, got '" + item.as_string() + "'");
+      if (!day) item.fail("expected a date as YYYY-MM-DD, got '" + echoed(item.as_string()) + "'");
       p.holidays.push_back(*day);
     }
     std::sort(p.holidays.begin(), p.holidays.end());
@@ -226,7 +191,7 @@ std::optional<SiteProgramme> read_site_programme(const Field& site,
       printing->fail(
           "expected attended (a crew present: printing only in working hours, the default) or "
           "unattended (printing runs on through the night), got '" +
-          how + "'");
+          echoed(how) + "'");
     p.printing_attended = how == "attended";
   }
   if (auto pipes = map.optional("pipes")) {
@@ -235,7 +200,7 @@ std::optional<SiteProgramme> read_site_programme(const Field& site,
       pipes->fail(
           "expected crew (pipes placed in working hours, the default) or unattended (by the "
           "machine's arm, at any hour), got '" +
-          how + "'");
+          echoed(how) + "'");
     p.pipes_need_crew = how == "crew";
   }
   if (auto t = map.optional("temperature_c"))
@@ -250,6 +215,19 @@ std::optional<SiteProgramme> read_site_programme(const Field& site,
     const std::filesystem::path file = weather->as_string();
     const std::filesystem::path base = std::filesystem::path(site.file()).parent_path();
     p.weather_file = (file.is_absolute() || base.empty() ? file : base / file).string();
+    // Named here, with this file and line, when it cannot be read at all (its contents
+    // are checked line by line where it is read).
+    std::error_code ec;
+    const auto status = std::filesystem::status(p.weather_file, ec);
+    if (!std::filesystem::exists(status))
+      weather->fail("the weather file '" + echoed(p.weather_file) +
+                    "' does not exist (a relative path is taken from this file's folder)");
+    if (!std::filesystem::is_regular_file(status))
+      weather->fail("the weather file '" + echoed(p.weather_file) +
+                    "' is not a regular file (a folder, FIFO or device?); expected a CSV file");
+    if (::access(p.weather_file.c_str(), R_OK) != 0)
+      weather->fail("the weather file '" + echoed(p.weather_file) +
+                    "' cannot be read (permissions?)");
   }
   return p;
 }

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
 
@@ -18,7 +19,7 @@ CLI::Validator integer_in(std::int64_t min, std::int64_t max) {
         std::int64_t value = 0;
         const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
-          return "expected a whole number " + range + ", got '" + text + "'";
+          return "expected a whole number " + range + ", got '" + echoed(text) + "'";
         if (ec == std::errc::result_out_of_range || value < min || value > max)
           return "must be " + range + ", got " + text;
         return "";
@@ -32,7 +33,8 @@ CLI::Validator unsigned_integer() {
         std::uint64_t value = 0;
         const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (text.empty() || ec != std::errc() || end != text.data() + text.size())
-          return "expected a whole number from 0 to 18446744073709551615, got '" + text + "'";
+          return "expected a whole number from 0 to 18446744073709551615, got '" + echoed(text) +
+                 "'";
         return "";
       },
       "INTEGER from 0 to 2^64 - 1");
@@ -57,7 +59,7 @@ CLI::Validator number_in(const Range& range, const std::string& unit) {
   return CLI::Validator(
       [range, said, unit](std::string& text) -> std::string {
         const auto value = parse_finite(text);
-        if (!value) return "expected a number " + said + ", got '" + text + "'";
+        if (!value) return "expected a number " + said + ", got '" + echoed(text) + "'";
         return range.violation(*value, text, unit);
       },
       "NUMBER " + said);
@@ -66,7 +68,7 @@ CLI::Validator number_in(const Range& range, const std::string& unit) {
 CLI::Validator finite_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        return parse_finite(text) ? "" : "expected a number, got '" + text + "'";
+        return parse_finite(text) ? "" : "expected a number, got '" + echoed(text) + "'";
       },
       "NUMBER");
 }
@@ -155,7 +157,8 @@ double length_flag(const std::string& text, const char* flag, floors::LengthUnit
                    double max_m) {
   const auto value = floors::parse_length_m(text, unit);
   if (!value)
-    throw InputError("", 0, flag, "expected a length such as 1.5, 1.5m or 5ft, got '" + text + "'");
+    throw InputError("", 0, flag,
+                     "expected a length such as 1.5, 1.5m or 5ft, got '" + echoed(text) + "'");
   const std::string wrong =
       Range::above(0.0, max_m)
           .violation(*value, "'" + text + "'", floors::to_string(unit), floors::meters_per(unit));

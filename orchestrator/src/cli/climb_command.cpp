@@ -32,14 +32,15 @@ std::string minutes(double s) {
 void run_climb(const ClimbOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   const auto inputs = project.files_read();
-  if (!o.svg.empty()) OutputClaims(inputs).claim_file("--svg", o.svg, o.force);
+  OutputClaims outputs(inputs);
+  if (!o.svg.empty()) outputs.claim_file("--svg", o.svg, o.force);
   climb::ClimbOptions options;
   options.seed = o.seed;
   options.time_limit_s = o.time_limit_s;
   const schedule::ClimbReport report = schedule::plan_climbs(project, o.floor, options);
   const climb::ClimbStatus status = report.status();
-  if (!o.svg.empty())
-    write_file_atomically(o.svg, report::climb_report_svg(project, report), o.force, inputs);
+  if (!o.svg.empty()) outputs.write(o.svg, report::climb_report_svg(project, report));
+  outputs.commit();
   exit_code = status ? kExitOk : kExitNo;
   if (o.json) {
     std::cout << report::climb_report_json(project, report).dump(2) << "\n";

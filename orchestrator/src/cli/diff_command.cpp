@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/schedule/schedule_diff.hpp"
 #include "cli_common.hpp"
@@ -28,8 +29,9 @@ schedule::DiffTolerance parse_tolerance(const std::vector<std::string>& texts) {
     const double value = std::strtod(number.c_str(), &end);
     if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) ||
         value < 0 || (!percent && !secs))
-      throw InputError("", 0, "--tolerance",
-                       "expected a time such as 5s or a share such as 0.5%, got '" + text + "'");
+      throw InputError(
+          "", 0, "--tolerance",
+          "expected a time such as 5s or a share such as 0.5%, got '" + echoed(text) + "'");
     if (percent) {
       if (value > 100) throw InputError("", 0, "--tolerance", "a share is at most 100%");
       tol.relative = value / 100.0;

@@ -237,13 +237,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   const fs::path journal_path = o.journal.empty() ? work / "journal.sqlite" : fs::path(o.journal);
   dispatch::Journal journal(journal_path, schedule_sha256);
   machine::Bus bus(o.lcm_url);
-  // The log goes to a temporary file beside it, in place once the run ends (or straight
-  // into a character device such as /dev/null).
-  std::optional<PendingOutput> log;
-  if (!o.log.empty()) {
-    log.emplace(o.log);
-    bus.log_to(log->writing_path().string());
-  }
+  // The log goes to a temporary file beside it, in place once the run ends.
+  const bool log = !o.log.empty();
+  if (log) bus.log_to(outputs.writing_path(o.log).string());
   long malformed = 0;
   bus.on_malformed([&](const std::string& channel, int size) {
     ++malformed;
@@ -564,7 +560,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   if (log) {
     if (!bus.close_log())
       throw InputError(o.log, 0, "--log", "writing the LCM log failed: " + bus.log_error());
-    log->commit();
+    outputs.commit();
     std::cout << printf_string(
         "LCM log: %s, %ld messages, %.0f a second (lcm-logplayer replays it)\n", o.log.c_str(),
         bus.logged(), real_s > 0 ? bus.logged() / real_s : 0.0);

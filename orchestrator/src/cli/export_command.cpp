@@ -1,11 +1,13 @@
 // ccbuild export SCHEDULE.json --format csv -o FILE: the schedule for the tools a site
 // plans in (docs/schedule.md, "Exports").
 
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
 
 #include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/dates.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/report/exports.hpp"
 #include "cli_common.hpp"
@@ -31,6 +33,7 @@ void run_export(const ExportCommandOptions& o, int& exit_code) {
   // A task list needs no tool paths: a regression golden (digests only) exports too.
   schedule::ReadSchedule schedule =
       read_schedule_for(o.schedule, o.allow_changed_inputs, true, "export");
+  for (const auto& f : schedule.document.inputs.files) outputs.add_input(f.path);
   if (o.units) schedule.document.inputs.units = *o.units;
   const schedule::ScheduleDocument& document = schedule.document;
   report::ExportDates dates;
@@ -41,8 +44,17 @@ void run_export(const ExportCommandOptions& o, int& exit_code) {
                            document.inputs.calendar->local_text(0.0) +
                            ") that dates every task; --start is for a schedule made without one");
     dates.start_local_s = report::parse_local_start(o.start, "--start");
+    // Every date written lies in the years a date may name: the last one too.
+    const long long last_s = days_from_civil(kLastDateYear, 12, 31) * 86400 + 86399;
+    if (*dates.start_local_s + std::ceil(document.schedule.totals.makespan_s) > last_s)
+      throw InputError("", 0, "--start",
+                       "'" + o.start + "' with this schedule's " +
+                           duration_text(document.schedule.totals.makespan_s) + " ends after " +
+                           std::to_string(kLastDateYear) + "-12-31; start earlier");
   }
-  std::cout << write_export(document, dates, o.format, o.output, o.force, {o.schedule}) << "\n";
+  const std::string written = write_export(document, dates, o.format, o.output, outputs);
+  outputs.commit();
+  std::cout << written << "\n";
   if (o.format == "csv" && !dates.dated(document))
     std::cout << "  no site calendar and no --start: the start and end columns are empty; give "
                  "--start 2027-03-01T07:00 to date them\n";
@@ -74,8 +86,7 @@ std::string export_format_of(const std::filesystem::path& path, const std::strin
 
 std::string write_export(const schedule::ScheduleDocument& document,
                          const report::ExportDates& dates, const std::string& format,
-                         const std::filesystem::path& path, bool force,
-                         const std::vector<std::filesystem::path>& inputs) {
+                         const std::filesystem::path& path, OutputClaims& outputs) {
   std::size_t count = 0, links = 0;
   std::string text, what, as;
   if (format == "csv") {
@@ -97,7 +108,7 @@ std::string write_export(const schedule::ScheduleDocument& document,
     what = printf_string("%zu tasks and %zu finish-to-start links", count, links);
     as = "MS Project XML";
   }
-  write_file_atomically(path, text, force, inputs);
+  outputs.write(path, text);
   return what + " written to " + path.string() + " as " + as;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/report/exports.hpp"
 
 namespace ccbuild::cli {
@@ -17,12 +18,11 @@ bool export_needs_dates(const std::string& format);
 /// days. Throws InputError (field `field`) for another.
 std::string export_format_of(const std::filesystem::path& path, const std::string& field);
 
-/// Writes `format` of `document` to `path` atomically (over an existing file only with
-/// `force`, never over one of `inputs`), and returns what was written, in words ("870
-/// crew tasks and milestones ... as iCalendar"). Throws InputError when it cannot be dated.
+/// Writes `format` of `document` for `path` (claimed in `outputs`, in place when they are
+/// committed), and returns what was written, in words ("870 crew tasks and milestones ...
+/// as iCalendar"). Throws InputError when it cannot be dated or written.
 std::string write_export(const schedule::ScheduleDocument& document,
                          const report::ExportDates& dates, const std::string& format,
-                         const std::filesystem::path& path, bool force,
-                         const std::vector<std::filesystem::path>& inputs);
+                         const std::filesystem::path& path, OutputClaims& outputs);
 
 }  // namespace ccbuild::cli

@@ -65,9 +65,13 @@ void run_fit(const FitCommandOptions& o, int& exit_code) {
   const std::filesystem::path profile_path = o.output;
   const std::filesystem::path urdf_path =
       profile_path.parent_path() / (profile_path.stem().string() + ".urdf");
-  // Refuse a bad output before the work: both files, never over an input.
-  check_output_path(profile_path, o.force);
-  check_output_path(urdf_path, o.force);
+  // Both files claimed before the work, never over an input; the URDF's name is derived,
+  // so a file there is replaced only when it is this profile's URDF from an earlier fit.
+  const std::string urdf_mark =
+      "<!-- ccbuild fit: the URDF of " + comment_text(profile_path.filename().string()) + " -->";
+  OutputClaims claims({input.machine});
+  claims.claim_file("-o", profile_path, o.force);
+  claims.claim_derived("-o (its URDF)", urdf_path, profile_path, o.force, urdf_mark);
   orchestrator::ProjectOptions options = project_options(input);
   options.fitted_profile = profile_path;
   if (!o.quiet)
@@ -80,14 +84,15 @@ void run_fit(const FitCommandOptions& o, int& exit_code) {
                      "not a machine family (it has no `family:` section) but one machine: `ccbuild "
                      "fit` chooses a family's member for a building; give a family, such as "
                      "config/machines/cc-climber-family.yaml");
-  const auto inputs = project.files_read();
-  OutputClaims claims(inputs);
-  claims.claim_file("-o", profile_path, o.force);
-  claims.claim_file("-o (its URDF)", urdf_path, o.force);
+  for (const auto& input : project.files_read()) claims.add_input(input);
   const climb::FitResult& fit = *project.fit;
-  // The URDF first: the profile names it.
-  write_file_atomically(urdf_path, fit.urdf_xml, o.force, inputs);
-  write_file_atomically(profile_path, fit.profile_yaml, o.force, inputs);
+  // The mark after the XML declaration, which must come first.
+  std::string urdf = fit.urdf_xml;
+  const std::size_t declaration = urdf.rfind("?>", 64);
+  urdf.insert(declaration == std::string::npos ? 0 : declaration + 3, urdf_mark + "\n");
+  claims.write(urdf_path, urdf);
+  claims.write(profile_path, fit.profile_yaml);
+  claims.commit();
   exit_code = kExitOk;
   if (o.json) {
     std::cout << fit_json(project, fit, profile_path.string(), urdf_path.string()).dump(2) << "\n";

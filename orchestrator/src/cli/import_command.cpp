@@ -85,6 +85,12 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
   return out;
 }
 
+/// The first line of a plan file written beside the building file `building`: says whose
+/// it is, so that --force replaces it only when it is that building's.
+std::string plan_file_mark(const fs::path& building) {
+  return "# ccbuild import: a plan file of " + comment_text(building.filename().string());
+}
+
 /// `target` as a path relative to `folder` (both made absolute first).
 std::string relative_to(const fs::path& target, const fs::path& folder) {
   return fs::absolute(target)
@@ -121,7 +127,9 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
     plan_paths.push_back(folder / (out.stem().string() + printf_string(".%zu.plan.yaml", d + 1)));
   OutputClaims outputs({o.drawing, machine, material});
   outputs.claim_file("--output", out, o.force);
-  for (const auto& p : plan_paths) outputs.claim_file("--output (its plans)", p, o.force);
+  const std::string mark = plan_file_mark(out);
+  for (const auto& p : plan_paths)
+    outputs.claim_derived("--output (its plans)", p, out, o.force, mark);
 
   std::string building = "# Imported by `ccbuild import` from " + o.drawing + " (" + read.schema +
                          "): review it, then `ccbuild validate` it.\n# What the import left out "
@@ -138,11 +146,11 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
         quoted(plan_paths[plan_of[k]].filename().string()).c_str(),
         b.floors[k].source.path.c_str());
   for (std::size_t d = 0; d < distinct.size(); ++d)
-    write_file_atomically(
-        plan_paths[d],
-        plan_yaml(b.floors[distinct[d]].plan, o.drawing, "the IFC element (type, GlobalId, name)"),
-        o.force, {o.drawing});
-  write_file_atomically(out, building, o.force, {o.drawing});
+    outputs.write(plan_paths[d], mark + "\n" +
+                                     plan_yaml(b.floors[distinct[d]].plan, o.drawing,
+                                               "the IFC element (type, GlobalId, name)"));
+  outputs.write(out, building);
+  outputs.commit();
 
   for (const auto& note : read.notes) std::cerr << "import: note: " << note << "\n";
   std::size_t walls = 0, openings = 0;
@@ -190,7 +198,8 @@ void run_import(const ImportOptions& o, int& exit_code) {
     throw InputError("", 0, "--wall-layers", "a DXF drawing needs --wall-layers (its wall layers)");
   OutputClaims outputs({o.drawing, machine, material});
   outputs.claim_file("--output", out, o.force);
-  outputs.claim_file("--output (its plan)", plan_path, o.force);
+  const std::string mark = plan_file_mark(out);
+  outputs.claim_derived("--output (its plan)", plan_path, out, o.force, mark);
 
   import::DxfOptions d;
   d.wall_layers = o.wall_layers;
@@ -215,8 +224,9 @@ void run_import(const ImportOptions& o, int& exit_code) {
                               quoted(k == 0 ? "ground" : "floor " + std::to_string(k)).c_str(),
                               exact(o.floor_height_m).c_str(),
                               quoted(plan_path.filename().string()).c_str());
-  write_file_atomically(plan_path, plan_yaml(read.plan, o.drawing), o.force, {o.drawing});
-  write_file_atomically(out, building, o.force, {o.drawing});
+  outputs.write(plan_path, mark + "\n" + plan_yaml(read.plan, o.drawing));
+  outputs.write(out, building);
+  outputs.commit();
 
   for (const auto& note : read.notes) std::cerr << "import: note: " << note << "\n";
   int thick = 0;

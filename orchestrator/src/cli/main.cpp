@@ -99,6 +99,9 @@ void install_last_resorts() {
   action.sa_flags = SA_ONSTACK;
   sigemptyset(&action.sa_mask);
   for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::sigaction(s, &action, nullptr);
+  // A file-size limit (ulimit -f) makes a write fail with EFBIG, reported with its path,
+  // instead of killing the process half-way through its outputs.
+  ::signal(SIGXFSZ, SIG_IGN);
 }
 
 }  // namespace
@@ -149,8 +152,9 @@ int main(int argc, char** argv) {
       app.exit(error);
       return kExitOk;
     }
-    std::string message = error.what();
-    const std::string hint = suggestion(app, message, argc, argv);
+    // CLI11 quotes what it could not take: a value of megabytes is cut short.
+    std::string message = ccbuild::echoed(error.what(), 400);
+    const std::string hint = ccbuild::echoed(suggestion(app, error.what(), argc, argv), 400);
     std::cerr << "ccbuild: error: " << message << (hint.empty() ? "" : "; " + hint) << "\n"
               << "Run 'ccbuild --help' or 'ccbuild COMMAND --help' for usage.\n";
     if (json)

@@ -381,8 +381,8 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
   if (result.multi) {
     const auto& plan = *result.multi;
     if (!o.svg.empty())
-      write_file_atomically(o.svg, report::multi_plan_svg(context, layer, plan, request.multi),
-                            o.force, inputs);
+      outputs.write(o.svg, report::multi_plan_svg(context, layer, plan, request.multi));
+    outputs.commit();
     if (o.json)
       std::cout << report::multi_plan_json(context, layer, project.machine_model(), plan,
                                            request.multi)
@@ -398,13 +398,11 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
       throw InputError("", 0, "--bound-certificate",
                        "no certificate: the connected bound did not run (it gets a third of "
                        "--time-limit; give more time)");
-    if (!o.svg.empty())
-      write_file_atomically(o.svg, report::layer_plan_svg(context, layer, plan), o.force, inputs);
-    if (!o.bound_certificate.empty()) {
-      write_file_atomically(o.bound_certificate,
-                            report::bound_certificate_json(context, layer, plan).dump(1) + "\n",
-                            o.force, inputs);
-    }
+    if (!o.svg.empty()) outputs.write(o.svg, report::layer_plan_svg(context, layer, plan));
+    if (!o.bound_certificate.empty())
+      outputs.write(o.bound_certificate,
+                    report::bound_certificate_json(context, layer, plan).dump(1) + "\n");
+    outputs.commit();
     if (o.json)
       std::cout << report::layer_plan_json(context, layer, project.machine_model(), plan).dump(2)
                 << "\n";

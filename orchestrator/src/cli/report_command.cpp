@@ -26,11 +26,13 @@ void run_report(const ReportCommandOptions& o, int& exit_code) {
   outputs.claim_file("--output", o.output, o.force);
   schedule::ReadSchedule schedule =
       read_schedule_for(o.schedule, o.allow_changed_inputs, false, "report");
+  for (const auto& f : schedule.document.inputs.files) outputs.add_input(f.path);
   if (o.units) schedule.document.inputs.units = *o.units;
   report::ReportOptions options;
   options.notes = schedule.notes;
   const std::string html = report::schedule_report_html(schedule.document, options);
-  write_file_atomically(o.output, html, o.force, {o.schedule});
+  outputs.write(o.output, html);
+  outputs.commit();
   std::cout << printf_string(
       "report of %s written to %s (%.1f MB)%s\n", o.schedule.c_str(), o.output.c_str(),
       html.size() / 1e6,

@@ -91,18 +91,16 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   if (!o.output.empty() || !o.report.empty() || !o.exports.empty()) {
     const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options), s};
     for (std::size_t k = 0; k < o.exports.size(); ++k)
-      exported.push_back(
-          write_export(doc, {}, export_formats_given[k], o.exports[k], o.force, inputs));
+      exported.push_back(write_export(doc, {}, export_formats_given[k], o.exports[k], outputs));
     if (!o.output.empty())
-      write_file_atomically(o.output,
-                            schedule::schedule_json(doc.inputs, s, {o.path_digests}).dump(1) + "\n",
-                            o.force, inputs);
+      outputs.write(o.output,
+                    schedule::schedule_json(doc.inputs, s, {o.path_digests}).dump(1) + "\n");
     if (!o.report.empty()) {
       report::ReportOptions report_options;
       report_options.anchor_what_ifs = changes;
-      write_file_atomically(o.report, report::schedule_report_html(doc, report_options), o.force,
-                            inputs);
+      outputs.write(o.report, report::schedule_report_html(doc, report_options));
     }
+    outputs.commit();  // all of them, or none when one could not be written
   }
   exit_code = s.feasible ? kExitOk : kExitNo;
 

@@ -78,7 +78,8 @@ std::string csv_quoted(const std::string& text) {
 void run_sweep(const SweepOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
   const auto inputs = project.files_read();
-  if (!o.csv.empty()) OutputClaims(inputs).claim_file("--csv", o.csv, o.force);
+  OutputClaims outputs(inputs);
+  if (!o.csv.empty()) outputs.claim_file("--csv", o.csv, o.force);
   const floors::Building& b = project.building;
   const floors::LengthUnit unit = b.units;
   std::vector<double> platforms, gantries;
@@ -206,7 +207,8 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
         << (r.status ? printf_string("%.6g", r.construction_s) : "") << ","
         << (r.status ? printf_string("%.6g", r.machine_s) : "") << "," << r.vertices << ","
         << csv_quoted(r.status.reason()) << "\n";
-  if (!o.csv.empty()) write_file_atomically(o.csv, csv.str(), o.force, inputs);
+  if (!o.csv.empty()) outputs.write(o.csv, csv.str());
+  outputs.commit();
 
   const bool any =
       std::any_of(rows.begin(), rows.end(), [](const Row& r) { return bool(r.status); });

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/study/study.hpp"
 
@@ -116,7 +117,7 @@ AxisKind kind_of(const Field& field, const std::string& name) {
 std::string objective_of(const Field& field) {
   const std::string text = field.as_string();
   if (text != "fewest-nozzles" && text != "shortest")
-    field.fail("expected fewest-nozzles or shortest, got '" + text + "'");
+    field.fail("expected fewest-nozzles or shortest, got '" + echoed(text) + "'");
   return text;
 }
 

@@ -46,6 +46,20 @@ struct Range {
 /// characters XML 1.0 forbids dropped.
 std::string xml_escape(const std::string& text);
 
+/// A YAML double-quoted scalar that reads back as `text` exactly: quotes, backslashes and
+/// control characters (newlines, tabs, NUL...) escaped; other UTF-8 kept.
+std::string yaml_quoted(const std::string& text);
+
+/// `text` on one line, for a comment (YAML or shell `#`, XML `<!-- -->`) or a message:
+/// control characters shown escaped (`\n`, `\t`, `\x1b`), `--` split so that an XML
+/// comment cannot end early.
+std::string comment_text(const std::string& text);
+
+/// A value from the user, as a message echoes it: on one line (control characters shown
+/// escaped, as comment_text does, `--` kept) and cut to
+/// about `max_chars` characters, the rest counted ("... (10485760 bytes in all)").
+std::string echoed(const std::string& value, std::size_t max_chars = 80);
+
 /// The units a time is read in.
 enum class TimeUnit { kSecond, kMinute, kHour, kDay };
 /// The unit people read `s` seconds in (or a column whose largest value is `s`): seconds

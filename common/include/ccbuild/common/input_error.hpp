@@ -22,7 +22,8 @@ struct Diagnostic {
   std::string to_string() const;
 };
 
-/// Bad user input. Holds one or more diagnostics; what() lists them one per line.
+/// Bad user input. Holds one or more diagnostics; what() lists them one per line. At most
+/// 25 are kept (the last says how many more), each message cut to 2,000 characters.
 class InputError : public std::runtime_error {
  public:
   explicit InputError(Diagnostic diagnostic);
@@ -33,6 +34,7 @@ class InputError : public std::runtime_error {
   const Diagnostic& first() const { return diagnostics_.front(); }
 
  private:
+  InputError(std::vector<Diagnostic> bounded_diagnostics, int);
   std::vector<Diagnostic> diagnostics_;
 };
 

@@ -14,7 +14,7 @@ namespace ccbuild::report {
 
 /// A local date and time ("2027-03-01 07:00" or "2027-03-01T07:00:00"), as seconds since
 /// 1970-01-01 00:00 of a clock without a time zone. Throws InputError (field `field`) for
-/// anything else, or a year outside 1970-9999.
+/// anything else (common/dates.hpp: years kFirstDateYear to kLastDateYear).
 long long parse_local_start(const std::string& text, const std::string& field);
 
 /// "2027-03-01 07:00:00" of seconds since 1970-01-01 00:00 of a clock without a time zone.
