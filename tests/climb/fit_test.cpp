@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -87,6 +88,33 @@ TEST(Fit, ThePlatformLimitHoldsAtItsValue) {
   ASSERT_TRUE(grown.status) << grown.status.to_string();
   EXPECT_NEAR(grown.platform.length_m() + 0.6, 20.0, 1e-9);
   EXPECT_NEAR(grown.platform.x_min_m, -3.7, 1e-9);
+}
+
+TEST(Fit, AStabilityMarginEqualToTheBestSetsLeastMarginKeepsThatSet) {
+  // The house's most stable set of four, on statics alone (its climbs not planned, which
+  // the margin would also bound), then the same family asking exactly that set's least
+  // margin: it is stable by it (a margin equal to the one asked is enough). A micrometre
+  // more and no set of four is.
+  const std::string text = family_text();
+  FitOptions statics;
+  statics.plan_climbs = false;
+  const FitResult r = fit_climbing_machine(house(), family_from(text), statics);
+  ASSERT_TRUE(r.status) << r.status.to_string();
+  ASSERT_EQ(r.platform.units.size(), 4u);
+  const auto asking = [&](double margin_m) {
+    char line[64];
+    std::snprintf(line, sizeof line, "stability_margin_m: %.17g", margin_m);
+    return fit_climbing_machine(
+        house(), family_from(replaced(text, "stability_margin_m: 0.3", line)), statics);
+  };
+  const FitResult again = asking(r.least_margin_m);
+  ASSERT_TRUE(again.status) << again.status.to_string();
+  ASSERT_EQ(again.platform.units.size(), 4u);
+  EXPECT_DOUBLE_EQ(again.least_margin_m, r.least_margin_m);
+  for (std::size_t u = 0; u < 4; ++u)
+    EXPECT_TRUE(again.platform.units[u].position_m.isApprox(r.platform.units[u].position_m)) << u;
+  const FitResult over = asking(r.least_margin_m + 1e-6);
+  EXPECT_TRUE(!over.status || over.platform.units.size() > 4u);
 }
 
 TEST(Fit, AFamilyOfThreeUnitsCannotHoldWhileOneMoves) {

@@ -870,6 +870,37 @@ TEST(Dispatch, AWaitAbsorbsDelayAsFarAsTheLayersBelowCanCarryTheNext) {
   }
 }
 
+TEST(Dispatch, AWaitAbsorbsNoMoreThanItselfAndTheWorkAfterItKeepsItsLength) {
+  // Layer 0 clogs at 5 s: its rest ends at 130 s, 120 s late. A 100 s wait from 10 s, then
+  // 120 s of other work (a joint's treatment, a purge) before layer 1 at 230 s: the wait
+  // is all absorbed (from 130 s, of no length), and layer 1 starts 120 s after it, at
+  // 250 s, 20 s late. A wait of 200 s absorbs all 120 s: layer 1 at 330 s as planned.
+  machine::SimOptions so = window(30.0, 5000.0);
+  so.clog_floor = so.clog_layer = 0;
+  for (const double wait_s : {100.0, 200.0}) {
+    SCOPED_TRACE(wait_s);
+    const double planned_s = 10.0 + wait_s + 120.0;
+    const floors::MaterialProfile mix = mix_carrying_at(1.0);
+    DispatchOptions o = LateRun::options(5000.0);
+    o.material = &mix;
+    Rig rig(so, around(JobKind::kWait, 10.0, wait_s, DelayAbsorption::kShortenWait, planned_s),
+            ":memory:", o);
+    rig.run();
+    ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
+    const Dispatcher& d = *rig.dispatcher;
+    const double absorbed_s = std::min(wait_s, 120.0);
+    ASSERT_EQ(d.replans().size(), 1u);
+    EXPECT_EQ(d.replans()[0].what, "absorbed");
+    EXPECT_NEAR(d.replans()[0].duration_s, wait_s - absorbed_s, 1e-6);
+    EXPECT_NEAR(d.replans()[0].delay_s, 120.0 - absorbed_s, 1e-6);
+    ASSERT_EQ(d.executed().count(20), 1u);  // the wait and layer 1 were run
+    ASSERT_EQ(d.executed().count(30), 1u);
+    EXPECT_NEAR(d.executed().at(20).first, 130.0, 1e-6);
+    EXPECT_NEAR(d.executed().at(20).second, 130.0 + wait_s - absorbed_s, 1e-6);
+    EXPECT_NEAR(d.executed().at(30).first, planned_s + 120.0 - absorbed_s, 1e-6);
+  }
+}
+
 TEST(Dispatch, CrewWorkPlannedAfterASlackStartsOnceTheLateWorkBeforeItEnded) {
   // Layer 0 clogs at 5 s: purged (120 s), its rest ends at 130 s, 120 s late. A slab
   // stage (500 s of crew work) follows it, planned with slack before it (the next working

@@ -96,6 +96,27 @@ TEST(Material, SafetyFactorDefaultsAndKeepsItsRange) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Material, APlacingRangeMustSpanMoreThanOneTemperature) {
+  const auto dir = scratch();
+  auto with = [&](const std::string& range) {
+    std::ofstream(dir / "m.yaml") << "name: m\ndensity_kg_m3: 2200\nmin_layer_interval_s: 1\n"
+                                     "max_layer_interval_s: 2\nstrength_curve:\n"
+                                     "  - {age_min: 0, strength_mpa: 1}\n"
+                                     "  - {age_min: 1, strength_mpa: 2}\n"
+                                  << "placing_temperature_c: " << range << "\n";
+    return load_material_profile(dir / "m.yaml");
+  };
+  const MaterialProfile tenth = with("[5, 5.1]");  // a tenth of a degree wide: a range
+  EXPECT_DOUBLE_EQ(tenth.placing_min_c, 5.0);
+  EXPECT_DOUBLE_EQ(tenth.placing_max_c, 5.1);
+  for (const std::string range : {"[5, 5]", "[5, 4.9]"}) {
+    const InputError e = testing::expect_input_error([&] { with(range); });
+    EXPECT_EQ(e.first().field, "placing_temperature_c[1]") << range << ": " << e.what();
+    EXPECT_TRUE(testing::contains(e.what(), "must be above the minimum")) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Building, SlabStageInHoursWithItsDefault) {
   const Building house = load_building(testing::source_path("config/buildings/house.yaml"));
   EXPECT_DOUBLE_EQ(house.slab_stage_s, 8 * 3600.0);

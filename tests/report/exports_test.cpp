@@ -10,6 +10,7 @@
 #include <regex>
 #include <set>
 
+#include "ccbuild/common/document.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/report/exports.hpp"
 #include "ccbuild/schedule/site.hpp"
@@ -166,6 +167,61 @@ TEST(Mspdi, EachTaskFollowsTheOneThatEndedLastAtOrBeforeItsStart) {
   // Durations in whole seconds, a milestone of none.
   EXPECT_TRUE(testing::contains(xml, "<Duration>PT0H4M10S</Duration>"));  // the slab, 250 s
   EXPECT_TRUE(testing::contains(xml, "<Milestone>1</Milestone>"));
+}
+
+/// The `<Task>` element of ccbuild task `id` in an MSPDI file ("" when there is none).
+std::string task_of(const std::string& xml, const std::string& id) {
+  const std::size_t at = xml.find("ccbuild task " + id + " ");
+  if (at == std::string::npos) return "";
+  const std::size_t from = xml.rfind("<Task>", at);
+  return xml.substr(from, xml.find("</Task>", at) - from);
+}
+
+TEST(Mspdi, DurationsInWholeHoursWorkTimesTheCrewAndTheSiteWeekFromSunday) {
+  // Mon 2027-03-01 07:00 in Berlin; Monday to Friday 07:00-17:00, Saturday 07:00-12:00.
+  const Document site = parse_yaml(
+      "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"
+      "working_hours: {mon-fri: 07:00-17:00, sat: 07:00-12:00}\n",
+      "site.yaml");
+  schedule::ScheduleDocument doc;
+  doc.inputs.name = "t";
+  doc.inputs.calendar = std::make_shared<const schedule::SiteCalendar>(
+      *schedule::read_site_programme(Field::root(site), {}));
+  // L0.0 in Monday's shift; L0.1 from 16:50 to 17:10, across its end (printed unattended);
+  // a slab stage of 25 h (by 4) and a pour of 250 s (by 4) after them.
+  doc.schedule.layers = {layer(0, 0, 0.0, 3600.0), layer(0, 1, 35400.0, 36600.0)};
+  doc.schedule.events = {event(Event::Kind::kSlab, 86400.0, 86400.0 + 90000.0, 4, "slab"),
+                         event(Event::Kind::kPour, 176400.0, 176650.0, 4, "pour")};
+  const std::string xml = tasks_mspdi(doc, ExportDates{});
+  const std::string slab = task_of(xml, "E1"), pour = task_of(xml, "E2");
+  ASSERT_FALSE(slab.empty());
+  ASSERT_FALSE(pour.empty());
+  EXPECT_TRUE(testing::contains(slab, "<Duration>PT25H0M0S</Duration>")) << slab;
+  EXPECT_TRUE(testing::contains(slab, "<Work>PT100H0M0S</Work>")) << slab;
+  EXPECT_TRUE(testing::contains(pour, "<Duration>PT0H4M10S</Duration>")) << pour;
+  EXPECT_TRUE(testing::contains(pour, "<Work>PT0H16M40S</Work>")) << pour;  // 4 x 250 s
+  // Within one shift a task keeps the site's calendar (1); across a shift's end it runs on
+  // the clock (2).
+  const std::string in_shift = task_of(xml, "L0.0"), across = task_of(xml, "L0.1");
+  ASSERT_FALSE(in_shift.empty());
+  ASSERT_FALSE(across.empty());
+  EXPECT_TRUE(testing::contains(in_shift, "<CalendarUID>1</CalendarUID>")) << in_shift;
+  EXPECT_TRUE(testing::contains(across, "<CalendarUID>2</CalendarUID>")) << across;
+  // The site calendar's week: MSPDI's day 1 is Sunday, 7 Saturday.
+  const std::size_t site_from = xml.find("<Name>Site: ");
+  ASSERT_NE(site_from, std::string::npos);
+  const std::string week = xml.substr(site_from, xml.find("</Calendar>", site_from) - site_from);
+  const auto day = [&](int type) {
+    const std::size_t at = week.find("<DayType>" + std::to_string(type) + "</DayType>");
+    return at == std::string::npos ? std::string()
+                                   : week.substr(at, week.find("</WeekDay>", at) - at);
+  };
+  EXPECT_TRUE(testing::contains(day(1), "<DayWorking>0</DayWorking>")) << day(1);  // Sunday
+  EXPECT_TRUE(testing::contains(day(2), "<FromTime>07:00:00</FromTime><ToTime>17:00:00</ToTime>"))
+      << day(2);                                                                  // Monday
+  EXPECT_TRUE(testing::contains(day(6), "<ToTime>17:00:00</ToTime>")) << day(6);  // Friday
+  EXPECT_TRUE(testing::contains(day(7), "<FromTime>07:00:00</FromTime><ToTime>12:00:00</ToTime>"))
+      << day(7);  // Saturday
 }
 
 TEST(Exports, ACalendarAProjectAndTheDaysNeedDatesACsvDoesNot) {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/building.hpp"
@@ -272,6 +273,137 @@ TEST(Slabs, EachFloorsSlabIsFormedPouredAndCuredBeforeTheNextFloorAndTheRoofLast
   EXPECT_NEAR(s.totals.makespan_s, pours[1]->end_s, 1e-9);
   EXPECT_NEAR(s.totals.slabs_s, 2 * (7200.0 + 360.0), 1e-6);
   EXPECT_NEAR(s.totals.crew_h, 5 * 2 * (7200.0 + 360.0) / 3600.0, 1e-6);
+}
+
+/// The two-metre room on two floors of 2 m with `slabs` (a `slabs:` map), the ground
+/// floor's own `slab:` thickness when `ground_slab_m` > 0, and `site` (a `site:` block)
+/// when given.
+orchestrator::Project two_room_floors(const fs::path& dir, const std::string& slabs,
+                                      double ground_slab_m = 0.0, const std::string& site = "",
+                                      const std::string& material = "") {
+  const std::string plan = testing::source_path("tests/data/plans/two_metre_room.yaml").string();
+  std::ofstream out(dir / "b.yaml");
+  out << "name: Two rooms\nunits: m\nlayer_height: 0.1\nmaterial: "
+      << (material.empty()
+              ? testing::source_path("tests/data/materials/quick-bond-mix.yaml").string()
+              : material)
+      << "\nmachine: " << testing::source_path("config/machines/cc-gantry.yaml").string()
+      << "\nslabs: " << slabs << "\n"
+      << site << "floors:\n  - {name: f0, height: 2.0, plan: " << plan
+      << (ground_slab_m > 0 ? ", slab: " + std::to_string(ground_slab_m) : std::string())
+      << "}\n  - {name: f1, height: 2.0, plan: " << plan << "}\n";
+  out.close();
+  return orchestrator::open_project(dir / "b.yaml");
+}
+
+const ScheduledLayer* first_layer_of(const Schedule& s, int floor) {
+  for (const auto& l : s.layers)
+    if (l.floor == floor) return &l;
+  return nullptr;
+}
+
+TEST(Slabs, AFloorsOwnSlabThicknessIsPouredAndTheFloorAboveStandsOnIt) {
+  // The ground floor's slab 0.3 m thick, the roof the building's 0.25 m: 2 m x 2 m x 0.3 m =
+  // 1.2 m³ at 10 m³/h is 432 s; the roof 1 m³, 360 s.
+  const fs::path dir = scratch("own_slab");
+  const auto project = two_room_floors(
+      dir, "{thickness: 0.25, setup_h: 1, pour_m3_h: 10, ready_mpa: 5, concrete: {fcm_mpa: 38}}",
+      0.3);
+  const Schedule s = schedule_of(project);
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const auto pours = events_of(s, Event::Kind::kPour);
+  ASSERT_EQ(pours.size(), 2u);
+  EXPECT_NEAR(pours[0]->concrete_m3, 1.2, 1e-9);
+  EXPECT_NEAR(pours[0]->end_s - pours[0]->start_s, 432.0, 1e-6);
+  EXPECT_NEAR(pours[1]->concrete_m3, 1.0, 1e-9);
+  EXPECT_NEAR(pours[1]->end_s - pours[1]->start_s, 360.0, 1e-6);
+  const ScheduledLayer* up = first_layer_of(s, 1);
+  ASSERT_NE(up, nullptr);
+  EXPECT_NEAR(up->z_bottom_m, 2.0 + 0.3, 1e-9);
+}
+
+TEST(Slabs, APourNeedsItsCrewInWorkingHoursThoughPrintingIsUnattended) {
+  // Printing runs on through the night; the formwork (9.9 h) waits for Tuesday 07:00 and
+  // ends at 16:54. A pour of 1 m³ at 10 m³/h (6 min) ends exactly at 17:00: it follows at
+  // once; at 9 m³/h (400 s) it would end at 17:00:40: it waits for Wednesday 07:00.
+  for (const double rate_m3_h : {10.0, 9.0}) {
+    SCOPED_TRACE(rate_m3_h);
+    const fs::path dir = scratch("pour_hours");
+    std::ostringstream slabs;
+    slabs << "{thickness: 0.25, setup_h: 9.9, pour_m3_h: " << rate_m3_h
+          << ", ready_mpa: 5, concrete: {fcm_mpa: 38}}";
+    const auto project =
+        two_room_floors(dir, slabs.str(), 0.0,
+                        "site:\n  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                        "  printing: unattended\n");
+    const Schedule s = schedule_of(project);
+    ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+    const auto setups = events_of(s, Event::Kind::kSlab);
+    const auto pours = events_of(s, Event::Kind::kPour);
+    ASSERT_EQ(setups.size(), 2u);
+    ASSERT_EQ(pours.size(), 2u);
+    // The ground floor's walls end on Monday, too late for 9.9 h of formwork that day.
+    double ground_end_s = 0.0;
+    for (const auto& l : s.layers)
+      if (l.floor == 0) ground_end_s = std::max(ground_end_s, l.end_s);
+    ASSERT_GT(ground_end_s, 360.0);
+    ASSERT_LT(ground_end_s, 86400.0);
+    EXPECT_NEAR(setups[0]->start_s, 86400.0, 1e-6);          // Tuesday 07:00
+    EXPECT_NEAR(setups[0]->end_s, 86400.0 + 35640.0, 1e-6);  // 16:54
+    const double shift_end_s = 86400.0 + 36000.0;            // Tuesday 17:00
+    if (rate_m3_h == 10.0) {
+      EXPECT_NEAR(pours[0]->start_s, setups[0]->end_s, 1e-6);
+      EXPECT_NEAR(pours[0]->end_s, shift_end_s, 1e-6);
+    } else {
+      EXPECT_NEAR(pours[0]->start_s, 2 * 86400.0, 1e-6);  // Wednesday 07:00
+      EXPECT_NEAR(pours[0]->end_s - pours[0]->start_s, 400.0, 1e-6);
+    }
+  }
+}
+
+TEST(Slabs, ASlabCuresInTheSitesEquivalentAgeBeforeTheNextFloor) {
+  // At a constant 5 °C a Nurse-Saul mix (datum -10 °C) ages at (5 + 10) / 30 = 0.5: the
+  // slab's 8.09 h to 5 MPa (EN 1992-1-1, fcm 38 MPa, class N) take twice as long.
+  const fs::path dir = scratch("cold_slab");
+  std::ofstream(dir / "mix.yaml") << "name: Nurse-Saul test mix\ndensity_kg_m3: 2200\n"
+                                     "min_layer_interval_s: 30\nmax_layer_interval_s: 600\n"
+                                     "strength_curve:\n  - {age_min: 0, strength_mpa: 0.1}\n"
+                                     "  - {age_min: 1440, strength_mpa: 8.0}\n"
+                                     "maturity: {function: nurse-saul, datum_temperature_c: -10}\n";
+  const auto project = two_room_floors(
+      dir,
+      "{thickness: 0.25, setup_h: 1, pour_m3_h: 10, ready_mpa: 5, concrete: {fcm_mpa: 38, "
+      "cement_class: N}}",
+      0.0,
+      "site:\n  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n  printing: unattended\n"
+      "  working_hours: {mon-sun: 00:00-24:00}\n  temperature_c: 5\n",
+      (dir / "mix.yaml").string());
+  const Schedule s = schedule_of(project);
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const auto pours = events_of(s, Event::Kind::kPour);
+  ASSERT_EQ(pours.size(), 2u);
+  const double ready_age_s = 28 * 86400.0 / std::pow(1 - std::log(5.0 / 38.0) / 0.25, 2);
+  const ScheduledLayer* up = first_layer_of(s, 1);
+  ASSERT_NE(up, nullptr);
+  const double purge_s = up->purge_before ? project.machine->purge_s : 0.0;
+  EXPECT_NEAR(up->start_s - purge_s, pours[0]->end_s + 2.0 * ready_age_s, 1e-3);
+  ASSERT_FALSE(up->wait_reasons.empty());
+  EXPECT_EQ(up->wait_reasons.back().kind, WaitKind::kSlab);
+}
+
+TEST(Slabs, NoRoofIsPouredWhenTheBuildingSaysSo) {
+  const fs::path dir = scratch("no_roof");
+  const auto project = two_room_floors(
+      dir, "{setup_h: 1, pour_m3_h: 10, ready_mpa: 5, concrete: {fcm_mpa: 38}, roof: false}");
+  const Schedule s = schedule_of(project);
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  const auto pours = events_of(s, Event::Kind::kPour);
+  ASSERT_EQ(pours.size(), 1u);  // the slab over the ground floor only
+  EXPECT_EQ(pours[0]->floor, 0);
+  EXPECT_FALSE(pours[0]->roof);
+  EXPECT_EQ(events_of(s, Event::Kind::kSlab).size(), 1u);
+  ASSERT_FALSE(s.layers.empty());
+  EXPECT_NEAR(s.totals.makespan_s, s.layers.back().end_s, 1e-9);  // the walls end the work
 }
 
 TEST(Slabs, TheAreaIsTheConvexHullOfTheFloorsPlan) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -328,6 +329,99 @@ TEST(SiteSchedule, ALayerLongerThanAnyShiftIsInfeasibleWithTheLongestShift) {
       << s.infeasibility->message;
 }
 
+/// The quick-bond mix (tests/data/materials) with `extra` keys, as `material:` for one_wall.
+std::string quick_bond_with(const fs::path& dir, const std::string& extra) {
+  std::ifstream in("tests/data/materials/quick-bond-mix.yaml");
+  std::ofstream(dir / "mix.yaml") << in.rdbuf() << extra;
+  return "material: " + (dir / "mix.yaml").string() + "\n";
+}
+
+TEST(SiteSchedule, AJointIsTreatedOnceTheLayerBelowIsItsMinimumAgeCountedFromItsEnd) {
+  // Layer 4 is deposited from 386 s to 480 s (07:08), the next shift starts at 08:00.
+  const std::string site =
+      "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+      "  working_hours: {mon-fri: [07:00-07:08, 08:00-17:00]}\n";
+  for (const double min_age_h : {0.5, 1.0}) {
+    SCOPED_TRACE(min_age_h);
+    const fs::path dir = scratch("joint_age");
+    const Schedule s = one_wall(
+        dir, site,
+        quick_bond_with(dir, "planned_joint: {min_age_h: " + std::to_string(min_age_h) + "}\n"));
+    ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+    ASSERT_EQ(s.layers.size(), 20u);
+    ASSERT_TRUE(s.layers[5].planned_joint);
+    const Event* joint = joint_before(s, s.layers[5]);
+    ASSERT_NE(joint, nullptr);
+    // Half an hour after 480 s is 07:38, before the shift: at 08:00. An hour after it is
+    // 4080 s (08:08), 94 s later than an hour after the layer's start.
+    const double treated_s = min_age_h < 1.0 ? 3600.0 : 480.0 + 3600.0;
+    EXPECT_NEAR(joint->start_s, treated_s, kTol_s);
+    EXPECT_NEAR(s.layers[5].start_s, treated_s + 1800.0 + 120.0, kTol_s);  // treated, purged
+    ASSERT_FALSE(s.layers[5].wait_reasons.empty());
+    EXPECT_EQ(s.layers[5].wait_reasons.back().kind,
+              min_age_h < 1.0 ? WaitKind::kOffShift : WaitKind::kJoint);
+  }
+}
+
+TEST(SiteSchedule, AJointsTreatmentWaitsForAShiftThatHoldsItWithTheLayer) {
+  // After layer 4 (ends 07:08), a 10-minute span from 08:00 holds the layer and its purge
+  // (214 s) but not with the joint's 30 min treatment before them (2014 s): the joint is
+  // treated at 09:00, and every layer with its purge and joint lies within one span.
+  const fs::path dir = scratch("joint_shift");
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  working_hours: {mon-fri: [07:00-07:08, 08:00-08:10, "
+                              "09:00-17:00]}\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  ASSERT_EQ(s.layers.size(), 20u);
+  ASSERT_TRUE(s.layers[5].planned_joint);
+  const Event* joint = joint_before(s, s.layers[5]);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 7200.0, kTol_s);
+  EXPECT_NEAR(s.layers[5].start_s, 7200.0 + 1800.0 + 120.0, kTol_s);
+  const std::vector<std::pair<double, double>> spans = {
+      {0.0, 480.0}, {3600.0, 4200.0}, {7200.0, 36000.0}};
+  for (const auto& l : s.layers) {
+    const double block_s =
+        l.start_s - (l.purge_before ? 120.0 : 0.0) - (l.planned_joint ? 1800.0 : 0.0);
+    EXPECT_TRUE(std::any_of(
+        spans.begin(), spans.end(),
+        [&](const auto& w) { return block_s >= w.first - kTol_s && l.end_s <= w.second + kTol_s; }))
+        << "layer " << l.layer << " from " << block_s << " s to " << l.end_s << " s";
+  }
+}
+
+TEST(SiteSchedule, AStopThatLeavesTheIntervalExactlyAtTheMaximumNeedsNoJoint) {
+  // The first span ends at 07:09, after layer 4 (386 s to 480 s after the start) and
+  // before layer 5 would end; the next starts at 07:10. From 07:00:14 it is 586 s after
+  // the start, exactly the 200 s maximum after layer 4 started: no joint. From 07:00:13 it
+  // is 201 s: a planned joint.
+  for (const int second : {14, 13}) {
+    SCOPED_TRACE(second);
+    const fs::path dir = scratch("exact_max");
+    const Schedule s =
+        one_wall(dir, "  start: 2027-03-01 07:00:" + std::to_string(second) +
+                          "\n  time_zone: Europe/Berlin\n"
+                          "  working_hours: {mon-fri: [07:00-07:09, 07:10-17:00]}\n");
+    ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+    ASSERT_EQ(s.layers.size(), 20u);
+    EXPECT_NEAR(s.layers[4].start_s, 386.0, kTol_s);
+    const ScheduledLayer& next = s.layers[5];
+    if (second == 14) {
+      EXPECT_FALSE(next.planned_joint);
+      EXPECT_NEAR(next.start_s, 586.0, kTol_s);
+      ASSERT_TRUE(next.local_interval_max_s.has_value());
+      EXPECT_NEAR(*next.local_interval_max_s, 200.0, kTol_s);
+      EXPECT_EQ(joint_before(s, next), nullptr);
+    } else {
+      EXPECT_TRUE(next.planned_joint);
+      const Event* joint = joint_before(s, next);
+      ASSERT_NE(joint, nullptr);
+      EXPECT_NEAR(joint->start_s, 587.0, kTol_s);
+    }
+  }
+}
+
 TEST(SiteSchedule, TheJsonCarriesTimestampsAndTheProgrammeAndReadsBackToTheSameBytes) {
   const fs::path dir = scratch("json");
   schedule::Setup setup;
@@ -517,9 +611,106 @@ TEST(SiteSchedule, PrintingStopsInTheColdAndResumesAtThePlacingLimit) {
   EXPECT_EQ(s.layers[3].wait_reasons.back().kind, WaitKind::kCold);
 }
 
+/// Every layer of `s`, from its block's start (its joint's treatment, its purge) to its
+/// end, in air within [min_c, max_c] by the hourly `readings` (time, °C), each in force
+/// until the next.
+void expect_printed_within(const Schedule& s,
+                           const std::vector<std::pair<double, double>>& readings, double min_c,
+                           double max_c) {
+  for (const auto& l : s.layers) {
+    const double block_s =
+        l.start_s - (l.purge_before ? 120.0 : 0.0) - (l.planned_joint ? 1800.0 : 0.0);
+    for (std::size_t k = 0; k < readings.size(); ++k) {
+      const double from_s = readings[k].first;
+      const double to_s = k + 1 < readings.size() ? readings[k + 1].first : INFINITY;
+      if (to_s <= block_s + kTol_s || from_s >= l.end_s - kTol_s) continue;
+      EXPECT_GE(readings[k].second, min_c) << "layer " << l.layer << " at " << from_s << " s";
+      EXPECT_LE(readings[k].second, max_c) << "layer " << l.layer << " at " << from_s << " s";
+    }
+  }
+}
+
+TEST(SiteSchedule, PrintingRunsAtExactlyThePlacingMaximumAndStopsATenthOfADegreeOver) {
+  // A mix placed from 5 to 25 °C (at 25 °C it ages 1.32 times as fast: 127 s of the
+  // 200 s maximum between layers).
+  const fs::path dir = scratch("heat");
+  const std::string mix = quick_bond_with(dir, "placing_temperature_c: [5, 25]\n");
+  const std::string site = "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n  weather: " +
+                           (dir / "w.csv").string() + "\n";
+  // 25.0 °C all day: printed straight through.
+  std::ofstream(dir / "w.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01 07:00,25.0,1\n";
+  const Schedule at_max = one_wall(dir, site, mix);
+  ASSERT_TRUE(at_max.feasible) << at_max.infeasibility->message;
+  for (const auto& l : at_max.layers) EXPECT_FALSE(l.planned_joint);
+  EXPECT_NEAR(at_max.layers.back().end_s, 19 * 96.5 + 94.0, kTol_s);
+  // 25.1 °C from 07:05 to 08:00: layer 3 waits for 08:00 on a planned joint.
+  std::ofstream(dir / "w.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01 07:00,20,1\n"
+                                  "2027-03-01 07:05,25.1,1\n2027-03-01 08:00,25.0,1\n";
+  const Schedule hot = one_wall(dir, site, mix);
+  ASSERT_TRUE(hot.feasible) << hot.infeasibility->message;
+  ASSERT_EQ(hot.layers.size(), 20u);
+  EXPECT_TRUE(hot.layers[3].planned_joint);
+  const Event* joint = joint_before(hot, hot.layers[3]);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 3600.0, kTol_s);
+  ASSERT_FALSE(hot.layers[3].wait_reasons.empty());
+  EXPECT_EQ(hot.layers[3].wait_reasons.back().kind, WaitKind::kCold);  // out of range
+  expect_printed_within(hot, {{0.0, 20.0}, {300.0, 25.1}, {3600.0, 25.0}}, 5.0, 25.0);
+}
+
+TEST(SiteSchedule, TheJointsTreatmentAndPurgeAreInThePlacingWindowWithTheLayer) {
+  // After layer 4 (ends 07:08), the next shift at 08:00; 4 °C from 08:30 to 09:00. From
+  // 08:00 the layer and its purge (214 s) would end before the frost, but with the joint's
+  // 30 min treatment first (2014 s) they run into it: the joint is treated at 09:00.
+  const fs::path dir = scratch("cold_joint");
+  std::ofstream(dir / "w.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01 07:00,20,1\n"
+                                  "2027-03-01 08:30,4,1\n2027-03-01 09:00,20,1\n";
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  working_hours: {mon-fri: [07:00-07:08, 08:00-17:00]}\n"
+                              "  weather: " +
+                                  (dir / "w.csv").string() + "\n");
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  ASSERT_EQ(s.layers.size(), 20u);
+  ASSERT_TRUE(s.layers[5].planned_joint);
+  const Event* joint = joint_before(s, s.layers[5]);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 7200.0, kTol_s);
+  ASSERT_FALSE(s.layers[5].wait_reasons.empty());
+  EXPECT_EQ(s.layers[5].wait_reasons.back().kind, WaitKind::kCold);
+  expect_printed_within(s, {{0.0, 20.0}, {5400.0, 4.0}, {7200.0, 20.0}}, 5.0, 35.0);
+}
+
+TEST(SiteSchedule, AJointsTreatmentCountsTowardsTheNozzlesIdleTimeBeforeItsPurge) {
+  // A mix placed from 5 to 25 °C; 26 °C from 07:05 to 07:08: layer 3 waits from 287 s
+  // (layer 2's end) to 480 s, 193 s idle, under the nozzle's 300 s limit. The heat ages
+  // layer 2 faster (Arrhenius: 1.39 at 26 °C), over the 200 s maximum in equivalent age:
+  // a planned joint, whose 30 min treatment comes first. The nozzle then idles 1993 s,
+  // and is purged.
+  const fs::path dir = scratch("short_heat");
+  std::ofstream(dir / "w.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01 07:00,20,1\n"
+                                  "2027-03-01 07:05,26,1\n2027-03-01 07:08,20,1\n";
+  const Schedule s = one_wall(dir,
+                              "  start: 2027-03-01 07:00\n  time_zone: Europe/Berlin\n"
+                              "  weather: " +
+                                  (dir / "w.csv").string() + "\n",
+                              quick_bond_with(dir, "placing_temperature_c: [5, 25]\n"));
+  ASSERT_TRUE(s.feasible) << s.infeasibility->message;
+  ASSERT_EQ(s.layers.size(), 20u);
+  EXPECT_NEAR(s.layers[2].end_s, 287.0, kTol_s);
+  ASSERT_TRUE(s.layers[3].planned_joint);
+  const Event* joint = joint_before(s, s.layers[3]);
+  ASSERT_NE(joint, nullptr);
+  EXPECT_NEAR(joint->start_s, 480.0, kTol_s);
+  EXPECT_TRUE(s.layers[3].purge_before);
+  EXPECT_NEAR(s.layers[3].start_s, 480.0 + 1800.0 + 120.0, kTol_s);
+}
+
 TEST(SiteSchedule, AClimbWaitsForTheWindToDropUnderTheMachinesLimit) {
   // The tower at a constant 20 °C: where its first climb starts; then a gale over that
-  // hour: the climb waits until it has passed, and climbs in calm air.
+  // hour: the climb waits until it has passed, and climbs in the wind after it, exactly at
+  // the machine's 15 m/s limit (at the limit is calm enough; the last reading holds, so a
+  // climb refused there would never start).
   const fs::path dir = scratch("gale");
   std::ofstream(dir / "site.yaml") << "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"
                                       "printing: unattended\npipes: unattended\n"
@@ -545,7 +736,7 @@ TEST(SiteSchedule, AClimbWaitsForTheWindToDropUnderTheMachinesLimit) {
   std::ofstream(dir / "calm.csv") << "timestamp,temperature_c,wind_m_s\n"
                                   << local(0.0) << ",20,2\n"
                                   << local(gale_from_s) << ",20,22\n"
-                                  << local(gale_from_s + 3 * 3600.0) << ",20,2\n";
+                                  << local(gale_from_s + 3 * 3600.0) << ",20,15\n";
   const Schedule windy =
       build_schedule(orchestrator::open_project("config/buildings/tower.yaml", po), o);
   const Event* c1 = first_climb(windy);
@@ -590,6 +781,28 @@ TEST(Quantities, APumpTooSmallForANozzleRefusesItsPlanSayingSo) {
       EXPECT_NEAR(s.layers[0].concrete_m3, 12.5 * 0.15 * 0.1, 1e-6);
     }
   }
+}
+
+TEST(Quantities, ANozzleHandingOverToAnotherAtOneInstantIsNotCountedTwice) {
+  // Each nozzle lays 2 m in 10 s at 0.15 m x 0.1 m: 0.2 x 0.15 x 0.1 = 0.003 m³/s. The
+  // second nozzle (listed first) stops at 10 s, exactly when the first starts: one nozzle's
+  // flow at every instant. Stopping a second later, both draw for that second.
+  const auto span = [](double from_s, double to_s, double x_m) {
+    planner::Waypoint a, b;
+    a.t_s = from_s;
+    a.position_m = Eigen::Vector2d(x_m, 0.0);
+    a.extruding = true;
+    a.wall = 1;
+    a.piece = 1;
+    b.t_s = to_s;
+    b.position_m = Eigen::Vector2d(x_m + 0.2 * (to_s - from_s), 0.0);
+    return std::vector<planner::Waypoint>{a, b};
+  };
+  const floors::Layer layer;
+  EXPECT_NEAR(peak_flow_m3_s({span(10.0, 20.0, 0.0), span(0.0, 10.0, 5.0)}, layer, 0.15, 0.1),
+              0.003, 1e-12);
+  EXPECT_NEAR(peak_flow_m3_s({span(10.0, 20.0, 0.0), span(0.0, 11.0, 5.0)}, layer, 0.15, 0.1),
+              0.006, 1e-12);
 }
 
 TEST(Quantities, DeliveriesAreDueWhenTheConcreteUsedReachesEachBatch) {
