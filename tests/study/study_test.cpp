@@ -549,7 +549,8 @@ TEST(StudyFolderOwner, OnlyAnEmptyFolderOrTheStudysOwnIsTaken) {
   fs::remove(results / "variants" / "v0001" / "notes.txt");
   // This study's own folder, again and again; another study's refused.
   prepare(s, results, 1, false);
-  prepare(s, results, 1, false);
+  EXPECT_NO_THROW(check_results_folder(s, results, false)) << "its own folder refused";
+  EXPECT_NO_THROW(prepare(s, results, 1, false));
   const Study other =
       read_study(f.write("  objective: [shortest]\n  machine.nozzles: [1, 2, 3]\n"));
   EXPECT_TRUE(
