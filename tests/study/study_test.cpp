@@ -702,6 +702,30 @@ TEST(StudyProcess, AStopEndsTheWholeGroup) {
   fs::remove_all(dir);
 }
 
+/// A signal sent to the study and its variant alike (Slurm's scancel signals every process of
+/// the job) may end the variant first: it was stopped, not failed. The same signal from
+/// someone else, with no stop asked, is a failure (a crash).
+TEST(StudyProcess, ASignalThatReachesTheVariantFirstIsAStop) {
+  const fs::path dir = testing::scratch_dir("study", "signal_first");
+  for (const bool asked : {true, false}) {
+    std::atomic<int> stop{0};
+    fs::remove(dir / "child");
+    std::thread canceller([&] {
+      if (!wait_for_lines(dir / "child", 1)) return;
+      ::kill(std::stoi(testing::slurp(dir / "child")), SIGTERM);  // the variant first
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (asked) stop = SIGTERM;  // then the study
+    });
+    const detail::ProcessResult r = detail::run_process(
+        {"/bin/sh", "-c", "echo $$ > " + (dir / "child").string() + "; exec sleep 60"},
+        dir / "log.txt", 60, &stop);
+    canceller.join();
+    EXPECT_EQ(r.signal, SIGTERM);
+    EXPECT_EQ(r.stopped, asked);
+  }
+  fs::remove_all(dir);
+}
+
 /// Every value that goes into an sbatch script: a control character refused by its flag
 /// (a newline would add a line: `#SBATCH --wrap=...`); the rest quoted, for sbatch's own
 /// parser in #SBATCH lines (a backslash escapes) and for bash in the command.

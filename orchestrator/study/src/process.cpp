@@ -83,8 +83,20 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::files
     // cannot be taken by another process, so the group can still be killed below.
     siginfo_t info{};
     if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-        info.si_pid == pid)
+        info.si_pid == pid) {
+      // A signal that stops the study may reach the child first (Slurm's scancel and a
+      // hang-up signal every process of the job or session): then it was stopped, not failed.
+      const bool by_stop_signal =
+          (info.si_code == CLD_KILLED || info.si_code == CLD_DUMPED) &&
+          (info.si_status == SIGTERM || info.si_status == SIGINT || info.si_status == SIGHUP);
+      if (stop && by_stop_signal && !result.stopped) {
+        const auto ended = std::chrono::steady_clock::now();
+        while (stop->load() == 0 && seconds_since(ended) < kSignalRace_s)
+          std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        result.stopped = stop->load() != 0;
+      }
       break;
+    }
     if (seconds_since(start) > timeout_s && !result.timed_out) {
       result.timed_out = true;
       ::kill(-pid, SIGKILL);
