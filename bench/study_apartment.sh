@@ -24,6 +24,15 @@ while [ "$( (find "$work/s/variants" -name result.json 2>/dev/null || true) | wc
 done
 kill -KILL -- -"$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
+# Each variant's schedule runs in a process group of its own (and holds the variant's lock:
+# left running, the resumed study would leave that variant to it): killed too.
+for group in $(pgrep -f -- "$work/s/variants/" | xargs -r ps -o pgid= -p | sort -u); do
+  kill -KILL -- -"$group" 2>/dev/null || true
+done
+for _ in $(seq 1 100); do
+  pgrep -f -- "$work/s/variants/" >/dev/null || break
+  sleep 0.1
+done
 killed=$(date +%s.%N)
 before=$(find "$work/s/variants" -name result.json | sort)
 count=$(echo "$before" | grep -c .)

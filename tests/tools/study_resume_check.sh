@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A local study killed part way (SIGKILL to it and its variants' processes) resumes: run
+# A local study killed part way (SIGKILL to it and its variants' process groups) resumes: run
 # again, no variant finished before is run again (its result untouched) and the rest
 # are; its results page, in headless Chromium, shows what results.json holds; what
 # `study collect` prints passes check_units.py. (That a
@@ -29,6 +29,15 @@ for _ in $(seq 1 600); do
 done
 kill -KILL -- -"$pid" 2>/dev/null || true
 wait "$pid" 2>/dev/null || true
+# ...and its variants' schedules, each in a process group of its own (a schedule left
+# running holds its variant's lock: the resumed study would leave that variant to it).
+for group in $(pgrep -f -- "$work/s/variants/" | xargs -r ps -o pgid= -p | sort -u); do
+  kill -KILL -- -"$group" 2>/dev/null || true
+done
+for _ in $(seq 1 100); do
+  pgrep -f -- "$work/s/variants/" >/dev/null || break
+  sleep 0.1
+done
 before=$(find "$work/s/variants" -name result.json | sort)
 count=$(echo "$before" | grep -c . || true)
 [ "$count" -ge 6 ] && [ "$count" -lt "$total" ] ||

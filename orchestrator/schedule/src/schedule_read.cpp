@@ -448,7 +448,7 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
     task.head_m = l.at("head_m").number(Range::closed(0, 1e3), "m");
     if (task.head_m <= task.sill_m) l.at("head_m").refuse("must be above sill_m");
     task.head_z_m = l.at("head_z_m").number(kCoordinate_m, "m");
-    read_lintel_kind(l, task.type, task.by_arm);
+    detail::read_lintel_kind(l, task.type, task.by_arm);
     task.height_m = l.at("height_m").number(Range::closed(0, 10), "m");
     e.lintel = std::move(task);
   } else if (kind == "climb") {
@@ -583,7 +583,7 @@ WorkDay read_day(const JsonAt& j) {
 
 ScheduleDocument parse_schedule(const std::string& text, const std::string& file,
                                 bool allow_path_digests) {
-  detail::check_nesting(text, file, limits::kMaxNestingDepth);
+  detail::check_nesting(text, file, limits::kMaxNestingDepth, "a schedule");
   ScheduleDocument doc;
   detail::JsonText located(file, text);
   {

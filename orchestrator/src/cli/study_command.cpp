@@ -2,13 +2,19 @@
 // (--jobs) or as a Slurm job array (--slurm); `study run` is what an array task runs,
 // `study collect` gathers what finished (docs/studies.md).
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/document.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/study/results.hpp"
 #include "ccbuild/study/runner.hpp"
@@ -34,6 +40,104 @@ struct StudyOptions {
   bool resubmit = false;
 };
 
+/// The signal that asked the study to stop (0: none yet), set by on_stop_signal.
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_stop_signal(int signal_number) {
+  stop_signal.store(signal_number);
+}
+
+/// While it lives, SIGTERM, SIGINT and SIGHUP ask the study to stop (stop_signal) instead of
+/// ending this process at once, so that it stops its variants (their process groups) and
+/// records nothing false first; the command then exits 128 + the signal.
+class StopOnSignals {
+ public:
+  StopOnSignals() {
+    struct sigaction action {};
+    action.sa_handler = on_stop_signal;
+    action.sa_flags = SA_RESTART;
+    sigemptyset(&action.sa_mask);
+    for (std::size_t k = 0; k < kSignals.size(); ++k)
+      ::sigaction(kSignals[k], &action, &before_[k]);
+  }
+  ~StopOnSignals() {
+    for (std::size_t k = 0; k < kSignals.size(); ++k)
+      ::sigaction(kSignals[k], &before_[k], nullptr);
+  }
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+ private:
+  static constexpr std::array<int, 3> kSignals = {SIGTERM, SIGINT, SIGHUP};
+  std::array<struct sigaction, 3> before_{};
+};
+
+/// When a signal asked the study to stop: says so and sets the exit code (128 + signal).
+bool stopped(int& exit_code) {
+  const int signal_number = stop_signal.load();
+  if (signal_number == 0) return false;
+  std::cerr << printf_string(
+      "study: stopped by signal %d (%s): the variants running were stopped and recorded as "
+      "nothing; run the same command again to go on\n",
+      signal_number, strsignal(signal_number));
+  exit_code = 128 + signal_number;
+  return true;
+}
+
+/// What a run is about to write into a results folder, to put back as it was when a later
+/// step fails (sbatch refusing the job): files it made are removed, files it replaced get
+/// their bytes back, folders it made are removed.
+class Rollback {
+ public:
+  /// Remembers `file` as it is now, before it is written.
+  void file(const fs::path& path) {
+    std::error_code ec;
+    Saved saved{path, std::nullopt, {}};
+    if (fs::is_regular_file(path, ec)) {
+      saved.bytes = read_text_file(path);
+      saved.modified = fs::last_write_time(path, ec);
+    }
+    files_.push_back(std::move(saved));
+  }
+  /// Remembers which of `folder` and its parents do not exist yet, before they are made.
+  void folder(const fs::path& path) {
+    std::error_code ec;
+    for (fs::path p = fs::absolute(path).lexically_normal();
+         !fs::exists(fs::symlink_status(p, ec)) && p != p.parent_path(); p = p.parent_path())
+      folders_.push_back(p);
+  }
+  /// Puts back what was remembered; says on stderr what it could not.
+  void undo() noexcept {
+    std::error_code ec;
+    for (auto it = files_.rbegin(); it != files_.rend(); ++it) {
+      try {
+        if (!it->bytes) {
+          fs::remove(it->path, ec);
+        } else if (!fs::is_regular_file(it->path, ec) || read_text_file(it->path) != *it->bytes) {
+          write_file_atomically(it->path, *it->bytes, true);
+          fs::last_write_time(it->path, it->modified, ec);
+        }
+      } catch (const std::exception& e) {
+        std::cerr << "study: cannot put back " << it->path.string() << ": " << e.what() << "\n";
+      }
+    }
+    std::sort(folders_.begin(), folders_.end(), [](const fs::path& a, const fs::path& b) {
+      return a.string().size() > b.string().size();  // the deepest first
+    });
+    for (const fs::path& folder : folders_) fs::remove(folder, ec);  // only when empty
+  }
+
+ private:
+  struct Saved {
+    fs::path path;
+    std::optional<std::string> bytes;  ///< unset: it did not exist
+    fs::file_time_type modified;
+  };
+  std::vector<Saved> files_;
+  std::vector<fs::path> folders_;
+};
+
 /// This binary, for the variants' processes and the array tasks' scripts.
 fs::path self() {
   std::error_code ec;
@@ -57,6 +161,7 @@ std::vector<int> write_results(const study::Plan& plan, bool slurm) {
   fronts.erase(std::unique(fronts.begin(), fronts.end()), fronts.end());
   study::RunOptions run;
   run.ccbuild = self();
+  run.stop = &stop_signal;
   for (int i : fronts) {
     std::error_code ec;
     if (fs::is_regular_file(plan.folder / "variants" / plan.study.variants[i].id / "report.html",
@@ -106,73 +211,114 @@ int exit_code_of(const std::vector<int>& lacking) {
 
 void run_locally(const study::Plan& plan, const std::vector<int>& indices, int jobs, bool quiet) {
   const auto start = std::chrono::steady_clock::now();
-  std::size_t done = 0, run = 0, failed = 0, skipped = 0;
+  std::size_t done = 0, run = 0, skipped = 0;
   study::RunOptions options;
   options.ccbuild = self();
+  options.stop = &stop_signal;
   study::run_variants(plan, indices, jobs, options, [&](int index, const study::Outcome& o) {
     ++done;
-    o.skipped ? ++skipped : ++run;
-    if (o.status == "failed") ++failed;
+    if (o.skipped) ++skipped;
+    if (!o.skipped && !o.stopped && !o.locked) ++run;
+    const std::string& id = plan.study.variants[index].id;
+    if (o.locked) {  // told even when quiet: the user may think it ran here
+      std::cerr << "study: " << id << " not run here: " << o.reason << "\n";
+      return;
+    }
     if (quiet || o.skipped) return;  // the skipped are counted once, below
+    if (o.stopped) {
+      std::cerr << "study: " << id << " stopped, not recorded\n";
+      return;
+    }
     const double elapsed_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::size_t left = indices.size() - done;
     std::string eta =
         run > 0 && left > 0 ? ", about " + minutes(elapsed_s / run * left) + " left" : "";
-    std::cerr << printf_string(
-        "study: %zu of %zu variants (%s %s%s%s), %s%s\n", done, indices.size(),
-        plan.study.variants[index].id.c_str(), o.skipped ? "finished before" : o.status.c_str(),
-        o.reason.empty() ? "" : ": ", o.reason.c_str(), minutes(elapsed_s).c_str(), eta.c_str());
+    std::cerr << printf_string("study: %zu of %zu variants (%s %s%s%s), %s%s\n", done,
+                               indices.size(), id.c_str(), o.status.c_str(),
+                               o.reason.empty() ? "" : ": ", o.reason.c_str(),
+                               minutes(elapsed_s).c_str(), eta.c_str());
   });
   if (!quiet && skipped > 0)
     std::cerr << printf_string(
         "study: %zu variant(s) finished before with the same inputs were not run again\n", skipped);
-  (void)failed;
 }
 
 void run_study(const StudyOptions& o, int& exit_code) {
+  const StopOnSignals stop_on_signals;
   const study::Study s = study::read_study(o.study);
-  std::error_code ec;
-  if (fs::exists(o.output, ec) && !fs::is_directory(o.output, ec))
-    throw InputError(o.output, 0, "-o", "expected a folder for the results, got a file");
-  const study::Plan plan = study::prepare(s, o.output, o.slurm ? o.chunk : 1, o.force);
-  std::cerr << printf_string("study '%s': %zu variants of %lld combinations, results in %s\n",
-                             s.name.c_str(), s.variants.size(), s.grid_size, plan.folder.c_str());
+  // Everything that can be checked is, before anything is written: all or nothing.
+  study::check_results_folder(s, o.output, o.force);
+  if (o.slurm) study::check_sbatch_values(o.slurm_options, s, o.output, "-o", self());
+  if (o.submit && !study::slurm_available())
+    throw InputError(
+        "", 0, "--submit",
+        "sbatch and squeue are not on the PATH (install slurm-client, or run without --slurm); "
+        "nothing was written");
   if (!o.slurm) {
+    const study::Plan plan = study::prepare(s, o.output, 1, o.force);
+    std::cerr << printf_string("study '%s': %zu variants of %lld combinations, results in %s\n",
+                               s.name.c_str(), s.variants.size(), s.grid_size, plan.folder.c_str());
     std::vector<int> all(s.variants.size());
     for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
     run_locally(plan, all, o.jobs, false);
+    if (stopped(exit_code)) return;
     exit_code = exit_code_of(write_results(plan, false));
+    stopped(exit_code);
     return;
   }
-  fs::create_directories(plan.folder / "slurm");
-  const fs::path script = plan.folder / "slurm" / "study.sbatch";
-  write_file_atomically(script, study::sbatch_script(plan, o.slurm_options, self()), true);
-  fs::permissions(script, fs::perms::owner_exec, fs::perm_options::add, ec);
-  if (!o.submit) {
-    std::cout << "wrote " << script.string() << "; submit it with `sbatch " << script.string()
-              << "` (or pass --submit), then `ccbuild study collect " << plan.folder.string()
-              << "`\n";
-    exit_code = kExitOk;
-    return;
+  const fs::path folder = fs::absolute(o.output).lexically_normal();
+  const fs::path script = folder / "slurm" / "study.sbatch";
+  // A submission sbatch refuses leaves the folder as it was.
+  Rollback rollback;
+  for (const fs::path& f : {folder, folder / "variants", folder / "slurm"}) rollback.folder(f);
+  for (const fs::path& f : {folder / "study.json", script}) rollback.file(f);
+  std::string job;
+  std::optional<study::Plan> prepared;
+  try {
+    prepared = study::prepare(s, o.output, o.chunk, o.force);
+    const study::Plan& plan = *prepared;
+    std::cerr << printf_string("study '%s': %zu variants of %lld combinations, results in %s\n",
+                               s.name.c_str(), s.variants.size(), s.grid_size, plan.folder.c_str());
+    std::error_code ec;
+    fs::create_directories(plan.folder / "slurm", ec);
+    const std::string text = study::sbatch_script(plan, o.slurm_options, self());
+    if (!fs::is_regular_file(script, ec) || read_text_file(script) != text)
+      write_file_atomically(script, text, true);
+    fs::permissions(script, fs::perms::owner_exec, fs::perm_options::add, ec);
+    if (!o.submit) {
+      std::cout << "wrote " << script.string() << "; submit it with `sbatch " << script.string()
+                << "` (or pass --submit), then `ccbuild study collect " << plan.folder.string()
+                << "`\n";
+      exit_code = kExitOk;
+      return;
+    }
+    job = study::submit(plan, script);
+  } catch (const InputError& e) {
+    if (!o.submit) throw;
+    rollback.undo();
+    std::vector<Diagnostic> all = e.diagnostics();
+    all.push_back({folder.string(), 0, "", "the results folder is as it was before this run"});
+    throw InputError(std::move(all));
+  } catch (...) {
+    if (o.submit) rollback.undo();
+    throw;
   }
-  if (!study::slurm_available())
-    throw InputError(
-        "", 0, "--submit",
-        "sbatch and squeue are not on the PATH (install slurm-client, or run without --slurm)");
-  const std::string job = study::submit(plan, script);
   std::cout << "submitted job " << job << " (" << script.string() << ")\n";
   if (!o.wait) {
-    std::cout << "collect with `ccbuild study collect " << plan.folder.string()
-              << "` once it is done\n";
+    std::cout << "collect with `ccbuild study collect " << folder.string() << "` once it is done\n";
     exit_code = kExitOk;
     return;
   }
-  study::wait_for_jobs(plan, [](const std::string& line) { std::cerr << line << "\n"; });
-  exit_code = exit_code_of(write_results(plan, true));
+  study::wait_for_jobs(
+      *prepared, [](const std::string& line) { std::cerr << line << "\n"; }, &stop_signal);
+  if (stopped(exit_code)) return;
+  exit_code = exit_code_of(write_results(*prepared, true));
+  stopped(exit_code);
 }
 
 void run_task(const StudyOptions& o, int& exit_code) {
+  const StopOnSignals stop_on_signals;
   const study::Plan plan = study::open_plan(o.folder);
   const int n = static_cast<int>(plan.study.variants.size());
   std::vector<int> indices;
@@ -182,47 +328,68 @@ void run_task(const StudyOptions& o, int& exit_code) {
                        printf_string("expected 0 to %d, got %d", n - 1, *o.variant));
     indices.push_back(*o.variant);
   } else {
-    const int first = *o.task * plan.chunk;
-    if (*o.task < 0 || first >= n)
+    // Compared before multiplying: task * chunk may not fit an int.
+    const int last_task = (n - 1) / plan.chunk;
+    if (*o.task < 0 || *o.task > last_task)
       throw InputError("", 0, "--task",
-                       printf_string("expected 0 to %d, got %d", (n - 1) / plan.chunk, *o.task));
+                       printf_string("expected 0 to %d, got %d", last_task, *o.task));
+    const int first = *o.task * plan.chunk;
     for (int k = first; k < std::min(n, first + plan.chunk); ++k) indices.push_back(k);
   }
   run_locally(plan, indices, o.jobs, false);
   exit_code = kExitOk;  // each variant's fate is in its result.json
+  stopped(exit_code);
 }
 
 void run_collect(const StudyOptions& o, int& exit_code) {
+  const StopOnSignals stop_on_signals;
   const study::Plan plan = study::open_plan(o.folder);
+  if (o.resubmit) {  // checked before anything is written
+    study::check_sbatch_values(o.slurm_options, plan.study, plan.folder, "RESULTS", self());
+    if (!study::slurm_available())
+      throw InputError("", 0, "--resubmit",
+                       "sbatch and squeue are not on the PATH (install slurm-client); nothing "
+                       "was written");
+  }
   std::error_code ec;
   const bool slurm = fs::exists(plan.folder / "slurm" / "jobs.tsv", ec);
   if (slurm && o.wait)
-    study::wait_for_jobs(plan, [](const std::string& line) { std::cerr << line << "\n"; });
+    study::wait_for_jobs(
+        plan, [](const std::string& line) { std::cerr << line << "\n"; }, &stop_signal);
+  if (stopped(exit_code)) return;
   const std::vector<int> again = write_results(plan, slurm);
   exit_code = exit_code_of(again);
-  if (!o.resubmit || again.empty()) return;
-  fs::create_directories(plan.folder / "slurm");
+  if (stopped(exit_code) || !o.resubmit || again.empty()) return;
+  fs::create_directories(plan.folder / "slurm", ec);
   int earlier = 0;  // resubmit-1.sbatch, resubmit-2.sbatch, ...
-  for (const auto& entry : fs::directory_iterator(plan.folder / "slurm"))
+  for (const auto& entry : fs::directory_iterator(plan.folder / "slurm", ec))
     if (entry.path().filename().string().rfind("resubmit-", 0) == 0) ++earlier;
   const fs::path script = plan.folder / "slurm" / printf_string("resubmit-%d.sbatch", earlier + 1);
-  write_file_atomically(script, study::sbatch_script(plan, o.slurm_options, self(), again), true);
-  if (!study::slurm_available())
-    throw InputError("", 0, "--resubmit",
-                     "sbatch and squeue are not on the PATH (install slurm-client)");
-  const std::string job = study::submit(plan, script, again);
+  Rollback rollback;
+  rollback.file(script);
+  std::string job;
+  try {
+    write_file_atomically(script, study::sbatch_script(plan, o.slurm_options, self(), again), true);
+    job = study::submit(plan, script, again);
+  } catch (...) {
+    rollback.undo();
+    throw;
+  }
   std::cout << printf_string("resubmitted %zu variant(s) as job %s (%s)\n", again.size(),
                              job.c_str(), script.c_str());
   if (!o.wait) return;
-  study::wait_for_jobs(plan, [](const std::string& line) { std::cerr << line << "\n"; });
+  study::wait_for_jobs(
+      plan, [](const std::string& line) { std::cerr << line << "\n"; }, &stop_signal);
+  if (stopped(exit_code)) return;
   exit_code = exit_code_of(write_results(plan, true));
+  stopped(exit_code);
 }
 
 void add_slurm_options(CLI::App& command, StudyOptions& o) {
   command.add_option("--partition", o.slurm_options.partition,
-                     "Slurm partition (default: the cluster's)");
+                     "Slurm partition (default: the cluster's); no control characters");
   command.add_option("--time", o.slurm_options.time,
-                     "Time limit of each array task, in Slurm's syntax (30, 2:00:00)");
+                     "Time limit of each array task, in Slurm's syntax (30, 2:00:00, 1-12)");
   command
       .add_option("--array-max", o.slurm_options.array_max,
                   "At most this many array tasks at once (the array's %K)")
@@ -251,7 +418,16 @@ void add_study_command(CLI::App& app, int& exit_code) {
       "makespan's sensitivity to each axis, a report for each variant on a front). An infeasible "
       "schedule is a result; a crash, bad input or a timeout fails the variant (listed with its "
       "log).\n"
-      "Exit code 0 when every variant has a result, 1 when some failed or did not run.\n"
+      "The results folder (-o) must be new or empty, or hold this study's own results (which "
+      "resumes it); a folder holding other files or another study's results is refused unless "
+      "--force. Each variant runs in a process group of its own and is locked while it runs "
+      "(variants/<id>/lock), so two runs of a study never run it at once: the second says so and "
+      "leaves it. SIGTERM, SIGINT or SIGHUP stop the study: the variants running are stopped "
+      "with it and recorded as nothing.\n"
+      "Exit code 0 when every variant has a result, 1 when some failed or did not run, 2 on bad "
+      "input or when the run cannot do what was asked (a folder refused, sbatch missing or "
+      "refusing the job: nothing is left written), 128 + the signal when a signal stopped it "
+      "(143 SIGTERM, 130 SIGINT, 129 SIGHUP).\n"
       "Examples:\n"
       "  ccbuild study studies/house-mixes.yaml -o house-study --jobs 2\n"
       "  ccbuild study studies/house-mixes.yaml -o house-study --slurm --partition batch --time 30 "
@@ -264,11 +440,15 @@ void add_study_command(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   command->add_flag("--force", o->force,
-                    "Start over in a folder that holds another study's results");
+                    "Write into a folder that holds other files or another study's results "
+                    "(files of the same names are replaced as the study writes them; none is "
+                    "deleted beforehand)");
   command->add_flag(
       "--slurm", o->slurm,
       "Write a Slurm job-array script (<results>/slurm/study.sbatch) instead of running here");
-  command->add_flag("--submit", o->submit, "With --slurm: submit it (sbatch) and print its job id");
+  command->add_flag("--submit", o->submit,
+                    "With --slurm: submit it (sbatch) and print its job id; when sbatch is "
+                    "missing or refuses the job, exit 2 with the results folder as it was");
   command->add_option("--chunk", o->chunk, "With --slurm: variants per array task")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

@@ -5,9 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <optional>
 
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
+#include "ccbuild/common/input_error.hpp"
+#include "ccbuild/common/json_reader.hpp"
+#include "study_files.hpp"
 
 namespace ccbuild::study {
 namespace fs = std::filesystem;
@@ -32,40 +37,66 @@ std::string csv_field(const std::string& text) {
 
 }  // namespace
 
-nlohmann::ordered_json measures_of(const nlohmann::json& s) {
+namespace detail {
+
+nlohmann::ordered_json measures_of_located(const JsonAt& s) {
+  // Every finite double: a measure is what the schedule says; its own reader checks ranges.
+  const Range any =
+      Range::closed(-std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  constexpr std::size_t kMaxItems = 100'000'000;
+  const auto number = [&](const JsonAt& object, const char* key) {
+    const auto v = object.maybe(key);
+    return v ? v->number(any) : 0.0;
+  };
+  const auto text = [](const JsonAt& object, const char* key) {
+    const auto v = object.maybe(key);
+    return v ? v->string() : std::string();
+  };
   nlohmann::ordered_json m;
-  const auto& totals = s.at("totals");
-  m["makespan_s"] = totals.value("makespan_s", 0.0);
-  m["feasible"] = s.value("feasible", false);
+  const JsonAt totals = s.at("totals");
+  m["makespan_s"] = number(totals, "makespan_s");
+  const auto feasible = s.maybe("feasible");
+  m["feasible"] = feasible ? feasible->boolean() : false;
   int nozzles = 0;
   double idle_margin_s = std::numeric_limits<double>::infinity();
-  const double idle_limit_s = s.at("inputs").at("machine").value("nozzle_idle_limit_s", 0.0);
+  const double idle_limit_s = number(s.at("inputs").at("machine"), "nozzle_idle_limit_s");
   std::map<std::string, double> by_reason;
-  for (const auto& l : s.at("layers")) {
-    nozzles = std::max(nozzles, l.value("nozzles", 0));
-    idle_margin_s = std::min(idle_margin_s, idle_limit_s - l.value("max_idle_s", 0.0));
-    for (const auto& r : l.value("wait_reasons", nlohmann::json::array()))
-      by_reason[r.value("kind", "")] += l.value("wait_before_s", 0.0);
+  for (const JsonAt& l : s.at("layers").elements(kMaxItems)) {
+    if (const auto n = l.maybe("nozzles"))
+      nozzles = std::max(nozzles, static_cast<int>(n->integer(0, 1'000'000)));
+    idle_margin_s = std::min(idle_margin_s, idle_limit_s - number(l, "max_idle_s"));
+    if (const auto reasons = l.maybe("wait_reasons"))
+      for (const JsonAt& r : reasons->elements(kMaxItems))
+        by_reason[text(r, "kind")] += number(l, "wait_before_s");
   }
   m["nozzles_max"] = nozzles;
-  m["waits_s"] = totals.value("waits_s", 0.0);
+  m["waits_s"] = number(totals, "waits_s");
   for (const char* kind : {"min-interval", "strength", "anchor-strength", "slab", "off-shift",
                            "joint", "cold", "wind"}) {
     std::string key = std::string("wait_") + kind + "_s";
     std::replace(key.begin(), key.end(), '-', '_');
     m[key] = by_reason.count(kind) ? by_reason.at(kind) : 0.0;
   }
-  m["concrete_m3"] = totals.value("concrete_m3", 0.0);
-  m["crew_h"] = totals.value("crew_h", 0.0);
+  m["concrete_m3"] = number(totals, "concrete_m3");
+  m["crew_h"] = number(totals, "crew_h");
   int climbs = 0;
-  for (const auto& e : s.at("events"))
-    if (e.value("kind", "") == "climb") ++climbs;
+  for (const JsonAt& e : s.at("events").elements(kMaxItems))
+    if (text(e, "kind") == "climb") ++climbs;
   m["climbs"] = climbs;
-  m["machine_s"] = totals.value("machine_s", 0.0);
+  m["machine_s"] = number(totals, "machine_s");
   m["idle_margin_s"] =
       std::isfinite(idle_margin_s) ? nlohmann::ordered_json(idle_margin_s) : nullptr;
-  m["warnings"] = s.value("warnings", nlohmann::json::array()).size();
+  const auto warnings = s.maybe("warnings");
+  m["warnings"] = warnings ? warnings->elements(kMaxItems).size() : std::size_t{0};
   return m;
+}
+
+}  // namespace detail
+
+nlohmann::ordered_json measures_of(const nlohmann::json& s) {
+  const std::string no_text;  // a value in memory: errors name the pointer, no line
+  const JsonText located("schedule JSON", no_text);
+  return detail::measures_of_located(JsonAt(located, s, ""));
 }
 
 Collected collect(const Plan& plan) {
@@ -75,24 +106,29 @@ Collected collect(const Plan& plan) {
     row["id"] = v.id;
     row["settings"] = nlohmann::ordered_json::object();
     for (const auto& [name, value] : v.settings) row["settings"][name] = value;
-    const fs::path dir = plan.folder / "variants" / v.id;
+    const fs::path file = plan.folder / "variants" / v.id / "result.json";
     std::error_code ec;
-    nlohmann::ordered_json result;
-    if (fs::is_regular_file(dir / "result.json", ec)) {
+    std::optional<detail::ResultFile> result;
+    std::string unreadable;  // a result.json that does not read: why, located
+    if (fs::is_regular_file(file, ec)) {
       try {
-        result = nlohmann::ordered_json::parse(read_text_file(dir / "result.json"));
-      } catch (const std::exception&) {
-        result = nullptr;
+        result = detail::read_result_file(file);
+        if (result->id != v.id || result->index != v.index)
+          throw InputError(file.string(), 0, "id",
+                           "holds the result of " + result->id + ", not of " + v.id);
+      } catch (const InputError& e) {
+        result.reset();
+        unreadable = e.what();
       }
     }
-    std::string status = result.is_object() ? result.value("status", "") : "";
+    std::string status = result ? result->status : "";
     if ((status == "feasible" || status == "infeasible") && !finished(plan, v.index)) status = "";
     row["status"] = status.empty() ? "missing" : status;
-    if (status == "failed") row["reason"] = result.value("reason", "");
-    row["measures"] =
-        result.is_object() && result.contains("measures") && !status.empty() && status != "failed"
-            ? result["measures"]
-            : nlohmann::ordered_json(nullptr);
+    if (status == "failed") row["reason"] = result->reason;
+    if (!unreadable.empty()) row["reason"] = "its result.json does not read: " + unreadable;
+    row["measures"] = result && result->measures && !status.empty() && status != "failed"
+                          ? *result->measures
+                          : nlohmann::ordered_json(nullptr);
     (status == "feasible"     ? c.feasible
      : status == "infeasible" ? c.infeasible
      : status == "failed"     ? c.failed

@@ -2,8 +2,14 @@
 
 #include "ccbuild/study/runner.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <mutex>
 #include <thread>
@@ -16,13 +22,12 @@
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "ccbuild/study/results.hpp"
 #include "process.hpp"
+#include "study_files.hpp"
 
 namespace ccbuild::study {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr const char* kFormat = "ccbuild-study-plan";
 
 nlohmann::ordered_json settings_json(const Variant& v) {
   nlohmann::ordered_json out = nlohmann::ordered_json::object();
@@ -32,6 +37,62 @@ nlohmann::ordered_json settings_json(const Variant& v) {
 
 fs::path variant_folder(const Plan& plan, int index) {
   return plan.folder / "variants" / plan.study.variants.at(index).id;
+}
+
+/// study.json's content for `study`.
+detail::PlanFile plan_file_of(const Study& study, int chunk) {
+  detail::PlanFile file;
+  file.study_file = fs::absolute(study.file).lexically_normal().string();
+  file.name = study.name;
+  file.chunk = chunk;
+  for (const Variant& v : study.variants) file.variants.push_back({v.id, v.settings});
+  return file;
+}
+
+/// Makes `folder` (and its parents). Throws InputError naming it when it cannot.
+void make_folder(const fs::path& folder, const std::string& flag) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec) throw InputError(folder.string(), 0, flag, "cannot make the folder: " + ec.message());
+}
+
+/// An exclusive flock on a variant's lock file, taken without waiting, released when
+/// destroyed. flock (not fcntl) locks belong to the open file, so the schedule the runner
+/// starts holds it too (it inherits the descriptor) and the lock outlives a runner killed
+/// with SIGKILL for as long as its schedule runs.
+class VariantLock {
+ public:
+  explicit VariantLock(const fs::path& file) {
+    fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0)
+      throw InputError(file.string(), 0, "",
+                       std::string("cannot open the variant's lock: ") + std::strerror(errno));
+    int r;
+    while ((r = ::flock(fd_, LOCK_EX | LOCK_NB)) != 0 && errno == EINTR) {
+    }
+    if (r == 0) {
+      held_ = true;
+    } else if (errno != EWOULDBLOCK) {
+      const int error = errno;
+      ::close(fd_);
+      throw InputError(file.string(), 0, "",
+                       std::string("cannot lock the variant: ") + std::strerror(error));
+    }
+  }
+  ~VariantLock() { ::close(fd_); }
+  VariantLock(const VariantLock&) = delete;
+  VariantLock& operator=(const VariantLock&) = delete;
+
+  bool held() const { return held_; }
+  int fd() const { return fd_; }
+
+ private:
+  int fd_ = -1;
+  bool held_ = false;
+};
+
+bool stop_asked(const RunOptions& options) {
+  return options.stop && options.stop->load() != 0;
 }
 
 /// Sets `key` ("climbing.anchor_strength_mpa") to `value` in a profile's tree.
@@ -99,63 +160,103 @@ std::string inputs_sha256(const Variant& v) {
   return sha256_hex(text);
 }
 
+void check_results_folder(const Study& study, const fs::path& folder, bool force) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(folder, ec);
+  if (fs::exists(status) && !fs::is_directory(status))
+    throw InputError(folder.string(), 0, "-o", "expected a folder for the results, got a file");
+  if (!fs::exists(status) || force) return;
+  const std::string way_out =
+      "; give another folder, or --force to write there (files of the "
+      "same names are replaced as the study writes them)";
+  const fs::path plan_path = folder / "study.json";
+  if (fs::exists(fs::symlink_status(plan_path, ec))) {
+    detail::PlanFile old;
+    try {
+      old = detail::read_plan_file(plan_path);
+    } catch (const InputError& e) {
+      std::vector<Diagnostic> all = {
+          {folder.string(), 0, "-o",
+           "holds a study.json that is not a study's plan (below)" + way_out}};
+      all.insert(all.end(), e.diagnostics().begin(), e.diagnostics().end());
+      throw InputError(std::move(all));
+    }
+    const detail::PlanFile now = plan_file_of(study, old.chunk);
+    if (old.study_file != now.study_file)
+      throw InputError(folder.string(), 0, "-o",
+                       "holds the results of another study ('" + old.name + "', " + old.study_file +
+                           ", " + std::to_string(old.variants.size()) + " variants)" + way_out);
+    if (old.variants != now.variants)
+      throw InputError(folder.string(), 0, "-o",
+                       "holds this study's results from before its axes changed (" +
+                           std::to_string(old.variants.size()) + " variants then, " +
+                           std::to_string(now.variants.size()) + " now)" + way_out);
+    return;  // this study's own folder: a resume
+  }
+  // No plan: whatever files are there are not this study's (empty folders hold nothing).
+  std::vector<std::string> found;
+  auto it = fs::recursive_directory_iterator(folder, ec);
+  for (; !ec && it != fs::recursive_directory_iterator() && found.size() < 4; it.increment(ec)) {
+    std::error_code kind;
+    if (!fs::is_directory(it->symlink_status(kind)))
+      found.push_back(fs::relative(it->path(), folder, kind).string());
+  }
+  if (ec)
+    throw InputError(
+        folder.string(), 0, "-o",
+        "cannot be listed (" + ec.message() + "), so what it holds is unknown" + way_out);
+  if (found.empty()) return;
+  std::string listed;
+  for (std::size_t k = 0; k < std::min<std::size_t>(found.size(), 3); ++k)
+    listed += (listed.empty() ? "" : ", ") + found[k];
+  throw InputError(folder.string(), 0, "-o",
+                   "holds files `ccbuild study` did not make (" + listed +
+                       (found.size() > 3 ? ", ..." : "") +
+                       "; no study.json says whose results they are)" + way_out);
+}
+
 Plan prepare(const Study& study, const fs::path& folder, int chunk, bool force) {
+  check_results_folder(study, folder, force);
   Plan plan;
   plan.folder = fs::absolute(folder).lexically_normal();
   plan.study = study;
   plan.chunk = std::max(1, chunk);
-  nlohmann::ordered_json json;
-  json["format"] = kFormat;
-  json["study_file"] = fs::absolute(study.file).lexically_normal().string();
-  json["name"] = study.name;
-  json["chunk"] = plan.chunk;
-  json["variants"] = nlohmann::ordered_json::array();
-  for (const Variant& v : study.variants)
-    json["variants"].push_back({{"id", v.id}, {"settings", settings_json(v)}});
+  make_folder(plan.folder, "-o");
+  // The plan first: a folder holding it is this study's, whatever happens next. A resume
+  // finds the same bytes there and leaves the file as it is.
   const fs::path file = plan.folder / "study.json";
+  const std::string text = detail::plan_file_text(plan_file_of(study, plan.chunk));
   std::error_code ec;
-  if (fs::exists(file, ec) && !force) {
-    nlohmann::json old;
-    try {
-      old = nlohmann::json::parse(read_text_file(file));
-    } catch (const nlohmann::json::exception&) {
-    }
-    if (old.value("study_file", "") != json["study_file"] ||
-        old["variants"] != nlohmann::json(json["variants"]))
-      throw InputError(file.string(), 0, "",
-                       "the folder holds the results of another study (or of this one before its "
-                       "axes changed); give another folder, or --force to start over there");
-  }
-  fs::create_directories(plan.folder / "variants");
-  write_file_atomically(file, json.dump(2) + "\n", true);
-  plan.json = std::move(json);
+  if (!fs::is_regular_file(file, ec) || read_text_file(file) != text)
+    write_file_atomically(file, text, true);
+  make_folder(plan.folder / "variants", "-o");
   return plan;
 }
 
 Plan open_plan(const fs::path& folder) {
   const fs::path file = folder / "study.json";
-  const std::string text = read_text_file(file);
-  nlohmann::ordered_json json;
-  try {
-    json = nlohmann::ordered_json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file.string(), 0, "", std::string("not a study's plan: ") + e.what());
-  }
-  if (!json.is_object() || json.value("format", "") != kFormat || !json.contains("study_file"))
-    throw InputError(file.string(), 0, "format", "not a study's plan (made by `ccbuild study`)");
+  const detail::PlanFile written = detail::read_plan_file(file);
   Plan plan;
   plan.folder = fs::absolute(folder).lexically_normal();
-  plan.study = read_study(json["study_file"].get<std::string>());
-  plan.chunk = json.value("chunk", 1);
-  nlohmann::ordered_json now = nlohmann::ordered_json::array();
-  for (const Variant& v : plan.study.variants)
-    now.push_back({{"id", v.id}, {"settings", settings_json(v)}});
-  if (now != json["variants"])
-    throw InputError(json["study_file"].get<std::string>(), 0, "axes",
+  plan.chunk = written.chunk;
+  try {
+    plan.study = read_study(written.study_file);
+  } catch (const InputError& e) {
+    std::vector<Diagnostic> all = {
+        {file.string(), written.study_file_line, "/study_file",
+         "names the study file " + written.study_file + ", which does not read (below)"}};
+    all.insert(all.end(), e.diagnostics().begin(), e.diagnostics().end());
+    throw InputError(std::move(all));
+  }
+  if (plan_file_of(plan.study, written.chunk).variants != written.variants)
+    throw InputError(written.study_file, 0, "axes",
                      "the study file changed since " + file.string() +
                          " was written; run `ccbuild study` on it again");
-  plan.json = std::move(json);
   return plan;
+}
+
+fs::path variant_lock_file(const Plan& plan, int index) {
+  return variant_folder(plan, index) / "lock";
 }
 
 bool finished(const Plan& plan, int index) {
@@ -163,11 +264,10 @@ bool finished(const Plan& plan, int index) {
   std::error_code ec;
   if (!fs::is_regular_file(result, ec)) return false;
   try {
-    const auto json = nlohmann::json::parse(read_text_file(result));
-    const std::string status = json.value("status", "");
-    if (status != "feasible" && status != "infeasible") return false;
-    if (json.value("inputs_sha256", "") != inputs_sha256(plan.study.variants.at(index)))
-      return false;
+    const detail::ResultFile r = detail::read_result_file(result);
+    const Variant& v = plan.study.variants.at(index);
+    if (r.status != "feasible" && r.status != "infeasible") return false;
+    if (r.id != v.id || r.index != index || r.inputs_sha256 != inputs_sha256(v)) return false;
     // The files the schedule read besides those (plans, URDFs) unchanged too.
     schedule::ReadScheduleOptions read;
     read.inputs = schedule::RecordedInputCheck::kRefuseChangedOrMissing;
@@ -180,16 +280,27 @@ bool finished(const Plan& plan, int index) {
 
 Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
   const Variant& v = plan.study.variants.at(index);
+  const fs::path dir = variant_folder(plan, index);
   Outcome outcome;
-  if (finished(plan, index)) {
+  const auto skipped = [&] {
     outcome.skipped = true;
-    outcome.status =
-        nlohmann::json::parse(read_text_file(variant_folder(plan, index) / "result.json"))
-            .value("status", "");
+    outcome.status = detail::read_result_file(dir / "result.json").status;
+    return outcome;
+  };
+  if (stop_asked(options)) {
+    outcome.stopped = true;
     return outcome;
   }
-  const fs::path dir = variant_folder(plan, index);
-  fs::create_directories(dir);
+  if (finished(plan, index)) return skipped();
+  make_folder(dir, "");
+  const VariantLock lock(variant_lock_file(plan, index));
+  if (!lock.held()) {
+    outcome.locked = true;
+    outcome.reason =
+        "another process runs it now (it holds " + variant_lock_file(plan, index).string() + ")";
+    return outcome;
+  }
+  if (finished(plan, index)) return skipped();  // by the process that held the lock
   const fs::path log = dir / "log.txt";
   std::error_code ec;
   fs::remove(log, ec);
@@ -228,10 +339,18 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
     }
     detail::ProcessResult r;
     try {
-      r = detail::run_process(argv, log, plan.study.variant_timeout_s);
+      r = detail::run_process(argv, log, plan.study.variant_timeout_s, options.stop, lock.fd());
     } catch (const std::exception& e) {
       r.exit_code = -1;
       std::ofstream(log, std::ios::app) << "cannot start it: " << e.what() << "\n";
+    }
+    if (r.stopped) {  // not the variant's fault: nothing recorded, the next run runs it
+      std::ofstream(log, std::ios::app) << "stopped: the study was asked to stop\n";
+      outcome.stopped = true;
+      outcome.reason = "stopped";
+      outcome.elapsed_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return outcome;
     }
     if (r.timed_out) {
       result["status"] = "failed";
@@ -242,9 +361,14 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
       result["reason"] = printf_string("killed by signal %d (%s)", r.signal, strsignal(r.signal));
     } else if ((r.exit_code == 0 || r.exit_code == 1) &&
                fs::is_regular_file(dir / "schedule.json", ec)) {
-      const auto schedule = nlohmann::json::parse(read_text_file(dir / "schedule.json"));
-      result["status"] = schedule.value("feasible", false) ? "feasible" : "infeasible";
-      result["measures"] = measures_of(schedule);
+      try {
+        nlohmann::ordered_json measures = detail::measures_of_file(dir / "schedule.json");
+        result["status"] = measures["feasible"].get<bool>() ? "feasible" : "infeasible";
+        result["measures"] = std::move(measures);
+      } catch (const InputError& e) {
+        result["status"] = "failed";
+        result["reason"] = std::string("its schedule does not read: ") + e.what();
+      }
     } else if (r.exit_code < 0) {
       result["status"] = "failed";
       result["reason"] = "ccbuild schedule could not be started (its log says why)";
@@ -270,7 +394,7 @@ bool write_report(const Plan& plan, int index, const RunOptions& options) {
   const detail::ProcessResult r =
       detail::run_process({options.ccbuild.string(), "report", (dir / "schedule.json").string(),
                            "-o", (dir / "report.html").string(), "--force"},
-                          dir / "log.txt", plan.study.variant_timeout_s);
+                          dir / "log.txt", plan.study.variant_timeout_s, options.stop);
   return r.exit_code == 0;
 }
 
@@ -281,6 +405,7 @@ void run_variants(const Plan& plan, const std::vector<int>& indices, int jobs,
   std::mutex told;
   const auto worker = [&] {
     for (std::size_t k; (k = next++) < indices.size();) {
+      if (stop_asked(options)) return;  // none started once asked to stop
       Outcome outcome;
       try {
         outcome = run_variant(plan, indices[k], options);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -81,12 +82,23 @@ std::vector<std::string> axis_values(const Field& field, bool numeric) {
     const double step = step_field.as_number();
     if (!(step > 0.0)) step_field.fail("expected a step above 0");
     if (to < from) r.required("to").fail("expected `to` at least `from`");
+    // Counted in doubles, checked before any cast: bounds far apart for their step (or
+    // wider than the largest double) make a count no integer holds.
     const double count = std::floor((to - from) / step + 1e-9) + 1.0;
-    if (count > kMaxValuesPerAxis)
-      field.fail("the range has " + std::to_string(static_cast<long long>(count)) +
+    if (!std::isfinite(count) || count > kMaxValuesPerAxis)
+      field.fail(std::string("the range has ") +
+                 (std::isfinite(count) && count < 1e15 ? printf_string("%.0f", count)
+                                                       : std::string("too many to count")) +
                  " values; at most " + std::to_string(kMaxValuesPerAxis) + " per axis");
-    for (int k = 0; k < static_cast<int>(count); ++k)
-      values.push_back(printf_string("%.10g", from + k * step));
+    for (int k = 0; k < static_cast<int>(count); ++k) {
+      const double value = from + k * step;
+      if (!std::isfinite(value)) field.fail("the range's values pass the largest number");
+      values.push_back(printf_string("%.10g", value));
+      if (k > 0 && values[k] == values[k - 1])
+        field.fail("the range's values " + values[k - 1] + " and " + values[k] +
+                   " are the same at 10 significant digits: its step is too small for its "
+                   "bounds");
+    }
   } else {
     field.fail("expected a list of values (or {from, to, step} for a number)");
   }
@@ -144,7 +156,9 @@ Study read_study(const fs::path& file) {
   const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   Study study;
   study.file = file.string();
-  study.name = top.required("name").as_string();
+  const Field name_field = top.required("name");
+  study.name = name_field.as_string();
+  study.name_line = name_field.line();
   if (const auto t = top.optional("variant_timeout_s"))
     study.variant_timeout_s = t->as_number_in(Range::above(0.0, 7.0 * 86400.0), "s");
   if (const auto t = top.optional("layer_time_limit_s"))
@@ -242,18 +256,24 @@ Study read_study(const fs::path& file) {
     }
   }
 
-  // The grid's size, and which of its points the study takes.
-  long double grid = 1;
-  for (const Axis& axis : study.axes) grid *= axis.values.size();
+  // The grid's size, and which of its points the study takes. Counted in checked integers:
+  // a product past 2^63 - 1 is refused, never wrapped.
+  long long grid = 1;
+  for (const Axis& axis : study.axes)
+    if (__builtin_mul_overflow(grid, static_cast<long long>(axis.values.size()), &grid))
+      axes_field.fail(printf_string(
+          "the axes make more than %lld combinations (the product of their sizes), the most a "
+          "study counts, even to sample from; vary fewer axes or fewer values",
+          std::numeric_limits<long long>::max()));
   std::vector<long long> chosen;
   const auto sample = top.optional("sample");
   if (!sample || (sample->is_scalar() && sample->as_string() == "grid")) {
     if (grid > kMaxVariants)
       axes_field.fail(
-          printf_string("the axes make %.0Lf variants; at most %lld (take a random "
+          printf_string("the axes make %lld variants; at most %lld (take a random "
                         "sample: `sample: {random: 500, seed: 1}`)",
                         grid, kMaxVariants));
-    for (long long k = 0; k < static_cast<long long>(grid); ++k) chosen.push_back(k);
+    for (long long k = 0; k < grid; ++k) chosen.push_back(k);
   } else {
     if (!sample->is_map()) sample->fail("expected `grid` or {random: N, seed: S}");
     MapReader s(*sample, {"random", "seed"});
@@ -262,13 +282,12 @@ Study read_study(const fs::path& file) {
     const long long count = count_field.as_count();
     if (count < 1 || count > kMaxVariants)
       count_field.fail("expected from 1 to " + std::to_string(kMaxVariants) + " variants");
-    if (static_cast<long double>(count) > grid)
-      count_field.fail(printf_string("the axes make only %.0Lf variants", grid));
+    if (count > grid) count_field.fail(printf_string("the axes make only %lld variants", grid));
     const std::uint64_t seed = s.optional("seed") ? seed_of(*s.optional("seed")) : 1;
     // Floyd's sampling: `count` distinct grid points, the same for the same seed on any
     // machine (mt19937_64 is fully specified; the reduction below is ours).
     std::mt19937_64 random(seed);
-    const auto below = [&](long long n) {  // uniform in [0, n], by rejection
+    const auto below = [&](long long n) {  // uniform in [0, n], by rejection; n < 2^63 - 1
       const std::uint64_t range = static_cast<std::uint64_t>(n) + 1;
       const std::uint64_t limit = UINT64_MAX - UINT64_MAX % range;
       std::uint64_t r;
@@ -277,14 +296,14 @@ Study read_study(const fs::path& file) {
       return static_cast<long long>(r % range);
     };
     std::set<long long> picked;
-    const long long n = static_cast<long long>(grid);
+    const long long n = grid;
     for (long long j = n - count; j < n; ++j) {
       const long long t = below(j);
       picked.insert(picked.count(t) ? j : t);
     }
     chosen.assign(picked.begin(), picked.end());
   }
-  study.grid_size = static_cast<long long>(grid);
+  study.grid_size = grid;
 
   if (const auto m = top.optional("measures")) {
     for (const Field& item : m->items()) {
@@ -334,8 +353,8 @@ Study read_study(const fs::path& file) {
         case AxisKind::kObjective:
           v.objective = value;
           break;
-        case AxisKind::kSeed:
-          v.seed = std::stoull(value);
+        case AxisKind::kSeed:  // a whole number (checked above) as written: 7, 7.0 or 7e0
+          v.seed = static_cast<std::uint64_t>(std::stod(value));
           break;
         case AxisKind::kMachineKey:
           v.machine_keys.emplace_back(axis.name.substr(8), std::stod(value));

@@ -53,9 +53,12 @@ struct Variant {
 struct Study {
   std::string file;  ///< as given
   std::string name;
+  int name_line = 0;  ///< the line of `name:` in the study file (for messages)
   std::vector<Axis> axes;
   std::vector<Variant> variants;
-  long long grid_size = 0;            ///< every combination of the axes' values
+  /// Every combination of the axes' values (the product of their sizes; read_study refuses
+  /// axes whose product passes 2^63 - 1).
+  long long grid_size = 0;
   std::vector<std::string> measures;  ///< the result columns chosen (default: all)
   double variant_timeout_s = 1800.0;  ///< a variant running longer fails
   double layer_time_limit_s = 60.0;   ///< per layer plan, as `schedule --layer-time-limit`

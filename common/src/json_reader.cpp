@@ -1,4 +1,4 @@
-#include "json_reader.hpp"
+#include "ccbuild/common/json_reader.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "ccbuild/common/input_error.hpp"
 
-namespace ccbuild::schedule::detail {
+namespace ccbuild {
 namespace {
 
 using json = nlohmann::json;
@@ -231,7 +231,8 @@ void JsonText::refuse(const std::string& pointer, const std::string& message) co
   throw InputError(file_, line_of(pointer), pointer, message);
 }
 
-void check_nesting(const std::string& text, const std::string& file, int max_depth) {
+void check_nesting(const std::string& text, const std::string& file, int max_depth,
+                   const std::string& what) {
   int depth = 0;
   bool in_string = false;
   for (std::size_t k = 0; k < text.size(); ++k) {
@@ -248,9 +249,9 @@ void check_nesting(const std::string& text, const std::string& file, int max_dep
     } else if (c == '{' || c == '[') {
       if (++depth > max_depth)
         throw InputError(file, line_at_byte(text, k), "",
-                         printf_string("arrays and objects nested more than %d deep; a schedule "
+                         printf_string("arrays and objects nested more than %d deep; %s "
                                        "nests at most %d",
-                                       max_depth, max_depth));
+                                       max_depth, what.c_str(), max_depth));
     } else if (c == '}' || c == ']') {
       --depth;
     }
@@ -397,4 +398,4 @@ bool JsonAt::boolean() const {
   return value_->get<bool>();
 }
 
-}  // namespace ccbuild::schedule::detail
+}  // namespace ccbuild
