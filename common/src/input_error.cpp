@@ -61,7 +61,13 @@ InputError::InputError(std::string file, int line, std::string field, std::strin
     : InputError(Diagnostic{std::move(file), line, std::move(field), std::move(message)}) {}
 
 void DiagnosticSink::throw_if_any() const {
-  if (!diagnostics_.empty()) throw InputError(diagnostics_);
+  if (diagnostics_.empty()) return;
+  if (more_ == 0) throw InputError(diagnostics_);
+  std::vector<Diagnostic> listed = diagnostics_;
+  listed.push_back({diagnostics_.front().file, 0, "",
+                    "and " + std::to_string(more_) + " more problems (the first " +
+                        std::to_string(diagnostics_.size()) + " are listed above)"});
+  throw InputError(std::move(listed));
 }
 
 namespace detail {

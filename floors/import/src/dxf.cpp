@@ -14,12 +14,14 @@
 #include <set>
 #include <sstream>
 #include <tuple>
+#include <unordered_map>
 
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
 #include "dxf_internal.hpp"
+#include "segment_index.hpp"
 
 namespace ccbuild::import {
 namespace {
@@ -59,7 +61,7 @@ class Collector : public DL_CreationAdapter {
   std::vector<DrawnLine> lines;                    ///< model space, every layer
   std::vector<DrawnInsert> inserts;
   std::map<std::string, std::pair<Vector2d, Vector2d>> block_extent;  ///< min, max
-  std::vector<std::string> skipped;  ///< curved segments (bulges), non-finite points
+  detail::NoteLog notes;  ///< curved segments (bulges) left out
   std::optional<int> insunits;
 
   void setVariableInt(const std::string& key, int value, int) override {
@@ -148,10 +150,11 @@ class Collector : public DL_CreationAdapter {
       return;
     }
     if (bulge != 0.0) {
-      skipped.push_back("entity " + hex_handle(handle) + " on layer " + layer +
-                        printf_string(": a curved segment from (%g, %g) to (%g, %g) is not "
-                                      "read (ccbuild prints straight walls)",
-                                      a.x(), a.y(), b.x(), b.y()));
+      notes.add("curved segments not read",
+                "entity " + hex_handle(handle) + " on layer " + layer +
+                    printf_string(": a curved segment from (%g, %g) to (%g, %g) is not "
+                                  "read (ccbuild prints straight walls)",
+                                  a.x(), a.y(), b.x(), b.y()));
       return;
     }
     lines.push_back({a, b, handle, layer});
@@ -184,8 +187,11 @@ constexpr std::size_t kDxflibMaxLine = 1024;
 /// 1010-1059) a finite number (dxflib reads "nan" or "1e999x" as 0 or garbage), and the
 /// drawing whole, up to its EOF (dxflib reads a cut-off file as far as it goes). Returns
 /// the text to give dxflib: up to the EOF, every value longer than dxflib reads (only
-/// text, which ccbuild does not use, is that long) cut short.
-std::string checked_dxf_text(const std::string& text, const std::string& file) {
+/// text, which ccbuild does not use, is that long) cut short. `handle_lines` gets the line of
+/// each entity's handle (group 5, upper-case hex as hex_handle writes it), the first one's
+/// when a handle repeats, so that errors about an entity say where it is.
+std::string checked_dxf_text(const std::string& text, const std::string& file,
+                             std::unordered_map<std::string, int>& handle_lines) {
   std::string out;
   out.reserve(text.size());
   std::istringstream in(text);
@@ -207,6 +213,16 @@ std::string checked_dxf_text(const std::string& text, const std::string& file) {
       throw InputError(file, line, "", "the drawing ends after a group code: truncated?");
     ++line;
     if (!value.empty() && value.back() == '\r') value.pop_back();
+    if (code == 5) {
+      std::string hex = value.substr(0, 16);
+      hex.erase(
+          std::remove_if(hex.begin(), hex.end(),
+                         [](char ch) { return std::isspace(static_cast<unsigned char>(ch)); }),
+          hex.end());
+      for (char& ch : hex) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      hex.erase(0, std::min(hex.find_first_not_of('0'), hex.size() - (hex.empty() ? 0 : 1)));
+      handle_lines.emplace(hex, line);
+    }
     const bool real = (code >= 10 && code <= 59) || (code >= 110 && code <= 149) ||
                       (code >= 210 && code <= 239) || (code >= 1010 && code <= 1059);
     if (real) {
@@ -237,6 +253,45 @@ std::string checked_dxf_text(const std::string& text, const std::string& file) {
     throw InputError(file, line, "",
                      "the drawing ends without its EOF marker (0 / EOF): truncated? Export it "
                      "again");
+  return out;
+}
+
+/// Face lines without the copies of one drawn again (its ends within 0.1 mm of the first's,
+/// either way round): each copy is said and left out. By the lines' ends snapped to a
+/// 0.1 mm grid, in n log n, however many copies there are.
+std::vector<DrawnLine> without_duplicates(std::vector<DrawnLine> lines, double scale,
+                                          detail::NoteLog& notes) {
+  std::map<std::pair<long long, long long>, std::vector<std::pair<Vector2d, std::size_t>>> cells;
+  std::size_t points = 0;
+  // The first point (of the ends seen so far) within 0.1 mm of p, else p as a new one.
+  const auto point = [&](const Vector2d& p) {
+    const long long gx = std::llround(p.x() * 1e4), gy = std::llround(p.y() * 1e4);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const auto it = cells.find({gx + dx, gy + dy});
+        if (it == cells.end()) continue;
+        for (const auto& [q, id] : it->second)
+          if ((q - p).norm() <= 1e-4) return id;
+      }
+    cells[{gx, gy}].emplace_back(p, points);
+    return points++;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> drawn;  // ends -> first line
+  std::vector<DrawnLine> out;
+  for (DrawnLine& l : lines) {
+    const std::size_t s = point(l.a * scale), e = point(l.b * scale);
+    const auto [it, fresh] = drawn.emplace(std::minmax(s, e), out.size());
+    if (fresh) {
+      out.push_back(std::move(l));
+      continue;
+    }
+    const DrawnLine& first = out[it->second];
+    notes.add("face lines drawn twice, read once",
+              "entity " + hex_handle(l.handle) + " on layer " + l.layer +
+                  printf_string(" from (%g, %g) to (%g, %g)", l.a.x(), l.a.y(), l.b.x(), l.b.y()) +
+                  " is drawn over entity " + hex_handle(first.handle) + " on layer " + first.layer +
+                  ", end to end: read once");
+  }
   return out;
 }
 
@@ -317,7 +372,12 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     throw InputError(file, 0, "", "a binary DXF: save the drawing as an ASCII DXF");
   if (text.find("SECTION") == std::string::npos)
     throw InputError(file, 0, "", "not a DXF drawing (no SECTION in it)");
-  const std::string drawing = checked_dxf_text(text, file);
+  std::unordered_map<std::string, int> handle_lines;
+  const std::string drawing = checked_dxf_text(text, file, handle_lines);
+  const auto line_of = [&](int handle) {
+    const auto it = handle_lines.find(hex_handle(handle));
+    return it == handle_lines.end() ? 0 : it->second;
+  };
   Collector c;
   {
     std::istringstream stream(drawing);
@@ -327,7 +387,7 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     c.finish();
   }
   DxfPlan out;
-  out.notes = c.skipped;
+  detail::NoteLog& notes = c.notes;
   // The unit.
   if (options.metres_per_unit) {
     out.metres_per_unit = *options.metres_per_unit;
@@ -384,8 +444,9 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                                        floors::limits::kCoordinate_m.describe("m").c_str()));
     }
     if ((l.b - l.a).norm() * scale <= floors::limits::kMinWallLength_m) {
-      out.notes.push_back("entity " + hex_handle(l.handle) + " on layer " + l.layer +
-                          ": a line of 1 mm or less; left out");
+      notes.add("lines of 1 mm or less left out", "entity " + hex_handle(l.handle) + " on layer " +
+                                                      l.layer +
+                                                      ": a line of 1 mm or less; left out");
       continue;
     }
     wall_lines.push_back(l);
@@ -396,7 +457,23 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                                    2 * floors::limits::kMaxWalls));
   std::vector<FoundWall> found;
   if (options.wall_lines == DxfOptions::WallLines::kFaces) {
-    found = pair_faces(wall_lines, scale, options.max_thickness_m, out.notes);
+    // A face drawn twice is one face: each of its copies would pair with every copy of the
+    // face opposite (a centreline drawn twice stays two walls, which validation refuses).
+    const std::vector<DrawnLine> faces = without_duplicates(wall_lines, scale, notes);
+    try {
+      found = pair_faces(faces, scale, options.max_thickness_m, notes);
+    } catch (const detail::CrowdedLines& crowd) {
+      // Where the face lines crowd beyond any plan: an input error naming a line there.
+      const DrawnLine& near = faces[crowd.line];
+      throw InputError(
+          file, line_of(near.handle), "entity " + hex_handle(near.handle),
+          printf_string("more than %zu pairs of face lines per line lie within %.4f m of each "
+                        "other, around this entity's line from (%g, %g) to (%g, %g) on layer "
+                        "%s: a floor plan's walls are drawn once each; is the linework drawn "
+                        "over and over (or hatched on a wall layer)?",
+                        detail::kMaxNearPairsPerLine, crowd.within_m, near.a.x(), near.a.y(),
+                        near.b.x(), near.b.y(), near.layer.c_str()));
+    }
     join_ends(found);
   } else {
     for (const DrawnLine& l : wall_lines)
@@ -410,9 +487,10 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
       kept.push_back(std::move(w));
       continue;
     }
-    out.notes.push_back(
-        w.source + printf_string(": a wall of %.4f m at (%.3f, %.3f) m, 1 mm or less; left out",
-                                 (w.b - w.a).norm(), w.a.x(), w.a.y()));
+    notes.add("walls of 1 mm or less left out",
+              w.source + printf_string(": a wall of %.4f m at (%.3f, %.3f) m, 1 mm or less; "
+                                       "left out",
+                                       (w.b - w.a).norm(), w.a.x(), w.a.y()));
   }
   found.swap(kept);
   if (options.gap_openings && !found.empty()) {
@@ -428,7 +506,7 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
         file, 0, "wall_layers",
         printf_string("no wall found on layer(s) %s among %zu line segments", asked.c_str(),
                       wall_lines.size()) +
-            (out.notes.empty() ? std::string() : " (" + out.notes.front() + ")") +
+            (notes.empty() ? std::string() : " (" + notes.first() + ")") +
             (options.wall_lines == DxfOptions::WallLines::kFaces
                  ? "; read as face lines: are they centrelines? (wall_lines: centrelines)"
                  : ""));
@@ -470,6 +548,16 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
   // Openings: each insert's block extent along its x axis, on the wall it lies on.
   // Vertex ids are 1..n in order (made above): a wall's ends without a search.
   const auto at = [&](std::int64_t id) { return plan.vertices[id - 1].position_m; };
+  // An opening lies on a wall when its middle is within half the wall's thickness and
+  // 0.3 m of it: the walls near the middle are the ones to look at.
+  double thickest_m = 0.0;
+  std::vector<detail::SegmentIndex::Segment> wall_segments;
+  for (const floors::Wall& w : plan.walls) {
+    thickest_m = std::max(thickest_m, w.thickness_m.value_or(0.0));
+    wall_segments.emplace_back(at(w.start_vertex), at(w.end_vertex));
+  }
+  const double on_wall_m = 0.5 * thickest_m + 0.3 + 1e-9;
+  const detail::SegmentIndex wall_index(wall_segments, on_wall_m);
   for (const DrawnInsert& in : c.inserts) {
     const bool door = doors_on.count(lower(in.layer)) > 0;
     if (!door && !windows_on.count(lower(in.layer))) continue;
@@ -477,7 +565,8 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
         "insert " + hex_handle(in.handle) + " of block " + in.block + " on layer " + in.layer;
     const auto extent = c.block_extent.find(in.block);
     if (extent == c.block_extent.end() || extent->second.second.x() <= extent->second.first.x()) {
-      out.notes.push_back(what + ": its block draws nothing to measure its width by; left out");
+      notes.add("inserts whose block draws nothing left out",
+                what + ": its block draws nothing to measure its width by; left out");
       continue;
     }
     const auto [lo, hi] = extent->second;
@@ -492,7 +581,8 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     const Vector2d centre = 0.5 * (p0 + p1);
     const floors::Wall* on = nullptr;
     double nearest = std::numeric_limits<double>::infinity();
-    for (const floors::Wall& w : plan.walls) {
+    for (const std::size_t k : wall_index.near_point(centre, on_wall_m)) {  // in wall order
+      const floors::Wall& w = plan.walls[k];
       const Vector2d a = at(w.start_vertex), b = at(w.end_vertex);
       const Vector2d d = (b - a).normalized();
       if (std::abs(cross(d, (p1 - p0).normalized())) > 0.1) continue;  // not along it
@@ -506,8 +596,9 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
       }
     }
     if (!on) {
-      out.notes.push_back(what + printf_string(": at (%.3f, %.3f) m, on no wall; left out",
-                                               centre.x(), centre.y()));
+      notes.add("inserts on no wall left out",
+                what + printf_string(": at (%.3f, %.3f) m, on no wall; left out", centre.x(),
+                                     centre.y()));
       continue;
     }
     const Vector2d a = at(on->start_vertex), b = at(on->end_vertex);
@@ -533,11 +624,18 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                         head ? ", attribute HEAD" : ", the floor's default"));
     o.source = {file, 0, what};
     if (o.width_m <= 1e-3) {
-      out.notes.push_back(what + ": crosses its wall rather than lying along it; left out");
+      notes.add("inserts across their wall left out",
+                what + ": crosses its wall rather than lying along it; left out");
       continue;
     }
+    if (plan.openings.size() >= floors::limits::kMaxOpenings)
+      throw InputError(file, line_of(in.handle), "entity " + hex_handle(in.handle),
+                       printf_string("%s: more than %zu openings; ccbuild takes at most that many "
+                                     "on a floor",
+                                     what.c_str(), floors::limits::kMaxOpenings));
     plan.openings.push_back(o);
   }
+  out.notes = notes.lines();
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ccbuild/floors/plane.hpp"
+#include "note_log.hpp"
 
 namespace ccbuild::import::detail {
 
@@ -40,19 +41,33 @@ struct FoundWall {
 
 using floors::cross;
 
+/// Wall lines crowd around `line` (an index into what was searched) beyond what any floor
+/// plan has: more than kMaxNearPairsPerLine pairs per line lie within `within_m` of each
+/// other. Thrown by the searches below; read_dxf_plan says where, as an input error.
+struct CrowdedLines {
+  std::size_t line;
+  double within_m;
+};
+/// Pairs of lines near one another that a search takes, on average per line (a plan has a
+/// few per line: a face's partner, the lines at its junctions).
+inline constexpr std::size_t kMaxNearPairsPerLine = 64;
+
 /// Face lines (in drawing units, `scale` metres each) facing each other at most
-/// `max_thickness_m` apart become walls along their middle; what pairs with nothing is
-/// said in `notes`.
+/// `max_thickness_m` apart, over at least half the shorter and no further apart at either
+/// end of the stretch they share, become walls along their middle; what pairs with nothing
+/// is said in `notes`. Throws CrowdedLines.
 std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double scale,
-                                  double max_thickness_m, std::vector<std::string>& notes);
+                                  double max_thickness_m, NoteLog& notes);
 
 /// Extends face-pair walls' ends to the middle line of the wall they meet.
 void join_ends(std::vector<FoundWall>& walls);
 
 /// Joins walls in line across gaps of at most `max_gap_m` into one wall with an opening
-/// in each gap (a window where a `glazing` line lies in it).
+/// in each gap (a window where a `glazing` line lies in it). Each free end is linked to at
+/// most kMaxGapPartners facing ends, its nearest.
 std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
                                  const std::vector<DrawnLine>& glazing, double scale,
                                  double max_gap_m);
+inline constexpr std::size_t kMaxGapPartners = 8;
 
 }  // namespace ccbuild::import::detail

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "ccbuild/common/format.hpp"
 #include "dxf_internal.hpp"
+#include "segment_index.hpp"
 
 namespace ccbuild::import::detail {
 
@@ -15,9 +17,37 @@ std::string hex_handle(int handle) {
   return handle < 0 ? std::string("(no handle)") : printf_string("%X", handle);
 }
 
+namespace {
+
+/// The stretches of a face line already paired (parameters from its start), by start:
+/// what share of a stretch is still free, in log time however many partners it has.
+class Taken {
+ public:
+  bool empty() const { return by_start_.empty(); }
+  void add(double from, double to) {
+    by_start_.emplace(from, to);
+    longest_ = std::max(longest_, to - from);
+  }
+  /// 1 minus the taken stretches' overlaps with [from, to], each counted, over its length.
+  double free_share(double from, double to) const {
+    double covered = 0.0;
+    // Only stretches starting after from - longest can reach past from.
+    for (auto it = by_start_.lower_bound(from - longest_); it != by_start_.end() && it->first < to;
+         ++it)
+      covered += std::max(0.0, std::min(to, it->second) - std::max(from, it->first));
+    return 1.0 - covered / std::max(to - from, 1e-12);
+  }
+
+ private:
+  std::multimap<double, double> by_start_;
+  double longest_ = 0.0;
+};
+
+}  // namespace
+
 /// Face lines that face each other become walls along their middle (see the header).
 std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double scale,
-                                  double max_thickness_m, std::vector<std::string>& notes) {
+                                  double max_thickness_m, NoteLog& notes) {
   struct Candidate {
     double distance_m;
     std::size_t i, j;
@@ -25,39 +55,48 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
   const std::size_t n = faces.size();
   std::vector<Vector2d> a(n), b(n), dir(n);
   std::vector<double> length(n);
+  std::vector<int> bucket(n);
+  std::vector<SegmentIndex::Segment> segments(n);
   for (std::size_t k = 0; k < n; ++k) {
     a[k] = faces[k].a * scale;
     b[k] = faces[k].b * scale;
     length[k] = (b[k] - a[k]).norm();
     dir[k] = (b[k] - a[k]) / length[k];
-  }
-  // Lines by direction (mod 180 degrees, in half-degree buckets), so that only nearly
-  // parallel lines are compared.
-  std::map<int, std::vector<std::size_t>> by_angle;
-  const auto bucket = [&](std::size_t k) {
+    // Direction mod 180 degrees in half-degree buckets: only nearly parallel lines (this
+    // bucket or the next) are compared.
     double angle = std::atan2(dir[k].y(), dir[k].x()) * 180.0 / M_PI;
     if (angle < 0) angle += 180.0;
-    return static_cast<int>(std::floor(angle * 2.0)) % 360;
-  };
-  for (std::size_t k = 0; k < n; ++k) by_angle[bucket(k)].push_back(k);
+    bucket[k] = static_cast<int>(std::floor(angle * 2.0)) % 360;
+    segments[k] = {a[k], b[k]};
+  }
+  // Faces that pair run side by side over at least half the shorter, at most the maximum
+  // thickness apart where they do: the shorter's middle lies that close to the longer. So
+  // only lines that near each other are compared.
+  const double near_m = max_thickness_m + 1e-6;
+  const SegmentIndex index(segments, near_m);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> near;
+  if (const auto crowd = index.near_pairs(near_m, kMaxNearPairsPerLine * n + 65536, near))
+    throw CrowdedLines{*crowd, near_m};
   std::vector<Candidate> candidates;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int own = bucket(i);
-    for (int db : {-1, 0, 1}) {
-      const auto it = by_angle.find((own + db + 360) % 360);
-      if (it == by_angle.end()) continue;
-      for (std::size_t j : it->second) {
-        if (j <= i || std::abs(cross(dir[i], dir[j])) > 0.01) continue;
-        const double d = std::abs(cross(dir[i], a[j] - a[i]));
-        if (d < 0.01 || d > max_thickness_m + 1e-9) continue;
-        // They must run side by side for at least half the shorter one.
-        const double s0 = dir[i].dot(a[j] - a[i]), s1 = dir[i].dot(b[j] - a[i]);
-        const double overlap =
-            std::min(length[i], std::max(s0, s1)) - std::max(0.0, std::min(s0, s1));
-        if (overlap < 0.5 * std::min(length[i], length[j])) continue;
-        candidates.push_back({d, i, j});
-      }
-    }
+  for (const auto& [i, j] : near) {  // i < j
+    const int apart = std::abs(bucket[i] - bucket[j]);
+    if (apart > 1 && apart < 359) continue;
+    if (std::abs(cross(dir[i], dir[j])) > 0.01) continue;
+    const double d = std::abs(cross(dir[i], a[j] - a[i]));
+    if (d < 0.01 || d > max_thickness_m + 1e-9) continue;
+    // They must run side by side for at least half the shorter one.
+    const double s0 = dir[i].dot(a[j] - a[i]), s1 = dir[i].dot(b[j] - a[i]);
+    const double from = std::max(0.0, std::min(s0, s1)), to = std::min(length[i], std::max(s0, s1));
+    const double overlap = to - from;
+    if (overlap < 0.5 * std::min(length[i], length[j])) continue;
+    // And no further apart than the maximum at either end of that stretch (lines that are
+    // not quite parallel drift apart).
+    const double along = dir[i].dot(dir[j]), drift = cross(dir[i], dir[j]);
+    const double apart_at_a = cross(dir[i], a[j] - a[i]);
+    if (std::abs(apart_at_a + (from - s0) / along * drift) > max_thickness_m + 1e-9 ||
+        std::abs(apart_at_a + (to - s0) / along * drift) > max_thickness_m + 1e-9)
+      continue;
+    candidates.push_back({d, i, j});
   }
   // Nearest faces first; distances equal to the micrometre (the same drawing in another
   // unit) in drawing order, so that the plan does not depend on rounding.
@@ -65,16 +104,9 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
     const long long dx = std::llround(x.distance_m * 1e6), dy = std::llround(y.distance_m * 1e6);
     return std::tie(dx, x.i, x.j) < std::tie(dy, y.i, y.j);
   });
-  // Accepted stretches along each line (parameters from its start), so that a line is
-  // paired where it has no partner yet: a long outer face with two inner faces of a wall
-  // that another wall meets in a T.
-  std::vector<std::vector<std::pair<double, double>>> taken(n);
-  const auto free_share = [&](std::size_t k, double from, double to) {
-    double covered = 0.0;
-    for (const auto& [s, e] : taken[k])
-      covered += std::max(0.0, std::min(to, e) - std::max(from, s));
-    return 1.0 - covered / std::max(to - from, 1e-12);
-  };
+  // Accepted stretches along each line, so that a line is paired where it has no partner
+  // yet: a long outer face with two inner faces of a wall that another wall meets in a T.
+  std::vector<Taken> taken(n);
   std::vector<FoundWall> walls;
   for (const Candidate& c : candidates) {
     const std::size_t i = c.i, j = c.j;
@@ -82,10 +114,11 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
     const double from = std::max(0.0, std::min(s0, s1)), to = std::min(length[i], std::max(s0, s1));
     const double t0 = dir[j].dot(a[i] + from * dir[i] - a[j]),
                  t1 = dir[j].dot(a[i] + to * dir[i] - a[j]);
-    if (free_share(i, from, to) < 0.5 || free_share(j, std::min(t0, t1), std::max(t0, t1)) < 0.5)
+    if (taken[i].free_share(from, to) < 0.5 ||
+        taken[j].free_share(std::min(t0, t1), std::max(t0, t1)) < 0.5)
       continue;
-    taken[i].emplace_back(from, to);
-    taken[j].emplace_back(std::min(t0, t1), std::max(t0, t1));
+    taken[i].add(from, to);
+    taken[j].add(std::min(t0, t1), std::max(t0, t1));
     const Vector2d normal = Vector2d(-dir[i].y(), dir[i].x());
     const double side = normal.dot(a[j] - a[i]) > 0 ? 1.0 : -1.0;
     const Vector2d half = normal * side * 0.5 * c.distance_m;
@@ -98,11 +131,12 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
   }
   for (std::size_t k = 0; k < n; ++k)
     if (taken[k].empty())
-      notes.push_back(printf_string(
-          "entity %s on layer %s: a face line from (%g, %g) to (%g, %g) with no parallel face "
-          "within %g m to make a wall with; left out",
-          hex_handle(faces[k].handle).c_str(), faces[k].layer.c_str(), faces[k].a.x(),
-          faces[k].a.y(), faces[k].b.x(), faces[k].b.y(), max_thickness_m));
+      notes.add(
+          "face lines with no parallel face to make a wall with; left out",
+          printf_string("entity %s on layer %s: a face line from (%g, %g) to (%g, %g) with "
+                        "no parallel face within %g m to make a wall with; left out",
+                        hex_handle(faces[k].handle).c_str(), faces[k].layer.c_str(), faces[k].a.x(),
+                        faces[k].a.y(), faces[k].b.x(), faces[k].b.y(), max_thickness_m));
   return walls;
 }
 
@@ -111,6 +145,16 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
 /// wall's middle line it reaches within the larger of the two thicknesses.
 void join_ends(std::vector<FoundWall>& walls) {
   const std::vector<FoundWall> before = walls;
+  double thickest_m = 0.0;
+  std::vector<SegmentIndex::Segment> segments;
+  for (const FoundWall& w : before) {
+    thickest_m = std::max(thickest_m, w.thickness_m.value_or(0.0));
+    segments.emplace_back(w.a, w.b);
+  }
+  // The wall an end reaches lies within twice the larger thickness of it: the hit at most
+  // that far along the end's direction, on the other's line at most that far past its ends.
+  const double near_m = 2.0 * (thickest_m + 1e-6) + 1e-9;
+  const SegmentIndex index(segments, near_m);
   for (std::size_t w = 0; w < walls.size(); ++w) {
     if (!before[w].thickness_m) continue;
     const Vector2d d = (before[w].b - before[w].a).normalized();
@@ -118,7 +162,7 @@ void join_ends(std::vector<FoundWall>& walls) {
       const Vector2d p = end == 0 ? before[w].a : before[w].b;
       const Vector2d out = end == 0 ? Vector2d(-d) : d;
       double best = std::numeric_limits<double>::infinity();
-      for (std::size_t v = 0; v < before.size(); ++v) {
+      for (const std::size_t v : index.near_point(p, near_m)) {
         if (v == w || !before[v].thickness_m) continue;
         const Vector2d e = before[v].b - before[v].a;
         const double denom = cross(out, e);
@@ -145,8 +189,15 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
                                  const std::vector<DrawnLine>& glazing, double scale,
                                  double max_gap_m) {
   const std::size_t n = walls.size();
+  double thickest_m = 0.0;
+  std::vector<SegmentIndex::Segment> segments;
+  for (const FoundWall& w : walls) {
+    thickest_m = std::max(thickest_m, w.thickness_m.value_or(0.0));
+    segments.emplace_back(w.a, w.b);
+  }
+  const SegmentIndex wall_index(segments, 1e-4);
   const auto touches_other = [&](const Vector2d& p, std::size_t self) {
-    for (std::size_t v = 0; v < n; ++v) {
+    for (const std::size_t v : wall_index.near_point(p, 1e-4)) {
       if (v == self) continue;
       const Vector2d e = walls[v].b - walls[v].a;
       const double t = std::clamp((p - walls[v].a).dot(e) / e.squaredNorm(), 0.0, 1.0);
@@ -154,42 +205,76 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
     }
     return false;
   };
+  // Free ends (2w + end), and where they are: the ends a free end may face.
+  std::vector<char> free_end(2 * n, 0);
+  std::vector<SegmentIndex::Segment> ends(2 * n);
+  for (std::size_t w = 0; w < n; ++w)
+    for (int end = 0; end < 2; ++end) {
+      const Vector2d p = end == 0 ? walls[w].a : walls[w].b;
+      free_end[2 * w + end] = touches_other(p, w) ? 0 : 1;
+      ends[2 * w + end] = {p, p};
+    }
+  // Facing ends lie along a free end's direction, at most the widest gap and 1 mm across
+  // away: within half a gap and a millimetre of the middle of that stretch.
+  const double half_m = 0.5 * max_gap_m + 2e-3;
+  const SegmentIndex end_index(ends, half_m);
   // partner[2w + end] = 2v + end' of the nearest facing free end.
   std::vector<long> partner(2 * n, -1);
-  std::vector<std::pair<double, std::pair<std::size_t, std::size_t>>> links;
+  std::vector<std::pair<double, std::pair<std::size_t, std::size_t>>> links, own;
   for (std::size_t w = 0; w < n; ++w) {
     const Vector2d dw = (walls[w].b - walls[w].a).normalized();
     for (int end = 0; end < 2; ++end) {
+      if (!free_end[2 * w + end]) continue;
       const Vector2d p = end == 0 ? walls[w].a : walls[w].b;
       const Vector2d out = end == 0 ? Vector2d(-dw) : dw;
-      if (touches_other(p, w)) continue;
-      for (std::size_t v = w + 1; v < n; ++v) {
+      own.clear();
+      for (const std::size_t e : end_index.near_point(p + 0.5 * max_gap_m * out, half_m)) {
+        const std::size_t v = e / 2;
+        const int other = static_cast<int>(e % 2);
+        // Each pair from the wall that comes first; the other finds it from there.
+        if (v <= w || !free_end[e]) continue;
         if (walls[v].thickness_m.has_value() != walls[w].thickness_m.has_value() ||
             (walls[v].thickness_m &&
              std::abs(*walls[v].thickness_m - *walls[w].thickness_m) > 1e-3))
           continue;
         const Vector2d dv = (walls[v].b - walls[v].a).normalized();
         if (std::abs(cross(dw, dv)) > 1e-6) continue;
-        for (int other = 0; other < 2; ++other) {
-          const Vector2d q = other == 0 ? walls[v].a : walls[v].b;
-          const double gap = (q - p).dot(out);
-          if (gap <= 1e-3 || gap > max_gap_m || std::abs(cross(out, q - p)) > 1e-3) continue;
-          // q must be v's end facing back towards p, and free.
-          const Vector2d v_out = other == 0 ? Vector2d(-dv) : dv;
-          if (v_out.dot(out) > -0.5 || touches_other(q, v)) continue;
-          links.push_back({gap, {2 * w + end, 2 * v + other}});
-        }
+        const Vector2d q = other == 0 ? walls[v].a : walls[v].b;
+        const double gap = (q - p).dot(out);
+        if (gap <= 1e-3 || gap > max_gap_m || std::abs(cross(out, q - p)) > 1e-3) continue;
+        // q must be v's end facing back towards p.
+        const Vector2d v_out = other == 0 ? Vector2d(-dv) : dv;
+        if (v_out.dot(out) > -0.5) continue;
+        own.push_back({gap, {2 * w + end, e}});
       }
+      // Only the nearest few: a free end joins its nearest partner (a farther one only when
+      // a nearer one joined another end first).
+      if (own.size() > kMaxGapPartners) {
+        std::partial_sort(own.begin(), own.begin() + kMaxGapPartners, own.end());
+        own.resize(kMaxGapPartners);
+      }
+      links.insert(links.end(), own.begin(), own.end());
     }
   }
   std::sort(links.begin(), links.end());
-  for (const auto& [gap, ends] : links)
-    if (partner[ends.first] < 0 && partner[ends.second] < 0) {
-      partner[ends.first] = static_cast<long>(ends.second);
-      partner[ends.second] = static_cast<long>(ends.first);
+  for (const auto& [gap, pair] : links)
+    if (partner[pair.first] < 0 && partner[pair.second] < 0) {
+      partner[pair.first] = static_cast<long>(pair.second);
+      partner[pair.second] = static_cast<long>(pair.first);
     }
+  // Glazing lines by their middles, in metres: a gap's window is the first in drawing order
+  // whose middle lies in it.
+  std::vector<SegmentIndex::Segment> middles;
+  for (const DrawnLine& l : glazing) {
+    const Vector2d mid = 0.5 * (l.a + l.b) * scale;
+    middles.emplace_back(mid, mid);
+  }
+  const double glazing_reach_m = 0.5 * (max_gap_m + 2e-3) + 0.5 * thickest_m + 0.3 + 1e-6;
+  const SegmentIndex glazing_index(middles, glazing_reach_m);
   std::vector<FoundWall> out;
   std::vector<char> used(n, 0);
+  std::vector<std::size_t> seen(n, 0);  // the chain walk that saw each wall last
+  std::size_t walk = 0;
   for (std::size_t w = 0; w < n; ++w) {
     if (used[w]) continue;
     // The chain's start: walk from w out through its start end until an end has no
@@ -197,14 +282,14 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
     std::size_t first = w;
     int first_end = 0;
     {
-      std::vector<char> seen(n, 0);
-      seen[first] = 1;
+      ++walk;
+      seen[first] = walk;
       for (;;) {
         const long next = partner[2 * first + first_end];
-        if (next < 0 || seen[next / 2]) break;
+        if (next < 0 || seen[next / 2] == walk) break;
         first = static_cast<std::size_t>(next / 2);
         first_end = 1 - static_cast<int>(next % 2);
-        seen[first] = 1;
+        seen[first] = walk;
       }
     }
     // From `first`, its chain-free end `first_end` is where the merged wall starts.
@@ -228,13 +313,15 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
       g.width_m = floors::round_to_nanometre((q - p).norm());
       g.source = "the gap between " + walls[at].source + " and " + walls[v].source;
       const Vector2d d = (q - p) / g.width_m;
-      for (const DrawnLine& l : glazing) {
-        const Vector2d mid = 0.5 * (l.a + l.b) * scale;
+      const double within_m = 0.5 * merged.thickness_m.value_or(0.0) + 0.3;
+      for (const std::size_t k :
+           glazing_index.near_point(0.5 * (p + q), 0.5 * g.width_m + within_m + 1e-6)) {
+        const Vector2d mid = middles[k].first;
         const double s = (mid - p).dot(d);
         const double across = std::abs(cross(d, mid - p));
-        if (s > 0.0 && s < g.width_m && across <= 0.5 * merged.thickness_m.value_or(0.0) + 0.3) {
+        if (s > 0.0 && s < g.width_m && across <= within_m) {
           g.window = true;
-          g.source += " (glazing: entity " + hex_handle(l.handle) + ")";
+          g.source += " (glazing: entity " + hex_handle(glazing[k].handle) + ")";
           break;
         }
       }

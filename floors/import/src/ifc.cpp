@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
@@ -16,6 +17,8 @@
 #include "ccbuild/floors/limits.hpp"
 #include "ccbuild/floors/plane.hpp"
 #include "ifc_internal.hpp"
+#include "line_overlaps.hpp"
+#include "segment_index.hpp"
 
 namespace ccbuild::import {
 namespace {
@@ -26,6 +29,10 @@ using ifc::FoundStorey;
 using ifc::FoundWall;
 
 using floors::cross;
+
+/// Pairs of walls near one another (within a few join tolerances) that a floor may have,
+/// on average per wall: a plan has a few per wall (at its junctions).
+constexpr std::size_t kMaxNearPairsPerPiece = 64;
 
 /// Lengths rounded to the nanometre (floors::round_to_nanometre).
 double clean(double value_m) {
@@ -59,18 +66,31 @@ struct Piece {
 /// to the nearest other wall's axis it reaches within the larger of the two thicknesses.
 void join_ends(std::vector<Piece>& pieces, double tolerance_m) {
   const std::vector<Piece> before = pieces;
+  double thickest_m = 0.0;
+  std::vector<import::detail::SegmentIndex::Segment> segments;
+  for (const Piece& p : before) {
+    thickest_m = std::max(thickest_m, p.wall->thickness_m);
+    segments.emplace_back(p.a, p.b);
+  }
+  // The axis an end reaches lies within twice the larger thickness (and the tolerance) of
+  // it: the hit at most that far along the end's direction, on the other axis at most that
+  // far past its ends.
+  const double near_m = 2.0 * (thickest_m + tolerance_m) + 1e-9;
+  const import::detail::SegmentIndex index(segments, near_m);
   for (std::size_t w = 0; w < pieces.size(); ++w) {
     const Vector2d d = (before[w].b - before[w].a).normalized();
     for (int end = 0; end < 2; ++end) {
       const Vector2d p = end == 0 ? before[w].a : before[w].b;
       bool shared = false;
-      for (std::size_t v = 0; v < before.size() && !shared; ++v)
+      for (const std::size_t v : index.near_point(p, tolerance_m)) {
         shared = v != w && ((before[v].a - p).norm() <= tolerance_m ||
                             (before[v].b - p).norm() <= tolerance_m);
+        if (shared) break;
+      }
       if (shared) continue;
       const Vector2d out = end == 0 ? Vector2d(-d) : d;
       double best = std::numeric_limits<double>::infinity();
-      for (std::size_t v = 0; v < before.size(); ++v) {
+      for (const std::size_t v : index.near_point(p, near_m)) {  // ascending, as all of them
         if (v == w) continue;
         const Vector2d e = before[v].b - before[v].a;
         const double denom = cross(out, e);
@@ -91,47 +111,35 @@ void join_ends(std::vector<Piece>& pieces, double tolerance_m) {
 
 /// Two pieces on one line sharing a stretch would be printed twice: the later keeps only
 /// what the earlier does not cover (or, when the earlier lies inside it, the earlier goes).
-void remove_overlaps(std::vector<Piece>& pieces, double tolerance_m,
-                     std::vector<std::string>& notes, const std::string& floor) {
-  for (std::size_t i = 0; i < pieces.size(); ++i)
-    for (std::size_t j = i + 1; j < pieces.size(); ++j) {
-      Piece& p = pieces[i];
-      Piece& q = pieces[j];
-      if (!p.alive || !q.alive) continue;
-      const double length = (p.b - p.a).norm();
-      const Vector2d d = (p.b - p.a) / length, n(-d.y(), d.x());
-      if (std::abs(n.dot(q.a - p.a)) > tolerance_m || std::abs(n.dot(q.b - p.a)) > tolerance_m)
-        continue;
-      double q0 = d.dot(q.a - p.a), q1 = d.dot(q.b - p.a);
-      const bool reversed = q0 > q1;
-      if (reversed) std::swap(q0, q1);
-      const double overlap = std::min(length, q1) - std::max(0.0, q0);
-      if (overlap <= tolerance_m) continue;
-      const std::string said = "floor '" + floor + "': " + q.wall->what.describe() + " and " +
-                               p.wall->what.describe() +
-                               printf_string(" overlap along %.3f m on one line", overlap);
-      if (q0 < -tolerance_m && q1 > length + tolerance_m) {  // p inside q
-        p.alive = false;
-        notes.push_back(said + "; the first is printed as part of the second");
-        continue;
-      }
-      if (q0 >= -tolerance_m && q1 <= length + tolerance_m) {  // q inside p
-        q.alive = false;
-        notes.push_back(said + "; the first is printed as part of the second");
-        continue;
-      }
-      // Partial: q keeps what lies beyond p.
-      const double from = q0 < 0.0 ? q0 : length, to = q0 < 0.0 ? 0.0 : q1;
-      const Vector2d k0 = p.a + from * d, k1 = p.a + to * d;
-      q.a = reversed ? k1 : k0;
-      q.b = reversed ? k0 : k1;
-      if (to - from <= floors::limits::kMinWallLength_m) q.alive = false;
-      notes.push_back(said + "; the second is cut back to where the first ends");
-    }
+/// Throws InputError when the floor's walls crowd beyond any plan.
+void remove_overlaps(std::vector<Piece>& pieces, double tolerance_m, ifc::Notes& notes,
+                     const std::string& floor, const std::string& file) {
+  std::vector<import::detail::LinePiece> lines;
+  for (const Piece& p : pieces) lines.push_back({p.a, p.b, p.alive});
+  const auto crowd = import::detail::remove_overlaps(
+      lines, tolerance_m, kMaxNearPairsPerPiece * lines.size() + 65536,
+      [&](std::size_t i, std::size_t j, double overlap_m, import::detail::Overlap what) {
+        notes.add(
+            "walls overlapping on one line",
+            "floor '" + floor + "': " +
+                import::detail::overlap_note(pieces[j].wall->what.describe(),
+                                             pieces[i].wall->what.describe(), overlap_m, what));
+      });
+  if (crowd)
+    throw InputError(file, 0, pieces[*crowd].wall->what.describe(),
+                     printf_string("floor '%s': more than %zu pairs of walls per wall lie within "
+                                   "%.4f m of each other around this one: a floor's walls are "
+                                   "modelled once each",
+                                   floor.c_str(), kMaxNearPairsPerPiece, 4.0 * tolerance_m));
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    pieces[k].a = lines[k].a;
+    pieces[k].b = lines[k].b;
+    pieces[k].alive = lines[k].alive;
+  }
 }
 
 floors::FloorPlan make_plan(const Level& level, const std::string& file, const IfcOptions& options,
-                            std::vector<std::string>& notes, int& openings_left_out) {
+                            ifc::Notes& notes, int& openings_left_out) {
   std::vector<Piece> pieces;
   for (const FoundWall* w : level.walls)
     for (const auto& [a, b] : w->pieces) pieces.push_back({a, b, w, true});
@@ -139,10 +147,11 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
   for (Piece& p : pieces)
     if ((p.b - p.a).norm() <= floors::limits::kMinWallLength_m) {
       p.alive = false;
-      notes.push_back("floor '" + level.name + "': " + p.wall->what.describe() +
-                      ": 1 mm or less of it is left where it meets other walls; left out");
+      notes.add("walls of which 1 mm or less is left where they meet others left out",
+                "floor '" + level.name + "': " + p.wall->what.describe() +
+                    ": 1 mm or less of it is left where it meets other walls; left out");
     }
-  remove_overlaps(pieces, options.join_tolerance_m, notes, level.name);
+  remove_overlaps(pieces, options.join_tolerance_m, notes, level.name, file);
 
   floors::FloorPlan plan;
   plan.source_file = file;
@@ -167,6 +176,7 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
     const Piece* piece;
   };
   std::vector<Made> made;
+  std::map<const FoundWall*, std::vector<std::size_t>> made_of;  // a wall's pieces in `made`
   for (const Piece& p : pieces) {
     if (!p.alive) continue;
     const std::int64_t s = vertex(p.a), e = vertex(p.b);
@@ -179,8 +189,13 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
     wall.global_id = p.wall->what.guid;
     wall.source = {file, 0, p.wall->what.describe()};
     plan.walls.push_back(wall);
+    made_of[p.wall].push_back(made.size());
     made.push_back({wall.id, &p});
   }
+  // Openings accepted, by wall and offset, to find one another's clashes in log time; the
+  // widest on each wall bounds how far back a clash can start.
+  std::map<std::int64_t, std::multimap<double, std::size_t>> accepted;
+  std::map<std::int64_t, double> widest_m;
   // Openings: on the piece of their wall they lie on, within the floor's height.
   const auto at = [&](std::int64_t id) { return plan.vertices[id - 1].position_m; };
   for (const FoundWall* w : level.walls)
@@ -197,8 +212,10 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
           o.what.describe() + (o.filled_by.empty() ? "" : ", filled by " + o.filled_by);
       const floors::Wall* on = nullptr;
       double s0 = 0.0, s1 = 0.0, nearest = std::numeric_limits<double>::infinity();
-      for (const Made& m : made) {
-        if (m.piece->wall != w) continue;
+      static const std::vector<std::size_t> kNone;
+      const auto own = made_of.find(w);
+      for (const std::size_t k : own == made_of.end() ? kNone : own->second) {
+        const Made& m = made[k];
         const floors::Wall& wall = plan.walls[m.id - 1];
         const Vector2d a = at(wall.start_vertex), b = at(wall.end_vertex);
         const double length = (b - a).norm();
@@ -217,14 +234,15 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
         s1 = std::clamp(hi, 0.0, length);
       }
       if (!on) {
-        notes.push_back("floor '" + level.name + "': " + what + ": not on what is left of " +
-                        w->what.describe() + "; left out");
+        notes.add("openings not on what is left of their wall left out",
+                  "floor '" + level.name + "': " + what + ": not on what is left of " +
+                      w->what.describe() + "; left out");
         ++openings_left_out;
         continue;
       }
       if (s1 - s0 <= 1e-3) {
-        notes.push_back("floor '" + level.name + "': " + what +
-                        ": no width along its wall; left out");
+        notes.add("openings with no width along their wall left out",
+                  "floor '" + level.name + "': " + what + ": no width along its wall; left out");
         ++openings_left_out;
         continue;
       }
@@ -237,22 +255,30 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
       opening.head_m = clean(head);
       opening.global_id = o.what.guid;
       opening.source = {file, 0, what};
-      // Two openings sharing a stretch and a height band: the later is left out.
-      bool clash = false;
-      for (const auto& other : plan.openings)
-        if (other.wall_id == opening.wall_id &&
-            std::min(other.offset_m + other.width_m, opening.offset_m + opening.width_m) -
+      // Two openings sharing a stretch and a height band: the later is left out (said with
+      // the first it clashes with).
+      std::multimap<double, std::size_t>& on_wall = accepted[opening.wall_id];
+      double& widest = widest_m[opening.wall_id];
+      std::optional<std::size_t> clash;
+      for (auto it = on_wall.lower_bound(opening.offset_m - widest - 1e-6);
+           it != on_wall.end() && it->first < opening.offset_m + opening.width_m; ++it) {
+        const floors::Opening& other = plan.openings[it->second];
+        if (std::min(other.offset_m + other.width_m, opening.offset_m + opening.width_m) -
                     std::max(other.offset_m, opening.offset_m) >
                 1e-6 &&
-            std::min(other.head_m, opening.head_m) - std::max(other.sill_m, opening.sill_m) >
-                1e-6) {
-          notes.push_back("floor '" + level.name + "': " + what + ": overlaps " +
-                          other.source.path + "; left out");
-          ++openings_left_out;
-          clash = true;
-          break;
-        }
-      if (!clash) plan.openings.push_back(opening);
+            std::min(other.head_m, opening.head_m) - std::max(other.sill_m, opening.sill_m) > 1e-6)
+          clash = std::min(clash.value_or(it->second), it->second);
+      }
+      if (clash) {
+        notes.add("openings overlapping another left out",
+                  "floor '" + level.name + "': " + what + ": overlaps " +
+                      plan.openings[*clash].source.path + "; left out");
+        ++openings_left_out;
+        continue;
+      }
+      on_wall.emplace(opening.offset_m, plan.openings.size());
+      widest = std::max(widest, opening.width_m);
+      plan.openings.push_back(opening);
     }
   return plan;
 }
@@ -282,7 +308,7 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
   out.schema = ifc::check_step_text(text, file, options.max_entities).schema;
   ifc::ModelContents model = ifc::read_model(std::move(text), file, options);
   out.metres_per_unit = model.metres_per_unit;
-  out.notes = model.notes;
+  ifc::Notes notes = std::move(model.notes);
   int left_out = model.left_out;
 
   // Levels: storeys by elevation, those at one elevation together.
@@ -297,15 +323,26 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
       levels.push_back({});
       levels.back().elevation_m = s->elevation_m;
     } else {
-      out.notes.push_back(s->what.describe() + printf_string(" stands at the elevation of ") +
-                          levels.back().storeys.front()->what.describe() +
-                          printf_string(" (%.3f m): one floor", s->elevation_m));
+      notes.add("storeys at one elevation made one floor",
+                s->what.describe() + printf_string(" stands at the elevation of ") +
+                    levels.back().storeys.front()->what.describe() +
+                    printf_string(" (%.3f m): one floor", s->elevation_m));
     }
     Level& l = levels.back();
     l.storeys.push_back(s);
     const std::string name = s->what.name.empty() ? s->what.guid : s->what.name;
     l.name += (l.name.empty() ? "" : " + ") + name;
   }
+  // Every wall is matched against every level below (walls spanning storeys): the levels
+  // are as many as the floors a building may have.
+  if (levels.size() > static_cast<std::size_t>(floors::limits::kMaxFloors))
+    throw InputError(file, 0,
+                     levels[static_cast<std::size_t>(floors::limits::kMaxFloors)]
+                         .storeys.front()
+                         ->what.describe(),
+                     printf_string("the model has storeys at %zu elevations; ccbuild takes "
+                                   "buildings of at most %d floors",
+                                   levels.size(), floors::limits::kMaxFloors));
   // Heights to the next level; the top one's from its walls.
   const auto wall_top = [&](const Level& l) {
     double top = -std::numeric_limits<double>::infinity();
@@ -329,8 +366,9 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
                                    std::max(*w.bottom_m, l.elevation_m);
             on = overlap >= 0.5 * l.height_m;
             if (on)
-              out.notes.push_back(w.what.describe() + " of storey '" + levels[k].name +
-                                  "' also stands on storey '" + l.name + "' (it spans both)");
+              notes.add("walls spanning storeys", w.what.describe() + " of storey '" +
+                                                      levels[k].name + "' also stands on storey '" +
+                                                      l.name + "' (it spans both)");
           }
           if (on) l.walls.push_back(&w);
         }
@@ -338,10 +376,10 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
   std::vector<Level> kept;
   for (std::size_t k = 0; k < levels.size(); ++k) {
     if (levels[k].walls.empty()) {
-      out.notes.push_back(
-          printf_string("storey '%s' at %.3f m has no walls ccbuild prints; no "
-                        "floor is made of it",
-                        levels[k].name.c_str(), levels[k].elevation_m));
+      notes.add("storeys without walls",
+                printf_string("storey '%s' at %.3f m has no walls ccbuild prints; no "
+                              "floor is made of it",
+                              levels[k].name.c_str(), levels[k].elevation_m));
       continue;
     }
     kept.push_back(levels[k]);
@@ -371,10 +409,11 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
       continue;
     }
     if (next > k + 1)
-      out.notes.push_back(printf_string(
-          "storey '%s' runs up to storey '%s' at %.3f m (%.3f m), "
-          "across storeys without walls",
-          l.name.c_str(), levels[next].name.c_str(), levels[next].elevation_m, l.height_m));
+      notes.add("storeys running across storeys without walls",
+                printf_string("storey '%s' runs up to storey '%s' at %.3f m (%.3f m), "
+                              "across storeys without walls",
+                              l.name.c_str(), levels[next].name.c_str(), levels[next].elevation_m,
+                              l.height_m));
   }
   // Slabs: a floor's walls stop under the slab placed on them. The storey's elevation is
   // the top of its floor's slab (as Revit and ArchiCAD export it), so the slab over a floor
@@ -391,36 +430,41 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
       if (!over || slab.bottom_m < over->bottom_m - 1e-9) over = &slab;
     }
     if (!over) {
-      if (!l.top_note.empty()) out.notes.push_back(l.top_note);
+      if (!l.top_note.empty()) notes.add("the top floor's height", l.top_note);
       if (l.to_storey && !model.slabs.empty())
-        out.notes.push_back(printf_string(
-            "floor '%s': no slab found under the storey above (FLOOR, BASESLAB or ROOF, its "
-            "underside between %.3f and %.3f m); its walls run to the storey above, %.3f m",
-            l.name.c_str(), l.elevation_m + 0.5 * h, l.elevation_m + h, h));
+        notes.add(
+            "floors without a slab over them",
+            printf_string(
+                "floor '%s': no slab found under the storey above (FLOOR, BASESLAB or ROOF, its "
+                "underside between %.3f and %.3f m); its walls run to the storey above, %.3f m",
+                l.name.c_str(), l.elevation_m + 0.5 * h, l.elevation_m + h, h));
       continue;
     }
     l.height_m = std::min(h, over->bottom_m - l.elevation_m);
     if (!l.to_storey) l.height_m = over->bottom_m - l.elevation_m;
     l.slab_m = std::max(
         0.0, l.to_storey ? l.elevation_m + h - over->bottom_m : over->top_m - over->bottom_m);
-    out.notes.push_back(printf_string(
-        "floor '%s': %.3f m high, from its level (%.3f m) to the underside of %s (%s slab, "
-        "%.3f m thick, in storey '%s') at %.3f m; %s",
-        l.name.c_str(), l.height_m, l.elevation_m, over->what.describe().c_str(),
-        over->kind.c_str(), over->thickness_m, over->storey.c_str(), over->bottom_m,
-        !l.to_storey ? printf_string("%.3f m of slab over it (the roof)", l.slab_m).c_str()
-        : l.slab_m > 1e-6
-            ? printf_string("%.3f m of slab up to the next floor's level", l.slab_m).c_str()
-            : "the storey above stands at its underside"));
+    notes.add(
+        "floors under their slab",
+        printf_string(
+            "floor '%s': %.3f m high, from its level (%.3f m) to the underside of %s (%s slab, "
+            "%.3f m thick, in storey '%s') at %.3f m; %s",
+            l.name.c_str(), l.height_m, l.elevation_m, over->what.describe().c_str(),
+            over->kind.c_str(), over->thickness_m, over->storey.c_str(), over->bottom_m,
+            !l.to_storey ? printf_string("%.3f m of slab over it (the roof)", l.slab_m).c_str()
+            : l.slab_m > 1e-6
+                ? printf_string("%.3f m of slab up to the next floor's level", l.slab_m).c_str()
+                : "the storey above stands at its underside"));
   }
   if (model.slabs.empty())
-    out.notes.push_back(
+    notes.add(
+        "the model's slabs",
         "the model has no slab (IfcSlab FLOOR, BASESLAB or ROOF) in its storeys: each floor's "
         "walls run up to the storey above (the top one's: its tallest wall)");
   if (kept.empty()) {
     std::string why;
     int shown = 0;
-    for (const auto& note : out.notes)
+    for (const auto& note : notes.lines())
       if (note.find("left out") != std::string::npos && ++shown <= 3) why += "; " + note;
     throw InputError(file, 0, "",
                      printf_string("no wall ccbuild can print in any of the model's %zu storeys",
@@ -435,10 +479,10 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
   b.units = floors::LengthUnit::kMeter;
   b.layer_height_m = options.layer_height_m;
   if (std::abs(kept.front().elevation_m) > 1e-6)
-    out.notes.push_back(
-        printf_string("the lowest floor, '%s', stands at %.3f m in the model; the "
-                      "building's heights are counted from it",
-                      kept.front().name.c_str(), kept.front().elevation_m));
+    notes.add("the lowest floor's level",
+              printf_string("the lowest floor, '%s', stands at %.3f m in the model; the "
+                            "building's heights are counted from it",
+                            kept.front().name.c_str(), kept.front().elevation_m));
   DiagnosticSink sink;
   double base_m = 0.0;
   int walls = 0, openings = 0;
@@ -454,14 +498,16 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
     for (const FoundWall* w : l.walls)
       if (w->top_m && *w->top_m - l.elevation_m < 0.75 * l.height_m && w->bottom_m &&
           *w->bottom_m >= l.elevation_m - 1e-3)
-        out.notes.push_back(printf_string(
-            "floor '%s': %s is %.3f m high; it is printed to the "
-            "floor's height, %.3f m",
-            l.name.c_str(), w->what.describe().c_str(), *w->top_m - *w->bottom_m, l.height_m));
+        notes.add("walls lower than their floor",
+                  printf_string("floor '%s': %s is %.3f m high; it is printed to the "
+                                "floor's height, %.3f m",
+                                l.name.c_str(), w->what.describe().c_str(),
+                                *w->top_m - *w->bottom_m, l.height_m));
       else if (w->clipped)
-        out.notes.push_back("floor '" + l.name + "': " + w->what.describe() +
-                            ": its body is cut (under a roof, say); it is printed to the "
-                            "floor's full height");
+        notes.add("walls whose body is cut",
+                  "floor '" + l.name + "': " + w->what.describe() +
+                      ": its body is cut (under a roof, say); it is printed to the "
+                      "floor's full height");
     floors::Floor floor;
     floor.name = l.name;
     floor.index = static_cast<int>(k);
@@ -469,7 +515,13 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
     floor.slab_m = clean(l.slab_m);
     floor.base_elevation_m = base_m;
     floor.source = {file, 0, first.what.describe()};
-    floor.plan = make_plan(l, file, options, out.notes, left_out);
+    std::size_t pieces = 0;
+    for (const FoundWall* w : l.walls) pieces += w->pieces.size();
+    if (pieces > floors::limits::kMaxWalls)
+      throw InputError(file, 0, first.what.describe(),
+                       printf_string("%zu walls on one floor; ccbuild takes at most %zu", pieces,
+                                     floors::limits::kMaxWalls));
+    floor.plan = make_plan(l, file, options, notes, left_out);
     base_m += floor.height_m + floor.slab_m;
     if (floor.plan.walls.size() > floors::limits::kMaxWalls)
       throw InputError(file, 0, first.what.describe(),
@@ -492,11 +544,14 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
                      printf_string("%.0f layers of %.3f m make this building; ccbuild plans at "
                                    "most %ld",
                                    layers, b.layer_height_m, floors::limits::kMaxLayers));
-  out.notes.push_back(printf_string(
-      "imported %d walls and %d openings on %zu floor%s (%s, 1 unit = %g m); left out: %d "
-      "element%s (each said above)",
-      walls, openings, b.floors.size(), b.floors.size() == 1 ? "" : "s", out.schema.c_str(),
-      out.metres_per_unit, left_out, left_out == 1 ? "" : "s"));
+  notes.add(
+      "the summary",
+      printf_string(
+          "imported %d walls and %d openings on %zu floor%s (%s, 1 unit = %g m); left out: %d "
+          "element%s (each said above)",
+          walls, openings, b.floors.size(), b.floors.size() == 1 ? "" : "s", out.schema.c_str(),
+          out.metres_per_unit, left_out, left_out == 1 ? "" : "s"));
+  out.notes = notes.lines();
   b.import_notes = out.notes;
   return out;
 }

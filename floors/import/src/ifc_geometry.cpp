@@ -190,8 +190,8 @@ void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_worl
     if (auto o = as<IfcOpeningElement>(opening)) {
       if (o->m_PredefinedType &&
           o->m_PredefinedType->m_enum == IfcOpeningElementTypeEnum::ENUM_RECESS) {
-        out.notes.push_back(found.what.describe() + " in " + into.what.describe() +
-                            ": a recess, not through the wall; left out");
+        out.notes.add("recesses left out", found.what.describe() + " in " + into.what.describe() +
+                                               ": a recess, not through the wall; left out");
         ++out.left_out;
         continue;
       }
@@ -224,14 +224,16 @@ void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_worl
         }
     } catch (const Unusable& u) {
       found.corners_m.clear();
-      out.notes.push_back(found.what.describe() + " in " + into.what.describe() + ": " + u.why +
-                          "; left out");
+      out.notes.add(
+          "openings that cannot be read left out",
+          found.what.describe() + " in " + into.what.describe() + ": " + u.why + "; left out");
       ++out.left_out;
       continue;
     }
     if (found.corners_m.empty()) {
-      out.notes.push_back(found.what.describe() + " in " + into.what.describe() +
-                          ": no extruded body to measure it by; left out");
+      out.notes.add("openings without an extruded body left out",
+                    found.what.describe() + " in " + into.what.describe() +
+                        ": no extruded body to measure it by; left out");
       ++out.left_out;
       continue;
     }
@@ -245,8 +247,10 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
   found.what = element_of(*wall);
   const std::string who =
       found.what.describe() + (parent.guid.empty() ? "" : " (part of " + parent.describe() + ")");
-  const auto skip = [&](const std::string& why) {
-    out.notes.push_back(who + ": " + why + "; left out");
+  // Each reason a kind of its own (a reason with a number in it: `kind` says which).
+  const auto skip = [&](const std::string& why, const std::string& kind = std::string()) {
+    out.notes.add("walls left out: " + (kind.empty() ? why : kind),
+                  who + ": " + why + "; left out");
     ++out.left_out;
   };
   // A wall made of parts (IfcRelAggregates) without geometry of its own: its parts.
@@ -351,6 +355,11 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           corners.push_back(b);
       }
       corners.push_back(axis.back());
+      if (corners.size() - 1 > ifc_limits::kMaxPiecesPerWall)
+        throw InputError(file_, 0, found.what.describe(),
+                         printf_string("its axis turns into %zu straight pieces; ccbuild reads "
+                                       "walls of at most %zu",
+                                       corners.size() - 1, ifc_limits::kMaxPiecesPerWall));
       bool said = false;
       for (std::size_t k = 0; k + 1 < corners.size(); ++k) {
         const Vector2d a = corners[k], b = corners[k + 1];
@@ -364,10 +373,12 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
         const auto kept =
             static_cast<std::size_t>(std::count(along_it.begin(), along_it.end(), false));
         if (kept < bodies.size() && !std::exchange(said, true))
-          out.notes.push_back(printf_string(
-              "%s: %zu of its body's %zu solids extruded sideways along it (a sweep or a "
-              "cornice?) are not printed",
-              who.c_str(), bodies.size() - kept, bodies.size()));
+          out.notes.add(
+              "solids extruded sideways along walls not printed",
+              printf_string(
+                  "%s: %zu of its body's %zu solids extruded sideways along it (a sweep or a "
+                  "cornice?) are not printed",
+                  who.c_str(), bodies.size() - kept, bodies.size()));
         double thickness = 0.0, offset = 0.0;
         if (layers) {
           std::tie(thickness, offset) = *layers;
@@ -414,10 +425,10 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
         const double y = left.dot(p - o), x = d.dot(p - o);
         const int face = std::abs(y - lo) <= tol ? 0 : std::abs(y - hi) <= tol ? 1 : -1;
         if (face < 0)
-          return skip(
-              printf_string("its body's footprint (%zu corners, no axis) is not one "
-                            "straight wall",
-                            footprint.size()));
+          return skip(printf_string("its body's footprint (%zu corners, no axis) is not one "
+                                    "straight wall",
+                                    footprint.size()),
+                      "its body's footprint is not one straight wall");
         a_min[face] = std::min(a_min[face], x);
         a_max[face] = std::max(a_max[face], x);
       }
@@ -431,9 +442,10 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
       return skip("no usable geometry: neither an axis nor an extruded body ccbuild reads");
     }
     if (!floors::limits::kWallThickness_m.contains(found.thickness_m))
-      return skip(printf_string("its thickness %.4f m is not one ccbuild takes (%s)",
-                                found.thickness_m,
-                                floors::limits::kWallThickness_m.describe("m").c_str()));
+      return skip(
+          printf_string("its thickness %.4f m is not one ccbuild takes (%s)", found.thickness_m,
+                        floors::limits::kWallThickness_m.describe("m").c_str()),
+          "a thickness ccbuild does not take");
     for (const auto& [a, b] : local) {
       const Vector3d wa = place * Vector3d(a.x(), a.y(), 0.0),
                      wb = place * Vector3d(b.x(), b.y(), 0.0);
@@ -477,7 +489,8 @@ void Reader::read_slab(const std::shared_ptr<IfcSlab>& slab, bool in_roof, doubl
   if (in_roof && found.kind.empty()) found.kind = "ROOF";
   found.roof = in_roof || found.kind == "ROOF";
   const auto skip = [&](const std::string& why) {
-    out.notes.push_back(found.what.describe() + ": " + why + "; not used for the floors' heights");
+    out.notes.add("slabs not used: " + why,
+                  found.what.describe() + ": " + why + "; not used for the floors' heights");
   };
   if (found.kind.empty())
     return skip("a slab neither FLOOR, BASESLAB nor ROOF (a landing, say) and not part of a roof");

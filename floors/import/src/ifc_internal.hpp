@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "ccbuild/import/ifc.hpp"
+#include "note_log.hpp"
 
 namespace ccbuild::import::ifc {
+
+using Notes = import::detail::NoteLog;
 
 /// What the STEP text says about itself.
 struct StepSummary {
@@ -18,10 +21,11 @@ struct StepSummary {
   std::size_t entities = 0;
 };
 
-/// Checks the text of an IFC STEP file before IFC++ reads it: the ISO-10303-21 header, a
-/// schema IFC++ reads (IFC4, IFC2X3), a DATA section closed by ENDSEC and the file by
-/// END-ISO-10303-21 (else truncated), at most `max_entities` entities, every number finite.
-/// Throws InputError naming `file` and the line.
+/// Checks the text of an IFC STEP file before IFC++ reads it, the whole file as IFC++ reads
+/// it (ifc_step.cpp): the ISO-10303-21 header, a schema IFC++ reads (IFC4, IFC2X3), one DATA
+/// section of entities only, closed by ENDSEC, then only END-ISO-10303-21 (else truncated),
+/// at most `max_entities` entities, every number finite. Throws InputError naming `file`
+/// and the line.
 StepSummary check_step_text(const std::string& text, const std::string& file,
                             std::size_t max_entities);
 
@@ -73,9 +77,9 @@ struct ModelContents {
   double metres_per_unit = 1.0;
   std::string building_name;
   std::vector<FoundStorey> storeys;
-  std::vector<FoundSlab> slabs;    ///< in file order
-  std::vector<std::string> notes;  ///< elements left out or ignored, in file order
-  int left_out = 0;                ///< elements left out (walls, curtain walls, openings)
+  std::vector<FoundSlab> slabs;  ///< in file order
+  Notes notes;                   ///< elements left out or ignored, in file order
+  int left_out = 0;              ///< elements left out (walls, curtain walls, openings)
 };
 
 /// Reads the checked STEP text with IFC++ and collects storeys, walls and openings.

@@ -85,25 +85,81 @@
 namespace ccbuild::import::ifc {
 namespace detail {
 
+namespace {
+
+void append_utf8(std::string& out, std::uint32_t c) {
+  if (c < 0x80) {
+    out += static_cast<char>(c);
+  } else if (c < 0x800) {
+    out += static_cast<char>(0xC0 | (c >> 6));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  } else if (c < 0x10000) {
+    out += static_cast<char>(0xE0 | (c >> 12));
+    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  } else {
+    out += static_cast<char>(0xF0 | (c >> 18));
+    out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
+    out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
+    out += static_cast<char>(0x80 | (c & 0x3F));
+  }
+}
+
+/// The length of the UTF-8 sequence at `at` (shortest forms, no surrogates), 0 if none.
+std::size_t utf8_sequence(const std::string& s, std::size_t at) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char b = byte(at);
+  const std::size_t n = b < 0x80           ? 1
+                        : (b >> 5) == 0x6  ? 2
+                        : (b >> 4) == 0xE  ? 3
+                        : (b >> 3) == 0x1E ? 4
+                                           : 0;
+  if (n == 0 || at + n > s.size()) return 0;
+  std::uint32_t c = n == 1 ? b : n == 2 ? (b & 0x1F) : n == 3 ? (b & 0x0F) : (b & 0x07);
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((byte(at + k) & 0xC0) != 0x80) return 0;
+    c = (c << 6) | (byte(at + k) & 0x3F);
+  }
+  static const std::uint32_t kMin[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (c < kMin[n] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF)) return 0;
+  return n;
+}
+
+}  // namespace
+
 std::string utf8(const std::wstring& w) {
   std::string out;
-  for (wchar_t wc : w) {
-    const auto c = static_cast<std::uint32_t>(wc);
-    if (c < 0x80) {
-      out += static_cast<char>(c);
-    } else if (c < 0x800) {
-      out += static_cast<char>(0xC0 | (c >> 6));
-      out += static_cast<char>(0x80 | (c & 0x3F));
-    } else if (c < 0x10000) {
-      out += static_cast<char>(0xE0 | (c >> 12));
-      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (c & 0x3F));
-    } else {
-      out += static_cast<char>(0xF0 | (c >> 18));
-      out += static_cast<char>(0x80 | ((c >> 12) & 0x3F));
-      out += static_cast<char>(0x80 | ((c >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (c & 0x3F));
+  for (std::size_t k = 0; k < w.size();) {
+    auto c = static_cast<std::uint32_t>(w[k]);
+    // Bytes of 0x80 and more written as they are (not as STEP's \X2\ escapes) reach here as
+    // negative characters: UTF-8 where they are, else each a Latin-1 character.
+    if (c >= 0xFFFFFF80u) {
+      std::string raw;
+      for (; k < w.size() && static_cast<std::uint32_t>(w[k]) >= 0xFFFFFF80u; ++k)
+        raw += static_cast<char>(static_cast<std::uint32_t>(w[k]) & 0xFF);
+      for (std::size_t r = 0; r < raw.size();) {
+        const std::size_t n = utf8_sequence(raw, r);
+        if (n > 0) {
+          out.append(raw, r, n);
+          r += n;
+        } else {
+          append_utf8(out, static_cast<unsigned char>(raw[r]));
+          ++r;
+        }
+      }
+      continue;
     }
+    ++k;
+    // IFC++ decodes \X2\ text 16 bits at a time: a surrogate pair is one character, and a
+    // lone surrogate (or a number past Unicode) is none: U+FFFD, so that names stay UTF-8.
+    if (c >= 0xD800 && c <= 0xDBFF && k < w.size() && static_cast<std::uint32_t>(w[k]) >= 0xDC00 &&
+        static_cast<std::uint32_t>(w[k]) <= 0xDFFF) {
+      c = 0x10000 + ((c - 0xD800) << 10) + (static_cast<std::uint32_t>(w[k]) - 0xDC00);
+      ++k;
+    } else if ((c >= 0xD800 && c <= 0xDFFF) || c > 0x10FFFF) {
+      c = 0xFFFD;
+    }
+    append_utf8(out, c);
   }
   return out;
 }
@@ -113,12 +169,21 @@ std::string lower(std::string s) {
   return s;
 }
 
+std::string step_string(const std::wstring& w) {
+  // IFC++ keeps STEP's doubled quote ('') inside strings as two quotes: one is meant.
+  std::string text = utf8(w);
+  for (std::size_t at = text.find("''"); at != std::string::npos; at = text.find("''", at + 1))
+    text.erase(at, 1);
+  return text;
+}
+
 std::string label(const std::shared_ptr<IfcLabel>& l) {
-  return l ? utf8(l->m_value) : std::string();
+  return l ? step_string(l->m_value) : std::string();
 }
 
 Element element_of(const IfcRoot& e) {
-  return {e.className(), e.m_GlobalId ? utf8(e.m_GlobalId->m_value) : std::string("(no GlobalId)"),
+  return {e.className(),
+          e.m_GlobalId ? step_string(e.m_GlobalId->m_value) : std::string("(no GlobalId)"),
           label(e.m_Name)};
 }
 
@@ -215,9 +280,9 @@ void Reader::read_units(const std::shared_ptr<IfcProject>& project, ModelContent
       }
     }
   if (!found)
-    out.notes.push_back(
-        "the project names no length unit (IfcUnitAssignment); lengths are "
-        "taken as metres");
+    out.notes.add("the project's length unit",
+                  "the project names no length unit (IfcUnitAssignment); lengths are "
+                  "taken as metres");
   out.metres_per_unit = unit_;
 }
 
@@ -236,18 +301,22 @@ void Reader::report_georeferencing(const std::shared_ptr<BuildingModel>& model,
       const double angle_deg = std::atan2(-north.x(), north.y()) * 180.0 / M_PI;
       if (std::abs(angle_deg) < 1e-6 || !norths.insert(std::llround(angle_deg * 1e3)).second)
         continue;
-      out.notes.push_back(printf_string(
-          "the model's true north (IfcGeometricRepresentationContext #%d) is turned %.2f "
-          "degrees from its y axis; ignored: the plan keeps the model's axes",
-          id, angle_deg));
+      out.notes.add(
+          "true norths ignored",
+          printf_string(
+              "the model's true north (IfcGeometricRepresentationContext #%d) is turned %.2f "
+              "degrees from its y axis; ignored: the plan keeps the model's axes",
+              id, angle_deg));
     } else if (auto map = as<IfcMapConversion>(entity)) {
       const auto v = [](const std::shared_ptr<IfcLengthMeasure>& m) {
         return m ? m->m_value : 0.0;
       };
-      out.notes.push_back(printf_string(
-          "the model's map conversion (IfcMapConversion #%d: eastings %g, northings %g, "
-          "height %g) is ignored: the plan keeps the model's own coordinates",
-          id, v(map->m_Eastings), v(map->m_Northings), v(map->m_OrthogonalHeight)));
+      out.notes.add(
+          "map conversions ignored",
+          printf_string(
+              "the model's map conversion (IfcMapConversion #%d: eastings %g, northings %g, "
+              "height %g) is ignored: the plan keeps the model's own coordinates",
+              id, v(map->m_Eastings), v(map->m_Northings), v(map->m_OrthogonalHeight)));
     }
   }
 }
@@ -320,10 +389,10 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
     if (auto b = as<::IfcBuilding>(entity)) buildings.push_back(label(b->m_Name));
   if (!buildings.empty()) out.building_name = buildings.front();
   if (buildings.size() > 1)
-    out.notes.push_back(
-        printf_string("the model holds %zu buildings (IfcBuilding); their "
-                      "storeys are read together, by elevation",
-                      buildings.size()));
+    out.notes.add("buildings read together",
+                  printf_string("the model holds %zu buildings (IfcBuilding); their "
+                                "storeys are read together, by elevation",
+                                buildings.size()));
   if (out.building_name.empty()) out.building_name = label(project->m_Name);
   // Storeys and what they contain.
   std::set<std::string> wall_types;
@@ -341,7 +410,8 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
                      ? world(storey->m_ObjectPlacement, s.what).translation().z()
                      : 0.0;
     } catch (const Unusable& u) {
-      out.notes.push_back(s.what.describe() + ": " + u.why + "; its elements left out");
+      out.notes.add("storeys whose placement cannot be read, their elements left out",
+                    s.what.describe() + ": " + u.why + "; its elements left out");
       ++out.left_out;
       continue;
     }
@@ -358,15 +428,16 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
         if (auto wall = as<IfcWall>(product)) {
           const Element e = element_of(*wall);
           if (!wall_types.count(lower(type))) {
-            out.notes.push_back(e.describe() + ": an " + type +
-                                " is not among the wall types read (" +
-                                [&] {
-                                  std::string list;
-                                  for (const auto& t : options_.wall_types)
-                                    list += (list.empty() ? "" : ", ") + t;
-                                  return list;
-                                }() +
-                                "); left out");
+            out.notes.add(
+                "walls of a type not read left out", e.describe() + ": an " + type +
+                                                         " is not among the wall types read (" +
+                                                         [&] {
+                                                           std::string list;
+                                                           for (const auto& t : options_.wall_types)
+                                                             list += (list.empty() ? "" : ", ") + t;
+                                                           return list;
+                                                         }() +
+                                                         "); left out");
             ++out.left_out;
             continue;
           }
@@ -383,8 +454,9 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
             printable = printable || !excluded;
           }
           if (!printable) {
-            out.notes.push_back(e.describe() + ": its material '" + excluded_by +
-                                " is not printable; left out");
+            out.notes.add(
+                "walls of a material not printable left out",
+                e.describe() + ": its material '" + excluded_by + " is not printable; left out");
             ++out.left_out;
             continue;
           }
@@ -402,12 +474,13 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
                   read_slab(roof_slab, true, z_shift_m, s.what.name, out);
                 }
           if (!parts)
-            out.notes.push_back(element_of(*roof).describe() +
-                                ": a roof made of no slab (IfcRelAggregates); not used for "
-                                "the floors' heights");
+            out.notes.add("roofs made of no slab",
+                          element_of(*roof).describe() +
+                              ": a roof made of no slab (IfcRelAggregates); not used for "
+                              "the floors' heights");
         } else if (as<IfcCurtainWall>(product)) {
-          out.notes.push_back(element_of(*product).describe() +
-                              ": a curtain wall, not printable; left out");
+          out.notes.add("curtain walls left out", element_of(*product).describe() +
+                                                      ": a curtain wall, not printable; left out");
           ++out.left_out;
         }
       }
@@ -465,8 +538,10 @@ ModelContents read_model(std::string text, const std::string& file, const IfcOpt
   std::size_t said = 0;
   for (const auto& [error, message] : messages)
     if (++said <= 10)
-      out.notes.push_back(std::string(error ? "IFC++ error: " : "IFC++ warning: ") + message);
-  if (said > 10) out.notes.push_back(printf_string("IFC++: and %zu more messages", said - 10));
+      out.notes.add("IFC++'s messages",
+                    std::string(error ? "IFC++ error: " : "IFC++ warning: ") + message);
+  if (said > 10)
+    out.notes.add("IFC++'s messages", printf_string("IFC++: and %zu more messages", said - 10));
   // IFC++ models hold references in both directions; let them go.
   model->unsetInverseAttributes();
   model->clearIfcModel();

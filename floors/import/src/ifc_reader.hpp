@@ -42,6 +42,8 @@ std::shared_ptr<T> as(const std::shared_ptr<U>& p) {
 }
 
 std::string utf8(const std::wstring& w);
+/// A STEP string's text as IFC++ read it, in UTF-8, its doubled quotes made one.
+std::string step_string(const std::wstring& w);
 std::string lower(std::string s);
 std::string label(const std::shared_ptr<IfcLabel>& l);
 Element element_of(const IfcRoot& e);

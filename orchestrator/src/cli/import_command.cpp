@@ -2,6 +2,7 @@
 // a building a user can review and edit: the building file, and its plans in ccbuild's own
 // YAML beside it.
 
+#include <cstdint>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -46,20 +47,91 @@ std::string exact(double value) {
   return printf_string("%.17g", value);
 }
 
-/// YAML's double-quoted scalar.
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+/// The one escape for all the text import writes into YAML (names, GlobalIds, file names,
+/// notes; values and comments alike): the inside of a double-quoted scalar, on one line.
+/// Quotes and backslashes are escaped, and every character YAML does not print as itself
+/// (control characters, line breaks including NEL, LS and PS, the byte order mark,
+/// non-characters); bytes that are not UTF-8 become U+FFFD, and `exact` (when given) is
+/// set false, since YAML text cannot hold them.
+std::string yaml_escaped(const std::string& text, bool* exact = nullptr) {
+  std::string out;
+  out.reserve(text.size() + 8);
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  for (std::size_t k = 0; k < text.size();) {
+    // One UTF-8 character (shortest form, no surrogates), or a byte that is none.
+    const unsigned char b = byte(k);
+    std::size_t n = b < 0x80           ? 1
+                    : (b >> 5) == 0x6  ? 2
+                    : (b >> 4) == 0xE  ? 3
+                    : (b >> 3) == 0x1E ? 4
+                                       : 0;
+    std::uint32_t c = n == 1 ? b : n == 2 ? (b & 0x1Fu) : n == 3 ? (b & 0x0Fu) : (b & 0x07u);
+    if (n == 0 || k + n > text.size()) n = 0;
+    for (std::size_t j = 1; j < n; ++j) {
+      if ((byte(k + j) & 0xC0) != 0x80) {
+        n = 0;
+        break;
+      }
+      c = (c << 6) | (byte(k + j) & 0x3Fu);
+    }
+    static const std::uint32_t kShortest[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (n > 0 && (c < kShortest[n] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF))) n = 0;
+    if (n == 0) {
+      out += "\\uFFFD";
+      if (exact) *exact = false;
+      ++k;
+      continue;
+    }
+    // YAML's printable characters, less the quote, the backslash and the line breaks.
+    const bool printable = (c >= 0x20 && c <= 0x7E && c != '"' && c != '\\') ||
+                           (c >= 0xA0 && c <= 0xD7FF && c != 0x2028 && c != 0x2029) ||
+                           (c >= 0xE000 && c <= 0xFFFD && c != 0xFEFF) || c >= 0x10000;
+    if (printable) {
+      out.append(text, k, n);
+    } else if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c < 0x100) {
+      out += printf_string("\\x%02X", static_cast<unsigned>(c));
+    } else {
+      out += printf_string("\\u%04X", static_cast<unsigned>(c));
+    }
+    k += n;
   }
-  return out + "\"";
+  return out;
+}
+
+/// YAML's double-quoted scalar of `text` (yaml_escaped).
+std::string quoted(const std::string& text) {
+  return "\"" + yaml_escaped(text) + "\"";
+}
+
+/// A YAML comment's text: one line whatever `text` holds (yaml_escaped, without quotes).
+std::string comment(const std::string& text) {
+  return yaml_escaped(text);
+}
+
+/// A path a building file names (its plans, its profiles): YAML text holds only UTF-8, so a
+/// path that is not cannot be named. Throws InputError on `flag`.
+void check_nameable(const std::string& path, const char* flag) {
+  bool exact = true;
+  yaml_escaped(path, &exact);
+  if (!exact)
+    throw InputError("", 0, flag,
+                     "'" + comment(path) +
+                         "' is not UTF-8 text: a YAML building file cannot name it; rename it");
 }
 
 std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
                       const std::string& what = "the drawing's entity") {
-  std::string out = "# Imported by `ccbuild import` from " + drawing +
-                    " (every wall and opening names\n# " + what +
+  std::string out = "# Imported by `ccbuild import` from " + comment(drawing) +
+                    " (every wall and opening names\n# " + comment(what) +
                     " it came from).\nunits: m\nvertices:\n";
   for (const auto& v : plan.vertices)
     out += printf_string("  - {id: %lld, x: %s, y: %s}\n", static_cast<long long>(v.id),
@@ -71,7 +143,7 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
                       static_cast<long long>(w.start_vertex), static_cast<long long>(w.end_vertex));
     if (w.thickness_m) out += ", thickness: " + exact(*w.thickness_m);
     if (!w.global_id.empty()) out += ", guid: " + quoted(w.global_id);
-    out += "}  # " + w.source.path + "\n";
+    out += "}  # " + comment(w.source.path) + "\n";
   }
   if (!plan.openings.empty()) out += "openings:\n";
   for (const auto& o : plan.openings)
@@ -81,7 +153,7 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
         quoted(o.id).c_str(), static_cast<long long>(o.wall_id), exact(o.offset_m).c_str(),
         exact(o.width_m).c_str(), exact(o.sill_m).c_str(), exact(o.head_m).c_str(),
         o.global_id.empty() ? "" : (", guid: " + quoted(o.global_id)).c_str(),
-        o.source.path.c_str());
+        comment(o.source.path).c_str());
   return out;
 }
 
@@ -131,10 +203,11 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
   for (const auto& p : plan_paths)
     outputs.claim_derived("--output (its plans)", p, out, o.force, mark);
 
-  std::string building = "# Imported by `ccbuild import` from " + o.drawing + " (" + read.schema +
+  std::string building = "# Imported by `ccbuild import` from " + comment(o.drawing) + " (" +
+                         comment(read.schema) +
                          "): review it, then `ccbuild validate` it.\n# What the import left out "
                          "or ignored:\n";
-  for (const auto& note : read.notes) building += "#   " + note + "\n";
+  for (const auto& note : read.notes) building += "#   " + comment(note) + "\n";
   building += "name: " + quoted(b.name) + "\nunits: m\nlayer_height: " + exact(b.layer_height_m) +
               "\nmaterial: " + quoted(relative_to(material, folder)) +
               "\nmachine: " + quoted(relative_to(machine, folder)) + "\nfloors:\n";
@@ -144,7 +217,7 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
         exact(b.floors[k].height_m).c_str(),
         b.floors[k].slab_m > 0.0 ? (", slab: " + exact(b.floors[k].slab_m)).c_str() : "",
         quoted(plan_paths[plan_of[k]].filename().string()).c_str(),
-        b.floors[k].source.path.c_str());
+        comment(b.floors[k].source.path).c_str());
   for (std::size_t d = 0; d < distinct.size(); ++d)
     outputs.write(plan_paths[d], mark + "\n" +
                                      plan_yaml(b.floors[distinct[d]].plan, o.drawing,
@@ -152,7 +225,7 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
   outputs.write(out, building);
   outputs.commit();
 
-  for (const auto& note : read.notes) std::cerr << "import: note: " << note << "\n";
+  for (const auto& note : read.notes) std::cerr << "import: note: " << comment(note) << "\n";
   std::size_t walls = 0, openings = 0;
   for (const auto& f : b.floors) {
     walls += f.plan.walls.size();
@@ -177,6 +250,10 @@ void run_import(const ImportOptions& o, int& exit_code) {
   const fs::path material = o.material.empty()
                                 ? fs::path(CCBUILD_CONFIG_DIR) / "materials/standard-mix.yaml"
                                 : fs::path(o.material);
+  // The building names its plans (beside it) and profiles: each must be YAML text.
+  check_nameable(out.filename().string(), "--output");
+  check_nameable(relative_to(machine, folder), "--machine");
+  check_nameable(relative_to(material, folder), "--material");
   if (import::is_ifc_path(o.drawing)) {
     for (const auto& [given, flag] :
          {std::pair{!o.wall_layers.empty(), "--wall-layers"},
@@ -213,7 +290,7 @@ void run_import(const ImportOptions& o, int& exit_code) {
   const import::DxfPlan read = import::read_dxf_plan(o.drawing, d);
   floors::validate_plan(read.plan, o.floor_height_m, "the imported plan");
 
-  std::string building = "# Imported by `ccbuild import` from " + o.drawing +
+  std::string building = "# Imported by `ccbuild import` from " + comment(o.drawing) +
                          ": review it, then `ccbuild validate` it.\n";
   building += "name: " + quoted(out.stem().string()) +
               "\nunits: m\nlayer_height: " + exact(o.layer_height_m) +
@@ -228,7 +305,7 @@ void run_import(const ImportOptions& o, int& exit_code) {
   outputs.write(out, building);
   outputs.commit();
 
-  for (const auto& note : read.notes) std::cerr << "import: note: " << note << "\n";
+  for (const auto& note : read.notes) std::cerr << "import: note: " << comment(note) << "\n";
   int thick = 0;
   for (const auto& w : read.plan.walls) thick += w.thickness_m.has_value();
   std::cout << printf_string(

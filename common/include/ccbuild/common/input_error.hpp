@@ -4,9 +4,12 @@
 // print it and exit with code 2. Programmer errors use CCBUILD_CHECK instead, which
 // throws InternalError (the CLI prints it and exits with code 3).
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "ccbuild/common/limits.hpp"
 
 namespace ccbuild {
 
@@ -38,16 +41,23 @@ class InputError : public std::runtime_error {
   std::vector<Diagnostic> diagnostics_;
 };
 
-/// Collects diagnostics during a validation pass, then throws them together.
+/// Collects diagnostics during a validation pass, then throws them together: the first
+/// limits::kMaxListed, and one more saying how many others there were.
 class DiagnosticSink {
  public:
-  void add(Diagnostic diagnostic) { diagnostics_.push_back(std::move(diagnostic)); }
+  void add(Diagnostic diagnostic) {
+    if (diagnostics_.size() < limits::kMaxListed)
+      diagnostics_.push_back(std::move(diagnostic));
+    else
+      ++more_;
+  }
   bool empty() const { return diagnostics_.empty(); }
   /// Throws InputError with everything collected; does nothing when empty.
   void throw_if_any() const;
 
  private:
   std::vector<Diagnostic> diagnostics_;
+  std::size_t more_ = 0;  ///< added past the limit, counted only
 };
 
 /// A broken invariant: a bug in ccbuild, never the user's input. Thrown by CCBUILD_CHECK.

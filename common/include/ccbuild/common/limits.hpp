@@ -14,5 +14,9 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = 32ull * 1024 * 1024;
 inline constexpr int kMaxNestingDepth = 64;
 /// Most values a YAML or JSON document may hold once YAML aliases are expanded.
 inline constexpr std::size_t kMaxDocumentValues = 2'000'000;
+/// Problems with an input (and an importer's notes of one kind) said one by one; the rest
+/// are counted in one line, so that a drawing of a thousand copies of one mistake is said
+/// in a screenful, in bounded memory (issue 49: 26 MB of stderr).
+inline constexpr std::size_t kMaxListed = 50;
 
 }  // namespace ccbuild::limits

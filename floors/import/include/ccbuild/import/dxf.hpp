@@ -47,8 +47,10 @@ struct DxfPlan {
 /// Reads `path`. Throws InputError naming the file (and the entity's handle) for a file
 /// that is not a DXF drawing, larger than common::limits::kMaxInputFileBytes, a wall
 /// layer the drawing does not have, no walls at all, an unknown unit, a coordinate that
-/// is not a finite number or beyond floors::limits::kCoordinate_m, or more walls than
-/// floors::limits::kMaxWalls.
+/// is not a finite number or beyond floors::limits::kCoordinate_m, more walls than
+/// floors::limits::kMaxWalls, more openings than floors::limits::kMaxOpenings, or face lines
+/// crowding beyond any plan (then with the entity's line). A face line drawn twice is read
+/// once; the notes list at most limits::kMaxListed of each kind, then how many more.
 DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& options);
 
 /// A floor's `plan: {dxf: FILE, wall_layers: [...], door_layers: [...], window_layers:

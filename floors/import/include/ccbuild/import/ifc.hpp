@@ -38,6 +38,9 @@ namespace ifc_limits {
 inline constexpr std::size_t kMaxEntities = 1'000'000;
 /// Links followed from one placement to the placement it is relative to.
 inline constexpr int kMaxPlacementDepth = 64;
+/// Straight pieces of one wall's axis (a polyline): a wall that turns more often is no wall
+/// (and each piece is measured against the wall's whole body).
+inline constexpr std::size_t kMaxPiecesPerWall = 1000;
 }  // namespace ifc_limits
 
 struct IfcOptions {
@@ -75,7 +78,10 @@ bool is_ifc_path(const std::filesystem::path& path);
 /// Throws InputError naming the file (and the element by GlobalId, or the line) for a file
 /// larger than common::limits::kMaxInputFileBytes, one that is not an IFC STEP file or is
 /// truncated (no ENDSEC / END-ISO-10303-21), a schema other than IFC4 and IFC2X3, more than
-/// `options.max_entities` entities, a number that is not finite, a placement chain that
+/// `options.max_entities` entities, a number that is not finite anywhere IFC++ reads one,
+/// a second DATA section or anything but END-ISO-10303-21 after the DATA section (with the
+/// line), storeys at more than floors::limits::kMaxFloors elevations, a wall axis of more
+/// than ifc_limits::kMaxPiecesPerWall pieces, a placement chain that
 /// loops or is deeper than ifc_limits::kMaxPlacementDepth, what IFC++ reports as an error
 /// while reading, a model without storeys or walls ccbuild can print, and plans that do not
 /// validate (floors::validate_plan).
