@@ -398,6 +398,13 @@ std::string to_yaml(const DocNode& root, const std::string& comment) {
 }
 
 Document parse_yaml(const std::string& text, const std::string& file) {
+  // YAML is Unicode text: a stray byte would reach names, messages and JSON outputs.
+  if (const std::size_t bad = first_invalid_utf8(text); bad != std::string::npos)
+    throw InputError(file, 1 + static_cast<int>(std::count(text.begin(), text.begin() + bad, '\n')),
+                     "",
+                     printf_string("is not UTF-8 text: byte 0x%02x at offset %zu does not start "
+                                   "or continue a character; save the file as UTF-8",
+                                   static_cast<unsigned char>(text[bad]), bad));
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
+#include <cstdint>
 #include <cstdio>
 
 namespace ccbuild {
@@ -49,35 +50,85 @@ std::string nearest_word(const std::string& word, const std::vector<std::string>
   return best;
 }
 
-std::string yaml_quoted(const std::string& text) {
-  std::string out = "\"";
-  out.reserve(text.size() + 2);
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    switch (c) {
-      case '"':
-        out += "\\\"";
+std::string yaml_escaped(const std::string& text, bool* exact) {
+  std::string out;
+  out.reserve(text.size() + 8);
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  for (std::size_t k = 0; k < text.size();) {
+    // One UTF-8 character (shortest form, no surrogates), or a byte that is none.
+    const unsigned char b = byte(k);
+    std::size_t n = b < 0x80           ? 1
+                    : (b >> 5) == 0x6  ? 2
+                    : (b >> 4) == 0xE  ? 3
+                    : (b >> 3) == 0x1E ? 4
+                                       : 0;
+    std::uint32_t c = n == 1 ? b : n == 2 ? (b & 0x1Fu) : n == 3 ? (b & 0x0Fu) : (b & 0x07u);
+    if (n == 0 || k + n > text.size()) n = 0;
+    for (std::size_t j = 1; j < n; ++j) {
+      if ((byte(k + j) & 0xC0) != 0x80) {
+        n = 0;
         break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      default:
-        if (u < 0x20 || u == 0x7f)
-          out += printf_string("\\x%02x", u);
-        else
-          out += c;
+      }
+      c = (c << 6) | (byte(k + j) & 0x3Fu);
     }
+    static const std::uint32_t kShortest[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (n > 0 && (c < kShortest[n] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF))) n = 0;
+    if (n == 0) {
+      out += "\\uFFFD";
+      if (exact) *exact = false;
+      ++k;
+      continue;
+    }
+    // YAML's printable characters, less the quote, the backslash and the line breaks.
+    const bool printable = (c >= 0x20 && c <= 0x7E && c != '"' && c != '\\') ||
+                           (c >= 0xA0 && c <= 0xD7FF && c != 0x2028 && c != 0x2029) ||
+                           (c >= 0xE000 && c <= 0xFFFD && c != 0xFEFF) || c >= 0x10000;
+    if (printable) {
+      out.append(text, k, n);
+    } else if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c < 0x100) {
+      out += printf_string("\\x%02X", static_cast<unsigned>(c));
+    } else {
+      out += printf_string("\\u%04X", static_cast<unsigned>(c));
+    }
+    k += n;
   }
-  return out + "\"";
+  return out;
+}
+
+std::size_t first_invalid_utf8(const std::string& text) {
+  std::size_t k = 0;
+  while (k < text.size()) {
+    const auto b = static_cast<unsigned char>(text[k]);
+    const std::size_t n = b < 0x80           ? 1
+                          : (b >> 5) == 0x6  ? 2
+                          : (b >> 4) == 0xE  ? 3
+                          : (b >> 3) == 0x1E ? 4
+                                             : 0;
+    if (n == 0 || k + n > text.size()) return k;
+    std::uint32_t c = n == 1 ? b : n == 2 ? (b & 0x1Fu) : n == 3 ? (b & 0x0Fu) : (b & 0x07u);
+    for (std::size_t j = 1; j < n; ++j) {
+      const auto next = static_cast<unsigned char>(text[k + j]);
+      if ((next & 0xC0) != 0x80) return k;
+      c = (c << 6) | (next & 0x3Fu);
+    }
+    static const std::uint32_t kShortest[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (c < kShortest[n] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF)) return k;
+    k += n;
+  }
+  return std::string::npos;
+}
+
+std::string yaml_quoted(const std::string& text) {
+  return "\"" + yaml_escaped(text) + "\"";
 }
 
 namespace {

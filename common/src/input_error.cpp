@@ -5,17 +5,23 @@
 namespace ccbuild {
 namespace {
 
-/// The most diagnostics one error lists, and the longest message and field it shows: a
-/// hostile file can hold millions of mistakes, or one value of megabytes.
-constexpr std::size_t kMostDiagnostics = 25;
+/// The longest message and field an error shows: a hostile file can hold one value of
+/// megabytes. (How many it lists: limits::kMaxListed.)
 constexpr std::size_t kLongestMessage = 2000, kLongestField = 200;
 
+/// The line that counts the problems past the first limits::kMaxListed.
+Diagnostic more_problems(const std::string& file, std::size_t more) {
+  return {file, 0, "",
+          "and " + std::to_string(more) + " more problems (the first " +
+              std::to_string(limits::kMaxListed) + " are listed above)"};
+}
+
 std::vector<Diagnostic> bounded(std::vector<Diagnostic> diagnostics) {
-  if (diagnostics.size() > kMostDiagnostics) {
-    const std::size_t more = diagnostics.size() - (kMostDiagnostics - 1);
-    diagnostics.resize(kMostDiagnostics - 1);
-    diagnostics.push_back({diagnostics.front().file, 0, "",
-                           "and " + std::to_string(more) + " more problems (fix these first)"});
+  // A DiagnosticSink's list already ends with its count (kMaxListed + 1 in all).
+  if (diagnostics.size() > limits::kMaxListed + 1) {
+    const std::size_t more = diagnostics.size() - limits::kMaxListed;
+    diagnostics.resize(limits::kMaxListed);
+    diagnostics.push_back(more_problems(diagnostics.front().file, more));
   }
   for (auto& d : diagnostics) {
     if (d.message.size() > kLongestMessage) d.message = echoed(d.message, kLongestMessage);
@@ -24,6 +30,7 @@ std::vector<Diagnostic> bounded(std::vector<Diagnostic> diagnostics) {
   }
   return diagnostics;
 }
+
 std::string join(const std::vector<Diagnostic>& diagnostics) {
   std::string text;
   for (const auto& d : diagnostics) {
@@ -64,9 +71,7 @@ void DiagnosticSink::throw_if_any() const {
   if (diagnostics_.empty()) return;
   if (more_ == 0) throw InputError(diagnostics_);
   std::vector<Diagnostic> listed = diagnostics_;
-  listed.push_back({diagnostics_.front().file, 0, "",
-                    "and " + std::to_string(more_) + " more problems (the first " +
-                        std::to_string(diagnostics_.size()) + " are listed above)"});
+  listed.push_back(more_problems(diagnostics_.front().file, more_));
   throw InputError(std::move(listed));
 }
 

@@ -111,7 +111,8 @@ std::string schedule_report_html(const schedule::ScheduleDocument& document,
                                         {"waits", entries(p.waits)},
                                         {"stop", p.stop}});
   }
-  const std::string data = script_safe(schedule.dump());
+  const std::string data =
+      script_safe(schedule.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   schedule = nlohmann::ordered_json();  // only its text is needed from here on
   std::string html;
   html.reserve(data.size() + three.size() + 200'000);

@@ -43,7 +43,9 @@ void run_climb(const ClimbOptions& o, int& exit_code) {
   outputs.commit();
   exit_code = status ? kExitOk : kExitNo;
   if (o.json) {
-    std::cout << report::climb_report_json(project, report).dump(2) << "\n";
+    std::cout << report::climb_report_json(project, report)
+                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+              << "\n";
     return;
   }
   auto L = [&](double value_m) { return project.length(value_m, 2); };

@@ -134,7 +134,9 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   // The schedule's identity, for the journal and the machines' records: the SHA-256 of
   // its JSON as `ccbuild schedule -o` writes it (the same for the building and its file).
   const std::string schedule_sha256 =
-      sha256_hex(schedule::schedule_json(schedule.inputs, schedule.schedule).dump(1) + "\n");
+      sha256_hex(schedule::schedule_json(schedule.inputs, schedule.schedule)
+                     .dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                 "\n");
 
   auto jobs = dispatch::jobs_of_schedule(schedule);
   std::vector<std::string> ids;  // in rail order

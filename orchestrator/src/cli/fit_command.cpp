@@ -95,7 +95,9 @@ void run_fit(const FitCommandOptions& o, int& exit_code) {
   claims.commit();
   exit_code = kExitOk;
   if (o.json) {
-    std::cout << fit_json(project, fit, profile_path.string(), urdf_path.string()).dump(2) << "\n";
+    std::cout << fit_json(project, fit, profile_path.string(), urdf_path.string())
+                     .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+              << "\n";
     return;
   }
   const auto& p = fit.platform;

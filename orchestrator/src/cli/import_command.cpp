@@ -47,69 +47,9 @@ std::string exact(double value) {
   return printf_string("%.17g", value);
 }
 
-/// The one escape for all the text import writes into YAML (names, GlobalIds, file names,
-/// notes; values and comments alike): the inside of a double-quoted scalar, on one line.
-/// Quotes and backslashes are escaped, and every character YAML does not print as itself
-/// (control characters, line breaks including NEL, LS and PS, the byte order mark,
-/// non-characters); bytes that are not UTF-8 become U+FFFD, and `exact` (when given) is
-/// set false, since YAML text cannot hold them.
-std::string yaml_escaped(const std::string& text, bool* exact = nullptr) {
-  std::string out;
-  out.reserve(text.size() + 8);
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-  for (std::size_t k = 0; k < text.size();) {
-    // One UTF-8 character (shortest form, no surrogates), or a byte that is none.
-    const unsigned char b = byte(k);
-    std::size_t n = b < 0x80           ? 1
-                    : (b >> 5) == 0x6  ? 2
-                    : (b >> 4) == 0xE  ? 3
-                    : (b >> 3) == 0x1E ? 4
-                                       : 0;
-    std::uint32_t c = n == 1 ? b : n == 2 ? (b & 0x1Fu) : n == 3 ? (b & 0x0Fu) : (b & 0x07u);
-    if (n == 0 || k + n > text.size()) n = 0;
-    for (std::size_t j = 1; j < n; ++j) {
-      if ((byte(k + j) & 0xC0) != 0x80) {
-        n = 0;
-        break;
-      }
-      c = (c << 6) | (byte(k + j) & 0x3Fu);
-    }
-    static const std::uint32_t kShortest[] = {0, 0, 0x80, 0x800, 0x10000};
-    if (n > 0 && (c < kShortest[n] || c > 0x10FFFF || (c >= 0xD800 && c <= 0xDFFF))) n = 0;
-    if (n == 0) {
-      out += "\\uFFFD";
-      if (exact) *exact = false;
-      ++k;
-      continue;
-    }
-    // YAML's printable characters, less the quote, the backslash and the line breaks.
-    const bool printable = (c >= 0x20 && c <= 0x7E && c != '"' && c != '\\') ||
-                           (c >= 0xA0 && c <= 0xD7FF && c != 0x2028 && c != 0x2029) ||
-                           (c >= 0xE000 && c <= 0xFFFD && c != 0xFEFF) || c >= 0x10000;
-    if (printable) {
-      out.append(text, k, n);
-    } else if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c < 0x100) {
-      out += printf_string("\\x%02X", static_cast<unsigned>(c));
-    } else {
-      out += printf_string("\\u%04X", static_cast<unsigned>(c));
-    }
-    k += n;
-  }
-  return out;
-}
-
-/// YAML's double-quoted scalar of `text` (yaml_escaped).
+/// YAML's double-quoted scalar of `text` (common yaml_quoted).
 std::string quoted(const std::string& text) {
-  return "\"" + yaml_escaped(text) + "\"";
+  return yaml_quoted(text);
 }
 
 /// A YAML comment's text: one line whatever `text` holds (yaml_escaped, without quotes).
@@ -160,7 +100,7 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
 /// The first line of a plan file written beside the building file `building`: says whose
 /// it is, so that --force replaces it only when it is that building's.
 std::string plan_file_mark(const fs::path& building) {
-  return "# ccbuild import: a plan file of " + comment_text(building.filename().string());
+  return "# ccbuild import: a plan file of " + comment(building.filename().string());
 }
 
 /// `target` as a path relative to `folder` (both made absolute first).

@@ -53,7 +53,7 @@ void run_layers(const LayersOptions& options, int& exit_code) {
       }
       out["floors"].push_back(floor);
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     exit_code = kExitOk;
     return;
   }

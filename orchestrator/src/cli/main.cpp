@@ -67,7 +67,7 @@ void print_json_error(const std::string& kind, int exit_code,
   for (const auto& d : diagnostics)
     out["error"]["diagnostics"].push_back(
         {{"file", d.file}, {"line", d.line}, {"field", d.field}, {"message", d.message}});
-  std::cout << out.dump(2) << "\n";
+  std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
 }
 
 // The last line of defence: a crash or a terminate still ends with exit code 3 and a

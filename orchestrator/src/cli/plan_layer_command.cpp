@@ -386,7 +386,7 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     if (o.json)
       std::cout << report::multi_plan_json(context, layer, project.machine_model(), plan,
                                            request.multi)
-                       .dump(2)
+                       .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                 << "\n";
     else
       print_multi(o, project, context, layer, plan, request.multi);
@@ -401,10 +401,13 @@ void run_plan_layer(const PlanLayerOptions& o, int& exit_code) {
     if (!o.svg.empty()) outputs.write(o.svg, report::layer_plan_svg(context, layer, plan));
     if (!o.bound_certificate.empty())
       outputs.write(o.bound_certificate,
-                    report::bound_certificate_json(context, layer, plan).dump(1) + "\n");
+                    report::bound_certificate_json(context, layer, plan)
+                            .dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                        "\n");
     outputs.commit();
     if (o.json)
-      std::cout << report::layer_plan_json(context, layer, project.machine_model(), plan).dump(2)
+      std::cout << report::layer_plan_json(context, layer, project.machine_model(), plan)
+                       .dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
                 << "\n";
     else
       print_single(o, project, context, layer, plan);

@@ -94,7 +94,9 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       exported.push_back(write_export(doc, {}, export_formats_given[k], o.exports[k], outputs));
     if (!o.output.empty())
       outputs.write(o.output,
-                    schedule::schedule_json(doc.inputs, s, {o.path_digests}).dump(1) + "\n");
+                    schedule::schedule_json(doc.inputs, s, {o.path_digests})
+                            .dump(1, ' ', false, nlohmann::json::error_handler_t::replace) +
+                        "\n");
     if (!o.report.empty()) {
       report::ReportOptions report_options;
       report_options.anchor_what_ifs = changes;

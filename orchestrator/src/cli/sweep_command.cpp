@@ -235,7 +235,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
            {"machine_time_s", r.status ? num(r.machine_s) : num(std::nullopt)},
            {"vertex_count", r.vertices}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   } else {
     std::cout << printf_string(
         "%s: %d layer(s), %zu distinct; times summed over all of them; methods per platform stage "

@@ -76,7 +76,7 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                      {"anchor_count", anchors},
                      {"layer_count", summary.total_layers},
                      {"distinct_geometry_count", summary.distinct_geometries}};
-    std::cout << out.dump(2) << "\n";
+    std::cout << out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
     exit_code = kExitOk;
     return;
   }

@@ -180,7 +180,7 @@ std::string results_json(const Plan& plan, const Collected& c) {
     }
     out["variants"].push_back(std::move(r));
   }
-  return out.dump(2) + "\n";
+  return out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace ccbuild::study

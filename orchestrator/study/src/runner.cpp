@@ -385,7 +385,9 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
   outcome.reason = result.value("reason", "");
   outcome.elapsed_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_file_atomically(dir / "result.json", result.dump(2) + "\n", true);
+  write_file_atomically(dir / "result.json",
+                        result.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n",
+                        true);
   return outcome;
 }
 

@@ -78,7 +78,7 @@ std::string plan_file_text(const PlanFile& plan) {
     for (const auto& [name, value] : v.settings) settings[name] = value;
     json["variants"].push_back({{"id", v.id}, {"settings", settings}});
   }
-  return json.dump(2) + "\n";
+  return json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 PlanFile read_plan_file(const fs::path& file) {

@@ -46,8 +46,18 @@ struct Range {
 /// characters XML 1.0 forbids dropped.
 std::string xml_escape(const std::string& text);
 
-/// A YAML double-quoted scalar that reads back as `text` exactly: quotes, backslashes and
-/// control characters (newlines, tabs, NUL...) escaped; other UTF-8 kept.
+/// The one escape for text ccbuild writes into YAML (names, GlobalIds, file names, notes;
+/// values and comments alike): the inside of a double-quoted scalar, on one line. Quotes
+/// and backslashes are escaped, and every character YAML does not print as itself (control
+/// characters, line breaks including NEL, LS and PS, the byte order mark, non-characters);
+/// bytes that are not UTF-8 become U+FFFD, and `exact` (when given) is set false, since
+/// YAML text cannot hold them.
+std::string yaml_escaped(const std::string& text, bool* exact = nullptr);
+/// The offset of the first byte of `text` that does not start or continue a well-formed
+/// UTF-8 character (shortest form, no surrogates, at most U+10FFFF); npos when it is all
+/// UTF-8.
+std::size_t first_invalid_utf8(const std::string& text);
+/// A YAML double-quoted scalar that reads back as `text` exactly (yaml_escaped in quotes).
 std::string yaml_quoted(const std::string& text);
 
 /// `text` on one line, for a comment (YAML or shell `#`, XML `<!-- -->`) or a message:

@@ -26,7 +26,8 @@ struct Diagnostic {
 };
 
 /// Bad user input. Holds one or more diagnostics; what() lists them one per line. At most
-/// 25 are kept (the last says how many more), each message cut to 2,000 characters.
+/// limits::kMaxListed are kept (one more line says how many others), each message cut to
+/// 2,000 characters.
 class InputError : public std::runtime_error {
  public:
   explicit InputError(Diagnostic diagnostic);
