@@ -1,8 +1,6 @@
 #include "ccbuild/common/document.hpp"
 
-#include "ccbuild/common/atomic_file.hpp"
-#include "ccbuild/common/format.hpp"
-
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -16,6 +14,8 @@
 #include <set>
 #include <sstream>
 
+#include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/limits.hpp"
 
@@ -397,6 +397,75 @@ std::string to_yaml(const DocNode& root, const std::string& comment) {
   return out;
 }
 
+namespace {
+
+/// Reads YAML's events only, to find where each document starts and whether it holds
+/// anything: yaml-cpp 0.7's LoadAll loops for ever (and fills memory) on a stray flow
+/// entry (`,`) where a node should be, returning an empty document each time without
+/// reading on.
+class DocumentScan : public YAML::EventHandler {
+ public:
+  struct Start {
+    int line = 0;          ///< 1-based
+    int position = 0;      ///< in bytes
+    bool empty = true;     ///< no node but a null
+    int content_line = 0;  ///< 1-based, of its first node
+  };
+  std::vector<Start> documents;
+
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    documents.push_back({mark.line + 1, mark.pos, true});
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { content(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    content(mark);
+  }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    content(mark);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    content(mark);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void content(const YAML::Mark& mark) {
+    if (documents.empty() || !documents.back().empty) return;
+    documents.back().empty = false;
+    documents.back().content_line = mark.line + 1;
+  }
+};
+
+/// How many documents `text` holds. Throws InputError when more than one has content, or
+/// when yaml-cpp stops reading on (an empty document at the same place twice).
+std::size_t count_documents(const std::string& text, const std::string& file) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentScan scan;
+  while (parser.HandleNextDocument(scan)) {
+    const auto& d = scan.documents;
+    if (d.size() >= 2 && d[d.size() - 1].position == d[d.size() - 2].position)
+      throw InputError(file, d.back().line, "",
+                       "invalid YAML: a token where a value should start (a stray ',' "
+                       "outside brackets?)");
+    // A second document would otherwise be ignored without a word.
+    for (std::size_t k = 1; k < d.size(); ++k)
+      if (!d[k].empty)
+        throw InputError(file, d[k].content_line, "",
+                         "a second YAML document starts here (after '---'); a ccbuild file "
+                         "holds one document");
+  }
+  return scan.documents.size();
+}
+
+}  // namespace
+
 Document parse_yaml(const std::string& text, const std::string& file) {
   // YAML is Unicode text: a stray byte would reach names, messages and JSON outputs.
   if (const std::size_t bad = first_invalid_utf8(text); bad != std::string::npos)
@@ -407,7 +476,7 @@ Document parse_yaml(const std::string& text, const std::string& file) {
                                    static_cast<unsigned char>(text[bad]), bad));
   std::vector<YAML::Node> documents;
   try {
-    documents = YAML::LoadAll(text);
+    if (count_documents(text, file) > 0) documents = {YAML::Load(text)};
   } catch (const YAML::Exception& error) {
     std::string message = error.msg;
     // yaml-cpp's depth guard says only "bad file".
@@ -415,13 +484,6 @@ Document parse_yaml(const std::string& text, const std::string& file) {
       message = "too deeply nested or malformed (yaml-cpp stopped reading here)";
     throw InputError(file, error.mark.line >= 0 ? error.mark.line + 1 : 0, "",
                      "invalid YAML: " + message);
-  }
-  // A second document would otherwise be ignored without a word.
-  for (std::size_t k = 1; k < documents.size(); ++k) {
-    if (!documents[k].IsNull())
-      throw InputError(file, yaml_line(documents[k], 0), "",
-                       "a second YAML document starts here (after '---'); a ccbuild file holds "
-                       "one document");
   }
   if (documents.empty()) {
     DocNode empty;

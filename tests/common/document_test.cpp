@@ -86,5 +86,36 @@ TEST(Document, MissingFileIsNamed) {
   EXPECT_TRUE(contains(e.what(), "cannot open"));
 }
 
+// Found by tests/fuzz/fuzz.py (seed 2, site-00136): yaml-cpp's LoadAll never returned on a
+// stray ',' where a value should start (an empty document at the same place, for ever).
+TEST(Document, AStrayFlowEntryIsAnErrorNotAnEndlessStream) {
+  for (const std::string text : {",\n", ", and a\n", "# a comment\n, and a\nx: 1\n",
+                                 "start: 2027-03-01 07:00\n, and a\n"}) {
+    const InputError e = expect_input_error([&] { parse_yaml(text, "site.yaml"); });
+    EXPECT_EQ(e.first().file, "site.yaml") << text;
+    EXPECT_GE(e.first().line, 1) << text;
+  }
+  // Empty and null documents stay what they were; a second document with content is named
+  // at its first value.
+  EXPECT_EQ(parse_yaml("", "e.yaml").root.kind, DocNode::Kind::kNull);
+  EXPECT_EQ(parse_yaml("# only a comment\n", "e.yaml").root.kind, DocNode::Kind::kNull);
+  EXPECT_EQ(parse_yaml("a: 1\n---\n", "e.yaml").root.kind, DocNode::Kind::kMap);
+  const InputError second =
+      expect_input_error([] { parse_yaml("a: 1\n---\n# c\nb: 2\n", "two.yaml"); });
+  EXPECT_EQ(second.first().line, 4);
+}
+
+// Found by tests/fuzz/fuzz.py (seed 1, building-00063): a byte that is no UTF-8 reached an
+// unknown-key message, and `validate --json` could not print it (exit 3).
+TEST(Document, YamlThatIsNotUtf8IsRefusedWithItsLine) {
+  const std::string text = "units: m\nwalls:\n  - {id\xff: 1}\n";
+  const InputError e = expect_input_error([&] { parse_yaml(text, "plan.yaml"); });
+  EXPECT_EQ(e.first().line, 3);
+  EXPECT_TRUE(contains(e.what(), "not UTF-8"));
+  for (const std::string bad : {"\xc3", "\xed\xa0\x80", "\xc0\xaf", "\xf4\x90\x80\x80"})
+    EXPECT_THROW(parse_yaml("name: " + bad + "\n", "n.yaml"), InputError) << bad.size();
+  EXPECT_NO_THROW(parse_yaml("name: \"\xc3\xa9\xe2\x82\xac\xf0\x9d\x84\x9e\"\n", "n.yaml"));
+}
+
 }  // namespace
 }  // namespace ccbuild

@@ -358,17 +358,66 @@ DXF_SEEDS = ["faces_mm.dxf", "faces_m.dxf", "centrelines_m.dxf", "gaps_faces_mm.
              "gaps_m.dxf", "attributes_m.dxf", "unitless.dxf"]
 
 
+def mutate_dxf(rng, data):
+    """DXF-aware mutations: on (group code, value) pairs and whole entities, so that most
+    cases get past the reader into the wall finding (duplicates, near-duplicates, floods of
+    entities, hostile values)."""
+    lines = data.decode("latin-1").replace("\r\n", "\n").split("\n")
+    if len(lines) < 4 or rng.random() < 0.25:
+        return mutate_text(rng, data)
+    pairs = [(lines[k], lines[k + 1]) for k in range(0, len(lines) - 1, 2)]
+    # Entities: runs of pairs from a code 0 to the next.
+    starts = [k for k, (c, _) in enumerate(pairs) if c.strip() == "0"]
+    entities = [(starts[i], starts[i + 1]) for i in range(len(starts) - 1)
+                if pairs[starts[i]][1].strip() in ("LINE", "LWPOLYLINE", "POLYLINE", "INSERT",
+                                                   "ARC", "CIRCLE", "VERTEX", "TEXT")]
+    kind = rng.choice(["value", "value", "entity", "entity", "shift", "delete"])
+    done = ""
+    if kind == "value":
+        numeric = [k for k, (c, v) in enumerate(pairs) if re.match(r"\s*-?[\d.]+\s*$", v)]
+        if numeric:
+            k = rng.choice(numeric)
+            value = rng.choice(HOSTILE_NUMBERS + HOSTILE_STRINGS[:12])
+            done = "value %r of code %s -> %r" % (pairs[k][1], pairs[k][0].strip(), value[:20])
+            pairs[k] = (pairs[k][0], value)
+    elif kind in ("entity", "shift") and entities:
+        a, b = rng.choice(entities)
+        block = pairs[a:b]
+        n = rng.choice([1, 2, 100, 2000]) if kind == "entity" else rng.choice([1, 50])
+        copies = []
+        for i in range(n):
+            copy = list(block)
+            if kind == "shift":  # near-duplicates: each copy moved a little
+                copy = [(c, "%.6f" % (float(v) + rng.uniform(-0.01, 0.01) * (i + 1)))
+                        if c.strip() in ("10", "20", "11", "21") and
+                        re.match(r"\s*-?[\d.]+\s*$", v) else (c, v) for c, v in copy]
+            copies += copy
+        pairs[b:b] = copies
+        done = "an entity %s %d more times" % ("moved and repeated" if kind == "shift"
+                                               else "repeated", n)
+    elif kind == "delete" and pairs:
+        k = rng.randrange(len(pairs))
+        done = "pair %s/%s deleted" % (pairs[k][0].strip(), pairs[k][1][:20])
+        del pairs[k]
+    if not done:
+        return mutate_text(rng, data)
+    text = "\n".join(c + "\n" + v for c, v in pairs) + "\n"
+    return text.encode("latin-1", "replace"), done
+
+
 def surface_dxf(case):
     rng = case.rng
     seed = rng.choice(DXF_SEEDS)
     data = read("tests/data/drawings/" + seed)
     layers = sorted(set(re.findall(r"\n\s*8\r?\n([^\r\n]+)", data.decode("latin-1"))))
-    case.files["drawing.dxf"], case.note = mutate_text(rng, data)
+    case.files["drawing.dxf"], case.note = mutate_dxf(rng, data)
     case.note = seed + ": " + case.note
     walls = [l for l in layers if "WALL" in l.upper()] or layers or ["WALLS"]
     flags = ["--wall-layers", rng.choice(walls)]
-    if "faces" in seed or rng.random() < 0.3:
-        flags += ["--wall-lines", rng.choice(["faces", "centrelines"])]
+    if "faces" in seed:
+        flags += ["--wall-lines", "faces" if rng.random() < 0.9 else "centrelines"]
+    elif rng.random() < 0.1:
+        flags += ["--wall-lines", "faces"]
     if "gaps" in seed or rng.random() < 0.3:
         flags += ["--gap-openings"]
         if rng.random() < 0.3:
@@ -379,8 +428,8 @@ def surface_dxf(case):
         flags += ["--door-layers", rng.choice(doors)]
     if windows:
         flags += ["--window-layers", rng.choice(windows)]
-    if seed == "unitless.dxf" or rng.random() < 0.2:
-        flags += ["--unit", rng.choice(["mm", "m", "ft", "furlong", ""])]
+    if seed == "unitless.dxf" or rng.random() < 0.1:
+        flags += ["--unit", rng.choice(["mm", "m", "m", "ft", "furlong", ""])]
     case.folders = ["out"]
     case.argv = ["import", "drawing.dxf", "-o", "out/building.yaml"] + flags
     case.output_folders = ["out"]
