@@ -89,8 +89,8 @@ TEST(Document, MissingFileIsNamed) {
 // Found by tests/fuzz/fuzz.py (seed 2, site-00136): yaml-cpp's LoadAll never returned on a
 // stray ',' where a value should start (an empty document at the same place, for ever).
 TEST(Document, AStrayFlowEntryIsAnErrorNotAnEndlessStream) {
-  for (const std::string text : {",\n", ", and a\n", "# a comment\n, and a\nx: 1\n",
-                                 "start: 2027-03-01 07:00\n, and a\n"}) {
+  for (const std::string text :
+       {",\n", ", and a\n", "# a comment\n, and a\nx: 1\n", "start: 2027-03-01 07:00\n, and a\n"}) {
     const InputError e = expect_input_error([&] { parse_yaml(text, "site.yaml"); });
     EXPECT_EQ(e.first().file, "site.yaml") << text;
     EXPECT_GE(e.first().line, 1) << text;

@@ -462,6 +462,20 @@ TEST(StudyFiles, AScheduleOfWrongTypesGivesNoMeasuresButItsPointer) {
 /// Seven axes of 1,000 values make 10^21 combinations, past 2^63 - 1: refused where the axes
 /// are (a sample too), never wrapped to a negative count. Six of 1,000 and one of 9 make
 /// 9 x 10^18, under it: sampled, each variant a point of the grid.
+// Found by tests/fuzz/fuzz.py (seed 3, study-00522): a profile's number written 1e-320 (a
+// subnormal) passed the reader and ended the study in std::stod's out_of_range (exit 3).
+TEST(StudyFile, AProfilesNumberIsReadAsEveryNumberIs) {
+  StudyFolder f;
+  const Study tiny = read_study(f.write("  machine.deposition_speed_m_s: [0.2, 1e-320]\n", ""));
+  ASSERT_EQ(tiny.variants.size(), 2u);
+  ASSERT_EQ(tiny.variants[1].machine_keys.size(), 1u);
+  EXPECT_EQ(tiny.variants[1].machine_keys[0].second, 1e-320);
+  const InputError e = expect_input_error(
+      [&] { read_study(f.write("  material.max_layer_interval_s: [1800, 1e400]\n", "")); });
+  EXPECT_EQ(e.first().line, 7) << e.what();  // the axis's line
+  EXPECT_TRUE(contains(e.what(), "1e400")) << e.what();
+}
+
 TEST(StudyFile, AGridPast2To63IsRefusedNotWrapped) {
   StudyFolder f;
   const std::string six =

@@ -1,6 +1,7 @@
 // Reading a study file and listing its variants (docs/studies.md).
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -15,6 +16,17 @@ namespace ccbuild::study {
 namespace fs = std::filesystem;
 
 namespace {
+
+/// The number a value checked as one (Field::as_number, or a range made here) was written
+/// as; std::stod would throw on a subnormal such as 1e-320.
+double number_of(const std::string& text) {
+  double value = 0.0;
+  const char* begin = text.data() + (!text.empty() && text.front() == '+');
+  const auto [ptr, ec] = std::from_chars(begin, text.data() + text.size(), value);
+  CCBUILD_CHECK(ec == std::errc() && ptr == text.data() + text.size(),
+                "a study value read twice differently: " + text);
+  return value;
+}
 
 const std::vector<std::string> kMeasures = {"makespan_s",
                                             "feasible",
@@ -238,7 +250,7 @@ Study read_study(const fs::path& file) {
     Axis& axis = study.axes[a];
     for (std::size_t v = 0; v < axis.values.size(); ++v) {
       if (value_fields[a].empty()) {  // a range: numbers made here
-        const double value = std::stod(axis.values[v]);
+        const double value = number_of(axis.values[v]);
         if (axis.kind == AxisKind::kSeed &&
             (value < 0 || value > 4294967295.0 || value != std::floor(value)))
           axes_field
@@ -249,6 +261,9 @@ Study read_study(const fs::path& file) {
       const Field& at = value_fields[a][v];
       if (axis.kind == AxisKind::kObjective) objective_of(at);
       if (axis.kind == AxisKind::kSeed) seed_of(at);
+      // A profile's number, read as every number in a file is (its range is the
+      // profile's, checked when the variant loads it).
+      if (axis.kind == AxisKind::kMachineKey || axis.kind == AxisKind::kMaterialKey) at.as_number();
       if (axis.kind == AxisKind::kBuilding || axis.kind == AxisKind::kMachine ||
           axis.kind == AxisKind::kMaterial ||
           (axis.kind == AxisKind::kSite && axis.values[v] != "none"))
@@ -354,13 +369,13 @@ Study read_study(const fs::path& file) {
           v.objective = value;
           break;
         case AxisKind::kSeed:  // a whole number (checked above) as written: 7, 7.0 or 7e0
-          v.seed = static_cast<std::uint64_t>(std::stod(value));
+          v.seed = static_cast<std::uint64_t>(number_of(value));
           break;
         case AxisKind::kMachineKey:
-          v.machine_keys.emplace_back(axis.name.substr(8), std::stod(value));
+          v.machine_keys.emplace_back(axis.name.substr(8), number_of(value));
           break;
         case AxisKind::kMaterialKey:
-          v.material_keys.emplace_back(axis.name.substr(9), std::stod(value));
+          v.material_keys.emplace_back(axis.name.substr(9), number_of(value));
           break;
       }
     }
