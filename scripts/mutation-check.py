@@ -7,15 +7,19 @@ runs the CTest tests it names (stopping at the first failure), and restores the 
 A mutant is killed when a test fails (or the build breaks); it survives when they all
 pass. Exit code 0 when at least 9 in 10 are killed.
 
-Usage: scripts/mutation-check.py [--keep] [--only N[,N...]] [--jobs 2] [--check]
+Usage: scripts/mutation-check.py [--keep] [--only N[,N...]] [--jobs 2] [--fast] [--check]
   --keep     leave the scratch clone (its path is printed)
   --only     run only these mutants (1-based, in file order)
+  --fast     rebuild only the programs the mutant's tests run (their executables, ccbuild,
+             the simulator): a test that calls another would run it unmutated, so a
+             survivor of a fast run is run again without --fast before it counts
   --check    only check that each mutant's text occurs exactly once in its file (CTest
              runs this, so that a mutant left behind by a moved line fails at once)
 It takes about a minute per mutant on two cores, after a first build of four minutes.
 """
 
 import argparse
+import json
 import os
 import shutil
 import subprocess
@@ -60,12 +64,40 @@ def run(command, cwd, log):
         return subprocess.call(command, cwd=cwd, stdout=out, stderr=subprocess.STDOUT)
 
 
+def known_targets(build):
+    """The build's target names (the Makefile generator's help lists them)."""
+    out = subprocess.run(["cmake", "--build", build, "--target", "help"],
+                         capture_output=True, text=True).stdout
+    return {line[4:].split()[0] for line in out.splitlines() if line.startswith("... ")}
+
+
+def targets_for(build, tests, known):
+    """The targets the tests matching TESTS run: the executables their commands and
+    environments name inside the build folder, and the programs scripts call (ccbuild,
+    the simulator, the bus intruder). None when a test names none of them: build all."""
+    listing = subprocess.run(["ctest", "-N", "--show-only=json-v1", "-R", tests], cwd=build,
+                             capture_output=True, text=True)
+    if listing.returncode:
+        return None
+    words = []
+    for test in json.loads(listing.stdout).get("tests", []):
+        words += test.get("command", [])
+        for prop in test.get("properties", []):
+            if prop.get("name") == "ENVIRONMENT":
+                words += [w.split("=", 1)[-1] for w in prop.get("value", [])]
+    named = {os.path.basename(w) for w in words if w.startswith(build)} & known
+    if not named:
+        return None
+    return sorted(named | ({"ccbuild", "ccbuild-sim", "bus_intruder"} & known))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--keep", action="store_true")
     parser.add_argument("--only", default="")
     parser.add_argument("--jobs", default="2")
     parser.add_argument("--check", action="store_true")
+    parser.add_argument("--fast", action="store_true")
     args = parser.parse_args()
 
     mutants = read_mutants(os.path.join(ROOT, "tests", "mutants", "mutants.txt"))
@@ -96,6 +128,7 @@ def main():
         sys.exit("the unmutated clone does not build; see " + log)
     print("built the unmutated clone in %.0f s" % (time.time() - started), flush=True)
 
+    known = known_targets(build)
     killed, survivors = 0, []
     for n in chosen:
         m = mutants[n - 1]
@@ -109,7 +142,11 @@ def main():
             f.write(original.replace(m["find"], m["replace"]))
         began = time.time()
         try:
-            if run(["cmake", "--build", build, "-j" + args.jobs], clone, log):
+            targets = targets_for(build, m["tests"], known) if args.fast else None
+            command = ["cmake", "--build", build, "-j" + args.jobs]
+            if targets:
+                command += ["--target"] + targets
+            if run(command, clone, log):
                 verdict = "killed (does not build)"
             elif run(["ctest", "-j" + args.jobs, "--stop-on-failure", "--timeout", "300",
                       "-R", m["tests"]], build, log):

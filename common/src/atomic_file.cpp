@@ -149,6 +149,14 @@ void OutputClaims::add_input(const fs::path& path) {
           "output would overwrite an input file (" + path.string() + "); choose another path");
 }
 
+namespace {
+// What a claim in a folder that is not there is told (the folder named as the user wrote it).
+std::string missing_folder(const std::string& noun, const fs::path& path) {
+  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  return noun + " '" + parent.string() + "' does not exist";
+}
+}  // namespace
+
 bool OutputClaims::folder_ready(const fs::path& path) const {
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
@@ -195,11 +203,7 @@ void OutputClaims::claim_file(const std::string& flag, const fs::path& path, boo
   std::error_code ec;
   if (fs::exists(path, ec) && !overwrite)
     throw refused(path, flag, "output file exists; pass --force to overwrite it");
-  if (!folder_ready(path))
-    throw refused(path, flag,
-                  "output folder '" +
-                      (path.has_parent_path() ? path.parent_path() : fs::path(".")).string() +
-                      "' does not exist");
+  if (!folder_ready(path)) throw refused(path, flag, missing_folder("output folder", path));
   auto claim = std::make_unique<Claim>();
   claim->flag = flag;
   claim->path = path;
@@ -236,11 +240,7 @@ void OutputClaims::claim_read_write(const std::string& flag, const fs::path& pat
     bool device = false;
     throw refused(path, flag, unwritable(path, device));
   }
-  if (!folder_ready(path))
-    throw refused(path, flag,
-                  "folder '" +
-                      (path.has_parent_path() ? path.parent_path() : fs::path(".")).string() +
-                      "' does not exist");
+  if (!folder_ready(path)) throw refused(path, flag, missing_folder("folder", path));
   const auto add = [&](const fs::path& p, const fs::path& r) {
     auto claim = std::make_unique<Claim>();
     claim->flag = flag;

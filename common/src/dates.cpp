@@ -103,7 +103,7 @@ std::string date_text(std::int64_t day) {
 std::string date_time_text(std::int64_t s) {
   const std::int64_t day = (s >= 0 ? s : s - 86399) / 86400;
   const auto in_day = static_cast<int>(s - day * 86400);
-  char clock[16];
+  char clock[32];  // room for any int the compiler cannot rule out
   std::snprintf(clock, sizeof clock, " %02d:%02d:%02d", in_day / 3600, in_day / 60 % 60,
                 in_day % 60);
   return date_text(day) + clock;
