@@ -200,8 +200,12 @@ FitResult fit_climbing_machine(const floors::Building& building,
           printf_string(
               "a family whose platform %s reaches %s (`family.platform.%s`: %.2f), or a "
               "building at most %s along %s",
-              name, L(outer_m).c_str(), axis == 0 ? "length_m" : "width_m", outer_m,
-              L(largest - section - 2 * clearance).c_str(), axis == 0 ? "x" : "y");
+              name, L(outer_m).c_str(), axis == 0 ? "length_m" : "width_m",
+              floors::rounded(outer_m, 2, floors::Towards::kUp),
+              floors::length_text(largest - section - 2 * clearance, building.units, 2,
+                                  floors::Towards::kDown)
+                  .c_str(),
+              axis == 0 ? "x" : "y");
     } else if (outer_m < smallest) {
       lo -= 0.5 * (smallest - outer_m);
       hi += 0.5 * (smallest - outer_m);

@@ -11,6 +11,8 @@
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/plane.hpp"
+#include "ccbuild/floors/units.hpp"
 #include "plan_internal.hpp"
 
 namespace ccbuild::floors {
@@ -68,6 +70,10 @@ void check_anchors(const Floor& floor, const std::string& context, DiagnosticSin
 }  // namespace
 
 namespace {
+
+// A floor's level and where the floors under it end agree within a millimetre (models
+// state levels to the millimetre).
+constexpr double kLevelTolerance_m = 1e-3;
 
 // The layers of a whole building, counted in floating point so that no height can
 // overflow the count; over the limit is an input error at `field`.
@@ -335,6 +341,17 @@ Building building_from_document(const Document& doc, const fs::path& path,
   if (floor_fields.empty()) floors.fail("a building needs at least one floor");
   check_count(floors, floor_fields.size(), limits::kMaxFloors, "floors");
 
+  // The floors' levels first: a floor without a height runs up to the next floor's level,
+  // under its own slab, so slabs fill the storeys rather than move them.
+  std::vector<std::optional<double>> levels_m(floor_fields.size());
+  for (std::size_t i = 0; i < floor_fields.size(); ++i)
+    findings.attempt([&] {
+      if (!floor_fields[i].is_map()) return;  // said when the floor is read
+      if (auto level = MapReader(floor_fields[i], {}).optional("level"))
+        levels_m[i] = read_length(*level, limits::kLevel_m, unit);
+    });
+  const double origin_m = levels_m.empty() || !levels_m[0] ? 0.0 : *levels_m[0];
+
   std::map<fs::path, FloorPlan> plan_files;  // a plan shared by several floors is read once
   double elevation_m = 0.0;
   for (std::size_t i = 0; i < floor_fields.size(); ++i) {
@@ -346,15 +363,49 @@ Building building_from_document(const Document& doc, const fs::path& path,
     bool read = false;
     findings.attempt(
         [&] {
-          MapReader fm(f, {"name", "height", "slab", "plan", "openings", "anchors"});
+          MapReader fm(f, {"name", "level", "height", "slab", "plan", "openings", "anchors"});
           if (fm.has("name")) floor.name = fm.required("name").as_string();
           fm.reject_unknown();
-          floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
           if (auto slab = fm.optional("slab"))
             floor.slab_m = read_length(*slab, limits::kSlabThickness_m, unit);
           else if (building.slabs)
             floor.slab_m = building.slabs->thickness_m;  // the floor above stands on it
+          if (auto level = fm.optional("level");
+              level && levels_m[i] && !building.floors.empty() &&
+              building.floors.back().index + 1 == floor.index &&
+              std::abs(*levels_m[i] - origin_m - elevation_m) > kLevelTolerance_m + 1e-9) {
+            const Floor& below = building.floors.back();
+            level->fail(printf_string(
+                "floor '%s' is at level %s, but the floor under it, '%s', ends at %s (%s high, "
+                "%s of slab over it): the inputs would move this level; leave out '%s''s "
+                "height to run it up to this level under its slab, or make the two agree",
+                echoed(floor.name).c_str(), length_text(*levels_m[i], unit).c_str(),
+                echoed(below.name).c_str(), length_text(origin_m + elevation_m, unit).c_str(),
+                length_text(below.height_m, unit).c_str(), length_text(below.slab_m, unit).c_str(),
+                echoed(below.name).c_str()));
+          }
+          const bool next_level = i + 1 < levels_m.size() && levels_m[i + 1];
+          if (fm.has("height") || !next_level) {
+            if (!fm.has("height"))
+              f.fail(
+                  "a floor needs a height (floor to floor, or up to its slab), or a level "
+                  "on the floor above it to run up to");
+            floor.height_m = read_length(fm.required("height"), limits::kFloorHeight_m, unit);
+          } else {
+            floor.height_m =
+                round_to_nanometre(*levels_m[i + 1] - origin_m - elevation_m - floor.slab_m);
+            if (!limits::kFloorHeight_m.contains(floor.height_m))
+              f.fail(printf_string(
+                  "without a height, the floor runs from %s up to the next floor's level, %s, "
+                  "under its %s slab: %s high, outside %s",
+                  length_text(origin_m + elevation_m, unit).c_str(),
+                  length_text(*levels_m[i + 1], unit).c_str(),
+                  length_text(floor.slab_m, unit).c_str(),
+                  length_text(floor.height_m, unit).c_str(),
+                  limits::kFloorHeight_m.describe(to_string(unit), meters_per(unit)).c_str()));
+          }
           floor.base_elevation_m = elevation_m;
+          floor.level_m = levels_m[i];
           elevation_m += floor.height_m + floor.slab_m;
 
           const Field plan = fm.required("plan");

@@ -17,8 +17,22 @@ std::string to_string(LengthUnit unit) {
   return unit == LengthUnit::kFoot ? "ft" : "m";
 }
 
-std::string length_text(double value_m, LengthUnit unit, int decimals) {
-  return printf_string("%.*f %s", decimals, value_m / meters_per(unit), to_string(unit).c_str());
+double rounded(double value, int decimals, Towards towards) {
+  const double scale = std::pow(10.0, decimals);
+  switch (towards) {
+    case Towards::kUp:
+      return std::ceil((value - 1e-9) * scale) / scale;
+    case Towards::kDown:
+      return std::floor((value + 1e-9) * scale) / scale;
+    case Towards::kNearest:
+      break;
+  }
+  return value;  // printf rounds to the nearest
+}
+
+std::string length_text(double value_m, LengthUnit unit, int decimals, Towards towards) {
+  return printf_string("%.*f %s", decimals, rounded(value_m / meters_per(unit), decimals, towards),
+                       to_string(unit).c_str());
 }
 
 std::string fine_length_text(double value_m, LengthUnit unit) {
@@ -42,8 +56,10 @@ std::string flow_text(double value_m3_s, LengthUnit unit, int decimals) {
                        volume_unit(unit).c_str());
 }
 
-std::string speed_text(double value_m_s, LengthUnit unit, int decimals) {
-  return printf_string("%.*f %s/s", decimals, length_in(value_m_s, unit), to_string(unit).c_str());
+std::string speed_text(double value_m_s, LengthUnit unit, int decimals, Towards towards) {
+  return printf_string("%.*f %s/s", decimals,
+                       rounded(length_in(value_m_s, unit), decimals, towards),
+                       to_string(unit).c_str());
 }
 
 std::optional<double> parse_length_m(const std::string& text, LengthUnit default_unit) {

@@ -261,9 +261,12 @@ void check_fit(const Project& project) {
                           : "as one bead, or as two skins of one bead each and what lies between "
                             "them (wall_pattern)") +
                     ": make it " + project.length(bead_m) + " (one bead) or " +
-                    project.length(2 * bead_m) +
+                    floors::length_text(2 * bead_m, b.units, 3, floors::Towards::kUp) +
                     " or more (two skins), or use a machine whose nozzle lays " +
-                    project.length(t) + (thin ? "" : " or at most " + project.length(0.5 * t)) +
+                    project.length(t) +
+                    (thin ? ""
+                          : " or at most " +
+                                floors::length_text(0.5 * t, b.units, 3, floors::Towards::kDown)) +
                     " (nozzle_width_m)"});
     }
   sink.throw_if_any();

@@ -81,6 +81,37 @@ TEST(IfcCommands, AModelImportedSchedulesAsTheModelNamedDirectly) {
   ASSERT_EQ(report.exit_code, 0) << report.err;
   EXPECT_TRUE(contains(slurp(dir / "report.html"), "IFC GlobalId "));
   EXPECT_TRUE(contains(diff.out, "agree"));
+  // Levels from the model: each floor states its level, the lower one runs up to the next
+  // under its slab; `slabs:` added for all then shortens its walls and moves no level.
+  const std::string text = slurp(building);
+  const auto ground = text.find("\n  - {name: ");
+  ASSERT_NE(ground, std::string::npos) << text;
+  const std::string ground_line = text.substr(ground, text.find('\n', ground + 1) - ground);
+  EXPECT_TRUE(contains(ground_line, ", level: 0")) << ground_line;
+  EXPECT_FALSE(contains(ground_line, "height:")) << ground_line;
+  auto floors_of = [&](const std::string& yaml) {
+    std::ofstream(dir / "levels.yaml") << yaml;
+    const auto v = run_ccbuild("validate --json " + (dir / "levels.yaml").string());
+    EXPECT_EQ(v.exit_code, 0) << v.err;
+    return nlohmann::json::parse(v.out.empty() ? "{}" : v.out).value("floors", nlohmann::json());
+  };
+  const auto bare = floors_of(text);
+  ASSERT_EQ(bare.size(), 2u);
+  EXPECT_NEAR(bare[0]["height_m"].get<double>(), 2.8, 1e-9);  // up to its 0.2 m slab
+  // The ground floor's slab taken out, then `slabs:` for all (0.25 m) in its place.
+  std::string unslabbed = text;
+  const auto own_slab = unslabbed.find(", slab: 0.2", ground);
+  ASSERT_LT(own_slab, unslabbed.find('\n', ground + 1));
+  unslabbed.erase(own_slab, 11);
+  std::string slabbed_text = unslabbed;
+  slabbed_text.insert(slabbed_text.find("\nfloors:\n") + 1, "slabs: {thickness: 0.25}\n");
+  for (const auto& [yaml, height_m] : {std::pair{unslabbed, 3.0}, std::pair{slabbed_text, 2.75}}) {
+    const auto floors = floors_of(yaml);
+    ASSERT_EQ(floors.size(), 2u);
+    EXPECT_NEAR(floors[0]["height_m"].get<double>(), height_m, 1e-9);
+    EXPECT_NEAR(floors[1]["base_elevation_m"].get<double>(),
+                bare[1]["base_elevation_m"].get<double>(), 1e-9);
+  }
   // Nothing replaced without --force, never the model; DXF flags are refused for a model.
   const std::string before = slurp(building);
   EXPECT_EQ(run_ccbuild("import " + model + " -o " + building).exit_code, 2);

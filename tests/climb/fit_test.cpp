@@ -90,6 +90,27 @@ TEST(Fit, ThePlatformLimitHoldsAtItsValue) {
   EXPECT_NEAR(grown.platform.x_min_m, -3.7, 1e-9);
 }
 
+// The platform the message proposes, applied as written, is large enough: rounded up to the
+// centimetre (15.0037 m needed: 15.01, where the nearest, 15.00, would be refused again),
+// and the building it proposes instead, rounded down, fits the family as it is.
+TEST(Fit, TheProposedPlatformAppliedAsWrittenFits) {
+  const std::string text =
+      replaced(family_text(), "beam_clearance_m: 1.2 ", "beam_clearance_m: 1.20185 ");
+  const FitResult r = fit_climbing_machine(
+      house(), family_from(replaced(text, "length_m: [6, 48]", "length_m: [6, 14.99]")));
+  ASSERT_EQ(r.status.code(), ClimbCode::kTooLarge) << r.status.to_string();
+  const std::string key = "`family.platform.length_m`: ";
+  const auto at = r.nearest_change.find(key);
+  ASSERT_NE(at, std::string::npos) << r.nearest_change;
+  const std::string proposed = r.nearest_change.substr(at + key.size(), 5);
+  EXPECT_EQ(proposed, "15.01") << r.nearest_change;
+  const FitResult applied = fit_climbing_machine(
+      house(), family_from(replaced(text, "length_m: [6, 48]", "length_m: [6, " + proposed + "]")));
+  EXPECT_NE(applied.status.code(), ClimbCode::kTooLarge) << applied.status.to_string();
+  // 14.99 - 0.6 - 2 x 1.20185 = 11.9863 m of building at most: 11.98, not 11.99.
+  EXPECT_TRUE(contains(r.nearest_change, "a building at most 11.98 m along x")) << r.nearest_change;
+}
+
 TEST(Fit, AStabilityMarginEqualToTheBestSetsLeastMarginKeepsThatSet) {
   // The house's most stable set of four, on statics alone (its climbs not planned, which
   // the margin would also bound), then the same family asking exactly that set's least

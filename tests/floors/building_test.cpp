@@ -209,5 +209,87 @@ TEST(Building, AFloorsSlabLiftsTheFloorsAboveIt) {
   std::filesystem::remove_all(dir);
 }
 
+// Levels from the model: a floor without a height runs up to the next floor's level under
+// its slab, so `slabs:` fills the storeys and moves no level; a height and slab that would
+// move a level are refused at that level, naming both values; the boundary is 1 mm.
+TEST(Building, SlabsFillTheStoreysBetweenLevelsAndNeverMoveThem) {
+  const auto dir = scratch();
+  std::filesystem::copy_file(data("plans/cottage.yaml"), dir / "plan.yaml",
+                             std::filesystem::copy_options::overwrite_existing);
+  auto with =
+      [&](const std::string& units, const std::string& head, const std::string& floors) {
+        std::ofstream(dir / "b.yaml")
+            << "units: " << units << "\nlayer_height: 0.1\nmaterial: "
+            << testing::source_path("config/materials/standard-mix.yaml").string()
+            << "\nmachine: " << testing::source_path("config/machines/cc-gantry.yaml").string()
+            << "\n"
+            << head << "floors:\n"
+            << floors;
+        return load_building(dir / "b.yaml");
+      };
+  // An imported office: levels 1.5 (the datum of its ground), 5.767 and 9.425, no slabs.
+  const std::string office =
+      "  - {name: L1, level: 1.5, plan: plan.yaml}\n"
+      "  - {name: L2, level: 5.767, plan: plan.yaml}\n"
+      "  - {name: roof, level: 9.425, height: 3.0, plan: plan.yaml}\n";
+  const Building bare = with("m", "", office);
+  EXPECT_NEAR(bare.floors[0].height_m, 4.267, 1e-9);
+  EXPECT_NEAR(bare.floors[1].base_elevation_m, 4.267, 1e-9);
+  EXPECT_NEAR(bare.floors[2].base_elevation_m, 7.925, 1e-9);
+  ASSERT_TRUE(bare.floors[1].level_m.has_value());
+  EXPECT_DOUBLE_EQ(*bare.floors[1].level_m, 5.767);
+  // Slabs added for all: the levels stay, the walls under them are a slab shorter.
+  const Building slabbed = with("m", "slabs: {thickness: 0.2}\n", office);
+  EXPECT_NEAR(slabbed.floors[0].height_m, 4.067, 1e-9);
+  EXPECT_NEAR(slabbed.floors[1].base_elevation_m, 4.267, 1e-9);
+  EXPECT_NEAR(slabbed.floors[1].height_m, 3.458, 1e-9);
+  EXPECT_NEAR(slabbed.floors[2].base_elevation_m, 7.925, 1e-9);
+  EXPECT_NEAR(slabbed.floors[2].height_m, 3.0, 1e-9);  // the top floor's own height
+  // In feet, the same rule in the file's unit.
+  const Building feet = with("ft", "",
+                             "  - {level: 0, plan: plan.yaml}\n"
+                             "  - {level: 10, height: 9, plan: plan.yaml}\n");
+  EXPECT_NEAR(feet.floors[0].height_m, 10 * 0.3048, 1e-9);
+  // A height and a slab that end 0.2 m above the next level: refused at that level, with
+  // both values and the floor under it.
+  const std::string moved =
+      "  - {name: L1, level: 0, height: 4.267, slab: 0.2, plan: plan.yaml}\n"
+      "  - {name: L2, level: 4.267, height: 3, plan: plan.yaml}\n";
+  const InputError e = testing::expect_input_error([&] { with("m", "", moved); });
+  EXPECT_EQ(e.first().field, "floors[1].level");
+  for (const char* part : {"4.267 m", "4.467 m", "'L1'", "0.200 m"})
+    EXPECT_TRUE(testing::contains(e.first().message, part)) << part << ": " << e.first().message;
+  // The boundary: 1 mm apart is where they agree, a little more is not.
+  auto apart = [&](const std::string& level) {
+    return with("m", "",
+                "  - {level: 0, height: 3, plan: plan.yaml}\n  - {level: " + level +
+                    ", height: 3, plan: plan.yaml}\n");
+  };
+  EXPECT_NEAR(apart("3.001").floors[1].base_elevation_m, 3.0, 1e-12);
+  EXPECT_NEAR(apart("2.999").floors[1].base_elevation_m, 3.0, 1e-12);
+  EXPECT_EQ(testing::expect_input_error([&] { apart("3.0012"); }).first().field, "floors[1].level");
+  EXPECT_EQ(testing::expect_input_error([&] { apart("2.9988"); }).first().field, "floors[1].level");
+  // No height and no level above: the floor needs one; a level under the floor's own base
+  // leaves it no height: both said at the floor.
+  EXPECT_TRUE(testing::contains(
+      testing::expect_input_error([&] { with("m", "", "  - {level: 0, plan: plan.yaml}\n"); })
+          .first()
+          .message,
+      "needs a height"));
+  const InputError low = testing::expect_input_error([&] {
+    with("m", "",
+         "  - {level: 0, slab: 0.3, plan: plan.yaml}\n  - {level: 0.2, height: 3, plan: "
+         "plan.yaml}\n");
+  });
+  EXPECT_EQ(low.first().field, "floors[0]");
+  EXPECT_TRUE(testing::contains(low.first().message, "-0.100 m high")) << low.first().message;
+  EXPECT_EQ(testing::expect_input_error(
+                [&] { with("m", "", "  - {level: 10001, height: 3, plan: plan.yaml}\n"); })
+                .first()
+                .field,
+            "floors[0].level");
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace ccbuild::floors

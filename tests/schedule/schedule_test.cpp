@@ -15,6 +15,7 @@
 #include <fstream>
 #include <map>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/floors/generate.hpp"
 #include "ccbuild/orchestrator/project.hpp"
 #include "ccbuild/schedule/schedule_diff.hpp"
@@ -292,6 +293,10 @@ TEST(Schedule, AMaximumNoNozzleCountMeetsIsInfeasibleWithItsFix) {
   EXPECT_TRUE(contains(inf.fix, "a maximum layer interval of at least"));
   // Still a whole schedule, so that the report can show it.
   expect_schedule_rules(p, s);
+  // The figure said is the one computed, in whole seconds up.
+  EXPECT_TRUE(
+      contains(inf.fix, ccbuild::printf_string("at least %.0f s", *inf.max_interval_needed_s)))
+      << inf.fix;
   fs::remove_all(dir);
 }
 

@@ -514,6 +514,7 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
     floor.height_m = clean(l.height_m);
     floor.slab_m = clean(l.slab_m);
     floor.base_elevation_m = base_m;
+    floor.level_m = clean(l.elevation_m);
     floor.source = {file, 0, first.what.describe()};
     std::size_t pieces = 0;
     for (const FoundWall* w : l.walls) pieces += w->pieces.size();

@@ -140,7 +140,9 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer
   if (inf.deposition_speed_needed_m_s)
     fix += printf_string(
         "; or a deposition speed of at least %s (now %s)",
-        floors::speed_text(*inf.deposition_speed_needed_m_s, project_.building.units).c_str(),
+        floors::speed_text(*inf.deposition_speed_needed_m_s, project_.building.units, 3,
+                           floors::Towards::kUp)
+            .c_str(),
         floors::speed_text(machine_.deposition_speed_m_s, project_.building.units).c_str());
   if (inf.nozzles_needed)
     fix += printf_string("; or %d nozzles (the machine has %d)", *inf.nozzles_needed,

@@ -151,13 +151,19 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
   building += "name: " + quoted(b.name) + "\nunits: m\nlayer_height: " + exact(b.layer_height_m) +
               "\nmaterial: " + quoted(relative_to(material, folder)) +
               "\nmachine: " + quoted(relative_to(machine, folder)) + "\nfloors:\n";
-  for (std::size_t k = 0; k < b.floors.size(); ++k)
-    building += printf_string(
-        "  - {name: %s, height: %s%s, plan: %s}  # %s\n", quoted(b.floors[k].name).c_str(),
-        exact(b.floors[k].height_m).c_str(),
-        b.floors[k].slab_m > 0.0 ? (", slab: " + exact(b.floors[k].slab_m)).c_str() : "",
-        quoted(plan_paths[plan_of[k]].filename().string()).c_str(),
-        comment(b.floors[k].source.path).c_str());
+  // Levels as the model states them; a floor under a level runs up to it under its slab, so
+  // a slab added later fills the storey and moves no level (only the top floor's height).
+  for (std::size_t k = 0; k < b.floors.size(); ++k) {
+    const floors::Floor& f = b.floors[k];
+    const bool to_level = k + 1 < b.floors.size() && b.floors[k + 1].level_m.has_value();
+    std::string keys = "name: " + quoted(f.name);
+    if (f.level_m) keys += ", level: " + exact(*f.level_m);
+    if (!to_level) keys += ", height: " + exact(f.height_m);
+    if (f.slab_m > 0.0) keys += ", slab: " + exact(f.slab_m);
+    building += "  - {" + keys + ", plan: " + quoted(plan_paths[plan_of[k]].filename().string()) +
+                "}  # " + comment(f.source.path) +
+                (to_level ? "; " + exact(f.height_m) + " m high, up to the next level" : "") + "\n";
+  }
   for (std::size_t d = 0; d < distinct.size(); ++d)
     outputs.write(plan_paths[d], mark + "\n" +
                                      plan_yaml(b.floors[distinct[d]].plan, o.drawing,

@@ -34,7 +34,10 @@ struct Floor {
   /// file, 0 by default). Not printed; the floors above stand on it.
   double slab_m = 0.0;
   double base_elevation_m = 0.0;  ///< sum of the heights and slabs below
-  FloorPlan plan;                 ///< includes the floor's own openings
+  /// Its level in the model (`level`: its storey's elevation), when stated; the floor
+  /// under it then runs up to it under its slab (docs/formats.md, Floors).
+  std::optional<double> level_m;
+  FloorPlan plan;  ///< includes the floor's own openings
   std::vector<AnchorPoint> anchors;
   SourceRef source;
 };

@@ -23,6 +23,8 @@ inline const Range kOpeningWidth_m = Range::above(0.0, 200'000.0);
 inline const Range kOpeningHeight_m = Range::closed(0.0, 100.0);
 /// A floor's height: of its walls (floor to floor without a slab).
 inline const Range kFloorHeight_m = Range::above(0.0, 100.0);
+/// A floor's level (its storey's elevation in the model): within 10 km of the model's datum.
+inline const Range kLevel_m = Range::closed(-10'000.0, 10'000.0);
 /// The slab on a floor's walls, up to the next floor's base.
 inline const Range kSlabThickness_m = Range::closed(0.0, 10.0);
 /// Layer height: printed layers are millimetres to centimetres thick.

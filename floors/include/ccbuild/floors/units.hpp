@@ -20,8 +20,17 @@ constexpr double meters_per(LengthUnit unit) {
 std::optional<LengthUnit> parse_length_unit(const std::string& text);
 std::string to_string(LengthUnit unit);
 
+/// Which way a figure for messages is rounded. A figure a message proposes as a fix is
+/// rounded towards the side that passes when applied as written: a least value up, a
+/// greatest value down.
+enum class Towards { kNearest, kUp, kDown };
+
+/// `value` with `decimals` decimals, rounded as said (within 1e-9 of a step it stays).
+double rounded(double value, int decimals, Towards towards);
+
 /// A length for messages, in the user's unit: "3.000 m", "9.843 ft".
-std::string length_text(double value_m, LengthUnit unit, int decimals = 3);
+std::string length_text(double value_m, LengthUnit unit, int decimals = 3,
+                        Towards towards = Towards::kNearest);
 
 /// A length in `unit` (a bare number, for tables whose header names the unit).
 constexpr double length_in(double value_m, LengthUnit unit) {
@@ -50,7 +59,8 @@ std::string volume_text(double value_m3, LengthUnit unit, int decimals = 2);
 std::string flow_text(double value_m3_s, LengthUnit unit, int decimals = 1);
 
 /// A speed for messages: "0.100 m/s", "0.328 ft/s".
-std::string speed_text(double value_m_s, LengthUnit unit, int decimals = 3);
+std::string speed_text(double value_m_s, LengthUnit unit, int decimals = 3,
+                       Towards towards = Towards::kNearest);
 
 /// Parses a length with an optional unit suffix ("40ft", "12.5 m", "3"); a bare number
 /// is in `default_unit`. Returns metres, nullopt when the text is not such a length.
