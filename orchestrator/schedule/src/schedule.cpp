@@ -982,9 +982,41 @@ std::shared_ptr<PlanMemo> make_plan_memo() {
   return std::make_shared<PlanMemo>();
 }
 
-Schedule build_schedule(const Setup& project, const ScheduleOptions& options) {
-  detail::Scheduler scheduler(project, options);
-  return scheduler.run();
+Schedule build_schedule(const Setup& project, const ScheduleOptions& given) {
+  ScheduleOptions options = given;  // plans memoised, for the proof below
+  if (!options.memo) options.memo = std::make_shared<PlanMemo>();
+  Schedule s = detail::Scheduler(project, options).run();
+  // The maximum interval a failure proposes is proven by scheduling with it: the intervals
+  // depend on the plans chosen before, so the first failing layer's interval alone may fall
+  // short further up. Raised until the rule holds (a few tries, plans memoised), so that
+  // the figure said, applied as written, passes the maximum interval.
+  if (s.feasible || !s.infeasibility || s.infeasibility->kind != InfeasibilityKind::kMaxInterval ||
+      !s.infeasibility->max_interval_needed_s)
+    return s;
+  Infeasibility& inf = *s.infeasibility;
+  const double first_s = *inf.max_interval_needed_s;
+  Setup tried = project;
+  ScheduleOptions quiet = options;
+  quiet.progress = nullptr;
+  if (options.progress) options.progress("checking the proposed maximum interval");
+  double needed_s = first_s;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    tried.material.max_layer_interval_s = needed_s;
+    const Schedule t = detail::Scheduler(tried, quiet).run();
+    if (t.feasible || !t.infeasibility ||
+        t.infeasibility->kind != InfeasibilityKind::kMaxInterval ||
+        !t.infeasibility->max_interval_needed_s)
+      break;
+    needed_s = std::max(needed_s + 1.0, *t.infeasibility->max_interval_needed_s);
+  }
+  if (needed_s == first_s) return s;
+  inf.max_interval_needed_s = needed_s;
+  const std::string was = printf_string("a maximum layer interval of at least %.0f s", first_s);
+  const std::string now = printf_string("a maximum layer interval of at least %.0f s", needed_s);
+  for (std::string* text : {&inf.fix, &inf.message})
+    if (const auto at = text->find(was); at != std::string::npos)
+      text->replace(at, was.size(), now);
+  return s;
 }
 
 }  // namespace ccbuild::schedule
