@@ -5,7 +5,8 @@
 # the SVG parsed as XML with its groups present, for schedule check_schedule.py on its
 # -o file (and `ccbuild report` reading it back) and check_report.py (headless Chromium) on its --report; with each JSON checker's self-test (it must catch planted corruptions of this
 # very output) when the run succeeded. SELF_TEST=0 and REPORT=0 leave out the self-test and
-# Chromium where the same kind of output is checked so elsewhere.
+# Chromium where the same kind of output is checked so elsewhere; EXPECT_PLAN=REGEX asks
+# that some layer's plan key match it.
 # Usage: check_outputs.sh CCBUILD PYTHON EXPECTED_EXIT plan-layer|climb|schedule ARGS...
 set -euo pipefail
 ccbuild=$1 python=$2 expected=$3 command=$4
@@ -57,6 +58,16 @@ PY
     ;;
   schedule)
     "$python" "$here/check_schedule.py" "$out/out.json"
+    # EXPECT_PLAN=REGEX: some layer's plan key matches it (a held-back plan, `h$`, say), so
+    # that a rule the schedule could do without is seen to be used.
+    if [ -n "${EXPECT_PLAN:-}" ]; then
+      "$python" - "$out/out.json" "$EXPECT_PLAN" <<'PY'
+import json, re, sys
+keys = [layer["plan"] for layer in json.load(open(sys.argv[1]))["layers"]]
+if not any(re.search(sys.argv[2], key) for key in keys):
+    sys.exit("check_outputs: no layer's plan key matches %r (keys: %s)" % (sys.argv[2], sorted(set(keys))))
+PY
+    fi
     # ccbuild's own re-validation (read_schedule) accepts what the scheduler wrote.
     "$ccbuild" report "$out/out.json" -o "$out/again.html" > /dev/null
     # The report, in headless Chromium: every section drawn, no console error. REPORT=0
