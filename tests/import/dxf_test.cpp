@@ -293,5 +293,75 @@ TEST(DxfImport, GapsInWallLinesAreOpeningsWhenAsked) {
   }
 }
 
+// Drawn as drafters draw it: the wall lines broken at the door and the window, jambs, and a
+// door or window block inserted in each gap (AIA layers, millimetres). Each gap is its
+// block's opening, of the block's kind and the gap's size, the walls either side joined
+// into one; the window's heights from its SILL and HEAD attributes. With gap_openings too,
+// a block and its gap are still one opening; a block on a wall drawn through is an opening
+// of the block's width.
+TEST(DxfImport, ABlockInAGapIsThatGapsOpening) {
+  const auto all = [](const std::vector<std::string>& notes) {
+    std::string text;
+    for (const auto& note : notes) text += note + "\n";
+    return text;
+  };
+  DxfOptions o;
+  o.wall_layers = {"A-WALL"};
+  o.door_layers = {"A-DOOR"};
+  o.window_layers = {"A-GLAZ"};
+  DxfOptions walls_only;
+  walls_only.wall_layers = {"A-WALL"};
+  const std::size_t broken = read_dxf_plan(drawing("drafted_mm.dxf"), walls_only).plan.walls.size();
+  for (const bool every_gap : {false, true}) {
+    SCOPED_TRACE(every_gap ? "gap_openings" : "blocks only");
+    o.gap_openings = every_gap;
+    const DxfPlan read = read_dxf_plan(drawing("drafted_mm.dxf"), o);
+    floors::validate_plan(read.plan, 3.0);
+    EXPECT_EQ(read.plan.walls.size() + 2, broken);  // two gaps joined: two walls fewer
+    ASSERT_EQ(read.plan.openings.size(), 3u) << all(read.notes);
+    int doors = 0, windows = 0;
+    for (const auto& op : read.plan.openings) {
+      const floors::Wall& w = *read.plan.find_wall(op.wall_id);
+      const Vector2d a = read.plan.wall_start_m(w), b = read.plan.wall_end_m(w);
+      const Vector2d d = (b - a).normalized();
+      const Vector2d from = a + op.offset_m * d, to = a + (op.offset_m + op.width_m) * d;
+      if (op.id[0] == 'D') {  // the partition's door, y 1.0 to 1.9 at x 3, in its gap
+        ++doors;
+        EXPECT_NEAR(std::min(from.y(), to.y()), 1.0, 1e-9);
+        EXPECT_NEAR(std::max(from.y(), to.y()), 1.9, 1e-9);
+        EXPECT_NEAR(from.x(), 3.0, 1e-9);
+        EXPECT_EQ(op.sill_m, 0.0);
+        EXPECT_NEAR(op.head_m, o.door_head_m, 1e-12);
+        EXPECT_TRUE(contains(op.source.path, "of block DOOR900")) << op.source.path;
+        EXPECT_TRUE(contains(op.source.path, "in the gap between")) << op.source.path;
+      } else if (std::abs(from.y() - 0.15) < 1e-6) {  // the south window, x 3.8 to 5.0
+        ++windows;
+        EXPECT_EQ(op.id[0], 'W');
+        EXPECT_NEAR(std::min(from.x(), to.x()), 3.8, 1e-9);
+        EXPECT_NEAR(std::max(from.x(), to.x()), 5.0, 1e-9);
+        EXPECT_NEAR(op.sill_m, 1.0, 1e-9);  // SILL 1000 in the drawing's millimetres
+        EXPECT_NEAR(op.head_m, 2.2, 1e-9);
+      } else {  // the north window on a wall drawn through: the block's width
+        ++windows;
+        EXPECT_EQ(op.id[0], 'W');
+        EXPECT_NEAR(std::min(from.x(), to.x()), 1.0, 1e-9);
+        EXPECT_NEAR(std::max(from.x(), to.x()), 2.2, 1e-9);
+        EXPECT_NEAR(op.sill_m, o.window_sill_m, 1e-12);
+      }
+    }
+    EXPECT_EQ(doors, 1);
+    EXPECT_EQ(windows, 2);
+  }
+  // A gap wider than the largest asked for is not joined: its block lies on no wall.
+  o.gap_openings = false;
+  o.max_gap_m = 1.0;
+  const DxfPlan narrow = read_dxf_plan(drawing("drafted_mm.dxf"), o);
+  EXPECT_EQ(narrow.plan.walls.size() + 1, broken);
+  EXPECT_EQ(narrow.plan.openings.size(), 2u);
+  EXPECT_TRUE(contains(all(narrow.notes),
+                       "of block WIN1200 on layer A-GLAZ: at (4.400, 0.150) m, on no wall"))
+      << all(narrow.notes);
+}
+
 }  // namespace
 }  // namespace ccbuild::import

@@ -17,6 +17,9 @@ door in the wall between them and a window in the south wall.
                       door and the window left as gaps in the wall lines (closed by jamb
                       lines), a glazing line across the window's gap on layer A-GLAZ
   gaps_m.dxf          the same as centrelines in metres, without jambs
+  drafted_mm.dxf      gaps_faces_mm.dxf as drafters draw it: a door block and a window block
+                      (SILL and HEAD attributes) inserted in the gaps, no glazing line, and a
+                      window block on a wall drawn through
   attributes_m.dxf    centrelines in metres with attributed inserts (INSERT with 66 = 1,
                       ATTRIBs, SEQEND): a door with HEAD 2.3 (the drawing's unit), a window
                       with SILL 1000mm and HEAD 2.2m (tags in any case), a window with only
@@ -135,6 +138,22 @@ def two_rooms_gaps_faces():
     return d
 
 
+def two_rooms_drafted():
+    """As drafters draw it (AIA layers, millimetres): gaps_faces_mm's walls broken at the
+    door and the window, with jambs, no glazing line; a door block (A-DOOR) inserted in the
+    partition's gap, a window block (A-GLAZ) in the south wall's gap with SILL 1000 and HEAD
+    2200 (the drawing's millimetres), and a window block on the north wall drawn through
+    (x 1.0-2.2 m; its sill and head the defaults)."""
+    d = two_rooms_gaps_faces()
+    d.entities.pop()  # the glazing line: the blocks say which opening is which
+    d.block("DOOR900", 900)
+    d.block("WIN1200", 1200)
+    d.insert("A-DOOR", "DOOR900", (3000, 1000), 90)
+    d.insert("A-GLAZ", "WIN1200", (3800, 150), 0, (("SILL", "1000"), ("HEAD", "2200")))
+    d.insert("A-GLAZ", "WIN1200", (1000, 3850), 0)
+    return d
+
+
 def two_rooms_gaps_centrelines():
     d = Dxf(6)
     d.line("WALLS", (0.15, 0.15), (3.8, 0.15)); d.line("WALLS", (5.0, 0.15), (5.85, 0.15))
@@ -174,6 +193,7 @@ def main():
         "truncated.dxf": faces[: len(faces) // 2],
         "gaps_faces_mm.dxf": two_rooms_gaps_faces().text(),
         "gaps_m.dxf": two_rooms_gaps_centrelines().text(),
+        "drafted_mm.dxf": two_rooms_drafted().text(),
     }
     files["attributes_m.dxf"] = two_rooms_attributes().text()
     files["attribute_not_number.dxf"] = two_rooms_attributes(

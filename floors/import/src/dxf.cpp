@@ -493,12 +493,63 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                                        (w.b - w.a).norm(), w.a.x(), w.a.y()));
   }
   found.swap(kept);
-  if (options.gap_openings && !found.empty()) {
+  // Door and window blocks, where they are drawn: in a gap of the wall lines (as drafters
+  // draw them, the lines broken at the opening) the block is that gap's opening; on a wall
+  // drawn through, an opening of the block's width.
+  struct Mark {
+    const DrawnInsert* insert = nullptr;
+    bool door = false;
+    std::string what;
+  };
+  std::vector<Mark> mark_of;
+  std::vector<detail::OpeningMark> marks;
+  for (const DrawnInsert& in : c.inserts) {
+    const bool door = doors_on.count(lower(in.layer)) > 0;
+    if (!door && !windows_on.count(lower(in.layer))) continue;
+    const std::string what =
+        "insert " + hex_handle(in.handle) + " of block " + in.block + " on layer " + in.layer;
+    const auto extent = c.block_extent.find(in.block);
+    if (extent == c.block_extent.end() || extent->second.second.x() <= extent->second.first.x()) {
+      notes.add("inserts whose block draws nothing left out",
+                what + ": its block draws nothing to measure its width by; left out");
+      continue;
+    }
+    const auto [lo, hi] = extent->second;
+    const double angle = in.angle_deg * M_PI / 180.0;
+    const Eigen::Rotation2Dd turn(angle);
+    const double mid_y = 0.5 * (lo.y() + hi.y()) * in.sy;
+    const Vector2d p0 = (in.at + turn * Vector2d(lo.x() * in.sx, mid_y)) * scale;
+    const Vector2d p1 = (in.at + turn * Vector2d(hi.x() * in.sx, mid_y)) * scale;
+    if (!p0.allFinite() || !p1.allFinite())
+      throw InputError(file, 0, "entity " + hex_handle(in.handle),
+                       "an insert whose position, scale or angle is not a finite number");
+    mark_of.push_back({&in, door, what});
+    marks.push_back({p0, p1, !door});
+  }
+  if ((options.gap_openings || !marks.empty()) && !found.empty()) {
     std::vector<DrawnLine> glazing;
     for (const DrawnLine& l : c.lines)
       if (windows_on.count(lower(l.layer))) glazing.push_back(l);
-    found = join_gaps(std::move(found), glazing, scale, options.max_gap_m);
+    found =
+        join_gaps(std::move(found), glazing, marks, options.gap_openings, scale, options.max_gap_m);
   }
+  // A door's or window's sill and head: the insert's SILL and HEAD attributes, else the
+  // defaults for its kind.
+  const auto heights = [&](const Mark& m, floors::Opening& o) {
+    o.sill_m = m.door ? 0.0 : options.window_sill_m;
+    o.head_m = m.door ? options.door_head_m : options.window_head_m;
+    const auto sill = height_attribute(*m.insert, "SILL", scale, file);
+    const auto head = height_attribute(*m.insert, "HEAD", scale, file);
+    if (sill) o.sill_m = *sill;
+    if (head) o.head_m = *head;
+    if ((sill || head) && !(o.sill_m < o.head_m))
+      throw InputError(
+          file, 0, "entity " + hex_handle(m.insert->handle),
+          printf_string("%s: its sill (%.3f m%s) is not below its head (%.3f m%s)", m.what.c_str(),
+                        o.sill_m, sill ? ", attribute SILL" : ", the floor's default", o.head_m,
+                        head ? ", attribute HEAD" : ", the floor's default"));
+  };
+  std::vector<char> in_a_gap(marks.size(), 0);
   if (found.empty()) {
     std::string asked;
     for (const std::string& name : options.wall_layers) asked += (asked.empty() ? "" : ", ") + name;
@@ -535,13 +586,21 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     plan.walls.push_back({id, s, e, w.thickness_m, {file, 0, w.source}});
     for (const FoundGap& g : w.gaps) {
       floors::Opening o;
-      o.id = printf_string("%s%zu", g.window ? "GW" : "GD", plan.openings.size() + 1);
       o.wall_id = id;
       o.offset_m = g.offset_m;
       o.width_m = g.width_m;
-      o.sill_m = g.window ? options.window_sill_m : 0.0;
-      o.head_m = g.window ? options.window_head_m : options.door_head_m;
-      o.source = {file, 0, g.source};
+      if (g.mark) {  // the block in the gap: its kind, its heights, the gap's width
+        const Mark& m = mark_of[*g.mark];
+        in_a_gap[*g.mark] = 1;
+        o.id = (m.door ? "D" : "W") + hex_handle(m.insert->handle);
+        heights(m, o);
+        o.source = {file, 0, m.what + ", in " + g.source};
+      } else {
+        o.id = printf_string("%s%zu", g.window ? "GW" : "GD", plan.openings.size() + 1);
+        o.sill_m = g.window ? options.window_sill_m : 0.0;
+        o.head_m = g.window ? options.window_head_m : options.door_head_m;
+        o.source = {file, 0, g.source};
+      }
       plan.openings.push_back(o);
     }
   }
@@ -558,26 +617,12 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
   }
   const double on_wall_m = 0.5 * thickest_m + 0.3 + 1e-9;
   const detail::SegmentIndex wall_index(wall_segments, on_wall_m);
-  for (const DrawnInsert& in : c.inserts) {
-    const bool door = doors_on.count(lower(in.layer)) > 0;
-    if (!door && !windows_on.count(lower(in.layer))) continue;
-    const std::string what =
-        "insert " + hex_handle(in.handle) + " of block " + in.block + " on layer " + in.layer;
-    const auto extent = c.block_extent.find(in.block);
-    if (extent == c.block_extent.end() || extent->second.second.x() <= extent->second.first.x()) {
-      notes.add("inserts whose block draws nothing left out",
-                what + ": its block draws nothing to measure its width by; left out");
-      continue;
-    }
-    const auto [lo, hi] = extent->second;
-    const double angle = in.angle_deg * M_PI / 180.0;
-    const Eigen::Rotation2Dd turn(angle);
-    const double mid_y = 0.5 * (lo.y() + hi.y()) * in.sy;
-    const Vector2d p0 = (in.at + turn * Vector2d(lo.x() * in.sx, mid_y)) * scale;
-    const Vector2d p1 = (in.at + turn * Vector2d(hi.x() * in.sx, mid_y)) * scale;
-    if (!p0.allFinite() || !p1.allFinite())
-      throw InputError(file, 0, "entity " + hex_handle(in.handle),
-                       "an insert whose position, scale or angle is not a finite number");
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    if (in_a_gap[k]) continue;  // the gap's opening already
+    const DrawnInsert& in = *mark_of[k].insert;
+    const bool door = mark_of[k].door;
+    const std::string& what = mark_of[k].what;
+    const Vector2d p0 = marks[k].a, p1 = marks[k].b;
     const Vector2d centre = 0.5 * (p0 + p1);
     const floors::Wall* on = nullptr;
     double nearest = std::numeric_limits<double>::infinity();
@@ -610,18 +655,7 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     o.wall_id = on->id;
     o.offset_m = std::min(s0, s1);
     o.width_m = std::abs(s1 - s0);
-    o.sill_m = door ? 0.0 : options.window_sill_m;
-    o.head_m = door ? options.door_head_m : options.window_head_m;
-    const auto sill = height_attribute(in, "SILL", scale, file);
-    const auto head = height_attribute(in, "HEAD", scale, file);
-    if (sill) o.sill_m = *sill;
-    if (head) o.head_m = *head;
-    if ((sill || head) && !(o.sill_m < o.head_m))
-      throw InputError(
-          file, 0, "entity " + hex_handle(in.handle),
-          printf_string("%s: its sill (%.3f m%s) is not below its head (%.3f m%s)", what.c_str(),
-                        o.sill_m, sill ? ", attribute SILL" : ", the floor's default", o.head_m,
-                        head ? ", attribute HEAD" : ", the floor's default"));
+    heights(mark_of[k], o);
     o.source = {file, 0, what};
     if (o.width_m <= 1e-3) {
       notes.add("inserts across their wall left out",

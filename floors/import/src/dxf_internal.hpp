@@ -29,6 +29,15 @@ struct FoundGap {
   double offset_m = 0.0, width_m = 0.0;
   bool window = false;
   std::string source;
+  /// The door or window block inserted in the gap (an index into the marks join_gaps
+  /// was given): the gap is that opening, never a second one.
+  std::optional<std::size_t> mark;
+};
+
+/// A door or window block inserted in the drawing: its width along its x axis, in metres.
+struct OpeningMark {
+  Vector2d a, b;
+  bool window = false;
 };
 
 /// A wall found: its centreline in metres, its thickness (unset: drawn as a centreline).
@@ -65,9 +74,14 @@ void join_ends(std::vector<FoundWall>& walls);
 /// Joins walls in line across gaps of at most `max_gap_m` into one wall with an opening
 /// in each gap (a window where a `glazing` line lies in it). Each free end is linked to at
 /// most kMaxGapPartners facing ends, its nearest.
+/// Joins walls broken at openings: facing free ends of walls along one line, at most
+/// `max_gap_m` apart, become one wall with the gap as an opening. A gap is joined when a
+/// door or window block is inserted in it (its kind then the mark's), or, with
+/// `every_gap`, always (a window where a glazing line lies in it, else a door).
 std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
-                                 const std::vector<DrawnLine>& glazing, double scale,
-                                 double max_gap_m);
+                                 const std::vector<DrawnLine>& glazing,
+                                 const std::vector<OpeningMark>& marks, bool every_gap,
+                                 double scale, double max_gap_m);
 inline constexpr std::size_t kMaxGapPartners = 8;
 
 }  // namespace ccbuild::import::detail

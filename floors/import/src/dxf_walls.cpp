@@ -186,8 +186,9 @@ void join_ends(std::vector<FoundWall>& walls) {
 /// Each free end joins its nearest such partner; chains (wall, gap, wall, gap, wall)
 /// become one wall.
 std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
-                                 const std::vector<DrawnLine>& glazing, double scale,
-                                 double max_gap_m) {
+                                 const std::vector<DrawnLine>& glazing,
+                                 const std::vector<OpeningMark>& marks, bool every_gap,
+                                 double scale, double max_gap_m) {
   const std::size_t n = walls.size();
   double thickest_m = 0.0;
   std::vector<SegmentIndex::Segment> segments;
@@ -195,6 +196,29 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
     thickest_m = std::max(thickest_m, w.thickness_m.value_or(0.0));
     segments.emplace_back(w.a, w.b);
   }
+  // Door and window blocks by their middles: a gap's opening is the first in drawing order
+  // whose middle lies in it, along it.
+  std::vector<SegmentIndex::Segment> mark_middles;
+  for (const OpeningMark& m : marks)
+    mark_middles.emplace_back(0.5 * (m.a + m.b), 0.5 * (m.a + m.b));
+  const double reach_m = 0.5 * (max_gap_m + 2e-3) + 0.5 * thickest_m + 0.3 + 1e-6;
+  const SegmentIndex mark_index(mark_middles, reach_m);
+  const auto mark_in = [&](const Vector2d& p, const Vector2d& q,
+                           double thickness_m) -> std::optional<std::size_t> {
+    const double width_m = (q - p).norm();
+    const Vector2d d = (q - p) / width_m;
+    const double within_m = 0.5 * thickness_m + 0.3;
+    for (const std::size_t k :
+         mark_index.near_point(0.5 * (p + q), 0.5 * width_m + within_m + 1e-6)) {
+      const Vector2d mid = mark_middles[k].first;
+      const double s = (mid - p).dot(d);
+      const Vector2d along = marks[k].b - marks[k].a;
+      if (s > 0.0 && s < width_m && std::abs(cross(d, mid - p)) <= within_m &&
+          along.norm() > 1e-3 && std::abs(cross(d, along.normalized())) <= 0.1)
+        return k;
+    }
+    return std::nullopt;
+  };
   const SegmentIndex wall_index(segments, 1e-4);
   const auto touches_other = [&](const Vector2d& p, std::size_t self) {
     for (const std::size_t v : wall_index.near_point(p, 1e-4)) {
@@ -245,6 +269,7 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
         // q must be v's end facing back towards p.
         const Vector2d v_out = other == 0 ? Vector2d(-dv) : dv;
         if (v_out.dot(out) > -0.5) continue;
+        if (!every_gap && !mark_in(p, q, walls[w].thickness_m.value_or(0.0))) continue;
         own.push_back({gap, {2 * w + end, e}});
       }
       // Only the nearest few: a free end joins its nearest partner (a farther one only when
@@ -314,8 +339,10 @@ std::vector<FoundWall> join_gaps(std::vector<FoundWall> walls,
       g.source = "the gap between " + walls[at].source + " and " + walls[v].source;
       const Vector2d d = (q - p) / g.width_m;
       const double within_m = 0.5 * merged.thickness_m.value_or(0.0) + 0.3;
+      g.mark = mark_in(p, q, merged.thickness_m.value_or(0.0));  // its kind then the mark's
       for (const std::size_t k :
-           glazing_index.near_point(0.5 * (p + q), 0.5 * g.width_m + within_m + 1e-6)) {
+           g.mark ? std::vector<std::size_t>{}
+                  : glazing_index.near_point(0.5 * (p + q), 0.5 * g.width_m + within_m + 1e-6)) {
         const Vector2d mid = middles[k].first;
         const double s = (mid - p).dot(d);
         const double across = std::abs(cross(d, mid - p));
