@@ -7,9 +7,12 @@ runs the CTest tests it names (stopping at the first failure), and restores the 
 A mutant is killed when a test fails (or the build breaks); it survives when they all
 pass. Exit code 0 when at least 9 in 10 are killed.
 
-Usage: scripts/mutation-check.py [--keep] [--only N[,N...]] [--jobs 2] [--fast] [--check]
+Usage: scripts/mutation-check.py [--keep] [--reuse DIR] [--only N[-M][,...]] [--jobs 2]
+                                 [--fast] [--check]
   --keep     leave the scratch clone (its path is printed)
-  --only     run only these mutants (1-based, in file order)
+  --reuse    run in the scratch folder a --keep run left (its clone's commit, built
+             again where needed): a long run stopped part way goes on with --only N-M
+  --only     run only these mutants (1-based, in file order; 5-9 is a range)
   --fast     rebuild only the programs the mutant's tests run (their executables, ccbuild,
              the simulator): a test that calls another would run it unmutated, so a
              survivor of a fast run is run again without --fast before it counts
@@ -147,6 +150,7 @@ def main():
     parser.add_argument("--jobs", default="2")
     parser.add_argument("--check", action="store_true")
     parser.add_argument("--fast", action="store_true")
+    parser.add_argument("--reuse", default="")
     args = parser.parse_args()
 
     mutants = read_mutants(os.path.join(ROOT, "tests", "mutants", "mutants.txt"))
@@ -160,16 +164,31 @@ def main():
                              % (n, m["why"], found, m["file"]))
         print("\n".join(stale) or "all %d mutants apply" % len(mutants))
         return 1 if stale else 0
-    chosen = [int(n) for n in args.only.split(",") if n] or list(range(1, len(mutants) + 1))
-    scratch = tempfile.mkdtemp(prefix="ccbuild-mutants-")
+    chosen = []
+    for part in filter(None, args.only.split(",")):
+        first, _, last = part.partition("-")
+        chosen += list(range(int(first), int(last or first) + 1))
+    chosen = chosen or list(range(1, len(mutants) + 1))
+    if args.reuse:  # a scratch folder kept by --keep: its clone as it is, built again
+        scratch = os.path.abspath(args.reuse)
+        if not os.path.isdir(os.path.join(scratch, "ccbuild", "build")):
+            sys.exit("--reuse: %s holds no kept clone (ccbuild/build)" % scratch)
+    else:
+        scratch = tempfile.mkdtemp(prefix="ccbuild-mutants-")
     clone = os.path.join(scratch, "ccbuild")
     log = os.path.join(scratch, "log.txt")
     print("scratch clone: %s (log: %s)" % (clone, log), flush=True)
-    subprocess.check_call(["git", "clone", "--quiet", ROOT, clone])
-    # The clone's CI layout: ../shared beside it, as on a fresh machine.
-    shared = os.path.join(os.path.dirname(ROOT), "shared")
-    if os.path.isdir(shared):
-        os.symlink(shared, os.path.join(scratch, "shared"))
+    if args.reuse:
+        head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=clone,
+                              capture_output=True, text=True).stdout.strip()
+        print("reusing the clone at %s (mutants read from this checkout's list)" % head,
+              flush=True)
+    else:
+        subprocess.check_call(["git", "clone", "--quiet", ROOT, clone])
+        # The clone's CI layout: ../shared beside it, as on a fresh machine.
+        shared = os.path.join(os.path.dirname(ROOT), "shared")
+        if os.path.isdir(shared):
+            os.symlink(shared, os.path.join(scratch, "shared"))
     build = os.path.join(clone, "build")
     started = time.time()
     if run(["cmake", "-S", clone, "-B", build, "-DCCBUILD_BUILD_BENCH=OFF"] + linker_flags(),
@@ -218,7 +237,7 @@ def main():
     total = len(chosen)
     print("\n%d of %d mutants killed%s" % (killed, total,
                                           "; survivors: " + ", ".join(map(str, survivors)) if survivors else ""))
-    if args.keep:
+    if args.keep or args.reuse:
         print("kept: " + scratch)
     else:
         shutil.rmtree(scratch, ignore_errors=True)
