@@ -85,13 +85,13 @@ echo "slurm_study_check: one-node cluster up (controller port $ctld_port, node p
 
 # The study here, two at once.
 "$ccbuild" study "$study" -o "$work/local" --jobs 2 >"$work/local.txt" 2>&1 || { cat "$work/local.txt"; exit 1; }
-# The same study as an array of one variant per task, two at a time; task 20 cancelled
+# The same study as an array of one variant per task, two at a time; task 10 cancelled
 # before it runs.
 "$ccbuild" study "$study" -o "$work/slurm" --slurm --array-max 2 --submit --partition ccbuild \
   --time 30 | tee "$work/submit.txt"
 job=$(sed -n 's/^submitted job \([0-9]*\).*/\1/p' "$work/submit.txt")
 [ -n "$job" ] || { echo "no job id printed"; exit 1; }
-grep -q -- "--array=0-23%2" "$work/slurm/slurm/study.sbatch"
+grep -q -- "--array=0-11%2" "$work/slurm/slurm/study.sbatch"
 # Variant v0006 (task 5) crashes: its `ccbuild schedule` killed while it runs.
 crashed=no
 for _ in $(seq 1 1500); do
@@ -101,24 +101,24 @@ done
 [ "$crashed" = yes ] || { echo "variant v0006 never ran"; exit 1; }
 # Cancelled while it runs (Slurm keeps no record of a task cancelled before it starts).
 for _ in $(seq 1 1500); do
-  [ "$(squeue -h -j "${job}_20" -o %T 2>/dev/null)" = RUNNING ] && break
+  [ "$(squeue -h -j "${job}_10" -o %T 2>/dev/null)" = RUNNING ] && break
   sleep 0.1
 done
-scancel "${job}_20"
+scancel "${job}_10"
 rc=0
 "$ccbuild" study collect "$work/slurm" --wait > "$work/collect1.txt" 2>&1 || rc=$?
 cat "$work/collect1.txt"
 [ "$rc" -eq 1 ] || { echo "collect with a cancelled task exited $rc, expected 1"; exit 1; }
-grep -Eq "^  v0021 missing.*Slurm task ${job}_20 CANCELLED, log .*/slurm/${job}_20.out" "$work/collect1.txt" ||
+grep -Eq "^  v0011 missing.*Slurm task ${job}_10 CANCELLED, log .*/slurm/${job}_10.out" "$work/collect1.txt" ||
   { echo "the cancelled task's variant is not listed with its state and log"; exit 1; }
 grep -Eq "^  v0006 failed: killed by signal 9 \(Killed\); log .*/variants/v0006/log.txt; Slurm task ${job}_5 [A-Z]+, log .*/slurm/${job}_5.out" "$work/collect1.txt" ||
   { echo "the crashed variant is not listed as failed with its signal and logs"; exit 1; }
 "$ccbuild" study collect "$work/slurm" --resubmit --wait > "$work/collect2.txt" 2>&1 || { cat "$work/collect2.txt"; exit 1; }
 cat "$work/collect2.txt"
 grep -Eq "^resubmitted 2 variant\(s\) as job" "$work/collect2.txt" || { echo "not resubmitted alone"; exit 1; }
-grep -q -- "--array=5,20$" "$work/slurm/slurm/resubmit-1.sbatch"
+grep -q -- "--array=5,10$" "$work/slurm/slurm/resubmit-1.sbatch"
 [ -s "$work/slurm/slurm/${job}_0.out" ] || { echo "no log of array task ${job}_0"; ls "$work/slurm/slurm"; exit 1; }
 for f in results.csv results.json results.html; do
   cmp "$work/local/$f" "$work/slurm/$f" || { echo "$f differs between the local run and Slurm"; exit 1; }
 done
-echo "slurm_study_check: 24 variants on Slurm (one crashed, one cancelled, both resubmitted alone) give the local run's bytes"
+echo "slurm_study_check: 12 variants on Slurm (one crashed, one cancelled, both resubmitted alone) give the local run's bytes"
