@@ -127,7 +127,7 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
     if (extra_m > 0.0) {
       // Up to the hundredth of the building's unit above, so the figure said is the one used.
       const double per_m = floors::meters_per(setup.building.units);
-      extra_m = std::ceil(extra_m / per_m * 100.0 - 1e-9) / 100.0 * per_m;
+      extra_m = floors::rounded(extra_m / per_m, 2, floors::Towards::kUp) * per_m;
       const auto [stroke_min_m, stroke_max_m] = m.usable_range(m.units.front().joints[3]);
       (void)stroke_min_m;
       const AnchorWhatIf w = what_if(
