@@ -117,6 +117,13 @@ void Scheduler::fail(Infeasibility infeasibility) {
   }
 }
 
+namespace {
+// The maximum-interval fix in words: its figure in whole seconds, as build_schedule proves it.
+std::string max_interval_fix(double needed_s) {
+  return printf_string("a maximum layer interval of at least %.0f s", needed_s);
+}
+}  // namespace
+
 void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
                             double deposition_s) {
   const double required_s = inf.required_s, achieved_s = inf.achieved_s;
@@ -135,8 +142,7 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer
       break;
     }
   }
-  std::string fix =
-      printf_string("a maximum layer interval of at least %.0f s", *inf.max_interval_needed_s);
+  std::string fix = max_interval_fix(*inf.max_interval_needed_s);
   if (inf.deposition_speed_needed_m_s)
     fix += printf_string(
         "; or a deposition speed of at least %s (now %s)",
@@ -1011,8 +1017,8 @@ Schedule build_schedule(const Setup& project, const ScheduleOptions& given) {
   }
   if (needed_s == first_s) return s;
   inf.max_interval_needed_s = needed_s;
-  const std::string was = printf_string("a maximum layer interval of at least %.0f s", first_s);
-  const std::string now = printf_string("a maximum layer interval of at least %.0f s", needed_s);
+  const std::string was = detail::max_interval_fix(first_s),
+                    now = detail::max_interval_fix(needed_s);
   for (std::string* text : {&inf.fix, &inf.message})
     if (const auto at = text->find(was); at != std::string::npos)
       text->replace(at, was.size(), now);
