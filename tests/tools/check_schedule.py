@@ -2039,8 +2039,10 @@ def corruptions(doc):
     add("a minimum interval the schedule breaks", "under the minimum interval")(
         lambda d: d["inputs"]["material"].update(min_layer_interval_s=layers[i]["local_interval_min_s"] + 10.0))
     if doc["feasible"]:
+        # In weather the bound holds in equivalent age (a cold night shortens it).
+        largest = layers[i].get("equivalent_interval_max_s") or layers[i]["local_interval_max_s"]
         add("a maximum interval the schedule breaks", "over the maximum interval")(
-            lambda d: d["inputs"]["material"].update(max_layer_interval_s=layers[i]["local_interval_max_s"] - 10.0))
+            lambda d: d["inputs"]["material"].update(max_layer_interval_s=largest - 10.0))
         add("feasible, with an infeasibility", "with an infeasibility")(
             lambda d: d.update(infeasibility={"message": "x", "fix": {"text": "y"}}))
     add("infeasible without saying why", "infeasibility has no message")(
