@@ -79,7 +79,9 @@ bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m) {
     if (u.id != v.id || u.start_vertex != v.start_vertex || u.end_vertex != v.end_vertex ||
         u.thickness_m.has_value() != v.thickness_m.has_value() ||
         (u.thickness_m && !near(*u.thickness_m, *v.thickness_m, tolerance_m)) ||
-        u.global_id != v.global_id)
+        u.global_id != v.global_id ||
+        u.model_volume_m3.has_value() != v.model_volume_m3.has_value() ||
+        (u.model_volume_m3 && !near(*u.model_volume_m3, *v.model_volume_m3, 1e-9)))
       return false;
   }
   for (std::size_t i = 0; i < a.openings.size(); ++i) {

@@ -94,7 +94,7 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
   const auto wall_items = walls.items();
   check_count(walls, wall_items.size(), limits::kMaxWalls, "walls");
   for (const Field& item : wall_items) {
-    MapReader w(item, {"id", "start", "end", "thickness", "guid"});
+    MapReader w(item, {"id", "start", "end", "thickness", "guid", "model_volume"});
     w.reject_unknown();
     Wall wall;
     wall.source = source_of(item);
@@ -104,6 +104,11 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
     if (auto t = w.optional("thickness"))
       wall.thickness_m = read_length(*t, limits::kWallThickness_m, unit);
     if (auto guid = w.optional("guid")) wall.global_id = guid->as_string();
+    if (auto v = w.optional("model_volume")) {
+      const double per_m = meters_per(unit);
+      wall.model_volume_m3 =
+          v->as_number_in(limits::kWallVolume_m3, to_string(unit) + "³", per_m * per_m * per_m);
+    }
     plan.walls.push_back(wall);
   }
   if (auto openings = map.optional("openings")) {

@@ -14,6 +14,7 @@
 
 #include "ccbuild/common/limits.hpp"
 #include "ccbuild/floors/plan.hpp"
+#include "ccbuild/floors/quantities.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::import {
@@ -281,6 +282,50 @@ TEST(IfcImport, AConversionBasedFootIsConvertedToMetres) {
   ASSERT_EQ(plan.walls.size(), 4u);
   EXPECT_NEAR(*plan.walls[0].thickness_m, 0.5 * 0.3048, 1e-9);
   EXPECT_NEAR(plan.wall_length_m(plan.walls[0]), 20 * 0.3048, 1e-9);
+}
+
+// Issue 50: the model's own quantities. The ground floor's walls state exactly what they
+// print (a door taken out); the attic's knee walls state 0.7 m of the 2.8 m they are printed
+// to, and one wall states none. IFC4 in cubic metres and IFC2X3 in cubic decimetres (the
+// prefix applies to the metre: 1 dm3 = 1e-3 m3) give the same volumes.
+TEST(IfcImport, TheModelsOwnWallVolumesAreKeptAndComparedFloorByFloor) {
+  for (const char* name : {"quantities_ifc4.ifc", "quantities_ifc2x3.ifc"}) {
+    SCOPED_TRACE(name);
+    const IfcImport read = read_ifc_building(model(name));
+    const floors::Building& b = read.building;
+    ASSERT_EQ(b.floors.size(), 2u);
+    const double t = 0.15;
+    // The ground floor: four walls, 20 m of axis, 3 m high, less a 0.9 m x 2.1 m door.
+    const floors::FloorQuantities ground = floors::floor_quantities(b.floors[0], 0.1, 0.0);
+    ASSERT_TRUE(ground.model_m3);
+    EXPECT_NEAR(*ground.model_m3, (20 * 3.0 - 0.9 * 2.1) * t, 1e-9);
+    EXPECT_NEAR(ground.printed_m3, (20 * 3.0 - 0.9 * 2.1) * t, 1e-9);
+    EXPECT_EQ(ground.walls_modelled, 4);
+    EXPECT_EQ(ground.walls_unmodelled, 0);
+    EXPECT_FALSE(ground.off());
+    const std::string g = floors::quantities_text(b.floors[0].name, ground);
+    EXPECT_TRUE(contains(g,
+                         "prints 8.72 m³ of walls; the model's NetVolume of the 4 walls that "
+                         "state one is 8.72 m³, printed 8.72 m³ (+0.0%)"))
+        << g;
+    EXPECT_FALSE(contains(g, "OFF")) << g;
+    // The attic, printed 2.8 m high: knee walls of 6 m stating 0.7 m, the east gable 4 m
+    // stating its 2.8 m, the west one nothing.
+    const floors::FloorQuantities attic = floors::floor_quantities(b.floors[1], 0.1, 0.0);
+    EXPECT_NEAR(b.floors[1].height_m, 2.8, 1e-9);
+    ASSERT_TRUE(attic.model_m3);
+    EXPECT_NEAR(*attic.model_m3, (2 * 6 * 0.7 + 4 * 2.8) * t, 1e-9);
+    EXPECT_NEAR(attic.printed_modelled_m3, 16 * 2.8 * t, 1e-9);
+    EXPECT_NEAR(attic.printed_m3, 20 * 2.8 * t, 1e-9);
+    EXPECT_EQ(attic.walls_modelled, 3);
+    EXPECT_EQ(attic.walls_unmodelled, 1);
+    EXPECT_TRUE(attic.off());
+    const std::string a = floors::quantities_text(b.floors[1].name, attic);
+    EXPECT_TRUE(contains(a, "(+128.6%); 1 wall states none — OFF by more than 3%: " +
+                                guid_of(model(name), "South attic wall") +
+                                " (wall 1) prints 2.52 m³, the model says 0.63 m³"))
+        << a;
+  }
 }
 
 TEST(IfcImport, FiltersChooseWhichWallsArePrinted) {

@@ -48,7 +48,10 @@ ones, never used to compute them. It checks:
      side) overlap, except beads that meet end to end, which must not double back along
      each other;
  10. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
-     slabs, joints and machine time are what the layers and events add up to.
+     slabs, joints and machine time are what the layers and events add up to; each
+     layer's concrete its plan's pieces x bead widths x its height, and where the model
+     states its walls' volumes (inputs.provenance[].quantities), each floor's printed
+     volume the sum of its layers' pieces.
  11. site calendar (inputs.site): the working windows recomputed with Python's zoneinfo;
      every timestamp the local time of its seconds; attended printing, climbs, joints'
      treatments and crew-placed pipes each within one working window; an off-shift wait
@@ -1700,13 +1703,14 @@ def check_quantities(doc, problems, stats):
         return
     layers, plans = doc["layers"], doc["plans"]
     nozzle_w = doc["inputs"]["machine"]["nozzle_width_m"]
-    flows = {}
+    flows, by_floor = {}, {}
     for l in layers:
         where = "floor %d layer %d" % (l["floor"], l["layer"])
         plan = plans[l["plan"]]
         height = l["z_m"] - l["z_bottom_m"]
         width = {(p["wall"], p["piece"]): p.get("width_m") or nozzle_w for p in plan["pieces"]}
         volume = sum(p["length_m"] * width[(p["wall"], p["piece"])] * height for p in plan["pieces"])
+        by_floor[l["floor"]] = by_floor.get(l["floor"], 0.0) + volume
         if abs(l["concrete_m3"] - volume) > 2e-6 + 1e-6 * volume:
             problems.append("%s: concrete_m3 %.6f, its pieces hold %.6f m3" % (where, l["concrete_m3"], volume))
         if l["plan"] not in flows and all("waypoints" in n for n in plan["nozzles"]):
@@ -1752,6 +1756,25 @@ def check_quantities(doc, problems, stats):
                 k, d["m3"], d["due_s"], m3, due))
     stats["concrete_m3"] = total
     stats["deliveries"] = len(got)
+    # A model's own volumes (inputs.provenance[].quantities): what the floor prints is what
+    # its layers' pieces hold, recomputed above; the share of it on the walls the model
+    # states a volume of is no more than that.
+    for f in doc["inputs"].get("provenance") or []:
+        q = f.get("quantities")
+        if q is None:
+            continue
+        held = by_floor.get(f["floor"], 0.0)
+        if abs(q["printed_m3"] - held) > 1e-5 + 1e-6 * held:
+            problems.append("provenance floor %d: quantities.printed_m3 %.6f, its layers' pieces "
+                            "hold %.6f m3" % (f["floor"], q["printed_m3"], held))
+        if q["printed_modelled_m3"] > q["printed_m3"] + 1e-6:
+            problems.append("provenance floor %d: quantities.printed_modelled_m3 %.6f, more than "
+                            "the floor prints (%.6f m3)" % (f["floor"], q["printed_modelled_m3"],
+                                                            q["printed_m3"]))
+        if (q["walls_modelled"] > 0) != (q["model_volume_m3"] > 0):
+            problems.append("provenance floor %d: %d walls state %.6f m3" % (
+                f["floor"], q["walls_modelled"], q["model_volume_m3"]))
+        stats["modelled_floors"] = stats.get("modelled_floors", 0) + 1
 
 
 # ---------------------------------------------------------------- driver
@@ -2135,6 +2158,12 @@ def lintel_slab_corruptions(doc, add):
                                              end_s=d["events"][k]["end_s"] + 3600.0))
         add("a lintel shortened", "the inputs say")(
             lambda d: d["events"][k].update(end_s=d["events"][k]["end_s"] - 60.0))
+    modelled = [k for k, f in enumerate(doc["inputs"].get("provenance") or []) if f.get("quantities")]
+    if modelled:
+        f0 = modelled[0]
+        add("a floor's printed volume not its layers'", "quantities.printed_m3")(
+            lambda d: d["inputs"]["provenance"][f0]["quantities"].update(
+                printed_m3=d["inputs"]["provenance"][f0]["quantities"]["printed_m3"] * 1.1 + 0.01))
     pours = [i for i, e in enumerate(events) if e["kind"] == "pour" and not e["roof"]]
     if pours:
         p = pours[0]

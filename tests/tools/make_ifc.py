@@ -129,7 +129,7 @@ def guid(n):
 
 
 class Model:
-    def __init__(self, schema, unit="mm"):
+    def __init__(self, schema, unit="mm", volume_unit=None):
         self.f = Step(schema)
         self.ifc4 = schema == "IFC4"
         self.n = 0
@@ -167,7 +167,16 @@ class Model:
             length = f.add("IFCCONVERSIONBASEDUNIT", dims, ".LENGTHUNIT.", "'FOOT'", factor)
             self.scale = 1 / 0.3048
         angle = f.add("IFCSIUNIT", "*", ".PLANEANGLEUNIT.", "$", ".RADIAN.")
-        units = f.add("IFCUNITASSIGNMENT", "(%s,%s)" % (length, angle))
+        # Volumes in cubic metres (as Revit and ArchiCAD export them), or in cubic
+        # decimetres (the prefix applies to the metre: 1 dm3 = 1e-3 m3); without one, a
+        # model's volumes are in its length unit cubed.
+        self.volume_scale = {None: self.scale ** 3, "m3": 1.0, "dm3": 1000.0}[volume_unit]
+        if volume_unit:
+            volume = f.add("IFCSIUNIT", "*", ".VOLUMEUNIT.",
+                           ".DECI." if volume_unit == "dm3" else "$", ".CUBIC_METRE.")
+            units = f.add("IFCUNITASSIGNMENT", "(%s,%s,%s)" % (length, angle, volume))
+        else:
+            units = f.add("IFCUNITASSIGNMENT", "(%s,%s)" % (length, angle))
         self.project = f.add("IFCPROJECT", self.id(), self.history, "'ccbuild test house'", "$",
                              "$", "$", "$", "(%s)" % self.context, units)
         if self.ifc4:
@@ -334,6 +343,17 @@ class Model:
                   self.layer_usage(material, thickness_m, -thickness_m / 2))
         return w, place, length
 
+    def net_volume(self, element, m3, qset="Qto_WallBaseQuantities"):
+        """The element's NetVolume, `m3` cubic metres written in the model's volume unit, in
+        a quantity set related to it (IfcRelDefinesByProperties)."""
+        f = self.f
+        extra = ("$",) if self.ifc4 else ()  # IFC4's Formula
+        q = f.add("IFCQUANTITYVOLUME", "'NetVolume'", "$", "$", num(round(m3 * self.volume_scale, 9)),
+                  *extra)
+        qs = f.add("IFCELEMENTQUANTITY", self.id(), self.history, s(qset), "$", "$", "(%s)" % q)
+        f.add("IFCRELDEFINESBYPROPERTIES", self.id(), self.history, "$", "$", "(%s)" % element,
+              qs)
+
     def opening(self, wall, kind, name, along_m, width_m, sill_m, head_m, thickness_m,
                 style="plan"):
         """An opening through `wall` (from wall()), filled by a door or window."""
@@ -400,6 +420,36 @@ def house(schema, roof=True, slabs=False):
         r = m.storey("Roof", 6.0)
         if slabs:
             m.slab(r, "Roof slab", "ROOF", 0.0, 0.2, roof="Flat roof")
+    m.finish()
+    return m.f
+
+
+def quantities(schema, volume_unit):
+    """A one-room house with its walls' own quantities (NetVolume), as BIM tools export
+    them: the ground floor's walls exactly what they print (a door's volume taken out), the
+    attic's two knee walls only 0.7 m of its 2.8 m gables (no roof modelled), and one wall with no
+    quantity. The volumes are the walls' bodies (length x thickness x height, less the
+    openings), length along the axis between the other walls' axes."""
+    m = Model(schema, "mm", volume_unit)
+    t, h = 0.15, 3.0
+    g = m.storey("Ground floor", 0.0)
+    qset = "Qto_WallBaseQuantities" if schema == "IFC4" else "BaseQuantities"
+    walls = [("South wall", (0, 0), (6, 0)), ("East wall", (6, 0), (6, 4)),
+             ("North wall", (6, 4), (0, 4)), ("West wall", (0, 4), (0, 0))]
+    for k, (name, a, b) in enumerate(walls):
+        wall = m.wall(g, name, a, b, t, h)
+        volume = wall[2] * t * h
+        if k == 0:
+            m.opening(wall, "IFCDOOR", "Front door", 2.0, 0.9, 0.0, 2.1, t, "plan")
+            volume -= 0.9 * 2.1 * t
+        m.net_volume(wall[0], volume, qset)
+    a = m.storey("Attic", 3.0)
+    for k, (name, start, end) in enumerate(walls):
+        knee = k % 2 == 0  # south and north under the eaves; east and west gables
+        w, _, length = m.wall(a, name.replace("wall", "attic wall"), start, end, t,
+                              0.7 if knee else 2.8)
+        if k < 3:
+            m.net_volume(w, length * t * (0.7 if knee else 2.8), qset)
     m.finish()
     return m.f
 
@@ -590,6 +640,8 @@ def main():
     write("thick_ifc4.ifc", thick().text("thick_ifc4.ifc"))
     write("feet_ifc2x3.ifc", feet().text("feet_ifc2x3.ifc"))
     write("layered_ifc4.ifc", layered().text("layered_ifc4.ifc"))
+    write("quantities_ifc4.ifc", quantities("IFC4", "m3").text("quantities_ifc4.ifc"))
+    write("quantities_ifc2x3.ifc", quantities("IFC2X3", "dm3").text("quantities_ifc2x3.ifc"))
     text = house("IFC4").text("truncated.ifc")
     write("truncated.ifc", text[: int(len(text) * 0.6)])
     # A wall's placement relative to itself.

@@ -59,7 +59,31 @@ struct Piece {
   Vector2d a, b;
   const FoundWall* wall = nullptr;
   bool alive = true;
+  double modelled_m = 0.0;  ///< its length as modelled, before ends were joined
 };
+
+/// The part of a wall's NetVolume that one of its pieces on `level` takes: the piece's
+/// share of the wall's modelled length, times the share of the wall's body height within
+/// the level's storey (from its level up to the next one's, its slab included); the whole
+/// height without a body extent.
+std::optional<double> model_volume_m3(const Piece& piece, const Level& level) {
+  const FoundWall& w = *piece.wall;
+  if (!w.net_volume_m3) return std::nullopt;
+  double modelled_m = 0.0;
+  for (const auto& [a, b] : w.pieces) modelled_m += (b - a).norm();
+  if (!(modelled_m > 0.0)) return std::nullopt;
+  double height_share = 1.0;
+  if (w.bottom_m && w.top_m && *w.top_m > *w.bottom_m) {
+    const double top_m = level.elevation_m + level.height_m + level.slab_m;
+    height_share =
+        std::clamp((std::min(*w.top_m, top_m) - std::max(*w.bottom_m, level.elevation_m)) /
+                       (*w.top_m - *w.bottom_m),
+                   0.0, 1.0);
+  }
+  const double m3 = *w.net_volume_m3 * (piece.modelled_m / modelled_m) * height_share;
+  if (!floors::limits::kWallVolume_m3.contains(m3)) return std::nullopt;
+  return m3;
+}
 
 /// Where walls meet, an axis stops short of the other wall's axis (at its face) or runs past
 /// it (to the far face): each end not already at another wall's end is moved along its wall
@@ -142,7 +166,7 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
                             ifc::Notes& notes, int& openings_left_out) {
   std::vector<Piece> pieces;
   for (const FoundWall* w : level.walls)
-    for (const auto& [a, b] : w->pieces) pieces.push_back({a, b, w, true});
+    for (const auto& [a, b] : w->pieces) pieces.push_back({a, b, w, true, (b - a).norm()});
   join_ends(pieces, options.join_tolerance_m);
   for (Piece& p : pieces)
     if ((p.b - p.a).norm() <= floors::limits::kMinWallLength_m) {
@@ -187,6 +211,7 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
     wall.end_vertex = e;
     wall.thickness_m = clean(p.wall->thickness_m);
     wall.global_id = p.wall->what.guid;
+    wall.model_volume_m3 = model_volume_m3(p, level);
     wall.source = {file, 0, p.wall->what.describe()};
     plan.walls.push_back(wall);
     made_of[p.wall].push_back(made.size());

@@ -245,6 +245,7 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
                        double z_shift_m, FoundStorey& storey, ModelContents& out, int depth) {
   FoundWall found;
   found.what = element_of(*wall);
+  found.net_volume_m3 = net_volume_m3(*wall, found.what, out);
   const std::string who =
       found.what.describe() + (parent.guid.empty() ? "" : " (part of " + parent.describe() + ")");
   // Each reason a kind of its own (a reason with a number in it: `kind` says which).

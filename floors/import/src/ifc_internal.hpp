@@ -51,6 +51,7 @@ struct FoundWall {
   double thickness_m = 0.0;
   std::optional<double> bottom_m, top_m;  ///< its body's extent in z, when it has one
   bool clipped = false;                   ///< its body is cut (under a roof, say)
+  std::optional<double> net_volume_m3;    ///< the model's own NetVolume of it
   std::vector<FoundOpening> openings;
 };
 

@@ -22,6 +22,7 @@
 #include <ifcpp/IFC4/include/IfcCurtainWall.h>
 #include <ifcpp/IFC4/include/IfcDirection.h>
 #include <ifcpp/IFC4/include/IfcDirectionSenseEnum.h>
+#include <ifcpp/IFC4/include/IfcElementQuantity.h>
 #include <ifcpp/IFC4/include/IfcExtrudedAreaSolid.h>
 #include <ifcpp/IFC4/include/IfcGeometricRepresentationContext.h>
 #include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
@@ -45,12 +46,14 @@
 #include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcProductDefinitionShape.h>
 #include <ifcpp/IFC4/include/IfcProject.h>
+#include <ifcpp/IFC4/include/IfcQuantityVolume.h>
 #include <ifcpp/IFC4/include/IfcRatioMeasure.h>
 #include <ifcpp/IFC4/include/IfcReal.h>
 #include <ifcpp/IFC4/include/IfcRectangleProfileDef.h>
 #include <ifcpp/IFC4/include/IfcRelAggregates.h>
 #include <ifcpp/IFC4/include/IfcRelAssociatesMaterial.h>
 #include <ifcpp/IFC4/include/IfcRelContainedInSpatialStructure.h>
+#include <ifcpp/IFC4/include/IfcRelDefinesByProperties.h>
 #include <ifcpp/IFC4/include/IfcRelDefinesByType.h>
 #include <ifcpp/IFC4/include/IfcRelFillsElement.h>
 #include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
@@ -65,6 +68,7 @@
 #include <ifcpp/IFC4/include/IfcTypeObject.h>
 #include <ifcpp/IFC4/include/IfcUnitAssignment.h>
 #include <ifcpp/IFC4/include/IfcUnitEnum.h>
+#include <ifcpp/IFC4/include/IfcVolumeMeasure.h>
 #include <ifcpp/IFC4/include/IfcWall.h>
 #include <ifcpp/model/BuildingException.h>
 #include <ifcpp/model/BuildingModel.h>
@@ -241,49 +245,89 @@ Isometry3d Reader::world(const std::shared_ptr<IfcObjectPlacement>& placement,
   return t;
 }
 
+namespace {
+
+/// An SI prefix as a factor (IfcSIPrefix's order: EXA to ATTO); 1 without one.
+double prefix_factor(const std::shared_ptr<IfcSIPrefix>& prefix) {
+  static const double kPrefix[] = {1e18, 1e15, 1e12, 1e9,  1e6,  1e3,   1e2,   1e1,
+                                   1e-1, 1e-2, 1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 1e-18};
+  return prefix ? kPrefix[static_cast<int>(prefix->m_enum)] : 1.0;
+}
+
+}  // namespace
+
 void Reader::read_units(const std::shared_ptr<IfcProject>& project, ModelContents& out) {
   unit_ = 1.0;
   bool found = false;
+  std::optional<double> volume;
+  // A unit of the kind `power` (1: length, 3: volume) in SI units (its prefix applies to
+  // the metre, so a cubic millimetre is 1e-9 m³); a conversion-based one by its factor.
+  const auto unit_of = [&](const std::shared_ptr<IfcUnit>& u, IfcUnitEnum::IfcUnitEnumEnum kind,
+                           int power, const char* what) -> std::optional<double> {
+    if (auto si = as<IfcSIUnit>(u)) {
+      if (!si->m_UnitType || si->m_UnitType->m_enum != kind) return std::nullopt;
+      return std::pow(prefix_factor(si->m_Prefix), power);
+    }
+    auto cb = as<IfcConversionBasedUnit>(u);
+    if (!cb || !cb->m_UnitType || cb->m_UnitType->m_enum != kind) return std::nullopt;
+    double value = 0.0, base = 1.0;
+    if (cb->m_ConversionFactor) {
+      const auto& v = cb->m_ConversionFactor->m_ValueComponent;
+      if (auto l = as<IfcLengthMeasure>(v)) value = l->m_value;
+      if (auto r = as<IfcRatioMeasure>(v)) value = r->m_value;
+      if (auto r = as<IfcReal>(v)) value = r->m_value;
+      if (auto r = as<IfcVolumeMeasure>(v)) value = r->m_value;
+      if (auto si = as<IfcSIUnit>(cb->m_ConversionFactor->m_UnitComponent))
+        base = std::pow(prefix_factor(si->m_Prefix), power);
+    }
+    if (!(value > 0.0) || !std::isfinite(value))
+      throw InputError(file_, 0, "IfcConversionBasedUnit #" + std::to_string(cb->m_entity_id),
+                       std::string("the ") + what + " unit '" + label(cb->m_Name) +
+                           "' has no usable conversion factor to SI units");
+    return value * base;
+  };
   if (project && project->m_UnitsInContext)
     for (const auto& u : project->m_UnitsInContext->m_Units) {
-      if (auto si = as<IfcSIUnit>(u)) {
-        if (!si->m_UnitType || si->m_UnitType->m_enum != IfcUnitEnum::ENUM_LENGTHUNIT) continue;
-        double factor = 1.0;
-        if (si->m_Prefix) {
-          static const double kPrefix[] = {1e18, 1e15, 1e12, 1e9,  1e6,  1e3,   1e2,   1e1,
-                                           1e-1, 1e-2, 1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 1e-18};
-          factor = kPrefix[static_cast<int>(si->m_Prefix->m_enum)];
-        }
-        unit_ = factor;
-        found = true;
-      } else if (auto cb = as<IfcConversionBasedUnit>(u)) {
-        if (!cb->m_UnitType || cb->m_UnitType->m_enum != IfcUnitEnum::ENUM_LENGTHUNIT) continue;
-        double value = 0.0, base = 1.0;
-        if (cb->m_ConversionFactor) {
-          const auto& v = cb->m_ConversionFactor->m_ValueComponent;
-          if (auto l = as<IfcLengthMeasure>(v)) value = l->m_value;
-          if (auto r = as<IfcRatioMeasure>(v)) value = r->m_value;
-          if (auto r = as<IfcReal>(v)) value = r->m_value;
-          if (auto si = as<IfcSIUnit>(cb->m_ConversionFactor->m_UnitComponent))
-            if (si->m_Prefix) {
-              static const double kPrefix[] = {1e18, 1e15, 1e12, 1e9,  1e6,  1e3,   1e2,   1e1,
-                                               1e-1, 1e-2, 1e-3, 1e-6, 1e-9, 1e-12, 1e-15, 1e-18};
-              base = kPrefix[static_cast<int>(si->m_Prefix->m_enum)];
-            }
-        }
-        if (!(value > 0.0) || !std::isfinite(value))
-          throw InputError(file_, 0, "IfcConversionBasedUnit #" + std::to_string(cb->m_entity_id),
-                           "the length unit '" + label(cb->m_Name) +
-                               "' has no usable conversion factor to metres");
-        unit_ = value * base;
+      if (auto length = unit_of(u, IfcUnitEnum::ENUM_LENGTHUNIT, 1, "length")) {
+        unit_ = *length;
         found = true;
       }
+      if (auto v = unit_of(u, IfcUnitEnum::ENUM_VOLUMEUNIT, 3, "volume")) volume = *v;
     }
   if (!found)
     out.notes.add("the project's length unit",
                   "the project names no length unit (IfcUnitAssignment); lengths are "
                   "taken as metres");
   out.metres_per_unit = unit_;
+  // Without a volume unit of its own the model's volumes are in its length unit cubed.
+  volume_unit_ = volume ? *volume : unit_ * unit_ * unit_;
+}
+
+std::optional<double> Reader::net_volume_m3(const IfcObject& object, const Element& who,
+                                            ModelContents& out) const {
+  for (const auto& weak : object.m_IsDefinedBy_inverse) {
+    auto rel = weak.lock();
+    if (!rel) continue;
+    auto set = as<IfcElementQuantity>(rel->m_RelatingPropertyDefinition);
+    if (!set) continue;
+    for (const auto& q : set->m_Quantities) {
+      auto volume = as<IfcQuantityVolume>(q);
+      if (!volume || label(volume->m_Name) != "NetVolume") continue;
+      const double value = volume->m_VolumeValue ? volume->m_VolumeValue->m_value : 0.0;
+      const double m3 = value * volume_unit_;
+      if (!std::isfinite(m3) || !floors::limits::kWallVolume_m3.contains(m3)) {
+        out.notes.add(
+            "model quantities not used",
+            who.describe() + printf_string(": its NetVolume (%s) is %g m³, not a wall's "
+                                           "volume (%s); not compared",
+                                           label(set->m_Name).c_str(), m3,
+                                           floors::limits::kWallVolume_m3.describe("m³").c_str()));
+        return std::nullopt;
+      }
+      return m3;
+    }
+  }
+  return std::nullopt;
 }
 
 void Reader::report_georeferencing(const std::shared_ptr<BuildingModel>& model,

@@ -90,6 +90,12 @@ class Reader {
   void read_units(const std::shared_ptr<IfcProject>& project, ModelContents& out);
   void report_georeferencing(const std::shared_ptr<BuildingModel>& model, ModelContents& out);
   std::vector<std::string> material_names(const IfcObjectDefinition& object) const;
+  /// The element's NetVolume in its quantity sets (IfcRelDefinesByProperties to an
+  /// IfcElementQuantity: Qto_WallBaseQuantities in IFC4, BaseQuantities as IFC2X3 tools
+  /// write it), m³; nullopt when it states none, or none that is a finite positive volume
+  /// (said in a note).
+  std::optional<double> net_volume_m3(const IfcObject& object, const Element& who,
+                                      ModelContents& out) const;
   std::optional<std::tuple<double, double>> layer_set(const IfcObjectDefinition& object) const;
   void read_wall(const std::shared_ptr<IfcWall>& wall, const Element& parent, double z_shift_m,
                  FoundStorey& storey, ModelContents& out, int depth);
@@ -113,6 +119,7 @@ class Reader {
   std::string file_;
   const IfcOptions& options_;
   double unit_ = 1.0;
+  double volume_unit_ = 1.0;  ///< m³ per volume unit of the model
 };
 
 }  // namespace ccbuild::import::ifc::detail

@@ -272,7 +272,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   }
   if (const auto provenance = i.maybe("provenance")) {
     for (const auto& f : provenance->elements(kMaxSmall)) {
-      f.only_keys({"floor", "walls", "openings"});
+      f.only_keys({"floor", "walls", "openings", "quantities"});
       FloorProvenance p;
       p.floor = static_cast<int>(f.at("floor").integer(0, floors::limits::kMaxFloors));
       for (const auto& [id, guid] : f.at("walls").members(kMaxItems)) {
@@ -288,6 +288,19 @@ RecordedInputs read_inputs(const JsonAt& root) {
       }
       for (const auto& [id, guid] : f.at("openings").members(kMaxItems))
         p.openings.emplace_back(id, guid.string(64));
+      if (const auto q = f.maybe("quantities")) {
+        q->only_keys({"model_volume_m3", "printed_modelled_m3", "printed_m3", "walls_modelled",
+                      "walls_unmodelled"});
+        FloorProvenance::Quantities read;
+        const Range volume_m3 = Range::closed(0.0, 1e9);
+        const auto walls = static_cast<std::int64_t>(floors::limits::kMaxWalls);
+        read.model_volume_m3 = q->at("model_volume_m3").number(volume_m3, "m3");
+        read.printed_modelled_m3 = q->at("printed_modelled_m3").number(volume_m3, "m3");
+        read.printed_m3 = q->at("printed_m3").number(volume_m3, "m3");
+        read.walls_modelled = static_cast<int>(q->at("walls_modelled").integer(0, walls));
+        read.walls_unmodelled = static_cast<int>(q->at("walls_unmodelled").integer(0, walls));
+        p.quantities = read;
+      }
       in.provenance.push_back(std::move(p));
     }
   }

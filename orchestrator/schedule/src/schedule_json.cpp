@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ccbuild/common/sha256.hpp"
+#include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/schedule/json_blocks.hpp"
 
 namespace ccbuild::schedule {
@@ -149,6 +150,11 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
       if (!w.global_id.empty()) p.walls.emplace_back(w.id, w.global_id);
     for (const auto& o : floor.plan.openings)
       if (!o.global_id.empty() && !o.id.empty()) p.openings.emplace_back(o.id, o.global_id);
+    const floors::FloorQuantities q =
+        floors::floor_quantities(floor, b.layer_height_m, m.nozzle_width_m);
+    if (q.model_m3)
+      p.quantities = FloorProvenance::Quantities{*q.model_m3, q.printed_modelled_m3, q.printed_m3,
+                                                 q.walls_modelled, q.walls_unmodelled};
     if (!p.walls.empty() || !p.openings.empty()) in.provenance.push_back(std::move(p));
   }
   return in;
@@ -210,6 +216,14 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
       for (const auto& [id, guid] : p.walls) walls[std::to_string(id)] = guid;
       for (const auto& [id, guid] : p.openings) openings[id] = guid;
       floors_json.push_back({{"floor", p.floor}, {"walls", walls}, {"openings", openings}});
+      if (p.quantities) {
+        const auto& q = *p.quantities;
+        floors_json.back()["quantities"] = {{"model_volume_m3", rounded(q.model_volume_m3)},
+                                            {"printed_modelled_m3", rounded(q.printed_modelled_m3)},
+                                            {"printed_m3", rounded(q.printed_m3)},
+                                            {"walls_modelled", q.walls_modelled},
+                                            {"walls_unmodelled", q.walls_unmodelled}};
+      }
     }
     out["inputs"]["provenance"] = floors_json;
   }

@@ -11,6 +11,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
+#include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/import/dxf.hpp"
 #include "ccbuild/import/ifc.hpp"
 #include "cli_common.hpp"
@@ -83,6 +84,7 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
                       static_cast<long long>(w.start_vertex), static_cast<long long>(w.end_vertex));
     if (w.thickness_m) out += ", thickness: " + exact(*w.thickness_m);
     if (!w.global_id.empty()) out += ", guid: " + quoted(w.global_id);
+    if (w.model_volume_m3) out += ", model_volume: " + exact(*w.model_volume_m3);
     out += "}  # " + comment(w.source.path) + "\n";
   }
   if (!plan.openings.empty()) out += "openings:\n";
@@ -148,6 +150,14 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
                          "): review it, then `ccbuild validate` it.\n# What the import left out "
                          "or ignored:\n";
   for (const auto& note : read.notes) building += "#   " + comment(note) + "\n";
+  // What the walls take as drawn (each as thick as the model says, before a machine lays
+  // them as beads) against the model's own quantities.
+  std::vector<std::string> quantities;
+  for (const auto& f : b.floors)
+    quantities.push_back(
+        floors::quantities_text(f.name, floors::floor_quantities(f, b.layer_height_m, 0.0)));
+  building += "# Concrete of the walls as drawn, against the model's own quantities:\n";
+  for (const auto& q : quantities) building += "#   " + comment(q) + "\n";
   building += "name: " + quoted(b.name) + "\nunits: m\nlayer_height: " + exact(b.layer_height_m) +
               "\nmaterial: " + quoted(relative_to(material, folder)) +
               "\nmachine: " + quoted(relative_to(machine, folder)) + "\nfloors:\n";
@@ -182,6 +192,7 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
       "plan file%s beside it\n",
       o.drawing.c_str(), b.floors.size(), walls, openings, read.schema.c_str(),
       out.string().c_str(), distinct.size(), distinct.size() == 1 ? "" : "s");
+  for (const auto& q : quantities) std::cout << "quantities: " << q << "\n";
 }
 
 void run_import(const ImportOptions& o, int& exit_code) {

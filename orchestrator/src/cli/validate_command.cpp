@@ -5,6 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/orchestrator/layer_summary.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -33,6 +34,15 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     openings += f.opening_count;
     anchors += f.anchor_count;
   }
+  // The walls' concrete as this machine lays them, against the model's own quantities
+  // (imported models only: a building that states no volume prints none of this).
+  bool modelled = false;
+  for (const auto& f : b.floors)
+    for (const auto& w : f.plan.walls) modelled = modelled || w.model_volume_m3.has_value();
+  std::vector<floors::FloorQuantities> quantities;
+  if (modelled)
+    for (const auto& f : b.floors)
+      quantities.push_back(floors::floor_quantities(f, b.layer_height_m, machine.nozzle_width_m));
   const double reach_x = machine.x.max_m - machine.x.min_m;
   const double reach_y = machine.y.max_m - machine.y.min_m;
   const double reach_z = machine.z.max_m - machine.z.min_m;
@@ -69,6 +79,14 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                                {"anchor_count", f.anchor_count},
                                {"layer_count", f.layer_count},
                                {"distinct_geometry_count", f.distinct_geometries}});
+      if (modelled) {
+        const floors::FloorQuantities& q = quantities[out["floors"].size() - 1];
+        auto& row = out["floors"].back();
+        row["printed_m3"] = q.printed_m3;
+        row["model_volume_m3"] = q.model_m3 ? nlohmann::ordered_json(*q.model_m3) : nullptr;
+        row["printed_modelled_m3"] = q.printed_modelled_m3;
+        row["model_volume_off"] = q.off();
+      }
     }
     out["totals"] = {{"floor_count", summary.floors.size()},
                      {"wall_count", walls},
@@ -144,6 +162,9 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                    "geometries\n",
                    summary.floors.size(), walls, openings, summary.total_layers,
                    summary.distinct_geometries);
+  for (std::size_t k = 0; k < quantities.size(); ++k)
+    std::cout << "  quantities " << floors::quantities_text(b.floors[k].name, quantities[k])
+              << "\n";
   exit_code = kExitOk;
 }
 

@@ -16,6 +16,8 @@ inline const Range kCoordinate_m = Range::closed(-100'000.0, 100'000.0);
 inline constexpr double kMinWallLength_m = 1e-3;
 /// Wall thickness, when given.
 inline const Range kWallThickness_m = Range::above(0.0, 5.0);
+/// A wall's volume as its model states it (`model_volume:`, m³ in the file for metres).
+inline const Range kWallVolume_m3 = Range::above(0.0, 1'000'000.0);
 /// Openings and anchors: along a wall (their fit on the wall is checked separately).
 inline const Range kAlongWall_m = Range::closed(0.0, 200'000.0);
 inline const Range kOpeningWidth_m = Range::above(0.0, 200'000.0);

@@ -42,6 +42,10 @@ struct Wall {
   /// The IFC GlobalId of the element it was imported from (`guid:` in plan files); empty
   /// for walls not imported from an IFC model.
   std::string global_id{};
+  /// The concrete its model says it takes (`model_volume:`, the file's unit cubed): the
+  /// element's own quantity (IFC Qto_WallBaseQuantities NetVolume), shared among the plan
+  /// walls and floors it became, m³. Unset when the model states none.
+  std::optional<double> model_volume_m3{};
 };
 
 /// A gap in a wall: absent from every layer whose mid-height lies in [sill, head).

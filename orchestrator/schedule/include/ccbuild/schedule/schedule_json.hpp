@@ -70,6 +70,15 @@ struct FloorProvenance {
   int floor = 0;
   std::vector<std::pair<std::int64_t, std::string>> walls;
   std::vector<std::pair<std::string, std::string>> openings;
+  /// The floor's walls' concrete against the volume their model states
+  /// (floors::floor_quantities on this machine), m³; unset when no wall states one.
+  struct Quantities {
+    double model_volume_m3 = 0.0;      ///< what the model states, over the walls that state it
+    double printed_modelled_m3 = 0.0;  ///< what those walls print
+    double printed_m3 = 0.0;           ///< what every wall of the floor prints
+    int walls_modelled = 0, walls_unmodelled = 0;
+  };
+  std::optional<Quantities> quantities;
 };
 
 struct RecordedInputs {
