@@ -41,6 +41,48 @@ std::string to_string(LintelSpec::Type type) {
   return type == LintelSpec::Type::kPrecast ? "precast" : "formwork";
 }
 
+std::vector<std::pair<double, double>> wall_gaps_above(const Wall& wall, double length_m,
+                                                       double mid_m) {
+  std::vector<std::pair<double, double>> gaps;
+  const auto& top = wall.top_m;
+  if (top.empty()) return gaps;
+  // The top at `s`: linear between the points, level beyond the first and the last.
+  const auto top_at = [&](double s) {
+    if (s <= top.front().first) return top.front().second;
+    if (s >= top.back().first) return top.back().second;
+    const auto next = std::upper_bound(top.begin(), top.end(), s,
+                                       [](double v, const auto& p) { return v < p.first; });
+    const auto& [s1, t1] = *next;
+    const auto& [s0, t0] = *std::prev(next);
+    return s1 > s0 ? t0 + (t1 - t0) * (s - s0) / (s1 - s0) : t1;
+  };
+  // Between consecutive breakpoints the top is linear: the part at or below mid_m is one
+  // end of the stretch, up to where the top crosses mid_m.
+  std::vector<double> at = {0.0};
+  for (const auto& [s, t] : top)
+    if (s > 0.0 && s < length_m) at.push_back(s);
+  at.push_back(length_m);
+  const auto add = [&](double from, double to) {
+    if (to - from <= 1e-12) return;
+    if (!gaps.empty() && from <= gaps.back().second + 1e-12)
+      gaps.back().second = std::max(gaps.back().second, to);
+    else
+      gaps.emplace_back(from, to);
+  };
+  for (std::size_t k = 0; k + 1 < at.size(); ++k) {
+    const double u = at[k], v = at[k + 1];
+    const double tu = top_at(u), tv = top_at(v);
+    const bool low_u = tu <= mid_m, low_v = tv <= mid_m;
+    if (low_u && low_v) {
+      add(u, v);
+    } else if (low_u || low_v) {
+      const double c = u + (mid_m - tu) / (tv - tu) * (v - u);
+      low_u ? add(u, c) : add(c, v);
+    }
+  }
+  return gaps;
+}
+
 OpeningState opening_state(const Opening& opening, const LintelSpec& lintel, double mid_m) {
   if (mid_m >= opening.sill_m && mid_m < opening.head_m) return OpeningState::kOpen;
   if (lintel.type == LintelSpec::Type::kPrecast && mid_m >= opening.head_m &&
@@ -79,7 +121,12 @@ bool same_model(const FloorPlan& a, const FloorPlan& b, double tolerance_m) {
     if (u.id != v.id || u.start_vertex != v.start_vertex || u.end_vertex != v.end_vertex ||
         u.thickness_m.has_value() != v.thickness_m.has_value() ||
         (u.thickness_m && !near(*u.thickness_m, *v.thickness_m, tolerance_m)) ||
-        u.global_id != v.global_id ||
+        u.global_id != v.global_id || u.top_m.size() != v.top_m.size() ||
+        !std::equal(u.top_m.begin(), u.top_m.end(), v.top_m.begin(),
+                    [&](const auto& p, const auto& q) {
+                      return near(p.first, q.first, tolerance_m) &&
+                             near(p.second, q.second, tolerance_m);
+                    }) ||
         u.model_volume_m3.has_value() != v.model_volume_m3.has_value() ||
         (u.model_volume_m3 && !near(*u.model_volume_m3, *v.model_volume_m3, 1e-9)))
       return false;

@@ -17,6 +17,8 @@ std::int64_t read_id(const Field& field);
 void check_count(const Field& list, std::size_t count, std::size_t most, const char* what);
 SourceRef source_of(const Field& field);
 Opening read_opening(const Field& field, LengthUnit unit);
+/// A wall's `top:`, a height or [offset, height] points (Wall::top_m).
+std::vector<std::pair<double, double>> read_wall_top(const Field& field, LengthUnit unit);
 
 /// Diagnostic located at an element's source.
 inline Diagnostic at(const SourceRef& source, std::string field_suffix, std::string message) {

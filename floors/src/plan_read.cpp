@@ -40,6 +40,26 @@ SourceRef source_of(const Field& field) {
   return SourceRef{field.file(), field.line(), field.path()};
 }
 
+// `top: H` (the wall H high along its length) or `top: [[offset, H], ...]` (a top that
+// changes along it: offsets increasing).
+std::vector<std::pair<double, double>> read_wall_top(const Field& field, LengthUnit unit) {
+  if (!field.is_sequence()) return {{0.0, read_length(field, limits::kWallTop_m, unit)}};
+  const auto items = field.items();
+  if (items.empty()) field.fail("expected a height, or a list of [offset, height] points");
+  check_count(field, items.size(), limits::kMaxWallTopPoints, "points");
+  std::vector<std::pair<double, double>> top;
+  for (const Field& point : items) {
+    if (!point.is_sequence() || point.items().size() != 2)
+      point.fail("expected a point [offset along the wall, height above the floor]");
+    const auto xy = point.items();
+    const double s = read_length(xy[0], limits::kAlongWall_m, unit);
+    if (!top.empty() && s <= top.back().first)
+      xy[0].fail("the points' offsets must increase along the wall");
+    top.emplace_back(s, read_length(xy[1], limits::kWallTop_m, unit));
+  }
+  return top;
+}
+
 Opening read_opening(const Field& field, LengthUnit unit) {
   MapReader map(field, {"id", "kind", "wall", "offset", "width", "sill", "head", "guid"});
   map.reject_unknown();
@@ -94,7 +114,7 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
   const auto wall_items = walls.items();
   check_count(walls, wall_items.size(), limits::kMaxWalls, "walls");
   for (const Field& item : wall_items) {
-    MapReader w(item, {"id", "start", "end", "thickness", "guid", "model_volume"});
+    MapReader w(item, {"id", "start", "end", "thickness", "guid", "model_volume", "top"});
     w.reject_unknown();
     Wall wall;
     wall.source = source_of(item);
@@ -109,6 +129,7 @@ FloorPlan read_plan(const Field& field, LengthUnit default_unit) {
       wall.model_volume_m3 =
           v->as_number_in(limits::kWallVolume_m3, to_string(unit) + "³", per_m * per_m * per_m);
     }
+    if (auto top = w.optional("top")) wall.top_m = read_wall_top(*top, unit);
     plan.walls.push_back(wall);
   }
   if (auto openings = map.optional("openings")) {

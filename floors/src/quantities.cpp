@@ -68,9 +68,10 @@ std::string quantities_text(const std::string& name, const FloorQuantities& q) {
   const auto d = q.difference();
   if (!d) return out + " (the model states no volume of its walls)";
   out += printf_string(
-      "; the model's NetVolume of the %d wall%s that state one is %.2f m³, "
+      "; the model's NetVolume of the %d wall%s that state%s one is %.2f m³, "
       "printed %.2f m³ (%+.1f%%)",
-      q.walls_modelled, q.walls_modelled == 1 ? "" : "s", *q.model_m3, q.printed_modelled_m3,
+      q.walls_modelled, q.walls_modelled == 1 ? "" : "s", q.walls_modelled == 1 ? "s" : "",
+      *q.model_m3, q.printed_modelled_m3,
       std::abs(*d) < 0.0005 ? 0.0 : 100.0 * *d);  // +0.0% whichever side of 0 the sums fell
   if (q.walls_unmodelled > 0)
     out += printf_string("; %d wall%s state%s none", q.walls_unmodelled,

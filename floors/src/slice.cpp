@@ -57,6 +57,7 @@ Layer cut_walls(const FloorPlan& plan, std::optional<double> mid_m, const SliceO
     const double length = (b - a).norm();
     std::vector<std::pair<double, double>> gaps;
     if (mid_m) {
+      gaps = wall_gaps_above(wall, length, *mid_m);  // above where the wall stops
       for (const auto& o : plan.openings) {
         if (o.wall_id != wall.id) continue;
         const OpeningState state = opening_state(o, plan.lintel, *mid_m);
@@ -166,9 +167,10 @@ std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
   const int count = layer_count(floor.height_m, layer_height_m);
   std::vector<Layer> layers;
   layers.reserve(count);
-  // A layer's pieces depend only on which openings are open at its mid-height: layers
-  // alike in that are cut (and offset into beads, the costly part) once.
-  std::map<std::vector<OpeningState>, std::size_t> first_with;
+  // A layer's pieces depend only on which openings are open at its mid-height and where
+  // the walls that stop lower leave off: layers alike in that are cut (and offset into
+  // beads, the costly part) once.
+  std::map<std::pair<std::vector<OpeningState>, std::vector<double>>, std::size_t> first_with;
   for (int k = 0; k < count; ++k) {
     const double z0 = k * layer_height_m;
     const double mid_m = layer_mid_m(floor.height_m, layer_height_m, k);
@@ -176,7 +178,15 @@ std::vector<Layer> slice_floor(const Floor& floor, double layer_height_m,
     open.reserve(floor.plan.openings.size());
     for (const auto& o : floor.plan.openings)
       open.push_back(opening_state(o, floor.plan.lintel, mid_m));
-    const auto [it, fresh] = first_with.try_emplace(std::move(open), layers.size());
+    std::vector<double> tops;  // each topped wall's gap count, then their ends
+    for (const auto& w : floor.plan.walls) {
+      if (w.top_m.empty()) continue;
+      const auto gaps = wall_gaps_above(w, floor.plan.wall_length_m(w), mid_m);
+      tops.push_back(static_cast<double>(gaps.size()));
+      for (const auto& [g0, g1] : gaps) tops.insert(tops.end(), {g0, g1});
+    }
+    const auto [it, fresh] =
+        first_with.try_emplace({std::move(open), std::move(tops)}, layers.size());
     if (fresh) {
       layers.push_back(slice_floor_layer(floor, layer_height_m, k, options));
       continue;

@@ -135,6 +135,11 @@ void validate_plan(const FloorPlan& plan, std::optional<double> floor_height_m,
                       "vanish)"));
       continue;
     }
+    if (!w.top_m.empty() && w.top_m.back().first > length + limits::kMinWallLength_m)
+      sink.add(at(w.source, "top",
+                  prefix + "wall " + std::to_string(w.id) + ": its top has a point at " +
+                      in_unit(w.top_m.back().first) + " along it, past its end (it is " +
+                      in_unit(length) + " long)"));
     wall_length[w.id] = length;
     geometry.push_back({&w, pa, pb, std::min(pa.x(), pb.x()), std::max(pa.x(), pb.x()),
                         std::min(pa.y(), pb.y()), std::max(pa.y(), pb.y())});

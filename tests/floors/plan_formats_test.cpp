@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "test_support.hpp"
@@ -37,6 +40,35 @@ TEST(PlanFormats, FeetConvertToMetres) {
   // A table file has no units key: its lengths are in the unit the caller says.
   const FloorPlan feet = load_plan(data("plans/paper_example1.txt"), LengthUnit::kFoot);
   EXPECT_NEAR(feet.wall_length_m(feet.walls[0]), 20 * 0.3048, 1e-12);
+}
+
+// A wall's `top:` is a height or [offset, height] points, in the plan's unit; offsets
+// increase and stay on the wall; a height must be positive.
+TEST(PlanFormats, AWallsTopIsAHeightOrPointsAlongIt) {
+  const auto dir = testing::scratch_dir("plan_formats", "top");
+  const auto plan_with = [&](const std::string& units, const std::string& top) {
+    const auto file = dir / "p.yaml";
+    std::ofstream(file) << "units: " << units
+                        << "\nvertices:\n  - {id: 1, x: 0, y: 0}\n  - {id: 2, x: 6, y: 0}\n"
+                           "walls:\n  - {id: 1, start: 1, end: 2, top: "
+                        << top << "}\n";
+    FloorPlan plan = load_plan(file);
+    validate_plan(plan, 100.0);
+    return plan;
+  };
+  using Top = std::vector<std::pair<double, double>>;
+  EXPECT_EQ(plan_with("m", "0.7").walls[0].top_m, (Top{{0.0, 0.7}}));
+  EXPECT_EQ(plan_with("m", "[[0, 2.2], [3, 4.5], [6, 2.2]]").walls[0].top_m,
+            (Top{{0.0, 2.2}, {3.0, 4.5}, {6.0, 2.2}}));
+  const Top feet = plan_with("ft", "10").walls[0].top_m;
+  ASSERT_EQ(feet.size(), 1u);
+  EXPECT_NEAR(feet[0].second, 3.048, 1e-12);
+  for (const char* bad : {"0", "-1", "[]", "[[0, 1], [0, 2]]", "[[3, 1], [1, 2]]", "[[0, 1, 2]]",
+                          "[1, 2]", "[[0, 1], [7, 2]]", "x"}) {
+    const InputError e = testing::expect_input_error([&] { plan_with("m", bad); });
+    EXPECT_TRUE(testing::contains(e.what(), "top")) << bad << ": " << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(PlanFormats, PaperExampleLoadsAsWritten) {

@@ -84,6 +84,51 @@ TEST(Slice, OpeningIntervalIsClosedAtSillOpenAtHead) {
   EXPECT_EQ(layers[2].segments.size(), 1u);
 }
 
+// Issue 50: walls at their own height. A wall stops where its top is at or below a layer's
+// mid-height, like an opening's head: one point is a wall of one height, three a gable.
+TEST(Slice, AWallStopsAtItsTopAndAGableStepsUpLayerByLayer) {
+  FloorPlan plan;
+  plan.vertices = {{1, {0, 0}, {}}, {2, {6, 0}, {}}, {3, {6, 4}, {}}, {4, {0, 4}, {}}};
+  plan.walls = {{1, 1, 2, std::nullopt, {}},
+                {2, 2, 3, std::nullopt, {}},
+                {3, 3, 4, std::nullopt, {}},
+                {4, 4, 1, std::nullopt, {}}};
+  plan.walls[0].top_m = {{0.0, 0.625}};                        // a knee wall
+  plan.walls[1].top_m = {{0.0, 0.04}};                         // under the first mid
+  plan.walls[2].top_m = {{0.0, 2.2}, {3.0, 4.5}, {6.0, 2.2}};  // a gable to 4.5 m
+  validate_plan(plan, 4.6);
+  const auto layers = slice_floor(as_floor(plan, 4.6), 0.1);
+  ASSERT_EQ(layers.size(), 46u);
+  const auto length_of = [&](const Layer& layer, std::int64_t wall) {
+    double m = 0.0;
+    for (const auto& s : layer.segments)
+      if (s.wall_id == wall) m += s.length_m;
+    return m;
+  };
+  // The knee wall: mids 0.05 to 0.55 print it, 0.65 does not. In layers of 0.25 m, whose
+  // mids are exact in binary, the mid 0.625 at its top exactly leaves it out.
+  EXPECT_NEAR(length_of(layers[5], 1), 6.0, 1e-12);
+  EXPECT_EQ(length_of(layers[6], 1), 0.0);
+  const auto quarters = slice_floor(as_floor(plan, 4.6), 0.25);
+  EXPECT_NEAR(length_of(quarters[1], 1), 6.0, 1e-12);  // mid 0.375
+  EXPECT_EQ(length_of(quarters[2], 1), 0.0);           // mid 0.625
+  // Lower than half a layer: in no layer at all.
+  for (const auto& layer : layers) EXPECT_EQ(length_of(layer, 2), 0.0) << layer.index;
+  // The gable: whole under its eaves (mid 2.15), then the part whose top is above the mid:
+  // |s - 3| < 3 (4.5 - mid) / 2.3, symmetric about the ridge; the ridge on the boundary
+  // between layers 44 and 45 leaves layer 44 (mid 4.45) a piece and layer 45 none.
+  EXPECT_NEAR(length_of(layers[21], 3), 6.0, 1e-12);
+  for (int k : {22, 30, 44}) {
+    const double mid = 0.1 * k + 0.05;
+    EXPECT_NEAR(length_of(layers[k], 3), 6.0 * (4.5 - mid) / 2.3, 1e-9) << k;
+  }
+  EXPECT_EQ(length_of(layers[45], 3), 0.0);
+  // The untopped wall is whole throughout; layers alike share their cut.
+  EXPECT_NEAR(length_of(layers[45], 4), 4.0, 1e-12);
+  EXPECT_EQ(layers[7].geometry_hash, layers[20].geometry_hash);
+  EXPECT_NE(layers[22].geometry_hash, layers[23].geometry_hash);
+}
+
 TEST(Slice, LastLayerMayBeThinner) {
   const auto layers = slice_floor(as_floor(wall_with_door_and_window(), 2.3), 0.5);
   ASSERT_EQ(layers.size(), 5u);

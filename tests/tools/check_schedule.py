@@ -85,6 +85,14 @@ ROUND_P = 2e-6     # m: two coordinates, each rounded to micrometres
 ROUND_T = 2e-6     # s: two times, each rounded to microseconds
 ROUND_A = 2e-6     # rad: two headings, each rounded to microradians
 INTERVAL = 2.5e-6  # s: an interval from four times rounded to microseconds, against the bounds
+
+
+def interval_tolerance(doc):
+    """s: an interval against the bounds, at a point inside two paths' spans (a gable's
+    piece ending mid-wall): each time is interpolated along a span whose ends' coordinates
+    are rounded to micrometres, so is off by up to 2 x 0.5e-6 m over the deposition speed."""
+    speed = doc["inputs"]["machine"].get("deposition_speed_m_s") or 0.0
+    return INTERVAL + (2 * 2 * 0.5e-6 / speed if speed > 0 else 0.0)
 WAIT_KINDS = ("min-interval", "strength", "anchor-strength", "slab", "off-shift", "joint", "cold",
               "wind")
 EVENT_KINDS = ("pipe", "slab", "purge", "climb", "joint", "lintel", "pour")
@@ -1010,6 +1018,7 @@ def check_intervals(doc, infos, problems, notes, stats):
     """Local intervals per piece end, against the document and the material; strength."""
     layers = doc["layers"]
     material = doc["inputs"]["material"]
+    tolerance = interval_tolerance(doc)
     curve = StrengthModel(material)
     lo_bound, hi_bound = material["min_layer_interval_s"], material["max_layer_interval_s"]
     rho_g_sf = material["density_kg_m3"] * G * material["safety_factor"] * 1e-6
@@ -1077,13 +1086,13 @@ def check_intervals(doc, infos, problems, notes, stats):
                 if said is None or abs(said - value) > T_DOC:
                     problems.append("%s: equivalent_interval_%s_s %s, recomputed %.6f s from the paths "
                                     "and the weather" % (where, name, said, value))
-        if smallest < lo_bound - INTERVAL:
+        if smallest < lo_bound - tolerance:
             problems.append("%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer "
                             "below, under the minimum interval %g s" % ((where,) + low[1:] + (smallest, lo_bound)))
         stats.setdefault("largest", {})[i] = largest
-        if largest > hi_bound + INTERVAL and layer.get("planned_joint"):
+        if largest > hi_bound + tolerance and layer.get("planned_joint"):
             pass                # a planned joint: checked with the site's calendar (11)
-        elif largest > hi_bound + INTERVAL:
+        elif largest > hi_bound + tolerance:
             text = "%s: wall %d piece %d at (%.4f, %.4f) m covered %.6f s after the layer below, " \
                    "over the maximum interval %g s" % ((where,) + high[1:] + (largest, hi_bound))
             if feasible:
@@ -1622,7 +1631,7 @@ def check_site(doc, problems, stats):
             stopped = below is not None and (not cal.within(below["end_s"], block) or (
                 mat is not None and not mat.all_ok(below["end_s"], block, warm)))
             check_joint(doc, where, l, below, block, stopped, problems, stats)
-        elif i in largest and largest[i] > material["max_layer_interval_s"] + INTERVAL and doc["feasible"]:
+        elif i in largest and largest[i] > material["max_layer_interval_s"] + interval_tolerance(doc) and doc["feasible"]:
             problems.append("%s: covered %.6f s after the layer below, over the maximum interval %g s, "
                             "and not a planned joint" % (where, largest[i], material["max_layer_interval_s"]))
     for i, e in enumerate(events):

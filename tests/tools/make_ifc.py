@@ -301,7 +301,7 @@ class Model:
         return self.f.add("IFCPRODUCTDEFINITIONSHAPE", "$", "$", "(%s)" % ",".join(reps))
 
     def wall(self, storey, name, start, end, thickness_m, height_m, axis=True,
-             body="rectangle", material="Concrete", entity=None, curve=None):
+             body="rectangle", material="Concrete", entity=None, curve=None, ridge_m=None):
         """A straight wall from `start` to `end` (metres, storey frame): placed at its
         start, turned along it; returns (wall, its placement, its length)."""
         f = self.f
@@ -321,7 +321,15 @@ class Model:
             line = f.add("IFCPOLYLINE", "(%s,%s)" % (self.mpoint(0, 0), self.mpoint(length, 0)))
             reps.append(f.add("IFCSHAPEREPRESENTATION", self.axis_context, "'Axis'", "'Curve2D'",
                               "(%s)" % line))
-        if body == "rectangle":
+        if ridge_m is not None:  # a gable: its elevation extruded through it, as Revit does
+            gable = self.polygon_profile([(0, 0), (length, 0), (length, height_m),
+                                          (length / 2, ridge_m), (0, height_m)])
+            solid = self.extrusion(gable, self.axis3((0, thickness_m / 2, 0), ref=(1, 0, 0),
+                                                     axis=(0, -1, 0)), thickness_m)
+            reps.append(f.add("IFCSHAPEREPRESENTATION", self.body_context, "'Body'",
+                              "'SweptSolid'", "(%s)" % solid))
+            profile = None
+        elif body == "rectangle":
             profile = self.rectangle((length / 2, 0), length, thickness_m)
         elif body == "polygon":
             h = thickness_m / 2
@@ -426,9 +434,9 @@ def house(schema, roof=True, slabs=False):
 
 def quantities(schema, volume_unit):
     """A one-room house with its walls' own quantities (NetVolume), as BIM tools export
-    them: the ground floor's walls exactly what they print (a door's volume taken out), the
-    attic's two knee walls only 0.7 m of its 2.8 m gables (no roof modelled), and one wall with no
-    quantity. The volumes are the walls' bodies (length x thickness x height, less the
+    them: the ground floor's walls 3 m high (a door's volume taken out); the attic's two
+    knee walls 0.7 m high under the eaves and two gables from 0.7 m at the eaves to a 2.8 m
+    ridge (their elevation extruded through them), one of them with no quantity. The volumes are the walls' bodies (length x thickness x height, less the
     openings), length along the axis between the other walls' axes."""
     m = Model(schema, "mm", volume_unit)
     t, h = 0.15, 3.0
@@ -446,10 +454,10 @@ def quantities(schema, volume_unit):
     a = m.storey("Attic", 3.0)
     for k, (name, start, end) in enumerate(walls):
         knee = k % 2 == 0  # south and north under the eaves; east and west gables
-        w, _, length = m.wall(a, name.replace("wall", "attic wall"), start, end, t,
-                              0.7 if knee else 2.8)
-        if k < 3:
-            m.net_volume(w, length * t * (0.7 if knee else 2.8), qset)
+        w, _, length = m.wall(a, name.replace("wall", "attic wall"), start, end, t, 0.7,
+                              ridge_m=None if knee else 2.8)
+        if k < 3:  # a gable: its eaves' 0.7 m and the triangle up to the ridge
+            m.net_volume(w, length * t * (0.7 if knee else 0.7 + 2.1 / 2), qset)
     m.finish()
     return m.f
 

@@ -59,8 +59,64 @@ struct Piece {
   Vector2d a, b;
   const FoundWall* wall = nullptr;
   bool alive = true;
-  double modelled_m = 0.0;  ///< its length as modelled, before ends were joined
+  double modelled_m = 0.0;         ///< its length as modelled, before ends were joined
+  Vector2d a0 = Vector2d::Zero();  ///< its start as modelled
+  std::size_t index = 0;           ///< in its wall's pieces
 };
+
+/// The lowest and highest of a wall's tops above `level`, where its body's outline says.
+std::optional<std::pair<double, double>> top_range(const FoundWall& w, const Level& level) {
+  std::optional<std::pair<double, double>> range;
+  for (const auto& outline : w.piece_tops)
+    for (const auto& [s, z] : outline) {
+      const double t = z - level.elevation_m;
+      range = range ? std::make_pair(std::min(range->first, t), std::max(range->second, t))
+                    : std::make_pair(t, t);
+    }
+  return range;
+}
+
+/// Where a plan wall made of `piece` stops above its floor (floors::Wall::top_m): its
+/// body's outline along the piece, from where the piece now starts to where it ends, above
+/// the level; empty where the wall stands the floor's full height (within a millimetre).
+/// One height along the whole piece is one point. `length_m`: the plan wall's, between the
+/// vertices its ends were merged into.
+std::vector<std::pair<double, double>> top_on_level(const Piece& piece, const Level& level,
+                                                    double length_m) {
+  const FoundWall& w = *piece.wall;
+  if (piece.index >= w.piece_tops.size() || w.piece_tops[piece.index].empty()) return {};
+  const auto& outline = w.piece_tops[piece.index];
+  const Vector2d d = (piece.b - piece.a).normalized();
+  const double shift_m = d.dot(piece.a - piece.a0);  // how far joining moved its start
+  // The outline at `s` along the piece as it now is: linear, level beyond its ends.
+  const auto at = [&](double s) {
+    const double u = s + shift_m;
+    if (u <= outline.front().first) return outline.front().second;
+    if (u >= outline.back().first) return outline.back().second;
+    for (std::size_t k = 1; k < outline.size(); ++k)
+      if (u <= outline[k].first) {
+        const auto& [s0, z0] = outline[k - 1];
+        const auto& [s1, z1] = outline[k];
+        return s1 > s0 ? z0 + (z1 - z0) * (u - s0) / (s1 - s0) : z1;
+      }
+    return outline.back().second;
+  };
+  std::vector<std::pair<double, double>> top = {{0.0, at(0.0)}};
+  for (const auto& [s, z] : outline)
+    if (s - shift_m > top.back().first + 1e-9 && s - shift_m < length_m - 1e-9)
+      top.emplace_back(s - shift_m, z);
+  top.emplace_back(length_m, at(length_m));
+  bool lower = false, level_top = true;
+  for (auto& [s, t] : top) {
+    t = std::max(clean(t - level.elevation_m), 0.001);  // a top at the floor: in no layer
+    s = clean(s);
+    lower = lower || t < level.height_m - 1e-3;
+    level_top = level_top && std::abs(t - top.front().second) < 1e-9;
+  }
+  if (!lower) return {};
+  if (level_top) return {{0.0, top.front().second}};
+  return top;
+}
 
 /// The part of a wall's NetVolume that one of its pieces on `level` takes: the piece's
 /// share of the wall's modelled length, times the share of the wall's body height within
@@ -166,7 +222,10 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
                             ifc::Notes& notes, int& openings_left_out) {
   std::vector<Piece> pieces;
   for (const FoundWall* w : level.walls)
-    for (const auto& [a, b] : w->pieces) pieces.push_back({a, b, w, true, (b - a).norm()});
+    for (std::size_t k = 0; k < w->pieces.size(); ++k) {
+      const auto& [a, b] = w->pieces[k];
+      pieces.push_back({a, b, w, true, (b - a).norm(), a, k});
+    }
   join_ends(pieces, options.join_tolerance_m);
   for (Piece& p : pieces)
     if ((p.b - p.a).norm() <= floors::limits::kMinWallLength_m) {
@@ -212,6 +271,8 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
     wall.thickness_m = clean(p.wall->thickness_m);
     wall.global_id = p.wall->what.guid;
     wall.model_volume_m3 = model_volume_m3(p, level);
+    wall.top_m = top_on_level(
+        p, level, (plan.vertices[e - 1].position_m - plan.vertices[s - 1].position_m).norm());
     wall.source = {file, 0, p.wall->what.describe()};
     plan.walls.push_back(wall);
     made_of[p.wall].push_back(made.size());
@@ -520,19 +581,28 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
                                      "takes (%s)",
                                      l.name.c_str(), l.height_m,
                                      floors::limits::kFloorHeight_m.describe("m").c_str()));
-    for (const FoundWall* w : l.walls)
-      if (w->top_m && *w->top_m - l.elevation_m < 0.75 * l.height_m && w->bottom_m &&
-          *w->bottom_m >= l.elevation_m - 1e-3)
-        notes.add("walls lower than their floor",
-                  printf_string("floor '%s': %s is %.3f m high; it is printed to the "
-                                "floor's height, %.3f m",
-                                l.name.c_str(), w->what.describe().c_str(),
-                                *w->top_m - *w->bottom_m, l.height_m));
-      else if (w->clipped)
+    for (const FoundWall* w : l.walls) {
+      if (const auto top = top_range(*w, l); top && top->first < l.height_m - 1e-3) {
+        if (top->second - top->first < 1e-3)
+          notes.add(
+              "walls lower than their floor, printed to their own top",
+              printf_string("floor '%s': %s stops %.3f m above the floor's level (its "
+                            "body's top; the floor is %.3f m high): printed up to there",
+                            l.name.c_str(), w->what.describe().c_str(), top->first, l.height_m));
+        else
+          notes.add("walls lower than their floor, printed to their own top",
+                    printf_string("floor '%s': %s has a top from %.3f to %.3f m above the "
+                                  "floor's level (its body's outline in elevation: a gable, "
+                                  "say; the floor is %.3f m high): printed up to it",
+                                  l.name.c_str(), w->what.describe().c_str(), top->first,
+                                  top->second, l.height_m));
+      }
+      if (w->clipped)
         notes.add("walls whose body is cut",
                   "floor '" + l.name + "': " + w->what.describe() +
-                      ": its body is cut (under a roof, say); it is printed to the "
-                      "floor's full height");
+                      ": its body is cut (under a roof, say); ccbuild does not read the cut, "
+                      "and prints it to its uncut body's top or the floor's height, the lower");
+    }
     floors::Floor floor;
     floor.name = l.name;
     floor.index = static_cast<int>(k);

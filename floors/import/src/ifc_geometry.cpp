@@ -241,6 +241,86 @@ void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_worl
   }
 }
 
+std::vector<std::pair<double, double>> Reader::top_outline(const std::vector<Solid>& bodies,
+                                                           const Vector2d& a, const Vector2d& b,
+                                                           double z0_m) {
+  // Each solid's outline in the wall's elevation, (along the piece, z): a solid extruded
+  // through the wall is its profile; one extruded upwards the box over its footprint.
+  const double length_m = (b - a).norm();
+  const Vector2d d = (b - a) / length_m;
+  std::vector<std::vector<Vector2d>> outlines;
+  for (const Solid& body : bodies) {
+    const Vector3d along = body.position.linear() * body.extrusion;
+    std::vector<Vector2d> outline;
+    if (std::abs(along.normalized().z()) <= 1e-6) {
+      if (std::abs(along.head<2>().normalized().dot(d)) > 1e-6) continue;  // along the wall
+      for (const Vector2d& p : body.profile) {
+        const Vector3d q = body.position * Vector3d(p.x(), p.y(), 0.0);
+        outline.emplace_back(d.dot(q.head<2>() - a), q.z());
+      }
+    } else {
+      double s0 = std::numeric_limits<double>::infinity(), s1 = -s0;
+      double z_lo = s0, z_hi = -s0;
+      for (const Vector2d& p : body.profile) {
+        const Vector3d q = body.position * Vector3d(p.x(), p.y(), 0.0);
+        s0 = std::min(s0, d.dot(q.head<2>() - a));
+        s1 = std::max(s1, d.dot(q.head<2>() - a));
+        z_lo = std::min({z_lo, q.z(), q.z() + along.z()});
+        z_hi = std::max({z_hi, q.z(), q.z() + along.z()});
+      }
+      outline = {{s0, z_lo}, {s1, z_lo}, {s1, z_hi}, {s0, z_hi}};
+    }
+    outlines.push_back(std::move(outline));
+  }
+  // The highest point of any outline over `s` (its edges over s, either end included when
+  // `right` says which side of a vertical step counts); nullopt where none is.
+  const auto top_at = [&](double s, bool right) -> std::optional<double> {
+    std::optional<double> z;
+    for (const auto& o : outlines)
+      for (std::size_t k = 0; k < o.size(); ++k) {
+        const Vector2d& p = o[k];
+        const Vector2d& q = o[(k + 1) % o.size()];
+        const double lo = std::min(p.x(), q.x()), hi = std::max(p.x(), q.x());
+        if (hi - lo < 1e-9 || s < lo || s > hi || (right ? s >= hi : s <= lo)) continue;
+        const double at = p.y() + (q.y() - p.y()) * (s - p.x()) / (q.x() - p.x());
+        z = std::max(z.value_or(at), at);
+      }
+    return z;
+  };
+  // Sampled just either side of every corner along the piece: linear in between.
+  std::vector<double> at = {0.0, length_m};
+  for (const auto& o : outlines)
+    for (const Vector2d& p : o)
+      if (p.x() > 0.0 && p.x() < length_m) at.push_back(p.x());
+  std::sort(at.begin(), at.end());
+  std::vector<std::pair<double, double>> top;
+  for (const double s : at)
+    for (const bool right : {false, true}) {
+      if ((s == 0.0 && !right) || (s == length_m && right)) continue;
+      const auto z = top_at(s, right);
+      if (!z) continue;
+      const double z_m = z0_m + *z;
+      if (!top.empty() && std::abs(top.back().first - s) < 1e-9 &&
+          std::abs(top.back().second - z_m) < 1e-9)
+        continue;
+      // A vertical step: the two sides a micrometre apart, so the offsets increase.
+      const double s_m = !top.empty() && s <= top.back().first ? top.back().first + 1e-6 : s;
+      top.emplace_back(s_m, z_m);
+    }
+  // Points on a straight line between their neighbours say nothing.
+  std::vector<std::pair<double, double>> kept;
+  for (std::size_t k = 0; k < top.size(); ++k) {
+    if (!kept.empty() && k + 1 < top.size()) {
+      const auto& [s0, t0] = kept.back();
+      const auto& [s1, t1] = top[k + 1];
+      const auto& [s, t] = top[k];
+      if (s1 > s0 && std::abs(t0 + (t1 - t0) * (s - s0) / (s1 - s0) - t) < 1e-6) continue;
+    }
+    kept.push_back(top[k]);
+  }
+  return kept;
+}
+
 void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& parent,
                        double z_shift_m, FoundStorey& storey, ModelContents& out, int depth) {
   FoundWall found;
@@ -447,6 +527,8 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           printf_string("its thickness %.4f m is not one ccbuild takes (%s)", found.thickness_m,
                         floors::limits::kWallThickness_m.describe("m").c_str()),
           "a thickness ccbuild does not take");
+    const double z0 = (place * Vector3d(0, 0, 0)).z() + z_shift_m;
+    for (const auto& [a, b] : local) found.piece_tops.push_back(top_outline(bodies, a, b, z0));
     for (const auto& [a, b] : local) {
       const Vector3d wa = place * Vector3d(a.x(), a.y(), 0.0),
                      wb = place * Vector3d(b.x(), b.y(), 0.0);

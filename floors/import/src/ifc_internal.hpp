@@ -52,6 +52,10 @@ struct FoundWall {
   std::optional<double> bottom_m, top_m;  ///< its body's extent in z, when it has one
   bool clipped = false;                   ///< its body is cut (under a roof, say)
   std::optional<double> net_volume_m3;    ///< the model's own NetVolume of it
+  /// Where its body stops along each piece (as `pieces`): points (m from the piece's start,
+  /// z in the model's frame), linear between them, from the upper outline of its solids in
+  /// the wall's elevation (a gable's slope, a step); empty where no solid says.
+  std::vector<std::vector<std::pair<double, double>>> piece_tops;
   std::vector<FoundOpening> openings;
 };
 

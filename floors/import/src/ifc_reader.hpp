@@ -113,6 +113,11 @@ class Reader {
   };
   std::optional<Solid> solid_of(const std::shared_ptr<IfcRepresentationItem>& item,
                                 int depth) const;
+  /// The upper outline of a wall's solids along its piece from `a` to `b` (the wall's
+  /// frame), as FoundWall::piece_tops holds it; `z0_m` the wall's frame's z in the model's.
+  static std::vector<std::pair<double, double>> top_outline(const std::vector<Solid>& bodies,
+                                                            const Vector2d& a, const Vector2d& b,
+                                                            double z0_m);
   std::vector<Vector2d> curve_points(const std::shared_ptr<IfcCurve>& curve, bool& curved,
                                      int depth) const;
 

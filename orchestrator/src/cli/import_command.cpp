@@ -84,6 +84,14 @@ std::string plan_yaml(const floors::FloorPlan& plan, const std::string& drawing,
                       static_cast<long long>(w.start_vertex), static_cast<long long>(w.end_vertex));
     if (w.thickness_m) out += ", thickness: " + exact(*w.thickness_m);
     if (!w.global_id.empty()) out += ", guid: " + quoted(w.global_id);
+    if (w.top_m.size() == 1 && w.top_m[0].first == 0.0) {
+      out += ", top: " + exact(w.top_m[0].second);
+    } else if (!w.top_m.empty()) {
+      out += ", top: [";
+      for (std::size_t k = 0; k < w.top_m.size(); ++k)
+        out += (k ? ", [" : "[") + exact(w.top_m[k].first) + ", " + exact(w.top_m[k].second) + "]";
+      out += "]";
+    }
     if (w.model_volume_m3) out += ", model_volume: " + exact(*w.model_volume_m3);
     out += "}  # " + comment(w.source.path) + "\n";
   }

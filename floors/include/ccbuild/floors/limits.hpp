@@ -23,6 +23,9 @@ inline const Range kAlongWall_m = Range::closed(0.0, 200'000.0);
 inline const Range kOpeningWidth_m = Range::above(0.0, 200'000.0);
 /// Sill and head, above the floor's base.
 inline const Range kOpeningHeight_m = Range::closed(0.0, 100.0);
+/// A wall's top, above the floor's base (`top:`), and the points that shape it.
+inline const Range kWallTop_m = Range::above(0.0, 100.0);
+inline constexpr std::size_t kMaxWallTopPoints = 1000;
 /// A floor's height: of its walls (floor to floor without a slab).
 inline const Range kFloorHeight_m = Range::above(0.0, 100.0);
 /// A floor's level (its storey's elevation in the model): within 10 km of the model's datum.

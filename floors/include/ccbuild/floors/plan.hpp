@@ -46,7 +46,19 @@ struct Wall {
   /// element's own quantity (IFC Qto_WallBaseQuantities NetVolume), shared among the plan
   /// walls and floors it became, m³. Unset when the model states none.
   std::optional<double> model_volume_m3{};
+  /// Where the wall stops, above its floor's base (`top:` in plan files): points (offset
+  /// from its start along it, top), linear between them and level beyond the first and the
+  /// last, so that one point is a wall of one height (a knee wall, a parapet) and three a
+  /// gable. Empty: the floor's full height. The wall is absent from every layer whose
+  /// mid-height is at or above its top there (wall_gaps_above).
+  std::vector<std::pair<double, double>> top_m{};
 };
+
+/// The stretches of a wall of `length_m` whose top (Wall::top_m) is at or below `mid_m`:
+/// where a layer of that mid-height leaves it out, m from its start, in order. Empty for a
+/// wall without a top.
+std::vector<std::pair<double, double>> wall_gaps_above(const Wall& wall, double length_m,
+                                                       double mid_m);
 
 /// A gap in a wall: absent from every layer whose mid-height lies in [sill, head).
 /// A door has sill 0.
