@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 #include "run_command.hpp"
 #include "test_support.hpp"
@@ -261,6 +262,25 @@ TEST(IfcCommands, ThePublicGymzaalIsRefusedForItsSizeAndItsWallThicknesses) {
   EXPECT_TRUE(contains(imported.err, "left out: 61 elements"));
   const std::string plan = slurp(dir / "gym.1.plan.yaml");
   EXPECT_TRUE(contains(plan, "thickness: 0.27, guid: \"3yKL7w3aP50Qs40ucQ6MHe\""));
+  // Issue 50: against the model's own NetVolume (Revit's Qto_WallBaseQuantities). The
+  // ground floor's 0.2 m brick plinths and 2.1 m tiled walls stop at their bodies' tops
+  // (printed to the 3.4 m floor they took 102.74 m³, +5.6%): within 3%. Upstairs one cavity
+  // wall, 12.0 m along its axis through its joins, where Revit's volume leaves the joins
+  // out: flagged, by GlobalId.
+  std::cout << imported.out;
+  EXPECT_TRUE(contains(imported.out,
+                       "quantities: floor '00 Begane grond': prints 98.95 m³ of "
+                       "walls; the model's NetVolume of the 48 walls that state "
+                       "one is 97.26 m³, printed 98.95 m³ (+1.7%)\n"))
+      << imported.out;
+  EXPECT_TRUE(contains(imported.out,
+                       "(+4.3%) — OFF by more than 3%: 3yKL7w3aP50Qs40ucQ6Nhz "
+                       "(wall 1) prints 9.04 m³, the model says 8.67 m³"))
+      << imported.out;
+  EXPECT_TRUE(contains(imported.err,
+                       "'Basic Wall:22_WA_Schoonmetselwerk_100mm:2179579' stops "
+                       "0.200 m above the floor's level"))
+      << imported.err;
   // Turned along the rails and centred, it is refused for its walls: the cavity walls
   // between one bead and two, the brick and tile walls thinner than one; each named.
   std::string building = slurp(dir / "gym.yaml");

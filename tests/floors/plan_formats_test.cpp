@@ -42,33 +42,53 @@ TEST(PlanFormats, FeetConvertToMetres) {
   EXPECT_NEAR(feet.wall_length_m(feet.walls[0]), 20 * 0.3048, 1e-12);
 }
 
+// A plan of one 6 m wall whose other keys are `keys` ("top: 0.7"), in `units`, validated.
+FloorPlan plan_with_wall(const std::string& units, const std::string& keys) {
+  const auto file = testing::scratch_dir("plan_formats", "wall") / "p.yaml";
+  std::ofstream(file) << "units: " << units
+                      << "\nvertices:\n  - {id: 1, x: 0, y: 0}\n  - {id: 2, x: 6, y: 0}\n"
+                         "walls:\n  - {id: 1, start: 1, end: 2, "
+                      << keys << "}\n";
+  try {
+    FloorPlan plan = load_plan(file);
+    validate_plan(plan, 100.0);
+    std::filesystem::remove_all(file.parent_path());
+    return plan;
+  } catch (...) {
+    std::filesystem::remove_all(file.parent_path());
+    throw;
+  }
+}
+
 // A wall's `top:` is a height or [offset, height] points, in the plan's unit; offsets
 // increase and stay on the wall; a height must be positive.
 TEST(PlanFormats, AWallsTopIsAHeightOrPointsAlongIt) {
-  const auto dir = testing::scratch_dir("plan_formats", "top");
-  const auto plan_with = [&](const std::string& units, const std::string& top) {
-    const auto file = dir / "p.yaml";
-    std::ofstream(file) << "units: " << units
-                        << "\nvertices:\n  - {id: 1, x: 0, y: 0}\n  - {id: 2, x: 6, y: 0}\n"
-                           "walls:\n  - {id: 1, start: 1, end: 2, top: "
-                        << top << "}\n";
-    FloorPlan plan = load_plan(file);
-    validate_plan(plan, 100.0);
-    return plan;
-  };
   using Top = std::vector<std::pair<double, double>>;
-  EXPECT_EQ(plan_with("m", "0.7").walls[0].top_m, (Top{{0.0, 0.7}}));
-  EXPECT_EQ(plan_with("m", "[[0, 2.2], [3, 4.5], [6, 2.2]]").walls[0].top_m,
+  EXPECT_EQ(plan_with_wall("m", "top: 0.7").walls[0].top_m, (Top{{0.0, 0.7}}));
+  EXPECT_EQ(plan_with_wall("m", "top: [[0, 2.2], [3, 4.5], [6, 2.2]]").walls[0].top_m,
             (Top{{0.0, 2.2}, {3.0, 4.5}, {6.0, 2.2}}));
-  const Top feet = plan_with("ft", "10").walls[0].top_m;
+  const Top feet = plan_with_wall("ft", "top: 10").walls[0].top_m;
   ASSERT_EQ(feet.size(), 1u);
   EXPECT_NEAR(feet[0].second, 3.048, 1e-12);
   for (const char* bad : {"0", "-1", "[]", "[[0, 1], [0, 2]]", "[[3, 1], [1, 2]]", "[[0, 1, 2]]",
                           "[1, 2]", "[[0, 1], [7, 2]]", "x"}) {
-    const InputError e = testing::expect_input_error([&] { plan_with("m", bad); });
+    const InputError e =
+        testing::expect_input_error([&] { plan_with_wall("m", std::string("top: ") + bad); });
     EXPECT_TRUE(testing::contains(e.what(), "top")) << bad << ": " << e.what();
   }
-  std::filesystem::remove_all(dir);
+}
+
+// `model_volume:` is in the plan's unit cubed, and a volume no wall has is refused, named.
+TEST(PlanFormats, AModelVolumeIsInThePlansUnitCubedAndItsRangeIsChecked) {
+  const FloorPlan feet = plan_with_wall("ft", "model_volume: 100");
+  ASSERT_TRUE(feet.walls[0].model_volume_m3);
+  EXPECT_NEAR(*feet.walls[0].model_volume_m3, 100 * 0.3048 * 0.3048 * 0.3048, 1e-12);
+  EXPECT_NEAR(*plan_with_wall("m", "model_volume: 2.5").walls[0].model_volume_m3, 2.5, 1e-15);
+  for (const char* bad : {"0", "-1", "2e6", "x"}) {
+    const InputError e = testing::expect_input_error(
+        [&] { plan_with_wall("m", std::string("model_volume: ") + bad); });
+    EXPECT_TRUE(testing::contains(e.what(), "model_volume")) << bad << ": " << e.what();
+  }
 }
 
 TEST(PlanFormats, PaperExampleLoadsAsWritten) {

@@ -6,9 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-
-#include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/plan.hpp"
 #include "test_support.hpp"
 
@@ -72,28 +69,6 @@ TEST(Quantities, ThreePercentEitherWayIsWithinAndMoreIsOff) {
   EXPECT_FALSE(none.difference());
   EXPECT_FALSE(none.off());
   EXPECT_TRUE(contains(quantities_text("ground", none), "(the model states no volume"));
-}
-
-// `model_volume:` is in the plan's unit cubed, and a volume no wall has is refused, named.
-TEST(Quantities, AModelVolumeIsReadInThePlansUnitCubedAndItsRangeIsChecked) {
-  const auto dir = testing::scratch_dir("quantities", "plans");
-  const auto plan_with = [&](const std::string& units, const std::string& volume) {
-    const auto file = dir / "p.yaml";
-    std::ofstream(file) << "units: " << units
-                        << "\nvertices:\n  - {id: 1, x: 0, y: 0}\n  - {id: 2, x: 10, y: 0}\n"
-                           "walls:\n  - {id: 1, start: 1, end: 2, model_volume: "
-                        << volume << "}\n";
-    return load_plan(file);
-  };
-  const FloorPlan feet = plan_with("ft", "100");
-  ASSERT_TRUE(feet.walls[0].model_volume_m3);
-  EXPECT_NEAR(*feet.walls[0].model_volume_m3, 100 * 0.3048 * 0.3048 * 0.3048, 1e-12);
-  EXPECT_NEAR(*plan_with("m", "2.5").walls[0].model_volume_m3, 2.5, 1e-15);
-  for (const char* bad : {"0", "-1", "2e6", "x"}) {
-    const InputError e = testing::expect_input_error([&] { plan_with("m", bad); });
-    EXPECT_TRUE(contains(e.what(), "model_volume")) << bad << ": " << e.what();
-  }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

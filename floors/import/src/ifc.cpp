@@ -120,8 +120,8 @@ std::vector<std::pair<double, double>> top_on_level(const Piece& piece, const Le
 
 /// The part of a wall's NetVolume that one of its pieces on `level` takes: the piece's
 /// share of the wall's modelled length, times the share of the wall's body height within
-/// the level's storey (from its level up to the next one's, its slab included); the whole
-/// height without a body extent.
+/// the level's floor (from its level up to the slab over it: a wall's part in the slab's
+/// depth is cast with the slab, not printed); the whole height without a body extent.
 std::optional<double> model_volume_m3(const Piece& piece, const Level& level) {
   const FoundWall& w = *piece.wall;
   if (!w.net_volume_m3) return std::nullopt;
@@ -130,7 +130,7 @@ std::optional<double> model_volume_m3(const Piece& piece, const Level& level) {
   if (!(modelled_m > 0.0)) return std::nullopt;
   double height_share = 1.0;
   if (w.bottom_m && w.top_m && *w.top_m > *w.bottom_m) {
-    const double top_m = level.elevation_m + level.height_m + level.slab_m;
+    const double top_m = level.elevation_m + level.height_m;
     height_share =
         std::clamp((std::min(*w.top_m, top_m) - std::max(*w.bottom_m, level.elevation_m)) /
                        (*w.top_m - *w.bottom_m),
