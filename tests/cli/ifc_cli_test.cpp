@@ -161,6 +161,12 @@ TEST(IfcCommands, AModelsOwnWallVolumesArePrintedAgainstWhatIsPrinted) {
   const std::string out = (dir / "schedule.json").string();
   const auto scheduled = run_ccbuild("schedule " + building + " --quiet --no-compare -o " + out);
   ASSERT_LE(scheduled.exit_code, 1) << scheduled.err;
+  EXPECT_TRUE(contains(scheduled.out,
+                       "quantities: floor 'Attic': prints 3.36 m³ of walls; the "
+                       "model's NetVolume of the 3 walls that state one is 2.31 "
+                       "m³, printed 2.31 m³ (+0.0%)"))
+      << scheduled.out;
+  EXPECT_TRUE(contains(scheduled.out, "(floor 0 8.72, floor 1 3.36)")) << scheduled.out;
   const auto s = nlohmann::json::parse(slurp(out));
   const auto& q = s["inputs"]["provenance"][1]["quantities"];
   EXPECT_NEAR(q["model_volume_m3"].get<double>(), 2.31, 1e-9);

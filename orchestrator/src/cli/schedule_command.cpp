@@ -8,6 +8,7 @@
 
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/report/report.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
@@ -298,6 +299,12 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
             ? (" (the pump: " + per_hour(*project.machine->pump_capacity_m3_s) + ")").c_str()
             : "",
         s.deliveries.size(), floors::volume_text(project.material.delivery_batch_m3, unit).c_str());
+    // Against the model's own wall volumes, where the building was imported with them.
+    for (const auto& floor : project.building.floors) {
+      const floors::FloorQuantities q = floors::floor_quantities(
+          floor, project.building.layer_height_m, project.machine->nozzle_width_m);
+      if (q.model_m3) std::cout << "quantities: " << floors::quantities_text(floor.name, q) << "\n";
+    }
   }
   if (!o.no_compare) {
     // The other objective, scheduled in full, for comparison.
