@@ -327,8 +327,12 @@ TEST(IfcImport, TheModelsOwnWallVolumesAreKeptAndComparedFloorByFloor) {
     const auto& walls = b.floors[1].plan.walls;
     ASSERT_EQ(walls.size(), 4u);
     EXPECT_EQ(walls[0].top_m, (std::vector<std::pair<double, double>>{{0.0, 0.7}}));
-    EXPECT_EQ(walls[1].top_m,
-              (std::vector<std::pair<double, double>>{{0.0, 0.7}, {2.0, 2.8}, {4.0, 0.7}}));
+    // The east gable its elevation extruded through it, the west one a box cut by its roof's
+    // two planes: the same outline.
+    for (std::size_t k : {1u, 3u})
+      EXPECT_EQ(walls[k].top_m,
+                (std::vector<std::pair<double, double>>{{0.0, 0.7}, {2.0, 2.8}, {4.0, 0.7}}))
+          << k;
     const double gable_m3 = 4 * (0.7 + 2.1 / 2) * t;
     ASSERT_TRUE(attic.model_m3);
     EXPECT_NEAR(*attic.model_m3, 2 * 6 * 0.7 * t + gable_m3, 1e-9);

@@ -301,7 +301,8 @@ class Model:
         return self.f.add("IFCPRODUCTDEFINITIONSHAPE", "$", "$", "(%s)" % ",".join(reps))
 
     def wall(self, storey, name, start, end, thickness_m, height_m, axis=True,
-             body="rectangle", material="Concrete", entity=None, curve=None, ridge_m=None):
+             body="rectangle", material="Concrete", entity=None, curve=None, ridge_m=None,
+             clip=False):
         """A straight wall from `start` to `end` (metres, storey frame): placed at its
         start, turned along it; returns (wall, its placement, its length)."""
         f = self.f
@@ -321,7 +322,23 @@ class Model:
             line = f.add("IFCPOLYLINE", "(%s,%s)" % (self.mpoint(0, 0), self.mpoint(length, 0)))
             reps.append(f.add("IFCSHAPEREPRESENTATION", self.axis_context, "'Axis'", "'Curve2D'",
                               "(%s)" % line))
-        if ridge_m is not None:  # a gable: its elevation extruded through it, as Revit does
+        if ridge_m is not None and clip:  # a gable: a box cut by its roof's two planes
+            box = self.extrusion(self.rectangle((length / 2, 0), length, thickness_m),
+                                 f.add("IFCAXIS2PLACEMENT3D", self.origin, "$", "$"), ridge_m)
+            rise = (ridge_m - height_m) / (length / 2)
+            for x, slope in ((0.0, -rise), (length, rise)):
+                # The plane through the eaves at x and the ridge; its normal up and out, the
+                # half-space above it taken away (AgreementFlag false: the normal points into
+                # the half-space's material).
+                n = math.hypot(slope, 1.0)
+                plane = f.add("IFCPLANE", self.axis3((x, 0, height_m), ref=(0, 1, 0),
+                                                     axis=(slope / n, 0, 1 / n)))
+                half = f.add("IFCHALFSPACESOLID", plane, ".F.")
+                box = f.add("IFCBOOLEANCLIPPINGRESULT", ".DIFFERENCE.", box, half)
+            reps.append(f.add("IFCSHAPEREPRESENTATION", self.body_context, "'Body'",
+                              "'Clipping'", "(%s)" % box))
+            profile = None
+        elif ridge_m is not None:  # a gable: its elevation extruded through it, as Revit does
             gable = self.polygon_profile([(0, 0), (length, 0), (length, height_m),
                                           (length / 2, ridge_m), (0, height_m)])
             solid = self.extrusion(gable, self.axis3((0, thickness_m / 2, 0), ref=(1, 0, 0),
@@ -436,7 +453,8 @@ def quantities(schema, volume_unit):
     """A one-room house with its walls' own quantities (NetVolume), as BIM tools export
     them: the ground floor's walls 3 m high (a door's volume taken out); the attic's two
     knee walls 0.7 m high under the eaves and two gables from 0.7 m at the eaves to a 2.8 m
-    ridge (their elevation extruded through them), one of them with no quantity. The volumes are the walls' bodies (length x thickness x height, less the
+    ridge, the east one its elevation extruded through it (as Revit exports it), the west one
+    a box cut by its roof's two planes (IfcBooleanClippingResult) and with no quantity. The volumes are the walls' bodies (length x thickness x height, less the
     openings), length along the axis between the other walls' axes."""
     m = Model(schema, "mm", volume_unit)
     t, h = 0.15, 3.0
@@ -455,7 +473,7 @@ def quantities(schema, volume_unit):
     for k, (name, start, end) in enumerate(walls):
         knee = k % 2 == 0  # south and north under the eaves; east and west gables
         w, _, length = m.wall(a, name.replace("wall", "attic wall"), start, end, t, 0.7,
-                              ridge_m=None if knee else 2.8)
+                              ridge_m=None if knee else 2.8, clip=k == 3)
         if k < 3:  # a gable: its eaves' 0.7 m and the triangle up to the ridge
             m.net_volume(w, length * t * (0.7 if knee else 0.7 + 2.1 / 2), qset)
     m.finish()

@@ -598,10 +598,16 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
                                   top->second, l.height_m));
       }
       if (w->clipped)
-        notes.add("walls whose body is cut",
+        notes.add("walls whose body is cut by what ccbuild does not read",
                   "floor '" + l.name + "': " + w->what.describe() +
-                      ": its body is cut (under a roof, say); ccbuild does not read the cut, "
-                      "and prints it to its uncut body's top or the floor's height, the lower");
+                      ": its body is cut by something other than a plane's half-space; "
+                      "ccbuild prints it as if uncut, up to its body's top or the floor's "
+                      "height, the lower");
+      if (w->bounded_cut)
+        notes.add("walls cut by bounded half-spaces, read as unbounded",
+                  "floor '" + l.name + "': " + w->what.describe() +
+                      ": its body is cut by a polygonal bounded half-space, read as the "
+                      "whole plane's half-space");
     }
     floors::Floor floor;
     floor.name = l.name;

@@ -6,6 +6,7 @@
 #include <ifcpp/IFC4/include/IfcAxis2Placement2D.h>
 #include <ifcpp/IFC4/include/IfcAxis2Placement3D.h>
 #include <ifcpp/IFC4/include/IfcBoolean.h>
+#include <ifcpp/IFC4/include/IfcBooleanOperator.h>
 #include <ifcpp/IFC4/include/IfcBooleanResult.h>
 #include <ifcpp/IFC4/include/IfcBuilding.h>
 #include <ifcpp/IFC4/include/IfcBuildingStorey.h>
@@ -24,6 +25,7 @@
 #include <ifcpp/IFC4/include/IfcExtrudedAreaSolid.h>
 #include <ifcpp/IFC4/include/IfcGeometricRepresentationContext.h>
 #include <ifcpp/IFC4/include/IfcGloballyUniqueId.h>
+#include <ifcpp/IFC4/include/IfcHalfSpaceSolid.h>
 #include <ifcpp/IFC4/include/IfcIndexedPolyCurve.h>
 #include <ifcpp/IFC4/include/IfcLabel.h>
 #include <ifcpp/IFC4/include/IfcLayerSetDirectionEnum.h>
@@ -40,6 +42,8 @@
 #include <ifcpp/IFC4/include/IfcNonNegativeLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcOpeningElement.h>
 #include <ifcpp/IFC4/include/IfcOpeningElementTypeEnum.h>
+#include <ifcpp/IFC4/include/IfcPlane.h>
+#include <ifcpp/IFC4/include/IfcPolygonalBoundedHalfSpace.h>
 #include <ifcpp/IFC4/include/IfcPolyline.h>
 #include <ifcpp/IFC4/include/IfcPositiveLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcProductDefinitionShape.h>
@@ -138,7 +142,22 @@ std::optional<Reader::Solid> Reader::solid_of(const std::shared_ptr<IfcRepresent
   if (depth > 16) return std::nullopt;
   if (auto boolean = as<IfcBooleanResult>(item)) {
     auto first = solid_of(as<IfcRepresentationItem>(boolean->m_FirstOperand), depth + 1);
-    if (first) first->clipped = true;
+    if (!first) return first;
+    first->clipped = true;
+    // A plane's half-space taken away (how exporters cut a gable under its roof).
+    const auto half = as<IfcHalfSpaceSolid>(boolean->m_SecondOperand);
+    const auto plane = half ? as<IfcPlane>(half->m_BaseSurface) : nullptr;
+    if (boolean->m_Operator && boolean->m_Operator->m_enum == IfcBooleanOperator::ENUM_DIFFERENCE &&
+        plane && plane->m_Position) {
+      const Isometry3d at = axis_placement(plane->m_Position);
+      // AgreementFlag true: the plane's normal points away from the half-space's material.
+      const bool away = half->m_AgreementFlag && half->m_AgreementFlag->m_value;
+      const Vector3d normal = at.linear().col(2).normalized();
+      first->cuts.push_back({at.translation(), away ? Vector3d(-normal) : normal,
+                             static_cast<bool>(as<IfcPolygonalBoundedHalfSpace>(half))});
+    } else {
+      first->cut_unread = true;
+    }
     return first;
   }
   auto extruded = as<IfcExtrudedAreaSolid>(item);
@@ -270,7 +289,26 @@ std::vector<std::pair<double, double>> Reader::top_outline(const std::vector<Sol
       }
       outline = {{s0, z_lo}, {s1, z_lo}, {s1, z_hi}, {s0, z_hi}};
     }
-    outlines.push_back(std::move(outline));
+    // Each half-space taken away, along the piece: removed where
+    // alpha s + beta z + gamma > 0; the outline clipped to the rest (Sutherland-Hodgman).
+    for (const Solid::Cut& cut : body.cuts) {
+      const Vector3d& r = cut.removed;
+      const double alpha = r.x() * d.x() + r.y() * d.y(), beta = r.z();
+      const double gamma =
+          r.x() * (a.x() - cut.point.x()) + r.y() * (a.y() - cut.point.y()) - r.z() * cut.point.z();
+      const auto side = [&](const Vector2d& p) { return alpha * p.x() + beta * p.y() + gamma; };
+      std::vector<Vector2d> kept;
+      for (std::size_t k = 0; k < outline.size(); ++k) {
+        const Vector2d& p = outline[k];
+        const Vector2d& q = outline[(k + 1) % outline.size()];
+        const double sp = side(p), sq = side(q);
+        if (sp <= 0.0) kept.push_back(p);
+        if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
+          kept.push_back(p + (q - p) * (sp / (sp - sq)));
+      }
+      outline = std::move(kept);
+    }
+    if (outline.size() >= 3) outlines.push_back(std::move(outline));
   }
   // The highest point of any outline over `s` (its edges over s, either end included when
   // `right` says which side of a vertical step counts); nullopt where none is.
@@ -421,7 +459,10 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
       found.bottom_m = z0 + lo;
       found.top_m = z0 + hi;
       found.clipped =
-          std::any_of(bodies.begin(), bodies.end(), [](const Solid& b) { return b.clipped; });
+          std::any_of(bodies.begin(), bodies.end(), [](const Solid& b) { return b.cut_unread; });
+      found.bounded_cut = std::any_of(bodies.begin(), bodies.end(), [](const Solid& b) {
+        return std::any_of(b.cuts.begin(), b.cuts.end(), [](const auto& c) { return c.bounded; });
+      });
     }
     const auto layers = layer_set(*wall);
     // The centreline in the wall's frame.

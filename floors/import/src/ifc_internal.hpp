@@ -50,8 +50,9 @@ struct FoundWall {
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> pieces;
   double thickness_m = 0.0;
   std::optional<double> bottom_m, top_m;  ///< its body's extent in z, when it has one
-  bool clipped = false;                   ///< its body is cut (under a roof, say)
-  std::optional<double> net_volume_m3;    ///< the model's own NetVolume of it
+  bool clipped = false;                   ///< its body is cut by something ccbuild does not read
+  bool bounded_cut = false;  ///< cut by a polygonal bounded half-space (read as unbounded)
+  std::optional<double> net_volume_m3;  ///< the model's own NetVolume of it
   /// Where its body stops along each piece (as `pieces`): points (m from the piece's start,
   /// z in the model's frame), linear between them, from the upper outline of its solids in
   /// the wall's elevation (a gable's slope, a step); empty where no solid says.

@@ -110,6 +110,15 @@ class Reader {
     Isometry3d position = Isometry3d::Identity();
     Vector3d extrusion = Vector3d::UnitZ();  ///< in the Position frame, as long as the depth
     bool clipped = false;
+    /// Half-spaces taken away from it (IfcBooleanClippingResult: a roof's planes over a
+    /// gable), in the wall's frame: `point` on the plane, `removed` the unit normal towards
+    /// the side taken away; `bounded` a polygonal bounded half-space, read as unbounded.
+    struct Cut {
+      Vector3d point, removed;
+      bool bounded = false;
+    };
+    std::vector<Cut> cuts;
+    bool cut_unread = false;  ///< cut by something else: a solid, a curved surface
   };
   std::optional<Solid> solid_of(const std::shared_ptr<IfcRepresentationItem>& item,
                                 int depth) const;
