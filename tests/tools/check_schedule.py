@@ -2170,9 +2170,9 @@ def lintel_slab_corruptions(doc, add):
     modelled = [k for k, f in enumerate(doc["inputs"].get("provenance") or []) if f.get("quantities")]
     if modelled:
         f0 = modelled[0]
-        add("a floor's printed volume not its layers'", "quantities.printed_m3")(
+        add("a floor's printed volume a litre off its layers'", "quantities.printed_m3")(
             lambda d: d["inputs"]["provenance"][f0]["quantities"].update(
-                printed_m3=d["inputs"]["provenance"][f0]["quantities"]["printed_m3"] * 1.1 + 0.01))
+                printed_m3=d["inputs"]["provenance"][f0]["quantities"]["printed_m3"] + 0.001))
     pours = [i for i, e in enumerate(events) if e["kind"] == "pour" and not e["roof"]]
     if pours:
         p = pours[0]
