@@ -41,21 +41,21 @@ std::string to_string(LintelSpec::Type type) {
   return type == LintelSpec::Type::kPrecast ? "precast" : "formwork";
 }
 
+double top_at(const std::vector<std::pair<double, double>>& top, double s_m) {
+  if (s_m <= top.front().first) return top.front().second;
+  if (s_m >= top.back().first) return top.back().second;
+  const auto next = std::upper_bound(top.begin(), top.end(), s_m,
+                                     [](double v, const auto& p) { return v < p.first; });
+  const auto& [s1, t1] = *next;
+  const auto& [s0, t0] = *std::prev(next);
+  return s1 > s0 ? t0 + (t1 - t0) * (s_m - s0) / (s1 - s0) : t1;
+}
+
 std::vector<std::pair<double, double>> wall_gaps_above(const Wall& wall, double length_m,
                                                        double mid_m) {
   std::vector<std::pair<double, double>> gaps;
   const auto& top = wall.top_m;
   if (top.empty()) return gaps;
-  // The top at `s`: linear between the points, level beyond the first and the last.
-  const auto top_at = [&](double s) {
-    if (s <= top.front().first) return top.front().second;
-    if (s >= top.back().first) return top.back().second;
-    const auto next = std::upper_bound(top.begin(), top.end(), s,
-                                       [](double v, const auto& p) { return v < p.first; });
-    const auto& [s1, t1] = *next;
-    const auto& [s0, t0] = *std::prev(next);
-    return s1 > s0 ? t0 + (t1 - t0) * (s - s0) / (s1 - s0) : t1;
-  };
   // Between consecutive breakpoints the top is linear: the part at or below mid_m is one
   // end of the stretch, up to where the top crosses mid_m.
   std::vector<double> at = {0.0};
@@ -71,7 +71,7 @@ std::vector<std::pair<double, double>> wall_gaps_above(const Wall& wall, double 
   };
   for (std::size_t k = 0; k + 1 < at.size(); ++k) {
     const double u = at[k], v = at[k + 1];
-    const double tu = top_at(u), tv = top_at(v);
+    const double tu = top_at(top, u), tv = top_at(top, v);
     const bool low_u = tu <= mid_m, low_v = tv <= mid_m;
     if (low_u && low_v) {
       add(u, v);

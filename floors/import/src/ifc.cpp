@@ -88,19 +88,8 @@ std::vector<std::pair<double, double>> top_on_level(const Piece& piece, const Le
   const auto& outline = w.piece_tops[piece.index];
   const Vector2d d = (piece.b - piece.a).normalized();
   const double shift_m = d.dot(piece.a - piece.a0);  // how far joining moved its start
-  // The outline at `s` along the piece as it now is: linear, level beyond its ends.
-  const auto at = [&](double s) {
-    const double u = s + shift_m;
-    if (u <= outline.front().first) return outline.front().second;
-    if (u >= outline.back().first) return outline.back().second;
-    for (std::size_t k = 1; k < outline.size(); ++k)
-      if (u <= outline[k].first) {
-        const auto& [s0, z0] = outline[k - 1];
-        const auto& [s1, z1] = outline[k];
-        return s1 > s0 ? z0 + (z1 - z0) * (u - s0) / (s1 - s0) : z1;
-      }
-    return outline.back().second;
-  };
+  // The outline at `s` along the piece as it now is (the plan's own reading of a top).
+  const auto at = [&](double s) { return floors::top_at(outline, s + shift_m); };
   std::vector<std::pair<double, double>> top = {{0.0, at(0.0)}};
   for (const auto& [s, z] : outline)
     if (s - shift_m > top.back().first + 1e-9 && s - shift_m < length_m - 1e-9)

@@ -54,6 +54,10 @@ struct Wall {
   std::vector<std::pair<double, double>> top_m{};
 };
 
+/// A top given as points (Wall::top_m, non-empty, offsets increasing) at `s_m` along its
+/// wall: linear between the points, level beyond the first and the last.
+double top_at(const std::vector<std::pair<double, double>>& top, double s_m);
+
 /// The stretches of a wall of `length_m` whose top (Wall::top_m) is at or below `mid_m`:
 /// where a layer of that mid-height leaves it out, m from its start, in order. Empty for a
 /// wall without a top.
