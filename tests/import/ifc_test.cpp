@@ -348,6 +348,28 @@ TEST(IfcImport, TheModelsOwnWallVolumesAreKeptAndComparedFloorByFloor) {
   }
 }
 
+// An axis that runs on past its body where nothing meets it (free_end_ifc4.ifc: a garden
+// wall's axis 0.6 m past its 3 m body) is printed to the body, and said; the ends that meet
+// other walls keep their axes. The floor then prints what its model states.
+TEST(IfcImport, AnAxisRunningPastItsBodyAtAFreeEndIsPrintedToTheBody) {
+  const IfcImport read = read_ifc_building(model("free_end_ifc4.ifc"));
+  const floors::FloorPlan& plan = read.building.floors[0].plan;
+  ASSERT_EQ(plan.walls.size(), 5u);
+  const floors::Wall& garden = plan.walls[4];
+  EXPECT_NEAR(plan.wall_length_m(garden), 3.0, 1e-9);
+  // It still starts at the room's south-east corner, where it meets the south wall.
+  EXPECT_NEAR((plan.wall_start_m(garden) - plan.wall_end_m(plan.walls[0])).norm(), 0.0, 1e-9);
+  for (std::size_t k = 0; k < 4; ++k)
+    EXPECT_NEAR(plan.wall_length_m(plan.walls[k]), k % 2 ? 4.0 : 6.0, 1e-9);
+  EXPECT_TRUE(contains(all(read.notes),
+                       "its axis runs 0.600 m past its body where no other "
+                       "wall meets it; printed to its body"))
+      << all(read.notes);
+  const floors::FloorQuantities q = floors::floor_quantities(read.building.floors[0], 0.1, 0.0);
+  ASSERT_TRUE(q.model_m3);
+  EXPECT_NEAR(q.printed_modelled_m3, *q.model_m3, 1e-9);
+}
+
 TEST(IfcImport, FiltersChooseWhichWallsArePrinted) {
   IfcOptions o;
   o.excluded_materials.clear();            // the gypsum partition too

@@ -302,9 +302,10 @@ class Model:
 
     def wall(self, storey, name, start, end, thickness_m, height_m, axis=True,
              body="rectangle", material="Concrete", entity=None, curve=None, ridge_m=None,
-             clip=False):
+             clip=False, body_span=None):
         """A straight wall from `start` to `end` (metres, storey frame): placed at its
-        start, turned along it; returns (wall, its placement, its length)."""
+        start, turned along it; returns (wall, its placement, its length). `body_span`:
+        (from, to) along the axis where a rectangular body stands (default: all of it)."""
         f = self.f
         st, st_place = storey
         dx, dy = end[0] - start[0], end[1] - start[1]
@@ -347,7 +348,8 @@ class Model:
                               "'SweptSolid'", "(%s)" % solid))
             profile = None
         elif body == "rectangle":
-            profile = self.rectangle((length / 2, 0), length, thickness_m)
+            s0, s1 = body_span or (0.0, length)
+            profile = self.rectangle(((s0 + s1) / 2, 0), s1 - s0, thickness_m)
         elif body == "polygon":
             h = thickness_m / 2
             profile = self.polygon_profile([(0, -h), (length, -h), (length, h), (0, h)])
@@ -476,6 +478,23 @@ def quantities(schema, volume_unit):
                               ridge_m=None if knee else 2.8, clip=k == 3)
         if k < 3:  # a gable: its eaves' 0.7 m and the triangle up to the ridge
             m.net_volume(w, length * t * (0.7 if knee else 0.7 + 2.1 / 2), qset)
+    m.finish()
+    return m.f
+
+
+def free_end():
+    """A one-room house (6 m x 4 m, 0.15 m walls, 3 m) and a 1.2 m garden wall going on east
+    from its south-east corner, whose axis runs 0.6 m past its body at its free end (as an
+    axis joined to something the model no longer holds); every wall with its NetVolume."""
+    m = Model("IFC4", "mm")
+    t, h = 0.15, 3.0
+    g = m.storey("Ground floor", 0.0)
+    for name, a, b in [("South wall", (0, 0), (6, 0)), ("East wall", (6, 0), (6, 4)),
+                       ("North wall", (6, 4), (0, 4)), ("West wall", (0, 4), (0, 0))]:
+        wall = m.wall(g, name, a, b, t, h)
+        m.net_volume(wall[0], wall[2] * t * h)
+    garden = m.wall(g, "Garden wall", (6, 0), (9.6, 0), t, 1.2, body_span=(0.0, 3.0))
+    m.net_volume(garden[0], 3.0 * t * 1.2)
     m.finish()
     return m.f
 
@@ -668,6 +687,7 @@ def main():
     write("layered_ifc4.ifc", layered().text("layered_ifc4.ifc"))
     write("quantities_ifc4.ifc", quantities("IFC4", "m3").text("quantities_ifc4.ifc"))
     write("quantities_ifc2x3.ifc", quantities("IFC2X3", "dm3").text("quantities_ifc2x3.ifc"))
+    write("free_end_ifc4.ifc", free_end().text("free_end_ifc4.ifc"))
     text = house("IFC4").text("truncated.ifc")
     write("truncated.ifc", text[: int(len(text) * 0.6)])
     # A wall's placement relative to itself.

@@ -207,6 +207,55 @@ void remove_overlaps(std::vector<Piece>& pieces, double tolerance_m, ifc::Notes&
   }
 }
 
+/// An axis may run on past its wall's body where the modeller joined it to something the
+/// plan does not hold (a curtain wall, a wall left out): an end that meets no other piece
+/// is moved back to where the body's outline along the piece stops, so that the wall is
+/// printed where its concrete is. Only ever shortened; said per wall.
+void trim_free_ends(std::vector<Piece>& pieces, double tolerance_m, ifc::Notes& notes,
+                    const std::string& floor) {
+  std::vector<import::detail::SegmentIndex::Segment> segments;
+  for (const Piece& p : pieces) segments.emplace_back(p.a, p.b);
+  const import::detail::SegmentIndex index(segments, tolerance_m);
+  const auto free_end = [&](std::size_t w, const Vector2d& p) {
+    for (const std::size_t v : index.near_point(p, tolerance_m)) {
+      if (v == w || !pieces[v].alive) continue;
+      const Vector2d a = segments[v].first, e = segments[v].second - a;
+      const double t = std::clamp((p - a).dot(e) / std::max(e.squaredNorm(), 1e-18), 0.0, 1.0);
+      if ((a + t * e - p).norm() <= tolerance_m) return false;
+    }
+    return true;
+  };
+  for (std::size_t w = 0; w < pieces.size(); ++w) {
+    Piece& piece = pieces[w];
+    const FoundWall& wall = *piece.wall;
+    if (!piece.alive || piece.index >= wall.piece_tops.size() ||
+        wall.piece_tops[piece.index].empty())
+      continue;
+    double body_from_m = std::numeric_limits<double>::infinity(), body_to_m = -body_from_m;
+    for (const auto& [s, z] : wall.piece_tops[piece.index]) {
+      body_from_m = std::min(body_from_m, s);
+      body_to_m = std::max(body_to_m, s);
+    }
+    const Vector2d d = (piece.b - piece.a).normalized();
+    const double from_m = d.dot(piece.a - piece.a0), to_m = d.dot(piece.b - piece.a0);
+    double cut_m = 0.0;
+    if (body_from_m > from_m + tolerance_m && body_from_m < to_m &&
+        free_end(w, segments[w].first)) {
+      cut_m += body_from_m - from_m;
+      piece.a = piece.a0 + body_from_m * d;
+    }
+    if (body_to_m < to_m - tolerance_m && body_to_m > from_m && free_end(w, segments[w].second)) {
+      cut_m += to_m - body_to_m;
+      piece.b = piece.a0 + body_to_m * d;
+    }
+    if (cut_m > 0.0)
+      notes.add("walls whose axis runs past their body at a free end, printed to the body",
+                printf_string("floor '%s': %s: its axis runs %.3f m past its body where no other "
+                              "wall meets it; printed to its body",
+                              floor.c_str(), wall.what.describe().c_str(), cut_m));
+  }
+}
+
 floors::FloorPlan make_plan(const Level& level, const std::string& file, const IfcOptions& options,
                             ifc::Notes& notes, int& openings_left_out) {
   std::vector<Piece> pieces;
@@ -224,6 +273,7 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
                     ": 1 mm or less of it is left where it meets other walls; left out");
     }
   remove_overlaps(pieces, options.join_tolerance_m, notes, level.name, file);
+  trim_free_ends(pieces, options.join_tolerance_m, notes, level.name);
 
   floors::FloorPlan plan;
   plan.source_file = file;
