@@ -62,11 +62,19 @@ std::optional<BeadRole> parse_bead_role(const std::string& name) {
   return std::nullopt;
 }
 
-int beads_across(double thickness_m, double bead_width_m) {
+WallBeads wall_beads(double thickness_m, const BeadSpec& spec) {
   constexpr double kTolerance_m = 1e-6;
-  if (thickness_m <= bead_width_m + kTolerance_m) return 1;
-  if (thickness_m < 2.0 * bead_width_m - kTolerance_m) return 0;
-  return 2;
+  const double nozzle_m = spec.bead_width_m;
+  const double narrowest_m = spec.narrowest_m > 0.0 ? spec.narrowest_m : nozzle_m;
+  const double widest_m = spec.widest_m > 0.0 ? spec.widest_m : nozzle_m;
+  const double t = thickness_m;
+  if (t < narrowest_m - kTolerance_m) return {WallPrint::kTooThin, 0.0};
+  if (t <= widest_m + kTolerance_m)
+    return {WallPrint::kOnePass, std::clamp(t, narrowest_m, widest_m)};
+  if (t >= 2.0 * nozzle_m - kTolerance_m) return {WallPrint::kSkinsAndFill, nozzle_m};
+  if (t >= 2.0 * narrowest_m - kTolerance_m)
+    return {WallPrint::kTwoSkins, std::max(0.5 * t, narrowest_m)};
+  return {WallPrint::kBetween, 0.0};
 }
 
 namespace {
@@ -99,6 +107,7 @@ Vec ev(const BPoint& p) {
 struct Item {
   const PieceSpec* piece = nullptr;
   double thickness_m = 0.0;
+  double skin_m = 0.0;  ///< its pass's width (a thin wall) or each skin's (wall_beads)
   Vec a, b, dir, normal;
   double length_m = 0.0;
   double reach_m[2] = {0.0, 0.0};
@@ -197,20 +206,27 @@ class Beads {
       if (it.length_m <= merge_m_) continue;
       it.dir = (it.b - it.a) / it.length_m;
       it.normal = Vec(-it.dir.y(), it.dir.x());
-      const int across = beads_across(it.thickness_m, bead_m_);
-      if (across == 0)
+      const WallBeads beads = wall_beads(it.thickness_m, plan.beads);
+      if (beads.how == WallPrint::kTooThin || beads.how == WallPrint::kBetween)
         throw InputError(at(wall->source, "thickness",
                             "wall " + std::to_string(wall->id) + " is " +
-                                std::to_string(it.thickness_m) + " m thick: more than one bead (" +
-                                std::to_string(bead_m_) + " m) and less than two"));
-      (across == 1 ? thin_ : thick_).push_back(it);
+                                std::to_string(it.thickness_m) +
+                                " m thick, which no bead or two skins of the machine's bead "
+                                "widths make up"));
+      it.skin_m = beads.bead_width_m;
+      (beads.how == WallPrint::kOnePass ? thin_ : thick_).push_back(it);
     }
+    // The skins' ring is the outline offset by half the narrowest skin, so that every thick
+    // wall keeps an inside; each stretch is then moved onto its own wall's skin line.
+    for (const Item& it : thick_)
+      ring_inset_m_ =
+          ring_inset_m_ > 0.0 ? std::min(ring_inset_m_, 0.5 * it.skin_m) : 0.5 * it.skin_m;
   }
 
   std::vector<PieceSpec> run() {
     std::vector<PieceSpec> out;
     if (thick_.empty()) {
-      for (const Item& it : thin_) out.push_back(bead(it, it.a, it.b, bead_m_, BeadRole::kPass));
+      for (const Item& it : thin_) out.push_back(bead(it, it.a, it.b, it.skin_m, BeadRole::kPass));
       return out;
     }
     find_junctions();
@@ -273,7 +289,7 @@ class Beads {
           const double s = other.along(p);
           if (s > merge_m_ && s < other.length_m - merge_m_)
             it.through_core_m[end] =
-                std::max(it.through_core_m[end], 0.5 * (other.thickness_m - 2.0 * bead_m_));
+                std::max(it.through_core_m[end], 0.5 * (other.thickness_m - 2.0 * other.skin_m));
         }
       }
     }
@@ -304,7 +320,7 @@ class Beads {
   }
 
   void skins(std::vector<PieceSpec>& out) const {
-    const BMulti rings = offset_inwards(region_, 0.5 * bead_m_);
+    const BMulti rings = offset_inwards(region_, ring_inset_m_);
     auto ring_beads = [&](const BPolygon::ring_type& ring) {
       const std::vector<Vec> pts = exact_corners(corners_of(ring));
       for (std::size_t k = 0; k < pts.size() && pts.size() >= 2; ++k)
@@ -323,15 +339,15 @@ class Beads {
     const Vec dir = (q - p).normalized(), mid = 0.5 * (p + q);
     const Item* it = owner(mid, dir);
     if (!it) return {p, dir};
-    const double inset = 0.5 * it->thickness_m - 0.5 * bead_m_;
+    const double inset = 0.5 * it->thickness_m - 0.5 * it->skin_m;
     if (std::abs(cross(dir, it->dir)) < kParallel) {
       const double side = it->across(mid) >= 0.0 ? 1.0 : -1.0;
       return {Vec(it->a + side * inset * it->normal), it->dir};
     }
     if (std::abs(dir.dot(it->dir)) < kParallel) {  // a return across an end
       const double s = it->along(mid);
-      const double at = s < 0.5 * it->length_m ? -it->reach_m[0] + 0.5 * bead_m_
-                                               : it->length_m + it->reach_m[1] - 0.5 * bead_m_;
+      const double at = s < 0.5 * it->length_m ? -it->reach_m[0] + 0.5 * it->skin_m
+                                               : it->length_m + it->reach_m[1] - 0.5 * it->skin_m;
       return {Vec(it->a + at * it->dir), it->normal};
     }
     return {p, dir};
@@ -344,20 +360,29 @@ class Beads {
     const std::size_t n = pts.size();
     if (n < 3) return pts;
     std::vector<std::pair<Vec, Vec>> lines;
-    for (std::size_t k = 0; k < n; ++k) lines.push_back(exact_line(pts[k], pts[(k + 1) % n]));
+    // How far each stretch moves onto its line: the ring lies half the narrowest skin in,
+    // a wall of wider skins has its stretches further in.
+    std::vector<double> moved_m;
+    for (std::size_t k = 0; k < n; ++k) {
+      lines.push_back(exact_line(pts[k], pts[(k + 1) % n]));
+      const auto& [p, d] = lines.back();
+      moved_m.push_back(std::abs(cross(d, 0.5 * (pts[k] + pts[(k + 1) % n]) - p)));
+    }
     std::vector<Vec> out = pts;
     for (std::size_t k = 0; k < n; ++k) {
       const auto& [p0, d0] = lines[(k + n - 1) % n];
       const auto& [p1, d1] = lines[k];
       const double det = cross(d0, d1);
+      const double moved = moved_m[(k + n - 1) % n] + moved_m[k];
       if (std::abs(det) < 1e-9) {  // one line on: the corner is put on it
         const Vec on = p1 + (pts[k] - p1).dot(d1) * d1;
-        if ((on - pts[k]).norm() <= 1e-4) out[k] = on;
+        if ((on - pts[k]).norm() <= 1e-4 + moved) out[k] = on;
         continue;
       }
       const double t = cross(p1 - p0, d1) / det;
       const Vec corner = p0 + t * d0;
-      if ((corner - pts[k]).norm() <= 1e-4) out[k] = corner;
+      if ((corner - pts[k]).norm() <= 1e-4 + 2.0 * moved / std::max(std::abs(det), 0.1))
+        out[k] = corner;
     }
     return out;
   }
@@ -388,12 +413,13 @@ class Beads {
       const Item* it = owner(p + 0.5 * (cuts[k] + cuts[k + 1]) * dir, dir);
       CCBUILD_CHECK(it != nullptr, "a skin lies inside some wall's outline");
       if (current && it != current) {
-        out.push_back(bead(*current, p + from * dir, p + cuts[k] * dir, bead_m_, BeadRole::kSkin));
+        out.push_back(
+            bead(*current, p + from * dir, p + cuts[k] * dir, current->skin_m, BeadRole::kSkin));
         from = cuts[k];
       }
       current = it;
     }
-    if (current) out.push_back(bead(*current, p + from * dir, q, bead_m_, BeadRole::kSkin));
+    if (current) out.push_back(bead(*current, p + from * dir, q, current->skin_m, BeadRole::kSkin));
   }
 
   // Walls one bead thick: one pass along the middle, outside the thick walls' outline.
@@ -404,7 +430,7 @@ class Beads {
       bg::difference(line, region_, outside);
       for (const auto& part : outside)
         for (std::size_t k = 0; k + 1 < part.size(); ++k)
-          out.push_back(bead(it, ev(part[k]), ev(part[k + 1]), bead_m_, BeadRole::kPass));
+          out.push_back(bead(it, ev(part[k]), ev(part[k + 1]), it.skin_m, BeadRole::kPass));
     }
   }
 
@@ -412,7 +438,7 @@ class Beads {
   // it meets the return), when the library's clip is that within its rounding.
   Vec exact_core_end(const Item& it, const Vec& p) const {
     const double s = it.along(p);
-    for (double exact : {0.0, it.length_m, bead_m_, it.length_m - bead_m_})
+    for (double exact : {0.0, it.length_m, it.skin_m, it.length_m - it.skin_m})
       if (std::abs(s - exact) <= 1e-4) return it.a + exact * it.dir;
     return p;
   }
@@ -422,7 +448,7 @@ class Beads {
     const BMulti inside = offset_inwards(region_, bead_m_);
     if (inside.empty()) return;
     for (const Item& it : thick_) {
-      const double core_m = it.thickness_m - 2.0 * bead_m_;
+      const double core_m = it.thickness_m - 2.0 * it.skin_m;
       if (core_m <= merge_m_) continue;
       BLine line{bp(it.a), bp(it.b)};
       BLines parts;
@@ -446,29 +472,31 @@ class Beads {
   // junctions by half the core so that the ties of walls meeting there do not cross, and
   // of the returns at free ends by half a bead so that a slanted leg's end stays off them.
   void ties(const Item& it, Vec p, Vec q, double core_m, std::vector<PieceSpec>& out) const {
-    if (core_m < bead_m_ - kTolerance_m) return;  // a cavity too narrow for a tie: left empty
+    const double bead_m = it.skin_m;             // a tie is laid at its wall's skin width
+    if (core_m < bead_m - kTolerance_m) return;  // a cavity too narrow for a tie: left empty
     const bool at_a = (p - it.a).norm() <= merge_m_, at_b = (q - it.b).norm() <= merge_m_;
-    p += (at_a && it.junction[0] ? 0.5 * core_m : 0.5 * bead_m_) * it.dir;
-    q -= (at_b && it.junction[1] ? 0.5 * core_m : 0.5 * bead_m_) * it.dir;
+    p += (at_a && it.junction[0] ? 0.5 * core_m : 0.5 * bead_m) * it.dir;
+    q -= (at_b && it.junction[1] ? 0.5 * core_m : 0.5 * bead_m) * it.dir;
     const double length = (q - p).dot(it.dir);
     if (length <= merge_m_) return;
-    const double swing_m = 0.5 * (core_m - bead_m_);
+    const double swing_m = 0.5 * (core_m - bead_m);
     if (swing_m <= merge_m_) {
-      out.push_back(bead(it, p, q, bead_m_, BeadRole::kTie));
+      out.push_back(bead(it, p, q, bead_m, BeadRole::kTie));
       return;
     }
     const int legs =
-        std::max(1, static_cast<int>(std::lround(length / std::max(2.0 * swing_m, 2.0 * bead_m_))));
+        std::max(1, static_cast<int>(std::lround(length / std::max(2.0 * swing_m, 2.0 * bead_m))));
     const double step = length / legs;
     auto corner = [&](int k) {
       return Vec(p + k * step * it.dir + (k % 2 == 0 ? -swing_m : swing_m) * it.normal);
     };
     for (int k = 0; k < legs; ++k)
-      out.push_back(bead(it, corner(k), corner(k + 1), bead_m_, BeadRole::kTie));
+      out.push_back(bead(it, corner(k), corner(k + 1), bead_m, BeadRole::kTie));
   }
 
   const FloorPlan& plan_;
   double bead_m_;
+  double ring_inset_m_ = 0.0;
   double merge_m_;
   std::vector<Item> thick_, thin_;
   BMulti region_;

@@ -268,7 +268,7 @@ Building building_from_document(const Document& doc, const fs::path& path,
   const Field root = Field::root(doc);
   MapReader map(root,
                 {"name", "description", "units", "layer_height", "slab_stage_h", "slabs", "lintels",
-                 "material", "machine", "site", "wall_pattern", "climbs", "floors"});
+                 "material", "machine", "site", "wall_pattern", "climbs", "floors", "print"});
   map.reject_unknown();
   const fs::path base = path.has_parent_path() ? path.parent_path() : fs::path(".");
 
@@ -322,6 +322,21 @@ Building building_from_document(const Document& doc, const fs::path& path,
             "two skins), got '" +
             echoed(pattern->as_string()) + "'");
       building.wall_pattern = *parsed;
+    }
+  });
+  findings.attempt([&] {
+    if (auto print = map.optional("print")) {
+      MapReader spec(*print, {"thin_walls"});
+      spec.reject_unknown();
+      if (auto thin = spec.optional("thin_walls")) {
+        const std::string how = thin->as_string();
+        if (how != "leave-out" && how != "refuse")
+          thin->fail(
+              "expected leave-out (the crew builds a wall thinner than the narrowest "
+              "bead) or refuse, got '" +
+              echoed(how) + "'");
+        building.print.refuse_thin_walls = how == "refuse";
+      }
     }
   });
   findings.attempt([&] {
@@ -488,6 +503,49 @@ bool is_building_document(const Document& doc) {
 }
 
 }  // namespace
+
+std::string left_out_text(const std::string& floor_name, const LeftOutWall& wall, LengthUnit unit) {
+  std::string where = wall.source.file.empty() ? std::string() : wall.source.file;
+  if (!where.empty() && wall.source.line > 0) where += ":" + std::to_string(wall.source.line);
+  return "floor '" + floor_name + "': wall " + std::to_string(wall.wall_id) +
+         (wall.global_id.empty() ? "" : " (" + wall.global_id + ")") + " is " +
+         length_text(wall.thickness_m, unit, 3) +
+         " thick, thinner than the machine's narrowest bead (" +
+         length_text(wall.narrowest_m, unit, 3) + "): left out, for the crew to build" +
+         (where.empty() ? "" : " [" + where + "]") + " (print: {thin_walls: refuse} stops instead)";
+}
+
+void leave_out_thin_walls(Building& building, const BeadSpec& beads) {
+  if (building.print.refuse_thin_walls || !(beads.bead_width_m > 0.0)) return;
+  const double narrowest_m = beads.narrowest_m > 0.0 ? beads.narrowest_m : beads.bead_width_m;
+  for (Floor& floor : building.floors) {
+    FloorPlan& plan = floor.plan;
+    std::set<std::int64_t> out;
+    for (const Wall& w : plan.walls)
+      if (w.thickness_m && wall_beads(*w.thickness_m, beads).how == WallPrint::kTooThin) {
+        out.insert(w.id);
+        building.left_out.push_back(
+            {floor.index, w.id, *w.thickness_m, narrowest_m, w.global_id, w.source});
+      }
+    if (out.empty()) continue;
+    for (const AnchorPoint& a : floor.anchors)
+      if (out.count(a.wall_id))
+        throw InputError(at(a.source, "wall",
+                            "anchor '" + a.id + "' stands on wall " + std::to_string(a.wall_id) +
+                                ", which is thinner than the machine's narrowest bead (" +
+                                length_text(narrowest_m, building.units, 3) +
+                                ") and left out of the print: put the anchor on a printed wall, "
+                                "or say print: {thin_walls: refuse}"));
+    if (out.size() == plan.walls.size())
+      throw InputError(at(plan.walls.front().source, "thickness",
+                          "every wall of floor '" + floor.name +
+                              "' is thinner than the machine's narrowest bead (" +
+                              length_text(narrowest_m, building.units, 3) +
+                              "): nothing of it would be printed"));
+    std::erase_if(plan.walls, [&](const Wall& w) { return out.count(w.id) > 0; });
+    std::erase_if(plan.openings, [&](const Opening& o) { return out.count(o.wall_id) > 0; });
+  }
+}
 
 double slab_area_m2(const Floor& floor) {
   // Andrew's monotone chain, then the shoelace formula.

@@ -163,10 +163,26 @@ ClimbingFamily read_climbing_family(std::shared_ptr<const Document> profile) {
   ClimbingFamily f;
   f.document = profile;
   f.source_file = profile->file;
-  MapReader map(root, {"name", "description", "family", "climbing", "deposition_speed_m_s",
-                       "travel_speed_m_s", "rotate_while_moving", "accel_delay_s", "lift_height_m",
-                       "lift_time_s", "lower_time_s", "nozzle_idle_limit_s", "nozzle_width_m",
-                       "nozzles", "gantry_width_m", "rail_axis", "purge_s", "urdf", "joints"});
+  MapReader map(root, {"name",
+                       "description",
+                       "family",
+                       "climbing",
+                       "deposition_speed_m_s",
+                       "travel_speed_m_s",
+                       "rotate_while_moving",
+                       "accel_delay_s",
+                       "lift_height_m",
+                       "lift_time_s",
+                       "lower_time_s",
+                       "nozzle_idle_limit_s",
+                       "nozzle_width_m",
+                       "nozzles",
+                       "gantry_width_m",
+                       "rail_axis",
+                       "purge_s",
+                       "urdf",
+                       "joints",
+                       "bead_width_m"});
   map.reject_unknown();
   for (const char* written : {"urdf", "joints"})
     if (auto given = map.optional(written))

@@ -93,6 +93,25 @@ AxisLimits read_axis(const Field& field, const UrdfInfo& urdf, const std::string
   return AxisLimits{j.lower, j.upper, j.velocity};
 }
 
+// `bead_width_m: [narrowest, widest]`, the nozzle's own width within it (a thick wall's
+// skins are laid at that width).
+std::pair<double, double> read_bead_widths(const Field& field, double nozzle_width_m) {
+  const auto items = field.items();
+  if (items.size() != 2)
+    field.fail("expected [narrowest, widest] bead, m, got " + std::to_string(items.size()) +
+               " values");
+  const double low = items[0].as_number_in(kNozzleWidth_m, "m");
+  const double high = items[1].as_number_in(kNozzleWidth_m, "m");
+  if (low > high)
+    field.fail("the range is the wrong way round: " + plain_number(low) + " is above " +
+               plain_number(high));
+  if (nozzle_width_m < low || nozzle_width_m > high)
+    field.fail("the nozzle's own width, nozzle_width_m " + plain_number(nozzle_width_m) +
+               " m, must lie in the range [" + plain_number(low) + ", " + plain_number(high) +
+               "] (a thick wall's skins are laid at it)");
+  return {low, high};
+}
+
 }  // namespace
 
 MachineModel load_machine(const fs::path& profile_path) {
@@ -115,11 +134,26 @@ MachineProfile load_machine_profile(const fs::path& profile_path) {
 MachineProfile load_machine_profile(const Document& doc, const fs::path& profile_path,
                                     const std::string* urdf_xml) {
   const Field root = Field::root(doc);
-  MapReader map(
-      root, {"name", "description", "urdf", "joints", "deposition_speed_m_s", "travel_speed_m_s",
-             "rotate_while_moving", "accel_delay_s", "lift_height_m", "lift_time_s", "lower_time_s",
-             "nozzle_idle_limit_s", "nozzle_width_m", "nozzles", "gantry_width_m", "rail_axis",
-             "purge_s", "climbing", "pump_capacity_m3_h"});
+  MapReader map(root, {"name",
+                       "description",
+                       "urdf",
+                       "joints",
+                       "deposition_speed_m_s",
+                       "travel_speed_m_s",
+                       "rotate_while_moving",
+                       "accel_delay_s",
+                       "lift_height_m",
+                       "lift_time_s",
+                       "lower_time_s",
+                       "nozzle_idle_limit_s",
+                       "nozzle_width_m",
+                       "nozzles",
+                       "gantry_width_m",
+                       "rail_axis",
+                       "purge_s",
+                       "climbing",
+                       "pump_capacity_m3_h",
+                       "bead_width_m"});
   map.reject_unknown();
 
   MachineModel m;
@@ -178,6 +212,8 @@ MachineProfile load_machine_profile(const Document& doc, const fs::path& profile
   m.nozzle_idle_limit_s = map.required("nozzle_idle_limit_s").as_number_in(kIdleLimit_s, "s");
   if (auto width = map.optional("nozzle_width_m"))
     m.nozzle_width_m = width->as_number_in(kNozzleWidth_m, "m");
+  if (auto range = map.optional("bead_width_m"))
+    m.bead_width_range_m = read_bead_widths(*range, m.nozzle_width_m);
   if (auto n = map.optional("nozzles")) {
     m.nozzles = static_cast<int>(n->as_count());
     if (m.nozzles < 1 || m.nozzles > 16) n->fail("must be from 1 to 16 (gantries on the rails)");

@@ -164,10 +164,24 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
       project.conditions = std::make_shared<const schedule::SiteConditions>(
           schedule::constant_conditions(p.temperature_c.value_or(20.0), p.wind_m_s.value_or(0.0)));
   }
-  for (auto& floor : project.building.floors)
-    floor.plan.beads = {project.machine->nozzle_width_m, project.building.wall_pattern};
+  const floors::BeadSpec beads = bead_spec(*project.machine, project.building);
+  for (auto& floor : project.building.floors) floor.plan.beads = beads;
+  floors::leave_out_thin_walls(project.building, beads);
   check_fit(project);
   return project;
+}
+
+floors::BeadSpec bead_spec(const machine::MachineModel& machine, const floors::Building& building) {
+  auto [narrowest_m, widest_m] = machine.bead_widths();
+  // A bead W wide draws W x layer height x deposition speed: the pump bounds the widest
+  // (never under the nozzle's own width; a pump that cannot feed that refuses the plans).
+  if (machine.pump_capacity_m3_s && building.layer_height_m > 0.0 &&
+      machine.deposition_speed_m_s > 0.0)
+    widest_m =
+        std::max(machine.nozzle_width_m,
+                 std::min(widest_m, *machine.pump_capacity_m3_s /
+                                        (building.layer_height_m * machine.deposition_speed_m_s)));
+  return {machine.nozzle_width_m, building.wall_pattern, narrowest_m, widest_m};
 }
 
 NoFit::NoFit(climb::FitResult result)
@@ -241,33 +255,48 @@ void check_fit(const Project& project) {
                          L(m.lift_height_m) +
                          " over its walls, but the machine's z joint reaches " + L(reach_z) +
                          "; this machine cannot build it");
-  // Beads: a wall one bead thick is one pass, a thicker one two skins and what its
-  // pattern puts between them; thinner than one bead, or between one and two, it cannot
-  // be printed with this nozzle.
+  // Beads (floors::wall_beads): one pass up to the widest bead, two skins, or skins and the
+  // pattern's fill; a wall no bead or two skins make up cannot be printed by this machine.
   DiagnosticSink sink;
-  const double bead_m = m.nozzle_width_m;
+  const floors::BeadSpec spec = bead_spec(m, b);
+  const double narrowest_m = spec.narrowest_m, widest_m = spec.widest_m;
+  const bool pumped = widest_m < m.bead_widths().second;
+  const auto up = [&](double v) {
+    return floors::length_text(v, b.units, 3, floors::Towards::kUp);
+  };
+  const auto down = [&](double v) {
+    return floors::length_text(v, b.units, 3, floors::Towards::kDown);
+  };
   for (const auto& floor : b.floors)
     for (const auto& wall : floor.plan.walls) {
       if (!wall.thickness_m) continue;
       const double t = *wall.thickness_m;
-      const bool thin = t < bead_m - 1e-6;
-      if (!thin && floors::beads_across(t, bead_m) != 0) continue;
+      const floors::WallPrint how = floors::wall_beads(t, spec).how;
+      if (how != floors::WallPrint::kTooThin && how != floors::WallPrint::kBetween) continue;
+      const bool thin = how == floors::WallPrint::kTooThin;
+      const std::string range =
+          narrowest_m == widest_m ? project.length(narrowest_m)
+                                  : project.length(narrowest_m) + " to " + project.length(widest_m);
       sink.add({wall.source.file, wall.source.line,
                 wall.source.path.empty() ? "thickness" : wall.source.path + ".thickness",
-                "wall " + std::to_string(wall.id) + " is " + project.length(t) +
-                    " thick, but the nozzle of " + m.name + " lays a bead " +
-                    project.length(bead_m) + " wide, and a wall is printed " +
+                "wall " + std::to_string(wall.id) + " is " + project.length(t) + " thick, but " +
+                    m.name + " lays beads " + range + " wide (bead_width_m, else nozzle_width_m" +
+                    (pumped ? std::string("; the widest its pump feeds at this layer height and "
+                                          "speed, pump_capacity_m3_h")
+                            : std::string()) +
+                    "), and a wall is printed " +
                     (thin ? "at least one bead wide"
-                          : "as one bead, or as two skins of one bead each and what lies between "
-                            "them (wall_pattern)") +
-                    ": make it " + project.length(bead_m) + " (one bead) or " +
-                    floors::length_text(2 * bead_m, b.units, 3, floors::Towards::kUp) +
-                    " or more (two skins), or use a machine whose nozzle lays " +
-                    project.length(t) +
-                    (thin ? ""
-                          : " or at most " +
-                                floors::length_text(0.5 * t, b.units, 3, floors::Towards::kDown)) +
-                    " (nozzle_width_m)"});
+                          : "as one bead, as two skins of half the wall each, or as two skins of "
+                            "the nozzle's width and what lies between them (wall_pattern)") +
+                    ": make it " +
+                    (thin ? up(narrowest_m) + " or more"
+                          : down(widest_m) + " or less (one bead) or " + up(2.0 * narrowest_m) +
+                                " or more (two skins)") +
+                    ", or use a machine whose beads reach " +
+                    (thin ? down(t) + " (the narrowest of bead_width_m), or leave it to the crew "
+                                      "(print: {thin_walls: leave-out})"
+                          : up(t) + " (the widest of bead_width_m) or down to " + down(0.5 * t) +
+                                " (the narrowest)")});
     }
   sink.throw_if_any();
 }

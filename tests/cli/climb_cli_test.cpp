@@ -94,7 +94,7 @@ TEST(ClimberFixtures, AUnitMissingAJointInTheProfile) {
   BrokenClimber b;
   b.edit_profile("stroke: u3_stroke, ", "");
   expect_refused(b.climb(),
-                 b.profile_path() + ":25: climbing.units[2]: missing required key 'stroke'");
+                 b.profile_path() + ":26: climbing.units[2]: missing required key 'stroke'");
 }
 
 TEST(ClimberFixtures, AUnitListedTwiceIsRefusedNotInfeasible) {
@@ -106,12 +106,12 @@ TEST(ClimberFixtures, AUnitListedTwiceIsRefusedNotInfeasible) {
       "{name: U2, swing: u1_swing, reach: u1_reach, wrist: u1_wrist_yaw, stroke: u1_stroke, "
       "pin: u1_pin_slide}");
   expect_refused(b.climb(), b.profile_path() +
-                                ":24: climbing.units[1].swing: joint 'u1_swing' is already unit "
+                                ":25: climbing.units[1].swing: joint 'u1_swing' is already unit "
                                 "U1's; each unit moves joints of its own");
   BrokenClimber names;
   names.edit_profile("{name: U2,", "{name: U1,");
   expect_refused(names.climb(), names.profile_path() +
-                                    ":24: climbing.units[1].name: unit name 'U1' is used twice");
+                                    ":25: climbing.units[1].name: unit name 'U1' is used twice");
 }
 
 TEST(ClimberFixtures, AJointOfTheWrongType) {
@@ -188,7 +188,7 @@ TEST(ClimberFixtures, TooManyUnitsMovingAtOnce) {
   BrokenClimber b;
   b.edit_profile("units_per_transfer: 1 ", "units_per_transfer: 2 ");
   expect_refused(b.climb(), b.profile_path() +
-                                ":27: climbing.units_per_transfer: must be from 1 "
+                                ":28: climbing.units_per_transfer: must be from 1 "
                                 "to 1 for 4 units (at least 3 units hold the "
                                 "platform while the others move)");
 }

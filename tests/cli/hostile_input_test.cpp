@@ -86,12 +86,12 @@ TEST(HostileInput, FixturesAreRefusedWithAReason) {
       {"layers tests/data/hostile/tall_tower.yaml",
        "the building is 25.00 m tall, and the nozzle lifts 0.15 m over its walls, but the "
        "machine's z joint reaches 18.00 m"},
-      {"plan-layer tests/data/hostile/thick_wall.yaml",
-       "walls[0].thickness: wall 1 is 0.200 m thick, but the nozzle of CC gantry, up to three "
-       "nozzles lays a bead 0.150 m wide, and a wall is printed as one bead, or as two skins of "
-       "one bead each and what lies between them (wall_pattern): make it 0.150 m (one bead) or "
-       "0.300 m or more (two skins), or use a machine whose nozzle lays 0.200 m or at most "
-       "0.100 m (nozzle_width_m)"},
+      {"validate tests/data/hostile/thin_wall_refused.yaml",
+       "walls[0].thickness: wall 1 is 0.050 m thick, but CC gantry, up to three nozzles lays "
+       "beads 0.100 m to 0.250 m wide (bead_width_m, else nozzle_width_m), and a wall is printed "
+       "at least one bead wide: make it 0.100 m or more, or use a machine whose beads reach "
+       "0.050 m (the narrowest of bead_width_m), or leave it to the crew (print: {thin_walls: "
+       "leave-out})"},
       {"validate tests/data/hostile/bad_wall_pattern.yaml",
        "bad_wall_pattern.yaml:4: wall_pattern: expected skins, solid or skins-with-ties"},
       {"plan-layer tests/data/hostile/high_window.yaml",

@@ -428,12 +428,59 @@ namespace {
 TEST(ValidateCommand, SaysWhichWallsArePrintedAsBeadsAndHow) {
   const auto solid = testing::run_ccbuild("validate tests/data/buildings/masonry.yaml");
   ASSERT_EQ(solid.exit_code, 0) << solid.err;
-  EXPECT_TRUE(testing::contains(solid.out,
-                                "walls      1 in one pass of the 0.15 m nozzle, 8 as beads: two "
-                                "skins and a poured core (wall_pattern: solid)"))
+  EXPECT_TRUE(
+      testing::contains(solid.out,
+                        "walls      1 in one pass (beads 0.10 m to 0.25 m), 8 as two skins of "
+                        "0.15 m and a poured core (wall_pattern: solid)"))
       << solid.out;
   const auto ties = testing::run_ccbuild("validate tests/data/buildings/masonry-ties.yaml");
-  EXPECT_TRUE(testing::contains(ties.out, "8 as beads: two skins and a zig-zag tie")) << ties.out;
+  EXPECT_TRUE(testing::contains(ties.out, "8 as two skins of 0.15 m and a zig-zag tie"))
+      << ties.out;
+}
+
+}  // namespace
+}  // namespace ccbuild
+
+namespace ccbuild {
+namespace {
+
+// The print spec (issue 50): a wall thinner than the machine's narrowest bead is left out
+// for the crew by default, said by validate and schedule, recorded in the schedule's
+// inputs, and nothing of it is printed; `print: {thin_walls: refuse}` stops instead
+// (HostileInput).
+TEST(PrintSpec, AWallThinnerThanTheNarrowestBeadIsLeftOutForTheCrew) {
+  const std::string said =
+      "wall 1 is 0.050 m thick, thinner than the machine's narrowest bead (0.100 m): left "
+      "out, for the crew to build [tests/data/hostile/thin_wall.yaml:8]";
+  const auto validated = run_ccbuild("validate tests/data/hostile/thin_wall.yaml");
+  ASSERT_EQ(validated.exit_code, 0) << validated.err;
+  EXPECT_TRUE(contains(validated.out, "left out   floor '")) << validated.out;
+  EXPECT_TRUE(contains(validated.out, said)) << validated.out;
+  const fs::path dir = scratch("print_spec");
+  const auto scheduled = run_ccbuild("schedule tests/data/hostile/thin_wall.yaml --quiet -o " +
+                                     (dir / "s.json").string());
+  ASSERT_EQ(scheduled.exit_code, 0) << scheduled.err;
+  EXPECT_TRUE(contains(scheduled.err, said)) << scheduled.err;
+  const auto doc = nlohmann::json::parse(slurp(dir / "s.json"));
+  ASSERT_TRUE(doc["inputs"].contains("left_out")) << doc["inputs"].dump();
+  const auto& left = doc["inputs"]["left_out"];
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_EQ(left[0]["floor"], 0);
+  EXPECT_EQ(left[0]["wall"], 1);
+  EXPECT_DOUBLE_EQ(left[0]["thickness_m"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(left[0]["narrowest_bead_m"].get<double>(), 0.10);
+  int pieces = 0;
+  for (const auto& [key, plan] : doc["plans"].items())
+    for (const auto& piece : plan["pieces"]) {
+      EXPECT_NE(piece["wall"], 1) << key;
+      ++pieces;
+    }
+  EXPECT_GT(pieces, 0);
+  // Read back and written again, the record is kept.
+  const auto diffed =
+      run_ccbuild("diff " + (dir / "s.json").string() + " " + (dir / "s.json").string());
+  EXPECT_EQ(diffed.exit_code, 0) << diffed.err;
+  fs::remove_all(dir);
 }
 
 }  // namespace

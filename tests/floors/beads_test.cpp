@@ -107,7 +107,13 @@ void expect_sound(const FloorPlan& plan, const Layer& layer) {
   ASSERT_FALSE(layer.segments.empty());
   for (const auto& s : layer.segments) {
     const Vec a = layer.start_m(s), b = layer.end_m(s);
-    if (s.role != BeadRole::kCore) EXPECT_NEAR(s.width_m, kBead, kTol);
+    // A pass or skin at its wall's width by the rule; the default spec's is the nozzle's.
+    if (s.role != BeadRole::kCore) {
+      const Wall& w = *plan.find_wall(s.wall_id);
+      const double expected = wall_beads(w.thickness_m.value_or(kBead), plan.beads).bead_width_m;
+      EXPECT_NEAR(s.width_m, expected, kTol) << "wall " << s.wall_id;
+      if (plan.beads.narrowest_m == 0.0) EXPECT_NEAR(s.width_m, kBead, kTol);
+    }
     for (const Vec& p : {a, Vec(0.5 * (a + b)), b})
       EXPECT_NE(wall_holding(plan, p, 0.5 * s.width_m), -1)
           << "wall " << s.wall_id << " piece " << s.piece << " (" << bead_role_name(s.role)
@@ -183,15 +189,111 @@ void expect_covered(const FloorPlan& plan, const Layer& layer, std::int64_t wall
   EXPECT_NEAR(reach, to_m, kTol);
 }
 
-TEST(Beads, HowManyAcrossChangesExactlyAtOneAndTwoBeads) {
-  EXPECT_EQ(beads_across(0.15, 0.15), 1);
-  EXPECT_EQ(beads_across(0.15 + 5e-7, 0.15), 1);  // within a micrometre: still one
-  EXPECT_EQ(beads_across(0.151, 0.15), 0);
-  EXPECT_EQ(beads_across(0.299, 0.15), 0);
-  EXPECT_EQ(beads_across(0.30, 0.15), 2);
-  EXPECT_EQ(beads_across(0.30 - 5e-7, 0.15), 2);  // within a micrometre of two: two
-  EXPECT_EQ(beads_across(0.30 - 2e-6, 0.15), 0);
-  EXPECT_EQ(beads_across(0.60, 0.15), 2);
+// The nozzle's width only: one pass at exactly one bead, refused strictly between one and
+// two (and under one), two skins and the fill from two beads on.
+TEST(Beads, WithTheNozzlesWidthOnlyOneBeadOrTwoSkins) {
+  const BeadSpec one{0.15, WallPattern::kSolid};
+  EXPECT_EQ(wall_beads(0.15, one).how, WallPrint::kOnePass);
+  EXPECT_EQ(wall_beads(0.15 + 5e-7, one).how, WallPrint::kOnePass);  // within a micrometre
+  EXPECT_EQ(wall_beads(0.15 - 5e-7, one).how, WallPrint::kOnePass);
+  EXPECT_NEAR(wall_beads(0.15 - 5e-7, one).bead_width_m, 0.15, 1e-12);
+  EXPECT_EQ(wall_beads(0.15 - 2e-6, one).how, WallPrint::kTooThin);
+  EXPECT_EQ(wall_beads(0.151, one).how, WallPrint::kBetween);
+  EXPECT_EQ(wall_beads(0.299, one).how, WallPrint::kBetween);
+  EXPECT_EQ(wall_beads(0.30, one).how, WallPrint::kSkinsAndFill);
+  EXPECT_EQ(wall_beads(0.30 - 5e-7, one).how, WallPrint::kSkinsAndFill);  // within a micrometre
+  EXPECT_EQ(wall_beads(0.30 - 2e-6, one).how, WallPrint::kBetween);
+  EXPECT_EQ(wall_beads(0.60, one).how, WallPrint::kSkinsAndFill);
+  EXPECT_NEAR(wall_beads(0.60, one).bead_width_m, 0.15, 1e-12);
+}
+
+// A range of widths (0.10 to 0.25 m, the nozzle 0.15 m): one pass of the wall's own width
+// from the narrowest to the widest bead, both ends included; two skins of half the wall
+// from there up to two nozzle widths; then skins of the nozzle's width and the fill.
+TEST(Beads, ARangeOfWidthsMakesEachWallTheFewestBeads) {
+  const BeadSpec range{0.15, WallPattern::kSolid, 0.10, 0.25};
+  const auto how = [&](double t) { return wall_beads(t, range).how; };
+  const auto width = [&](double t) { return wall_beads(t, range).bead_width_m; };
+  EXPECT_EQ(how(0.10), WallPrint::kOnePass);  // exactly the narrowest
+  EXPECT_NEAR(width(0.10), 0.10, 1e-12);
+  EXPECT_EQ(how(0.10 - 2e-6), WallPrint::kTooThin);  // just under one bead
+  EXPECT_EQ(how(0.20), WallPrint::kOnePass);
+  EXPECT_NEAR(width(0.20), 0.20, 1e-12);
+  EXPECT_EQ(how(0.24), WallPrint::kOnePass);  // 0.24 m masonry: one bead of its width
+  EXPECT_NEAR(width(0.24), 0.24, 1e-12);
+  EXPECT_EQ(how(0.25), WallPrint::kOnePass);  // exactly the widest
+  EXPECT_NEAR(width(0.25), 0.25, 1e-12);
+  EXPECT_EQ(how(0.25 + 2e-6), WallPrint::kTwoSkins);  // just over one bead: two
+  EXPECT_NEAR(width(0.25 + 2e-6), 0.125 + 1e-6, 1e-12);
+  EXPECT_EQ(how(0.27), WallPrint::kTwoSkins);  // a cavity wall's 0.27 m: two of 0.135 m
+  EXPECT_NEAR(width(0.27), 0.135, 1e-12);
+  EXPECT_EQ(how(0.30 - 2e-6), WallPrint::kTwoSkins);
+  EXPECT_EQ(how(0.30), WallPrint::kSkinsAndFill);         // two nozzle widths: skins, no core
+  EXPECT_EQ(how(0.50 + 2e-6), WallPrint::kSkinsAndFill);  // just over two widest
+  EXPECT_NEAR(width(0.50), 0.15, 1e-12);
+}
+
+// Where the widest bead is under two narrowest (0.12 to 0.16 m), a wall between them is
+// refused; at exactly two narrowest it is two skins.
+TEST(Beads, BetweenTheWidestBeadAndTwoNarrowestAWallCannotBePrinted) {
+  const BeadSpec range{0.15, WallPattern::kSolid, 0.12, 0.16};
+  EXPECT_EQ(wall_beads(0.16, range).how, WallPrint::kOnePass);
+  EXPECT_EQ(wall_beads(0.17, range).how, WallPrint::kBetween);
+  EXPECT_EQ(wall_beads(0.24 - 4e-6, range).how, WallPrint::kBetween);
+  EXPECT_EQ(wall_beads(0.24, range).how, WallPrint::kTwoSkins);
+  EXPECT_NEAR(wall_beads(0.24, range).bead_width_m, 0.12, 1e-12);
+}
+
+FloorPlan ranged(const std::vector<WallSpec>& walls, WallPattern pattern = WallPattern::kSolid) {
+  FloorPlan plan = plan_of(walls, pattern);
+  plan.beads.narrowest_m = 0.10;
+  plan.beads.widest_m = 0.25;
+  return plan;
+}
+
+TEST(Beads, AWallWithinTheRangeIsOnePassOfItsOwnWidth) {
+  const FloorPlan plan = ranged({{0, 0, 4, 0, 0.24}});
+  const Layer layer = plan_as_layer(plan);
+  ASSERT_EQ(layer.segments.size(), 1u);
+  EXPECT_EQ(layer.segments[0].role, BeadRole::kPass);
+  EXPECT_NEAR(layer.segments[0].width_m, 0.24, kTol);
+  expect_covered(plan, layer, 1, 0.0, 0.0, 4.0);
+}
+
+// 0.27 m: two skins of 0.135 m, a quarter of the wall in from each face, closed by returns
+// at the ends, and nothing between them; they lay the wall's own volume.
+TEST(Beads, AWallOverTheWidestBeadIsTwoSkinsOfHalfItsWidth) {
+  const double t = 0.27, skin = 0.135;
+  const FloorPlan plan = ranged({{0, 0, 4, 0, t}});
+  const Layer layer = plan_as_layer(plan);
+  expect_sound(plan, layer);
+  expect_closed_skins(layer);
+  EXPECT_TRUE(of_role(layer, BeadRole::kCore).empty());
+  for (const auto& s : layer.segments) EXPECT_NEAR(s.width_m, skin, kTol);
+  expect_covered(plan, layer, 1, +0.5 * skin, 0.5 * skin, 4 - 0.5 * skin);
+  expect_covered(plan, layer, 1, -0.5 * skin, 0.5 * skin, 4 - 0.5 * skin);
+  EXPECT_EQ(layer.segments.size(), 4u);
+  double area = 0.0;
+  for (const auto& s : layer.segments) area += s.width_m * s.length_m;
+  EXPECT_NEAR(area, 4 * t, 1e-9);
+}
+
+// Walls of three kinds meeting: a 0.5 m wall (skins of the nozzle's width and a core), a
+// 0.27 m one at an L (skins of 0.135 m) and a 0.2 m pass at a T: no bead overlaps another,
+// each lies in its wall at its wall's width, and the skins close into one ring.
+TEST(Beads, WallsOfDifferentBeadsMeetWithoutOverlapping) {
+  const FloorPlan plan = ranged({{0, 0, 5, 0, 0.5}, {5, 0, 5, 4, 0.27}, {2.5, 0, 2.5, 3, 0.2}});
+  const Layer layer = plan_as_layer(plan);
+  expect_sound(plan, layer);
+  expect_closed_skins(layer);
+  EXPECT_FALSE(of_role(layer, BeadRole::kCore).empty());
+  bool narrow = false, pass = false;
+  for (const auto& s : layer.segments) {
+    narrow |= s.wall_id == 2 && std::abs(s.width_m - 0.135) < kTol;
+    pass |= s.wall_id == 3 && s.role == BeadRole::kPass && std::abs(s.width_m - 0.2) < kTol;
+  }
+  EXPECT_TRUE(narrow);
+  EXPECT_TRUE(pass);
 }
 
 TEST(Beads, AWallOneBeadThickIsOnePassAlongItsMiddle) {

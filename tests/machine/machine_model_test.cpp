@@ -80,7 +80,8 @@ std::string gantry_with(const std::string& extra) {
   text << in.rdbuf();
   std::string profile = text.str();
   // Drop the bundled gantries' keys, so that `extra` sets them.
-  for (const char* key : {"nozzles:", "gantry_width_m:", "rail_axis:", "purge_s:"}) {
+  for (const char* key :
+       {"nozzles:", "gantry_width_m:", "rail_axis:", "purge_s:", "bead_width_m:"}) {
     const auto at = profile.find(std::string("\n") + key);
     if (at != std::string::npos) profile.erase(at + 1, profile.find('\n', at + 1) - at);
   }
@@ -116,6 +117,33 @@ TEST(MachineModel, GantriesOnTheRailsAtTheirBoundaries) {
   EXPECT_EQ(
       expect_input_error([] { load_machine(gantry_with("gantry_width_m: 0\n")); }).first().field,
       "gantry_width_m");
+  std::filesystem::remove_all(std::filesystem::path(gantry_with("")).parent_path());
+}
+
+// bead_width_m: [narrowest, widest], the nozzle's own width within it (both ends allowed).
+TEST(MachineModel, BeadWidthsAreARangeHoldingTheNozzlesWidth) {
+  const MachineModel bundled = load_machine(testing::source_path("config/machines/cc-gantry.yaml"));
+  EXPECT_EQ(bundled.bead_widths(), std::make_pair(0.10, 0.25));
+  const MachineModel unstated = load_machine(gantry_with(""));
+  EXPECT_FALSE(unstated.bead_width_range_m);
+  EXPECT_EQ(unstated.bead_widths(), std::make_pair(0.15, 0.15));
+  EXPECT_EQ(load_machine(gantry_with("bead_width_m: [0.15, 0.15]\n")).bead_widths(),
+            std::make_pair(0.15, 0.15));
+  EXPECT_EQ(load_machine(gantry_with("bead_width_m: [0.15, 0.3]\n")).bead_widths(),
+            std::make_pair(0.15, 0.3));
+  EXPECT_EQ(load_machine(gantry_with("bead_width_m: [0.05, 0.15]\n")).bead_widths(),
+            std::make_pair(0.05, 0.15));
+  const auto refused = [](const std::string& line) {
+    return expect_input_error([&] { load_machine(gantry_with(line)); });
+  };
+  const InputError below = refused("bead_width_m: [0.16, 0.3]\n");
+  EXPECT_EQ(below.first().field, "bead_width_m");
+  EXPECT_TRUE(contains(below.what(), "nozzle_width_m 0.15 m, must lie in the range [0.16, 0.3]"))
+      << below.what();
+  EXPECT_TRUE(contains(refused("bead_width_m: [0.1, 0.149]\n").what(), "must lie in the range"));
+  EXPECT_TRUE(contains(refused("bead_width_m: [0.2, 0.1]\n").what(), "wrong way round"));
+  EXPECT_TRUE(contains(refused("bead_width_m: [0.1]\n").what(), "got 1 values"));
+  EXPECT_EQ(refused("bead_width_m: [0.001, 0.2]\n").first().field, "bead_width_m[0]");
   std::filesystem::remove_all(std::filesystem::path(gantry_with("")).parent_path());
 }
 

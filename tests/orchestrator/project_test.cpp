@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "ccbuild/common/document.hpp"
 #include "test_support.hpp"
@@ -115,9 +116,89 @@ TEST(Project, TheMachineMustReachEveryWallAndTheTop) {
   EXPECT_TRUE(
       contains(expect_input_error([&] { open_project(fit_case(dir, 5.0, 3.0, 0.299)); }).what(),
                "0.299 m thick"));
+  // Thinner than one bead: left out for the crew, and the floor has no other wall.
   EXPECT_TRUE(
       contains(expect_input_error([&] { open_project(fit_case(dir, 5.0, 3.0, 0.149)); }).what(),
-               "at least one bead wide"));
+               "every wall of floor"));
+  fs::remove_all(dir);
+}
+
+// A one-wall building (4 m, `thickness_m`) on the tiny gantry whose profile gains `extra`.
+std::string bead_case(const fs::path& dir, double thickness_m, const std::string& extra,
+                      const std::string& building_extra = "") {
+  std::ifstream in(testing::data("machines/tiny_gantry.yaml"));
+  std::stringstream profile;
+  profile << in.rdbuf();
+  fs::copy_file(testing::data("machines/tiny_gantry.urdf"), dir / "tiny_gantry.urdf",
+                fs::copy_options::overwrite_existing);
+  std::ofstream(dir / "m.yaml") << profile.str() << "\n" << extra << "\n";
+  fit_case(dir, 4.0, 3.0, thickness_m);
+  std::ofstream(dir / "b.yaml")
+      << "units: m\nlayer_height: 0.5\nmaterial: "
+      << testing::source_path("config/materials/standard-mix.yaml").string()
+      << "\nmachine: m.yaml\n"
+      << building_extra << "floors:\n  - {height: 3, plan: plan.yaml}\n";
+  return (dir / "b.yaml").string();
+}
+
+// A wall no bead widths make up is refused with the thicknesses and the widths that would
+// print, and each of them, applied as written, prints.
+TEST(Project, TheBeadWidthsARefusalProposesPrint) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_beads_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto refusal = [&](double t, const std::string& extra) {
+    return std::string(expect_input_error([&] {
+                         open_project(bead_case(dir, t, extra, "print: {thin_walls: refuse}\n"));
+                       }).what());
+  };
+  // The nozzle's 0.15 m only: a 0.27 m cavity wall.
+  const std::string cavity = refusal(0.27, "");
+  EXPECT_TRUE(contains(cavity, "make it 0.150 m or less (one bead) or 0.300 m or more (two skins)"))
+      << cavity;
+  EXPECT_TRUE(contains(cavity,
+                       "beads reach 0.270 m (the widest of bead_width_m) or down to "
+                       "0.135 m (the narrowest)"))
+      << cavity;
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.15, "")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.30, "")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.27, "bead_width_m: [0.15, 0.27]")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.27, "bead_width_m: [0.135, 0.15]")));
+  // 0.12 to 0.16 m: a 0.2 m wall is over one bead and under two skins.
+  const std::string between = refusal(0.2, "bead_width_m: [0.12, 0.16]");
+  EXPECT_TRUE(contains(between, "make it 0.160 m or less (one bead) or 0.240 m or more"))
+      << between;
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.16, "bead_width_m: [0.12, 0.16]")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.24, "bead_width_m: [0.12, 0.16]")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.2, "bead_width_m: [0.12, 0.2]")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.2, "bead_width_m: [0.1, 0.16]")));
+  // 0.10 to 0.25 m: a 0.05 m wall is thinner than the narrowest bead.
+  const std::string thin = refusal(0.05, "bead_width_m: [0.10, 0.25]");
+  EXPECT_TRUE(contains(thin, "at least one bead wide: make it 0.100 m or more")) << thin;
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.10, "bead_width_m: [0.10, 0.25]")));
+  EXPECT_NO_THROW(open_project(bead_case(dir, 0.05, "bead_width_m: [0.05, 0.25]")));
+  // Left to the crew (the default), it is the floor's only wall: nothing would be printed.
+  EXPECT_TRUE(contains(expect_input_error([&] {
+                         open_project(bead_case(dir, 0.05, "bead_width_m: [0.10, 0.25]"));
+                       }).what(),
+                       "every wall of floor"));
+  // The pump bounds the widest bead: 80 m³/h feeds 0.222 m at 0.5 m layers and 0.2 m/s, so
+  // a 0.24 m wall is two skins of 0.12 m; 90 m³/h feeds the whole 0.25 m: one pass.
+  const auto how = [&](const std::string& extra) {
+    const Project p = open_project(bead_case(dir, 0.24, extra));
+    const floors::BeadSpec& spec = p.building.floors[0].plan.beads;
+    return floors::wall_beads(0.24, spec);
+  };
+  EXPECT_EQ(how("bead_width_m: [0.10, 0.25]\npump_capacity_m3_h: 80").how,
+            floors::WallPrint::kTwoSkins);
+  EXPECT_NEAR(how("bead_width_m: [0.10, 0.25]\npump_capacity_m3_h: 80").bead_width_m, 0.12, 1e-12);
+  EXPECT_EQ(how("bead_width_m: [0.10, 0.25]\npump_capacity_m3_h: 90").how,
+            floors::WallPrint::kOnePass);
+  // Never under the nozzle's own width: a pump too small for that refuses the plans instead.
+  const Project small =
+      open_project(bead_case(dir, 0.15, "bead_width_m: [0.10, 0.25]\npump_capacity_m3_h: 5"));
+  EXPECT_NEAR(small.building.floors[0].plan.beads.widest_m, 0.15, 1e-12);
+  const std::string pumped = refusal(0.25, "bead_width_m: [0.14, 0.25]\npump_capacity_m3_h: 80");
+  EXPECT_TRUE(contains(pumped, "the widest its pump feeds")) << pumped;
   fs::remove_all(dir);
 }
 
@@ -217,10 +298,21 @@ TEST(Project, ADrawnPlanIsReadOnceAndCountsAsAnInput) {
   int drawings = 0;
   for (const auto& f : p.files_read()) drawings += f.filename() == "centrelines_m.dxf";
   EXPECT_EQ(drawings, 1) << "the drawing is an input (never overwritten, its checksum recorded)";
-  // Face lines 0.2 m apart make walls thicker than one bead of the bundled nozzle and
-  // thinner than two: refused, naming the drawing's entities.
-  const InputError thick =
-      expect_input_error([&] { open_project(testing::data("buildings/drawn-faces.yaml")); });
+  // Face lines 0.2 m apart: on the bundled gantry (beads 0.10 to 0.25 m) each wall one
+  // pass of its 0.2 m; on a machine of 0.15 m beads only, thicker than one bead and thinner
+  // than two, refused, naming the drawing's entities.
+  const Project faces = open_project(testing::data("buildings/drawn-faces.yaml"));
+  ASSERT_FALSE(faces.building.floors[0].plan.walls.empty());
+  for (const auto& w : faces.building.floors[0].plan.walls) {
+    const floors::WallBeads beads =
+        floors::wall_beads(*w.thickness_m, faces.building.floors[0].plan.beads);
+    EXPECT_EQ(beads.how, floors::WallPrint::kOnePass);
+    EXPECT_NEAR(beads.bead_width_m, 0.2, 1e-9);
+  }
+  ProjectOptions narrow;
+  narrow.machine_profile = testing::data("machines/two-gantries.yaml");
+  const InputError thick = expect_input_error(
+      [&] { open_project(testing::data("buildings/drawn-faces.yaml"), narrow); });
   EXPECT_TRUE(contains(thick.what(), "faces_mm.dxf: entities")) << thick.what();
   EXPECT_TRUE(contains(thick.what(), "is 0.200 m thick"));
 }

@@ -43,10 +43,13 @@ ones, never used to compute them. It checks:
      every anchor of its stage has reached the anchor strength, counted from the end
      of the latest placement of that pipe (and its anchor-strength reasons are those
      waits); it follows its stage's last layer; its duration is its phases' sum.
-  9. beads (walls thicker than one bead): each bead piece names its kind (skin, core,
-     tie) and a width; no two beads' footprints (the piece widened by half its width each
-     side) overlap, except beads that meet end to end, which must not double back along
-     each other;
+  9. beads (walls thicker than one bead, and passes of another width than the nozzle's):
+     each bead piece names its kind (pass, skin, core, tie) and a width; a pass, skin or
+     tie lies within the machine's bead widths (bead_width_m, else the nozzle's width; a
+     poured core is as wide as the skins leave); no two beads' footprints (the piece
+     widened by half its width each side) overlap, except beads that meet end to end,
+     which must not double back along each other, and two passes (one-pass walls meet
+     on their middle lines);
  10. totals: makespan, layer count, nozzle times, moves, waits, pipes, purges, climbs,
      slabs, joints and machine time are what the layers and events add up to; each
      layer's concrete its plan's pieces x bead widths x its height, and where the model
@@ -427,7 +430,7 @@ def check_coverage(key, plan, problems):
             problems.append("%s: %.4f m to its end (%.4f m) never deposited" % (where, at, length))
 
 
-BEAD_KINDS = ("skin", "core", "tie")
+BEAD_KINDS = ("pass", "skin", "core", "tie")
 OVERLAP = 1e-6    # m: beads may overlap by a micrometre (the JSON rounds to one)
 
 
@@ -460,8 +463,10 @@ def clip_area(subject, clip):
                    for i in range(len(out)))) / 2 if len(out) >= 3 else 0.0
 
 
-def check_beads(key, plan, problems):
-    """Beads name their kind and width; no two overlap unless they meet end to end."""
+def check_beads(key, plan, machine, problems):
+    """Beads name their kind and width, within the machine's range; no two overlap unless
+    they meet end to end or both are passes."""
+    narrowest, widest = machine.get("bead_width_m") or [machine["nozzle_width_m"]] * 2
     beads = []
     for piece in plan["pieces"]:
         if "bead" not in piece and "width_m" not in piece:
@@ -474,19 +479,22 @@ def check_beads(key, plan, problems):
         if not isinstance(width, (int, float)) or isinstance(width, bool) or not 0 < width <= 10:
             problems.append("%s: bead width %r is not a width" % (label, width))
             continue
+        if piece["bead"] != "core" and not narrowest - 1e-6 <= width <= widest + 1e-6:
+            problems.append("%s: a %s %.6f m wide, outside the machine's bead widths %g to %g m"
+                            % (label, piece["bead"], width, narrowest, widest))
         a, b = tuple(piece["start_m"]), tuple(piece["end_m"])
         if math.hypot(b[0] - a[0], b[1] - a[1]) <= 0:
             continue
         fp = footprint(a, b, width)
         box = (min(p[0] for p in fp), min(p[1] for p in fp), max(p[0] for p in fp), max(p[1] for p in fp))
-        beads.append((label, a, b, width, fp, box))
+        beads.append((label, a, b, width, fp, box, piece["bead"] == "pass"))
     beads.sort(key=lambda x: x[5][0])
     close = lambda p, q: math.hypot(p[0] - q[0], p[1] - q[1]) <= 1e-6
-    for i, (li, ai, bi, wi, fi, xi) in enumerate(beads):
-        for lj, aj, bj, wj, fj, xj in beads[i + 1:]:
+    for i, (li, ai, bi, wi, fi, xi, pi) in enumerate(beads):
+        for lj, aj, bj, wj, fj, xj, pj in beads[i + 1:]:
             if xj[0] > xi[2]:
                 break
-            if xj[1] > xi[3] or xj[3] < xi[1]:
+            if xj[1] > xi[3] or xj[3] < xi[1] or (pi and pj):
                 continue
             if any(close(p, q) for p in (ai, bi) for q in (aj, bj)):
                 ux, uy = bi[0] - ai[0], bi[1] - ai[1]
@@ -1818,7 +1826,7 @@ def check(doc, problems=None):
     for key, plan in doc["plans"].items():
         info = infos[key] = Plan(key, plan)
         guarded("coverage", check_coverage, problems, key, plan, problems)
-        guarded("beads", check_beads, problems, key, plan, problems)
+        guarded("beads", check_beads, problems, key, plan, machine, problems)
         guarded("motion", check_motion, problems, key, plan, machine, info, problems)
         guarded("gantry", check_gantries, problems, key, plan, machine, info, problems)
     stats["infos"] = infos
@@ -1999,6 +2007,8 @@ def corruptions(doc):
             piece = d["plans"][bk]["pieces"][bj]
             piece["width_m"] *= 2
         add("a skin bead twice as wide", "overlap")(wider)
+        add("a skin bead narrower than the machine lays", "outside the machine's bead widths")(
+            lambda d: d["plans"][bk]["pieces"][bj].update(width_m=0.5 * d["plans"][bk]["pieces"][bj]["width_m"]))
         add("a bead of no known kind", "bead kind")(
             lambda d: d["plans"][bk]["pieces"][bj].update(bead="brick"))
     add("a layer without end_s", "no `end_s`")(lambda d: d["layers"][3].pop("end_s"))

@@ -41,7 +41,7 @@ nlohmann::ordered_json layer_plan_json(const ReportContext& context, const floor
   const auto& e = plan.evaluation;
   json out = detail::header_json(context, layer, "ccbuild-layer-plan-1");
   out["machine"] = detail::machine_json(machine);
-  out["pieces"] = detail::pieces_json(layer);
+  out["pieces"] = detail::pieces_json(layer, machine.nozzle_width_m);
   out["nozzles"] = 1;
   out["algorithm"] = planner::to_string(plan.algorithm);
   out["metric"] = planner::to_string(plan.metric);

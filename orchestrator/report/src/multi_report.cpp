@@ -36,7 +36,7 @@ nlohmann::ordered_json multi_plan_json(const ReportContext& context, const floor
                                        const planner::MultiNozzleOptions& options) {
   json out = detail::header_json(context, layer, "ccbuild-layer-plan-1");
   out["machine"] = detail::machine_json(machine);
-  out["pieces"] = detail::pieces_json(layer);
+  out["pieces"] = detail::pieces_json(layer, machine.nozzle_width_m);
   out["nozzles"] = options.nozzles;
   out["gantry_width_m"] = rounded(options.gantry_width_m);
   out["rail_axis"] = planner::to_string(options.rail_axis);

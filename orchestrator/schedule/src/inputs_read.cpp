@@ -39,6 +39,7 @@ RecordedMachine read_machine(const JsonAt& m) {
                "rail_axis",
                "purge_s",
                "pump_capacity_m3_h",
+               "bead_width_m",
                "kind",
                "anchor_strength_mpa",
                "pipe_embed_s",
@@ -84,6 +85,15 @@ RecordedMachine read_machine(const JsonAt& m) {
   r.purge_s = m.at("purge_s").number(Range::closed(0, 1e6), "s");
   if (const auto pump = m.maybe("pump_capacity_m3_h"))
     r.pump_capacity_m3_s = pump->number(Range::above(0.0, 1e4), "m3/h") / 3600.0;
+  if (const auto beads = m.maybe("bead_width_m")) {
+    const auto ends = beads->elements(2);
+    if (ends.size() != 2) beads->refuse("expected [narrowest, widest]");
+    const double lo = ends[0].number(Range::above(0, 100), "m");
+    const double hi = ends[1].number(Range::above(0, 100), "m");
+    if (lo > hi || r.nozzle_width_m < lo || r.nozzle_width_m > hi)
+      beads->refuse("expected [narrowest, widest] around nozzle_width_m");
+    r.bead_width_range_m = std::make_pair(lo, hi);
+  }
   const std::string kind = m.at("kind").string(100);
   if (kind != "climbing" && kind != "fixed gantry")
     m.at("kind").refuse("expected \"climbing\" or \"fixed gantry\", got \"" + kind + "\"");
@@ -230,7 +240,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   const JsonAt i = root.at("inputs");
   i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
                "files", "machine", "material", "provenance", "site", "objective", "lintels",
-               "slabs"});
+               "slabs", "left_out"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -302,6 +312,20 @@ RecordedInputs read_inputs(const JsonAt& root) {
         p.quantities = read;
       }
       in.provenance.push_back(std::move(p));
+    }
+  }
+  if (const auto left = i.maybe("left_out")) {
+    for (const auto& w : left->elements(kMaxItems)) {
+      w.only_keys({"floor", "wall", "thickness_m", "narrowest_bead_m", "guid"});
+      floors::LeftOutWall out;
+      out.floor = static_cast<int>(w.at("floor").integer(0, floors::limits::kMaxFloors));
+      out.wall_id = w.at("wall").integer(1, kMaxWallId);
+      out.thickness_m = w.at("thickness_m").number(Range::above(0, 100), "m");
+      out.narrowest_m = w.at("narrowest_bead_m").number(Range::above(0, 100), "m");
+      if (out.thickness_m >= out.narrowest_m)
+        w.at("thickness_m").refuse("expected a wall thinner than narrowest_bead_m");
+      if (const auto guid = w.maybe("guid")) out.global_id = guid->string(64);
+      in.left_out.push_back(std::move(out));
     }
   }
   if (const auto l = i.maybe("lintels")) {

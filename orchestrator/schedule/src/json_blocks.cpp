@@ -22,7 +22,7 @@ json point_json(const Eigen::Vector2d& p) {
   return json::array({rounded(p.x()), rounded(p.y())});
 }
 
-json pieces_json(const floors::Layer& layer) {
+json pieces_json(const floors::Layer& layer, double nozzle_width_m) {
   json out = json::array();
   for (const auto& s : layer.segments) {
     out.push_back({{"wall", s.wall_id},
@@ -31,9 +31,10 @@ json pieces_json(const floors::Layer& layer) {
                    {"start_m", point_json(layer.start_m(s))},
                    {"end_m", point_json(layer.end_m(s))},
                    {"length_m", rounded(s.length_m)}});
-    // A bead of a wall thicker than one bead says what it is and how wide; a wall in one
-    // pass is as wide as the machine's nozzle (inputs.machine.nozzle_width_m).
-    if (s.role != floors::BeadRole::kPass) {
+    // A bead of a wall thicker than one bead says what it is and how wide, and so does a
+    // pass of another width than the machine's nozzle (inputs.machine.nozzle_width_m).
+    if (s.role != floors::BeadRole::kPass ||
+        (nozzle_width_m > 0.0 && s.width_m > 0.0 && std::abs(s.width_m - nozzle_width_m) > 1e-9)) {
       out.back()["bead"] = floors::bead_role_name(s.role);
       out.back()["width_m"] = rounded(s.width_m);
     }

@@ -36,6 +36,9 @@ json recorded_machine_json(const RecordedMachine& m) {
   out["rail_axis"] = machine::to_string(m.rail_axis);
   out["purge_s"] = rounded(m.purge_s);
   if (m.pump_capacity_m3_s) out["pump_capacity_m3_h"] = rounded(*m.pump_capacity_m3_s * 3600.0);
+  if (m.bead_width_range_m)
+    out["bead_width_m"] = {rounded(m.bead_width_range_m->first),
+                           rounded(m.bead_width_range_m->second)};
   out["kind"] = m.climbing ? "climbing" : "fixed gantry";
   if (m.climbing) {
     out["anchor_strength_mpa"] = rounded(m.anchor_strength_mpa);
@@ -132,6 +135,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
   r.rail_axis = m.rail_axis;
   r.purge_s = m.purge_s;
   r.pump_capacity_m3_s = m.pump_capacity_m3_s;
+  r.bead_width_range_m = m.bead_width_range_m;
   r.climbing = project.climber != nullptr;
   if (project.climber) {
     r.anchor_strength_mpa = project.climber->anchor_strength_mpa;
@@ -157,6 +161,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
                                                  q.walls_modelled, q.walls_unmodelled};
     if (!p.walls.empty() || !p.openings.empty()) in.provenance.push_back(std::move(p));
   }
+  in.left_out = b.left_out;
   return in;
 }
 
@@ -226,6 +231,17 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
       }
     }
     out["inputs"]["provenance"] = floors_json;
+  }
+  if (!in.left_out.empty()) {  // only where the print spec left walls out: others keep their bytes
+    json left = json::array();
+    for (const auto& w : in.left_out) {
+      left.push_back({{"floor", w.floor},
+                      {"wall", w.wall_id},
+                      {"thickness_m", rounded(w.thickness_m)},
+                      {"narrowest_bead_m", rounded(w.narrowest_m)}});
+      if (!w.global_id.empty()) left.back()["guid"] = w.global_id;
+    }
+    out["inputs"]["left_out"] = left;
   }
   {
     const floors::LintelSpec& l = in.lintels;
@@ -373,7 +389,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
                   {"z_top_m", rounded(p.z_top_m)},
                   {"layer_time_s", rounded(p.layer_time_s)},
                   {"min_gap_m", p.nozzles > 1 ? json(rounded(p.min_gap_m)) : json(nullptr)},
-                  {"pieces", pieces_json(p.layer)},
+                  {"pieces", pieces_json(p.layer, in.machine.nozzle_width_m)},
                   {"nozzles", nozzles}};
   }
   out["plans"] = plans;

@@ -200,8 +200,8 @@ floors::Layer read_pieces(const JsonAt& list) {
     if (s.maybe("bead") || s.maybe("width_m")) {
       const std::string role = s.at("bead").string(16);
       const auto parsed = floors::parse_bead_role(role);
-      if (!parsed || *parsed == floors::BeadRole::kPass)
-        s.at("bead").refuse("expected skin, core or tie, got '" + echoed(role) + "'");
+      if (!parsed)
+        s.at("bead").refuse("expected pass, skin, core or tie, got '" + echoed(role) + "'");
       seg.role = *parsed;
       seg.width_m = s.at("width_m").number(Range::above(0, 10), "m");
     }

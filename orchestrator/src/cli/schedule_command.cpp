@@ -306,6 +306,12 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       if (q.model_m3) std::cout << "quantities: " << floors::quantities_text(floor.name, q) << "\n";
     }
   }
+  // Said whether or not the run is quiet: the crew has these walls to build.
+  for (const auto& w : project.building.left_out)
+    std::cerr << "left out: "
+              << floors::left_out_text(project.building.floors[w.floor].name, w,
+                                       project.building.units)
+              << "\n";
   if (!o.no_compare) {
     // The other objective, scheduled in full, for comparison.
     schedule::ScheduleOptions other = options;

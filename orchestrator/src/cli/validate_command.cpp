@@ -68,6 +68,15 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                         {"min_m", {space.min_m.x(), space.min_m.y()}},
                         {"max_m", {space.max_m.x(), space.max_m.y()}}};
     out["import_notes"] = b.import_notes;
+    out["left_out"] = nlohmann::ordered_json::array();
+    for (const auto& w : b.left_out)
+      out["left_out"].push_back(
+          {{"floor", w.floor},
+           {"wall", w.wall_id},
+           {"thickness_m", w.thickness_m},
+           {"narrowest_bead_m", w.narrowest_m},
+           {"guid", w.global_id},
+           {"text", floors::left_out_text(b.floors[w.floor].name, w, b.units)}});
     out["floors"] = nlohmann::ordered_json::array();
     for (const auto& f : summary.floors) {
       out["floors"].push_back({{"floor", f.floor_index},
@@ -126,17 +135,25 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     std::cout << "\n";
   }
   {
-    // How the walls are printed: one pass each, or beads (two skins and the pattern's fill).
-    int one_pass = 0, beaded = 0;
+    // How the walls are printed (floors::wall_beads): one pass, two skins, or skins and fill.
+    const floors::BeadSpec spec = orchestrator::bead_spec(machine, b);
+    const double narrowest_m = spec.narrowest_m, widest_m = spec.widest_m;
+    int one_pass = 0, two_skins = 0, filled = 0;
     for (const auto& f : b.floors)
-      for (const auto& w : f.plan.walls)
-        (w.thickness_m && floors::beads_across(*w.thickness_m, machine.nozzle_width_m) == 2
-             ? beaded
-             : one_pass)++;
-    std::cout << printf_string("  %-10s %d in one pass of the %s nozzle", "walls", one_pass,
-                               L(machine.nozzle_width_m).c_str());
-    if (beaded > 0)
-      std::cout << printf_string(", %d as beads: two skins and %s (wall_pattern: %s)", beaded,
+      for (const auto& w : f.plan.walls) {
+        const floors::WallPrint how = w.thickness_m ? floors::wall_beads(*w.thickness_m, spec).how
+                                                    : floors::WallPrint::kOnePass;
+        (how == floors::WallPrint::kSkinsAndFill ? filled
+         : how == floors::WallPrint::kTwoSkins   ? two_skins
+                                                 : one_pass)++;
+      }
+    std::cout << printf_string("  %-10s %d in one pass (beads %s%s%s)", "walls", one_pass,
+                               L(narrowest_m).c_str(), narrowest_m == widest_m ? "" : " to ",
+                               narrowest_m == widest_m ? "" : L(widest_m).c_str());
+    if (two_skins > 0) std::cout << printf_string(", %d as two skins of half the wall", two_skins);
+    if (filled > 0)
+      std::cout << printf_string(", %d as two skins of %s and %s (wall_pattern: %s)", filled,
+                                 L(machine.nozzle_width_m).c_str(),
                                  b.wall_pattern == floors::WallPattern::kSolid   ? "a poured core"
                                  : b.wall_pattern == floors::WallPattern::kSkins ? "a cavity"
                                                                                  : "a zig-zag tie",
@@ -144,6 +161,9 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
     std::cout << "\n";
   }
   for (const auto& note : b.import_notes) std::cout << "  import     " << note << "\n";
+  for (const auto& w : b.left_out)
+    std::cout << "  left out   " << floors::left_out_text(b.floors[w.floor].name, w, b.units)
+              << "\n";
   std::cout << "\n"
             << printf_string("  %-5s  %-16s  %12s  %6s  %9s  %8s  %7s  %11s\n", "floor", "name",
                              "height", "walls", "openings", "anchors", "layers", "geometries");

@@ -27,9 +27,34 @@ std::optional<WallPattern> parse_wall_pattern(const std::string& name);
 /// How a plan's walls become beads. With `bead_width_m` 0 (plans read outside a project
 /// with a machine) every wall is one pass along its middle, whatever its thickness.
 struct BeadSpec {
-  double bead_width_m = 0.0;  ///< the width one pass of the nozzle lays, m
+  double bead_width_m = 0.0;  ///< the nozzle's own width: a thick wall's skins, m
   WallPattern pattern = WallPattern::kSolid;
+  /// The narrowest and widest bead one pass lays, m (docs/formats.md, "Bead widths"); 0:
+  /// `bead_width_m` only.
+  double narrowest_m = 0.0, widest_m = 0.0;
 };
+
+/// How a wall of some thickness is printed.
+enum class WallPrint {
+  kTooThin,       ///< thinner than the narrowest bead: it cannot be printed
+  kOnePass,       ///< one bead of the wall's thickness along its middle
+  kTwoSkins,      ///< two skins of half the wall each, nothing between them
+  kSkinsAndFill,  ///< two skins of the nozzle's width and the pattern between them
+  kBetween,       ///< wider than the widest bead and narrower than two narrowest: cannot
+};
+
+/// A wall's beads across its thickness: how, and the width of its pass or of each skin.
+struct WallBeads {
+  WallPrint how = WallPrint::kOnePass;
+  double bead_width_m = 0.0;  ///< the pass's or each skin's width, m; 0 when not printed
+};
+
+/// The fewest beads, each within the spec's range, that make up a wall `thickness_m`
+/// thick (within a micrometre): one pass up to the widest bead; two skins of half the wall
+/// up to twice the nozzle's width; from there, skins of the nozzle's width and the
+/// pattern's fill between them. The one statement of the rule: the slicer, the project's
+/// check, `validate` and the tests call it.
+WallBeads wall_beads(double thickness_m, const BeadSpec& spec);
 
 /// What a bead is to its wall.
 enum class BeadRole {
@@ -42,11 +67,5 @@ enum class BeadRole {
 /// "pass", "skin", "core", "tie".
 const char* bead_role_name(BeadRole role);
 std::optional<BeadRole> parse_bead_role(const std::string& name);
-
-/// How many beads wide a wall of `thickness_m` is for a bead of `bead_width_m`: 1 up to
-/// one bead (within 1 micrometre), 0 strictly between one and two (such a wall cannot be
-/// printed: one bead is too thin, two overlap), 2 from two beads on (the skins; whatever
-/// lies between them is the pattern's).
-int beads_across(double thickness_m, double bead_width_m);
 
 }  // namespace ccbuild::floors

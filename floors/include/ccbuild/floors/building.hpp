@@ -42,6 +42,26 @@ struct Floor {
   SourceRef source;
 };
 
+/// What the machine prints of a building (`print:`; docs/formats.md, "What is printed").
+struct PrintSpec {
+  /// `thin_walls`: a wall thinner than the machine's narrowest bead is left out and said,
+  /// for the crew to build (`leave-out`, the default), or stops the run (`refuse`).
+  bool refuse_thin_walls = false;
+};
+
+/// A wall the print spec left out of what the machine prints, for the crew to build.
+struct LeftOutWall {
+  int floor = 0;
+  std::int64_t wall_id = 0;
+  double thickness_m = 0.0;
+  double narrowest_m = 0.0;  ///< the machine's narrowest bead, m
+  std::string global_id;     ///< its model element's GlobalId; empty for other plans
+  SourceRef source;
+};
+
+/// One line on a left-out wall, in `unit`: which, how thick, why, and where it was read.
+std::string left_out_text(const std::string& floor_name, const LeftOutWall& wall, LengthUnit unit);
+
 /// Where a building stands in the machine's frame (`site:` in the building file). Plan
 /// coordinates are turned by `rotation_rad` (anticlockwise) about the plan's origin, then
 /// moved by the origin: `origin_m` as given, or, with `centre`, so that the footprint's
@@ -111,6 +131,9 @@ struct Building {
   /// What the importers of drawn plans left out, and why (empty for plans in ccbuild's
   /// own formats).
   std::vector<std::string> import_notes;
+  PrintSpec print;
+  /// The walls leave_out_thin_walls took out of the floors' plans, in floor and wall order.
+  std::vector<LeftOutWall> left_out;
   /// Every file read to build this model (the building file and its plans), so that no
   /// output is ever written over one of them.
   std::vector<std::filesystem::path> files_read;
@@ -125,6 +148,12 @@ struct Envelope {
   Eigen::Vector2d size_m() const { return (max_m - min_m).cwiseMax(Eigen::Vector2d::Zero()); }
 };
 Envelope envelope(const Building& building);
+
+/// Takes every wall thinner than the narrowest bead of `beads` (wall_beads says kTooThin)
+/// out of its floor's plan, with its openings, into `building.left_out`; nothing when the
+/// print spec refuses thin walls (the fit check then names them). Throws InputError, at the
+/// wall, when an anchor of the floor stands on it or when it is the floor's last wall.
+void leave_out_thin_walls(Building& building, const BeadSpec& beads);
 
 /// Turns every floor plan's vertices by `rotation_rad` about the plan's origin, then
 /// moves them by `origin_m`: p -> R p + origin (walls, openings and anchors go along,

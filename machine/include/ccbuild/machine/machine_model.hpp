@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ccbuild::machine {
@@ -53,7 +54,12 @@ struct MachineModel {
   double lift_time_s = 2.0;            ///< raising the nozzle over deposited walls
   double lower_time_s = 2.0;           ///< lowering it back
   double nozzle_idle_limit_s = 600.0;  ///< longest idle (air) move before concrete clogs
-  double nozzle_width_m = 0.15;        ///< default wall thickness
+  double nozzle_width_m = 0.15;        ///< default wall thickness; a thick wall's skins
+  /// `bead_width_m: [narrowest, widest]`: the widths one pass can lay, m, the nozzle's
+  /// width among them. The nozzle moves at deposition_speed_m_s whatever the width, so a
+  /// bead's flow is its width x the layer height x that speed (docs/formats.md, "Bead
+  /// widths"). Unset: the nozzle's width only; read it with bead_widths().
+  std::optional<std::pair<double, double>> bead_width_range_m;
   /// Gantries (one nozzle each) on the common rails; the scheduler uses 1 up to this.
   int nozzles = 1;
   double gantry_width_m = 1.5;        ///< two gantries' rail positions stay at least this apart
@@ -63,6 +69,11 @@ struct MachineModel {
   /// `pump_capacity_m3_h`: the most concrete the pump delivers, m³/s; unset: no limit. A
   /// plan whose nozzles together draw more is not used (fewer nozzles print the layer).
   std::optional<double> pump_capacity_m3_s;
+
+  /// The narrowest and widest bead, m: bead_width_range_m, else the nozzle's width twice.
+  std::pair<double, double> bead_widths() const {
+    return bead_width_range_m.value_or(std::make_pair(nozzle_width_m, nozzle_width_m));
+  }
 
   /// The defaults above, with x/y axes 0..50 m at 0.5 m/s and z 0..10 m at 0.1 m/s.
   static MachineModel defaults();

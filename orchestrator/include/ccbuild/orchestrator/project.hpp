@@ -79,9 +79,15 @@ Project open_project(const std::filesystem::path& file, const ProjectOptions& op
 /// The checks that the machine can build the building at all, in the building's unit:
 /// its footprint within the x and y reach, every plan vertex (as placed) within the x and
 /// y travel, saying by how much and which way it falls outside, its height (plus the nozzle's lift)
-/// within the z reach (a climbing machine climbs instead), every wall no thicker than the nozzle
-/// lays in one pass. Throws InputError.
+/// within the z reach (a climbing machine climbs instead), every wall's thickness made up by
+/// one bead or two skins of the machine's bead widths (floors::wall_beads, bead_spec).
+/// Throws InputError.
 void check_fit(const Project& project);
+
+/// How the machine lays a building's walls: its nozzle's width, its bead widths (the widest
+/// no wider than its pump feeds at the building's layer height and the deposition speed,
+/// nor narrower than the nozzle), the building's pattern between skins.
+floors::BeadSpec bead_spec(const machine::MachineModel& machine, const floors::Building& building);
 
 /// Where a layer is in the building.
 struct LayerRef {

@@ -19,8 +19,10 @@ namespace ccbuild::schedule {
 /// Rounded for stable, readable JSON: micrometres, microseconds, microradians.
 double rounded(double value);
 nlohmann::ordered_json point_json(const Eigen::Vector2d& p);
-/// The layer's wall pieces: wall, piece (1-based), piece_count, start_m, end_m, length_m.
-nlohmann::ordered_json pieces_json(const floors::Layer& layer);
+/// The layer's wall pieces: wall, piece (1-based), piece_count, start_m, end_m, length_m;
+/// a bead's kind and width where it is not one pass at `nozzle_width_m` (0: never said of
+/// a pass).
+nlohmann::ordered_json pieces_json(const floors::Layer& layer, double nozzle_width_m = 0.0);
 /// [{t_s, x_m, y_m, z_m, heading_rad, extruding, wall, piece}].
 nlohmann::ordered_json waypoints_json(const std::vector<planner::Waypoint>& waypoints);
 /// A timed path's digest: its waypoint count and the SHA-256 of waypoints_json's compact text.

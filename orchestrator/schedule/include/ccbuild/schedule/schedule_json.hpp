@@ -53,6 +53,8 @@ struct RecordedMachine {
   machine::RailAxis rail_axis = machine::RailAxis::kX;
   double purge_s = 0.0;
   std::optional<double> pump_capacity_m3_s;  ///< unset: no limit
+  /// The profile's bead_width_m [narrowest, widest], m; unset: the nozzle's width only.
+  std::optional<std::pair<double, double>> bead_width_range_m;
   bool climbing = false;
   /// Climbing machines only.
   double anchor_strength_mpa = 0.0, pipe_embed_s = 0.0;
@@ -103,6 +105,8 @@ struct RecordedInputs {
   std::vector<std::string> unit_names;
   /// Empty unless the building came from a model whose elements have GlobalIds.
   std::vector<FloorProvenance> provenance;
+  /// The walls the print spec left out for the crew (floors::leave_out_thin_walls).
+  std::vector<floors::LeftOutWall> left_out;
   /// The site's calendar, when the schedule has one: times then have ISO 8601 timestamps
   /// beside their seconds, and the days are summed up (`days`).
   std::shared_ptr<const SiteCalendar> calendar;
