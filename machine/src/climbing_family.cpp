@@ -4,6 +4,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "climbing_internal.hpp"
 
 namespace ccbuild::machine {
 namespace {
@@ -163,26 +164,8 @@ ClimbingFamily read_climbing_family(std::shared_ptr<const Document> profile) {
   ClimbingFamily f;
   f.document = profile;
   f.source_file = profile->file;
-  MapReader map(root, {"name",
-                       "description",
-                       "family",
-                       "climbing",
-                       "deposition_speed_m_s",
-                       "travel_speed_m_s",
-                       "rotate_while_moving",
-                       "accel_delay_s",
-                       "lift_height_m",
-                       "lift_time_s",
-                       "lower_time_s",
-                       "nozzle_idle_limit_s",
-                       "nozzle_width_m",
-                       "nozzles",
-                       "gantry_width_m",
-                       "rail_axis",
-                       "purge_s",
-                       "urdf",
-                       "joints",
-                       "bead_width_m"});
+  MapReader map(root, detail::with_gantry_process_keys(
+                          {"name", "description", "family", "climbing", "urdf", "joints"}));
   map.reject_unknown();
   for (const char* written : {"urdf", "joints"})
     if (auto given = map.optional(written))

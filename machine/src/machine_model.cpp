@@ -118,6 +118,19 @@ MachineModel load_machine(const fs::path& profile_path) {
   return load_machine_profile(profile_path).gantry;
 }
 
+namespace detail {
+
+std::vector<std::string> with_gantry_process_keys(std::vector<std::string> more) {
+  for (const char* key :
+       {"deposition_speed_m_s", "travel_speed_m_s", "rotate_while_moving", "accel_delay_s",
+        "lift_height_m", "lift_time_s", "lower_time_s", "nozzle_idle_limit_s", "nozzle_width_m",
+        "bead_width_m", "nozzles", "gantry_width_m", "rail_axis", "purge_s", "pump_capacity_m3_h"})
+    more.emplace_back(key);
+  return more;
+}
+
+}  // namespace detail
+
 MachineProfile load_machine_profile(const fs::path& profile_path) {
   auto doc = std::make_shared<Document>(load_document(profile_path));
   if (is_climbing_family(*doc)) {
@@ -134,26 +147,8 @@ MachineProfile load_machine_profile(const fs::path& profile_path) {
 MachineProfile load_machine_profile(const Document& doc, const fs::path& profile_path,
                                     const std::string* urdf_xml) {
   const Field root = Field::root(doc);
-  MapReader map(root, {"name",
-                       "description",
-                       "urdf",
-                       "joints",
-                       "deposition_speed_m_s",
-                       "travel_speed_m_s",
-                       "rotate_while_moving",
-                       "accel_delay_s",
-                       "lift_height_m",
-                       "lift_time_s",
-                       "lower_time_s",
-                       "nozzle_idle_limit_s",
-                       "nozzle_width_m",
-                       "nozzles",
-                       "gantry_width_m",
-                       "rail_axis",
-                       "purge_s",
-                       "climbing",
-                       "pump_capacity_m3_h",
-                       "bead_width_m"});
+  MapReader map(root, detail::with_gantry_process_keys(
+                          {"name", "description", "urdf", "joints", "climbing"}));
   map.reject_unknown();
 
   MachineModel m;
