@@ -102,10 +102,17 @@ for _ in $(seq 1 3000); do
 done
 [ "$crashed" = yes ] || { echo "variant v0006 never ran"; exit 1; }
 # Cancelled while it runs (Slurm keeps no record of a task cancelled before it starts).
-for _ in $(seq 1 1500); do
-  [ "$(squeue -h -j "${job}_10" -o %T 2>/dev/null)" = RUNNING ] && break
-  sleep 0.1
+# Its `schedule` is held stopped first: a variant takes about a second, and a task seen
+# RUNNING by squeue had finished before scancel reached it in a CI run.
+held=no
+for _ in $(seq 1 3000); do
+  if pkill -STOP -f -- "/variants/v0011/schedule[.]json --force"; then held=yes; break; fi
+  sleep 0.05
 done
+[ "$held" = yes ] || { echo "variant v0011 never ran"; exit 1; }
+[ "$(squeue -h -j "${job}_10" -o %T 2>/dev/null)" = RUNNING ] ||
+  { echo "task ${job}_10 is not running while its variant is held"; squeue; exit 1; }
+# Slurm sends SIGCONT and SIGTERM to the task's processes, then SIGKILL after KillWait.
 scancel "${job}_10"
 rc=0
 "$ccbuild" study collect "$work/slurm" --wait > "$work/collect1.txt" 2>&1 || rc=$?
