@@ -34,10 +34,8 @@ bool same_file(const fs::path& a, const fs::path& resolved_a, const fs::path& b)
   return resolved_a == resolved(b);
 }
 
-/// Why an existing `path` cannot be written as an output file (empty when it can), and
-/// whether it is a character device.
-std::string unwritable(const fs::path& path, bool& device) {
-  device = false;
+/// Why an existing `path` cannot be written as an output file (empty when it can).
+std::string unwritable(const fs::path& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) return "";
@@ -45,7 +43,6 @@ std::string unwritable(const fs::path& path, bool& device) {
     case fs::file_type::regular:
       return "";
     case fs::file_type::character:
-      device = true;
       return "is a character device (a terminal, /dev/null); ccbuild writes its outputs to "
              "regular files only: give a file name, or leave the flag out";
     case fs::file_type::directory:
@@ -197,9 +194,7 @@ void OutputClaims::claim_file(const std::string& flag, const fs::path& path, boo
   if (path.empty()) throw refused(path, flag, "expected a file name, got an empty one");
   const fs::path where = resolved(path);
   check_not_input_or_claimed(flag, path, where);
-  bool device = false;
-  if (const std::string why = unwritable(path, device); !why.empty())
-    throw refused(path, flag, why);
+  if (const std::string why = unwritable(path); !why.empty()) throw refused(path, flag, why);
   std::error_code ec;
   if (fs::exists(path, ec) && !overwrite)
     throw refused(path, flag, "output file exists; pass --force to overwrite it");
@@ -237,8 +232,7 @@ void OutputClaims::claim_read_write(const std::string& flag, const fs::path& pat
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status)) {
-    bool device = false;
-    throw refused(path, flag, unwritable(path, device));
+    throw refused(path, flag, unwritable(path));
   }
   if (!folder_ready(path)) throw refused(path, flag, missing_folder("folder", path));
   const auto add = [&](const fs::path& p, const fs::path& r) {
@@ -328,8 +322,7 @@ void OutputClaims::commit() {
     if (claim->folder || claim->in_place || claim->temporary.empty()) continue;
     try {
       check_claim_against_inputs(*claim);
-      bool device = false;
-      if (const std::string why = unwritable(claim->path, device); !why.empty())
+      if (const std::string why = unwritable(claim->path); !why.empty())
         throw refused(claim->path, claim->flag, why);
       std::error_code ec;
       if (!claim->overwrite && fs::exists(claim->path, ec))

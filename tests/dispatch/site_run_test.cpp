@@ -14,9 +14,12 @@
 #include <vector>
 
 #include "ccbuild/dispatch/dispatcher.hpp"
+#include "ccbuild/dispatch/site_clock.hpp"
 #include "ccbuild/dispatch/site_run.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/sim_machine.hpp"
+#include "ccbuild_lcm/ccbuild_clock_t.hpp"
+#include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 namespace ccbuild::dispatch {
 namespace {
@@ -147,6 +150,26 @@ TEST_P(AtEverySpeed, PlannedPathsRunToTheirEndsAtTheirPlannedTimes) {
   EXPECT_GE(site.run->guard().smallest_gap_m(), 3.8 - 1e-9);  // at t = 8 s, as planned
 }
 
+TEST_P(AtEverySpeed, AJobPlannedAtAnotherOnesEndStartsExactlyThere) {
+  // Layer 0: gantry-1 out to 6 m and gantry-2 in to 9 m, both in 8 s; layer 1 (planned
+  // at 8 s): gantry-1 back to 3 m by 15 s. A tick lands on the layer's planned end, so the
+  // next starts on time, not a status period or a step of the clock later.
+  std::vector<DispatchJob> jobs = {along_x("gantry-1", 10, {{0.0, 2.0}, {8.0, 6.0}}),
+                                   along_x("gantry-2", 20, {{0.0, 12.0}, {8.0, 9.0}}),
+                                   along_x("gantry-1", 30, {{0.0, 6.0}, {7.0, 3.0}})};
+  jobs[2].start_s = 8.0;
+  jobs[2].layer = 1;
+  TwoGantries site(GetParam(), jobs, {2.0, 12.0}, -1.0, /*guard=*/true);
+  site.go(120.0);
+  ASSERT_TRUE(site.dispatcher->finished());
+  EXPECT_FALSE(site.dispatcher->stopped());
+  EXPECT_EQ(site.sims[0]->executed(), (std::vector<std::int64_t>{10, 30}));
+  EXPECT_DOUBLE_EQ(site.dispatcher->executed().at(10).second, 8.0);
+  EXPECT_DOUBLE_EQ(site.dispatcher->executed().at(20).second, 8.0);
+  EXPECT_DOUBLE_EQ(site.dispatcher->executed().at(30).first, 8.0);
+  EXPECT_DOUBLE_EQ(site.dispatcher->executed().at(30).second, 15.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(SiteRun, AtEverySpeed, ::testing::Values(1.0, 10'000.0),
                          [](const auto& info) { return info.param == 1.0 ? "At1x" : "At10000x"; });
 
@@ -159,6 +182,75 @@ TEST(SiteRun, LostRepeatedAndReorderedMessagesRunNoJobTwice) {
   EXPECT_EQ(site.sims[1]->executed(), std::vector<std::int64_t>{20});
   EXPECT_DOUBLE_EQ(site.dispatcher->executed().at(20).second, 20.0);
   EXPECT_GT(site.run->clock().repeats() + site.dispatcher->resent(), 0);
+}
+
+/// `machine`'s answer to `tick`, idle at `t_s`.
+ccbuild_lcm::ccbuild_status_t answer(const std::string& machine, std::int64_t tick, double t_s) {
+  ccbuild_lcm::ccbuild_status_t s{};
+  s.machine_id = machine;
+  s.state = ccbuild_lcm::ccbuild_status_t::IDLE;
+  s.sim_time_s = t_s;
+  s.tick = tick;
+  s.idle_until_s = -1.0;
+  return s;
+}
+
+TEST(SiteClock, MovesOnOnlyOnceEveryMachineHasAnsweredTheCurrentTick) {
+  machine::Bus bus("memq://");
+  SiteClockOptions o;
+  o.machines = {"gantry-1", "gantry-2"};
+  o.copies = 1;
+  SiteClock clock(bus, o);
+  std::vector<std::int64_t> ticks_sent;
+  bus.subscribe<ccbuild_lcm::ccbuild_clock_t>(
+      machine::kClockChannel,
+      [&](const ccbuild_lcm::ccbuild_clock_t& c) { ticks_sent.push_back(c.tick); });
+  const auto say = [&](const ccbuild_lcm::ccbuild_status_t& s) {
+    bus.publish(machine::channel("STATUS", s.machine_id), s);
+    while (bus.handle(0) > 0) {
+    }
+  };
+  const std::vector<std::string> both = {"gantry-1", "gantry-2"}, second = {"gantry-2"};
+
+  // Before the first tick: answered once each machine has been heard; the site's time is
+  // the latest a machine reported.
+  EXPECT_FALSE(clock.answered());
+  say(answer("gantry-1", 0, 5.0));
+  EXPECT_FALSE(clock.answered());
+  EXPECT_EQ(clock.waiting_for(), second);
+  say(answer("gantry-2", 0, 3.0));
+  EXPECT_TRUE(clock.answered());
+  EXPECT_DOUBLE_EQ(clock.now_s(), 5.0);
+
+  clock.advance_to(6.0);
+  say(answer("gantry-1", 0, 5.0));  // a copy of an earlier answer, delivered late
+  EXPECT_EQ(clock.tick(), 1);
+  EXPECT_EQ(clock.waiting_for(), both);
+  say(answer("gantry-1", 1, 6.0));
+  EXPECT_FALSE(clock.answered());
+  EXPECT_EQ(clock.waiting_for(), second);
+  // An answer to the tick before is not an answer to this one (one tick behind).
+  say(answer("gantry-2", 0, 5.0));
+  EXPECT_FALSE(clock.answered());
+  EXPECT_EQ(clock.waiting_for(), second);
+  // Unanswered: the tick is sent again after repeat_after_s, not before.
+  const std::size_t sent = ticks_sent.size();
+  clock.step(o.repeat_after_s * 0.5);
+  while (bus.handle(0) > 0) {
+  }
+  EXPECT_EQ(ticks_sent.size(), sent);
+  clock.step(o.repeat_after_s * 0.5);
+  while (bus.handle(0) > 0) {
+  }
+  ASSERT_EQ(ticks_sent.size(), sent + 1);
+  EXPECT_EQ(ticks_sent.back(), 1);
+  say(answer("gantry-2", 1, 6.0));
+  EXPECT_TRUE(clock.answered());
+  EXPECT_TRUE(clock.waiting_for().empty());
+  // An older answer arriving after a newer one changes nothing.
+  say(answer("gantry-1", 0, 5.0));
+  EXPECT_EQ(clock.instants().at("gantry-1").tick, 1);
+  EXPECT_TRUE(clock.answered());
 }
 
 TEST(TerminationCondition, CancelledFromAnotherThreadThroughACopy) {

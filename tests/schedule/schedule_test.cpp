@@ -20,6 +20,7 @@
 #include "ccbuild/orchestrator/project.hpp"
 #include "ccbuild/schedule/schedule_diff.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "scheduler.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::schedule {
@@ -428,6 +429,29 @@ TEST(Schedule, AgeForStrengthInvertsTheCurve) {
     EXPECT_NEAR(m.strength_at_mpa(m.age_for_strength_s(mid_mpa)), mid_mpa, 1e-9);
   }
   EXPECT_TRUE(std::isinf(m.age_for_strength_s(m.strength_curve.back().strength_mpa + 1e-6)));
+}
+
+// Pipes cast after a layer lengthen the interval that ends at the next layer of its floor:
+// the run holding that next layer is given the time, the run holding the layer itself is
+// not (unless the pipes fall inside it), and pipes after a floor's top delay nothing.
+TEST(PipeTime, PipesDelayTheRunOfTheLayerAfterThemAndNothingAfterAFloorsTop) {
+  using detail::LayerOrder;
+  // Floor 0: layers 0-1 solid (geometry 0), 2-4 with a window (geometry 1); floor 1:
+  // layers 0-2 solid (geometry 0).
+  const std::vector<LayerOrder> order = {{0, 0, 0}, {0, 1, 0}, {0, 2, 1}, {0, 3, 1},
+                                         {0, 4, 1}, {1, 0, 0}, {1, 1, 0}, {1, 2, 0}};
+  constexpr double kPipe_s = 120.0;
+  // Two pipes after floor 0's layer 1 (the solid run's last), one after its top layer.
+  std::vector<double> s = detail::pipe_time_in_runs_s(order, {{{0, 1}, 2}, {{0, 4}, 1}}, kPipe_s);
+  EXPECT_EQ(s, (std::vector<double>{0, 0, 240, 240, 240, 0, 0, 0}));
+  // Inside a run: its most, not their sum; the next floor's first run is not given the
+  // time of pipes after the floor below's top.
+  s = detail::pipe_time_in_runs_s(order, {{{0, 2}, 1}, {{0, 3}, 3}, {{1, 0}, 1}}, kPipe_s);
+  EXPECT_EQ(s, (std::vector<double>{0, 0, 360, 360, 360, 120, 120, 120}));
+  // Pipes after the first layer of the building.
+  s = detail::pipe_time_in_runs_s(order, {{{0, 0}, 1}}, kPipe_s);
+  EXPECT_EQ(s, (std::vector<double>{120, 120, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(detail::pipe_time_in_runs_s({}, {{{0, 0}, 1}}, kPipe_s), std::vector<double>{});
 }
 
 }  // namespace

@@ -3,7 +3,8 @@
 # a folder of machine records belong to one schedule (another schedule's are refused and
 # left as they were); a log that cannot be written stops the run with exit 2 and leaves
 # nothing behind; a log on a device is refused; the fastest speed the machines accept
-# completes (statuses then come at the longest period they accept).
+# completes, on the site clock and on the machines' own (statuses then come at the longest
+# period they accept).
 # Usage: dry_run_outputs.sh CCBUILD   (needs root for unshare -n)
 set -euo pipefail
 if [ "$(id -u)" -eq 0 ]; then netns="unshare -n"; else netns="unshare -rn"; fi
@@ -68,5 +69,9 @@ ls "$out" | grep -q 'limited.lcmlog.tmp' && fail "the log's temporary file was l
 # The fastest speed: statuses at the longest period a machine accepts (86400 s).
 run fast "$out/twin.json" --speed 1e9
 expect fast 0 "completed within its constraints"
+# The same on the machines' own clocks: the status period kept under 200 a real second
+# (5e6 s at this speed) is clamped to the longest they accept, never refused.
+run fast_own "$out/twin.json" --speed 1e9 --own-clock
+expect fast_own 0 "completed within its constraints"
 
-echo "dry_run_outputs: journal and records kept to their schedule; log errors stop the run; devices refused; --speed 1e9 fine"
+echo "dry_run_outputs: journal and records kept to their schedule; log errors stop the run; devices refused; --speed 1e9 fine, on the site clock and on their own"

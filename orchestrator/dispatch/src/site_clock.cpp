@@ -37,16 +37,20 @@ SiteClock::SiteClock(machine::Bus& bus, SiteClockOptions options)
   }
 }
 
+bool SiteClock::behind(const std::string& machine, const MachineInstant& i) const {
+  return !heard_.at(machine) || i.tick < tick_;
+}
+
 bool SiteClock::answered() const {
   for (const auto& [m, i] : instants_)
-    if (!heard_.at(m) || i.tick < tick_) return false;
+    if (behind(m, i)) return false;
   return true;
 }
 
 std::vector<std::string> SiteClock::waiting_for() const {
   std::vector<std::string> out;
   for (const auto& [m, i] : instants_)
-    if (!heard_.at(m) || i.tick < tick_) out.push_back(m);
+    if (behind(m, i)) out.push_back(m);
   return out;
 }
 

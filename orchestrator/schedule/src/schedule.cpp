@@ -316,25 +316,37 @@ void Scheduler::prepare() {
       climb_after_[{st.last.floor, st.last.layer}] = static_cast<int>(s);
   }
 
-  // Per layer: the most pipe time cast just before one of its run's layers (consecutive
-  // layers of one floor and geometry) after a layer of the same floor, so that the run
-  // gets nozzles enough for it. Pipes after a floor's top layer delay no interval: the
-  // next floor starts on its slab.
-  run_between_s_.assign(count, 0.0);
+  std::vector<LayerOrder> order;
+  order.reserve(slices_.size());
+  for (const Slice& slice : slices_)
+    order.push_back({slice.floor, slice.layer.index, slice.geometry});
+  std::map<std::pair<int, int>, int> pipe_counts;
+  for (const auto& [key, anchors] : pipes_after_)
+    pipe_counts[key] = static_cast<int>(anchors.size());
+  run_between_s_ = pipe_time_in_runs_s(order, pipe_counts,
+                                       project_.climber ? project_.climber->pipe_embed_s : 0.0);
+}
+
+std::vector<double> pipe_time_in_runs_s(const std::vector<LayerOrder>& order,
+                                        const std::map<std::pair<int, int>, int>& pipes_after,
+                                        double pipe_s) {
+  const int count = static_cast<int>(order.size());
+  std::vector<double> out(order.size(), 0.0);
   for (int first = 0; first < count;) {
     int last = first;
-    while (last + 1 < count && slices_[last + 1].floor == slices_[first].floor &&
-           slices_[last + 1].geometry == slices_[first].geometry)
+    while (last + 1 < count && order[last + 1].floor == order[first].floor &&
+           order[last + 1].geometry == order[first].geometry)
       ++last;
     double most_s = 0.0;
     for (int k = std::max(first, 1); k <= last; ++k)
-      if (slices_[k - 1].floor == slices_[k].floor)
-        if (auto it = pipes_after_.find({slices_[k - 1].floor, slices_[k - 1].layer.index});
-            it != pipes_after_.end())
-          most_s = std::max(most_s, it->second.size() * project_.climber->pipe_embed_s);
-    std::fill(run_between_s_.begin() + first, run_between_s_.begin() + last + 1, most_s);
+      if (order[k - 1].floor == order[k].floor)
+        if (auto it = pipes_after.find({order[k - 1].floor, order[k - 1].layer});
+            it != pipes_after.end())
+          most_s = std::max(most_s, it->second * pipe_s);
+    std::fill(out.begin() + first, out.begin() + last + 1, most_s);
     first = last + 1;
   }
+  return out;
 }
 
 bool Scheduler::schedule_layer(int i) {

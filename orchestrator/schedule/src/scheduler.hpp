@@ -52,6 +52,22 @@ struct Planned {
   double planning_s = 0.0;
 };
 
+/// A layer in building order, as the pipe rule needs it: its floor, its index on the floor
+/// and its geometry.
+struct LayerOrder {
+  int floor = 0, layer = 0, geometry = 0;
+};
+
+/// Per layer of `order` (the building's layers in order): the most pipe-casting time, s,
+/// between two layers of its run (consecutive layers of one floor and geometry), so that
+/// the run gets nozzles enough for it. Pipes cast after layer L delay the interval that
+/// ends at L's successor on the floor, which belongs to that layer's run; pipes after a
+/// floor's top layer delay no interval (the next floor starts on its slab).
+/// `pipes_after` counts the pipes cast after each (floor, layer); each takes `pipe_s`.
+std::vector<double> pipe_time_in_runs_s(const std::vector<LayerOrder>& order,
+                                        const std::map<std::pair<int, int>, int>& pipes_after,
+                                        double pipe_s);
+
 }  // namespace ccbuild::schedule::detail
 
 namespace ccbuild::schedule {

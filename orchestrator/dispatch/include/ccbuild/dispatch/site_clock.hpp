@@ -66,6 +66,8 @@ class SiteClock {
 
  private:
   void publish();
+  /// Not heard yet, or its latest answer is to an earlier tick than the current one.
+  bool behind(const std::string& machine, const MachineInstant& i) const;
   machine::Bus& bus_;
   SiteClockOptions options_;
   std::map<std::string, MachineInstant> instants_;
