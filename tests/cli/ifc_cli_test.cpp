@@ -275,9 +275,9 @@ TEST(IfcCommands, ThePublicGymzaalSchedulesTurnedOntoTheRailsItsTiledWallsLeftTo
   // out: flagged, by GlobalId.
   std::cout << imported.out;
   EXPECT_TRUE(contains(imported.out,
-                       "quantities: floor '00 Begane grond': prints 98.95 m³ of "
+                       "quantities: floor '00 Begane grond': prints 98.73 m³ of "
                        "walls; the model's NetVolume of the 48 walls that state "
-                       "one is 97.26 m³, printed 98.95 m³ (+1.7%)\n"))
+                       "one is 97.26 m³, printed 98.73 m³ (+1.5%)\n"))
       << imported.out;
   EXPECT_TRUE(contains(imported.out,
                        "(+4.3%) — OFF by more than 3%: 3yKL7w3aP50Qs40ucQ6Nhz "
@@ -314,12 +314,52 @@ TEST(IfcCommands, ThePublicGymzaalSchedulesTurnedOntoTheRailsItsTiledWallsLeftTo
                                      " --no-compare -o " + (dir / "gym.json").string());
   ASSERT_EQ(scheduled.exit_code, 0) << scheduled.err;
   std::cout << scheduled.out;
-  EXPECT_TRUE(contains(scheduled.out, "62 layers, 9 distinct plans, feasible")) << scheduled.out;
+  EXPECT_TRUE(contains(scheduled.out, "62 layers, 7 distinct plans, feasible")) << scheduled.out;
   EXPECT_TRUE(contains(scheduled.out,
-                       "quantities: floor '00 Begane grond': prints 97.46 m³ of walls; the model's "
-                       "NetVolume of the 25 walls that state one is 96.35 m³, printed 97.46 m³ "
-                       "(+1.1%)"))
+                       "quantities: floor '00 Begane grond': prints 97.33 m³ of walls; the model's "
+                       "NetVolume of the 25 walls that state one is 96.35 m³, printed 97.33 m³ "
+                       "(+1.0%)"))
       << scheduled.out;
+  fs::remove_all(dir);
+}
+
+TEST(IfcCommands, ThePublicInstituteFromArchicadPrintsEveryStoreyWithinItsOwnQuantities) {
+  // KIT's "Institute Var. 2" office (ArchiCAD 11, IFC2X3; GPL-3.0, from opensourceBIM's test
+  // files): five storeys, 119 walls and 283 openings, every wall with its NetVolume; its
+  // attic's gables and knee walls cut under the roof by polygonal bounded half-spaces, each
+  // cut only inside its prism (read as whole planes, the attic printed 5.6% short).
+  const std::string model = "tests/data/ifc/public/AC11-Institute-Var-2-IFC.ifc";
+  const fs::path dir = scratch("institute");
+  const auto imported = run_ccbuild("import " + model + " -o " + (dir / "b.yaml").string());
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  std::cout << imported.out;
+  EXPECT_TRUE(contains(imported.out, "5 floors, 119 walls, 283 openings (IFC2X3)")) << imported.out;
+  EXPECT_TRUE(contains(imported.err, "left out: 0 elements")) << imported.err;
+  EXPECT_FALSE(contains(imported.err, "half-space")) << imported.err;
+  EXPECT_TRUE(contains(imported.err,
+                       "IfcWallStandardCase 05pt4VPQf37w1V18yX4Rbi 'Wand-003' has a top from "
+                       "1.208 to 2.669 m above the floor's level"))
+      << imported.err;
+  EXPECT_TRUE(contains(imported.out,
+                       "quantities: floor 'Dachgeschoss': prints 37.88 m³ of walls; the model's "
+                       "NetVolume of the 8 walls that state one is 38.22 m³, printed 37.88 m³ "
+                       "(-0.9%)\n"))
+      << imported.out;
+  // On the bundled gantry (its beads of 0.10 to 0.25 m: the 0.2 m walls one pass each, the
+  // 0.3 m walls two skins), each storey within 3% of the model's own volume.
+  const auto valid = run_ccbuild("validate --json " + model);
+  ASSERT_EQ(valid.exit_code, 0) << valid.err;
+  const auto v = nlohmann::json::parse(valid.out);
+  ASSERT_EQ(v["floors"].size(), 5u);
+  for (const auto& floor : v["floors"]) {
+    const double printed_m3 = floor["printed_modelled_m3"].get<double>();
+    const double model_m3 = floor["model_volume_m3"].get<double>();
+    std::cout << floor["name"].get<std::string>() << ": " << printed_m3 << " m³ printed, "
+              << model_m3 << " m³ in the model\n";
+    EXPECT_LE(std::abs(printed_m3 / model_m3 - 1.0), 0.03) << floor.dump();
+    EXPECT_FALSE(floor["model_volume_off"].get<bool>()) << floor.dump();
+  }
+  EXPECT_NEAR(v["floors"][4]["printed_modelled_m3"].get<double>(), 37.74, 0.005);
   fs::remove_all(dir);
 }
 

@@ -370,6 +370,46 @@ TEST(IfcImport, AnAxisRunningPastItsBodyAtAFreeEndIsPrintedToTheBody) {
   EXPECT_NEAR(q.printed_modelled_m3, *q.model_m3, 1e-9);
 }
 
+// Polygonal bounded half-spaces (bounded_cuts_ifc4.ifc) take away only inside their prisms:
+// a notch over 2-4 m of the south wall (a prism swept upwards), over 1-3 m of the west wall
+// (swept across it, drawn in its elevation) and of the north wall (an L-shaped boundary, not
+// convex). Each wall prints exactly its model's NetVolume, and nothing is read as the whole
+// plane's half-space.
+TEST(IfcImport, ABoundedHalfSpaceCutsOnlyInsideItsPrism) {
+  const IfcImport read = read_ifc_building(model("bounded_cuts_ifc4.ifc"));
+  const floors::FloorPlan& plan = read.building.floors[0].plan;
+  ASSERT_EQ(plan.walls.size(), 4u);
+  struct Expected {
+    const char* name;
+    double from_m, to_m, notch_m;
+  };
+  for (const Expected& e :
+       {Expected{"South wall", 2.0, 4.0, 1.8}, Expected{"West wall", 1.0, 3.0, 2.4},
+        Expected{"North wall", 1.0, 3.0, 2.0}}) {
+    const floors::Wall* w = wall_named(plan, e.name);
+    ASSERT_NE(w, nullptr) << e.name;
+    ASSERT_FALSE(w->top_m.empty()) << e.name;
+    const double length_m = plan.wall_length_m(*w);
+    // Both ends of the notch, just inside and just outside it, and the wall's ends.
+    for (const auto& [s_m, z_m] :
+         std::vector<std::pair<double, double>>{{0.0, 3.0},
+                                                {e.from_m - 1e-3, 3.0},
+                                                {e.from_m + 1e-3, e.notch_m},
+                                                {0.5 * (e.from_m + e.to_m), e.notch_m},
+                                                {e.to_m - 1e-3, e.notch_m},
+                                                {e.to_m + 1e-3, 3.0},
+                                                {length_m, 3.0}})
+      EXPECT_NEAR(floors::top_at(w->top_m, s_m), z_m, 1e-6) << e.name << " at " << s_m << " m";
+  }
+  EXPECT_TRUE(wall_named(plan, "East wall")->top_m.empty());
+  EXPECT_FALSE(contains(all(read.notes), "half-space")) << all(read.notes);
+  const floors::FloorQuantities q = floors::floor_quantities(read.building.floors[0], 0.1, 0.0);
+  ASSERT_TRUE(q.model_m3);
+  ASSERT_EQ(q.elements.size(), 4u);
+  for (const auto& element : q.elements)
+    EXPECT_NEAR(element.printed_m3, *element.model_m3, 1e-9) << element.global_id;
+}
+
 TEST(IfcImport, FiltersChooseWhichWallsArePrinted) {
   IfcOptions o;
   o.excluded_materials.clear();            // the gypsum partition too

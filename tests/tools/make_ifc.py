@@ -302,10 +302,14 @@ class Model:
 
     def wall(self, storey, name, start, end, thickness_m, height_m, axis=True,
              body="rectangle", material="Concrete", entity=None, curve=None, ridge_m=None,
-             clip=False, body_span=None):
+             clip=False, body_span=None, bounded=None):
         """A straight wall from `start` to `end` (metres, storey frame): placed at its
         start, turned along it; returns (wall, its placement, its length). `body_span`:
-        (from, to) along the axis where a rectangular body stands (default: all of it)."""
+        (from, to) along the axis where a rectangular body stands (default: all of it).
+        `bounded`: polygonal bounded half-spaces taken away from its box, each
+        (z, (at, ref, axis), boundary): everything above the level z (wall frame) inside the
+        prism of `boundary` (points in the placement (at, ref, axis)'s xy plane, swept
+        along its z)."""
         f = self.f
         st, st_place = storey
         dx, dy = end[0] - start[0], end[1] - start[1]
@@ -323,7 +327,20 @@ class Model:
             line = f.add("IFCPOLYLINE", "(%s,%s)" % (self.mpoint(0, 0), self.mpoint(length, 0)))
             reps.append(f.add("IFCSHAPEREPRESENTATION", self.axis_context, "'Axis'", "'Curve2D'",
                               "(%s)" % line))
-        if ridge_m is not None and clip:  # a gable: a box cut by its roof's two planes
+        if bounded:  # a box, parts of its top taken away
+            box = self.extrusion(self.rectangle((length / 2, 0), length, thickness_m),
+                                 f.add("IFCAXIS2PLACEMENT3D", self.origin, "$", "$"), height_m)
+            for z, (at, ref, ax), boundary in bounded:
+                plane = f.add("IFCPLANE", self.axis3((0, 0, z)))
+                pts = [self.mpoint(*p) for p in boundary]
+                poly = f.add("IFCPOLYLINE", "(%s)" % ",".join(pts + [pts[0]]))
+                half = f.add("IFCPOLYGONALBOUNDEDHALFSPACE", plane, ".F.",
+                             self.axis3(at, ref=ref, axis=ax), poly)
+                box = f.add("IFCBOOLEANCLIPPINGRESULT", ".DIFFERENCE.", box, half)
+            reps.append(f.add("IFCSHAPEREPRESENTATION", self.body_context, "'Body'",
+                              "'Clipping'", "(%s)" % box))
+            profile = None
+        elif ridge_m is not None and clip:  # a gable: a box cut by its roof's two planes
             box = self.extrusion(self.rectangle((length / 2, 0), length, thickness_m),
                                  f.add("IFCAXIS2PLACEMENT3D", self.origin, "$", "$"), ridge_m)
             rise = (ridge_m - height_m) / (length / 2)
@@ -495,6 +512,36 @@ def free_end():
         m.net_volume(wall[0], wall[2] * t * h)
     garden = m.wall(g, "Garden wall", (6, 0), (9.6, 0), t, 1.2, body_span=(0.0, 3.0))
     m.net_volume(garden[0], 3.0 * t * 1.2)
+    m.finish()
+    return m.f
+
+
+def bounded_cuts():
+    """A one-room house (6 m x 4 m, 0.2 m walls, 3 m), three of its walls cut by polygonal
+    bounded half-spaces (as ArchiCAD cuts a wall under a beam or a roof), each wall with the
+    NetVolume of what is left: the south wall above 1.8 m between 2 m and 4 m along it (a
+    prism swept upwards); the west wall above 2.4 m between 1 m and 3 m along it (a prism
+    swept across the wall, its boundary drawn in the wall's elevation); the north wall above
+    2 m inside an L-shaped boundary (not convex), which crosses the wall between 1 m and 3 m
+    along it."""
+    m = Model("IFC4", "mm")
+    t, h = 0.2, 3.0
+    g = m.storey("Ground floor", 0.0)
+    up = ((0, 0, 0), None, None)
+    south = m.wall(g, "South wall", (0, 0), (6, 0), t, h,
+                   bounded=[(1.8, up, [(2, -1), (4, -1), (4, 1), (2, 1)])])
+    m.net_volume(south[0], t * (6 * h - 2 * (h - 1.8)))
+    east = m.wall(g, "East wall", (6, 0), (6, 4), t, h)
+    m.net_volume(east[0], t * 4 * h)
+    # Swept along the wall's y (across it), x along it: the boundary's y is the wall's -z.
+    # The L-shaped boundary is drawn clockwise.
+    across = ((0, 0, 0), (1, 0), (0, 1, 0))
+    north = m.wall(g, "North wall", (6, 4), (0, 4), t, h,
+                   bounded=[(2.0, up, [(1, 1), (3, 1), (3, -0.5), (5, -0.5), (5, -1), (1, -1)])])
+    m.net_volume(north[0], t * (6 * h - 2 * (h - 2.0)))
+    west = m.wall(g, "West wall", (0, 4), (0, 0), t, h,
+                  bounded=[(2.4, across, [(1, -3.5), (3, -3.5), (3, -1), (1, -1)])])
+    m.net_volume(west[0], t * (4 * h - 2 * (h - 2.4)))
     m.finish()
     return m.f
 
@@ -688,6 +735,7 @@ def main():
     write("quantities_ifc4.ifc", quantities("IFC4", "m3").text("quantities_ifc4.ifc"))
     write("quantities_ifc2x3.ifc", quantities("IFC2X3", "dm3").text("quantities_ifc2x3.ifc"))
     write("free_end_ifc4.ifc", free_end().text("free_end_ifc4.ifc"))
+    write("bounded_cuts_ifc4.ifc", bounded_cuts().text("bounded_cuts_ifc4.ifc"))
     text = house("IFC4").text("truncated.ifc")
     write("truncated.ifc", text[: int(len(text) * 0.6)])
     # A wall's placement relative to itself.

@@ -153,8 +153,12 @@ std::optional<Reader::Solid> Reader::solid_of(const std::shared_ptr<IfcRepresent
       // AgreementFlag true: the plane's normal points away from the half-space's material.
       const bool away = half->m_AgreementFlag && half->m_AgreementFlag->m_value;
       const Vector3d normal = at.linear().col(2).normalized();
-      first->cuts.push_back({at.translation(), away ? Vector3d(-normal) : normal,
-                             static_cast<bool>(as<IfcPolygonalBoundedHalfSpace>(half))});
+      Solid::Cut cut{at.translation(), away ? Vector3d(-normal) : normal, {}, false};
+      if (const auto bounded = as<IfcPolygonalBoundedHalfSpace>(half)) {
+        cut.prisms = prisms_of(*bounded);
+        cut.bounded = cut.prisms.empty();
+      }
+      first->cuts.push_back(std::move(cut));
     } else {
       first->cut_unread = true;
     }
@@ -260,6 +264,85 @@ void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_worl
   }
 }
 
+namespace {
+
+/// Twice the signed area of the corner p, q, r: > 0 when it turns counter-clockwise.
+double turn(const Vector2d& p, const Vector2d& q, const Vector2d& r) {
+  const Vector2d e = q - p, f = r - q;
+  return e.x() * f.y() - e.y() * f.x();
+}
+
+/// A simple polygon, counter-clockwise, as convex pieces: itself when convex, else the
+/// triangles of its ears clipped one by one; empty when no ear is found (it crosses itself).
+std::vector<std::vector<Vector2d>> convex_pieces(std::vector<Vector2d> polygon) {
+  const auto convex = [](const std::vector<Vector2d>& p) {
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (turn(p[k], p[(k + 1) % p.size()], p[(k + 2) % p.size()]) < -1e-12) return false;
+    return true;
+  };
+  std::vector<std::vector<Vector2d>> out;
+  while (polygon.size() > 3 && !convex(polygon)) {
+    const std::size_t n = polygon.size();
+    bool clipped = false;
+    for (std::size_t k = 0; k < n && !clipped; ++k) {
+      const Vector2d &p = polygon[(k + n - 1) % n], &q = polygon[k], &r = polygon[(k + 1) % n];
+      if (turn(p, q, r) <= 1e-12) continue;  // a reflex or straight corner is no ear
+      bool empty = true;
+      for (std::size_t j = 0; j < n && empty; ++j) {
+        const Vector2d& x = polygon[j];
+        if (j == k || j == (k + 1) % n || j == (k + n - 1) % n) continue;
+        empty = !(turn(p, q, x) >= 0.0 && turn(q, r, x) >= 0.0 && turn(r, p, x) >= 0.0);
+      }
+      if (!empty) continue;
+      out.push_back({p, q, r});
+      polygon.erase(polygon.begin() + static_cast<std::ptrdiff_t>(k));
+      clipped = true;
+    }
+    if (!clipped) return {};
+  }
+  out.push_back(std::move(polygon));
+  return out;
+}
+
+}  // namespace
+
+std::vector<Reader::Solid::Prism> Reader::prisms_of(
+    const IfcPolygonalBoundedHalfSpace& half) const {
+  // A boundary of more corners than this is read as the whole half-space (and said).
+  constexpr std::size_t kMostCorners = 1000;
+  if (!half.m_PolygonalBoundary) return {};
+  const Isometry3d at = half.m_Position ? axis_placement(half.m_Position) : Isometry3d::Identity();
+  std::vector<Vector2d> polygon;
+  bool curved = false;
+  try {
+    polygon = curve_points(half.m_PolygonalBoundary, curved, 0);
+  } catch (const Unusable&) {
+    return {};
+  }
+  if (polygon.size() > 1 && (polygon.front() - polygon.back()).norm() < 1e-9) polygon.pop_back();
+  if (curved || polygon.size() < 3 || polygon.size() > kMostCorners) return {};
+  double area2 = 0.0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Vector2d &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
+    area2 += p.x() * q.y() - q.x() * p.y();
+  }
+  if (std::abs(area2) < 1e-12) return {};
+  if (area2 < 0.0) std::reverse(polygon.begin(), polygon.end());
+  std::vector<Solid::Prism> prisms;
+  for (const auto& piece : convex_pieces(std::move(polygon))) {
+    Solid::Prism prism;
+    for (std::size_t k = 0; k < piece.size(); ++k) {
+      const Vector2d e = piece[(k + 1) % piece.size()] - piece[k];
+      if (e.norm() < 1e-12) continue;
+      const Vector2d out = Vector2d(e.y(), -e.x()).normalized();  // counter-clockwise: right
+      prism.push_back({at * Vector3d(piece[k].x(), piece[k].y(), 0.0),
+                       at.linear() * Vector3d(out.x(), out.y(), 0.0)});
+    }
+    prisms.push_back(std::move(prism));
+  }
+  return prisms;
+}
+
 std::vector<std::pair<double, double>> Reader::top_outline(const std::vector<Solid>& bodies,
                                                            const Vector2d& a, const Vector2d& b,
                                                            double z0_m) {
@@ -289,26 +372,61 @@ std::vector<std::pair<double, double>> Reader::top_outline(const std::vector<Sol
       }
       outline = {{s0, z_lo}, {s1, z_lo}, {s1, z_hi}, {s0, z_hi}};
     }
-    // Each half-space taken away, along the piece: removed where
-    // alpha s + beta z + gamma > 0; the outline clipped to the rest (Sutherland-Hodgman).
-    for (const Solid::Cut& cut : body.cuts) {
-      const Vector3d& r = cut.removed;
-      const double alpha = r.x() * d.x() + r.y() * d.y(), beta = r.z();
-      const double gamma =
-          r.x() * (a.x() - cut.point.x()) + r.y() * (a.y() - cut.point.y()) - r.z() * cut.point.z();
-      const auto side = [&](const Vector2d& p) { return alpha * p.x() + beta * p.y() + gamma; };
-      std::vector<Vector2d> kept;
-      for (std::size_t k = 0; k < outline.size(); ++k) {
-        const Vector2d& p = outline[k];
-        const Vector2d& q = outline[(k + 1) % outline.size()];
-        const double sp = side(p), sq = side(q);
-        if (sp <= 0.0) kept.push_back(p);
-        if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
-          kept.push_back(p + (q - p) * (sp / (sp - sq)));
+    // A plane through `point` with unit normal `n`, along the piece: alpha s + beta z +
+    // gamma, positive on the side `n` points to.
+    struct Side {
+      double alpha, beta, gamma;
+      double operator()(const Vector2d& p) const { return alpha * p.x() + beta * p.y() + gamma; }
+      Side flipped() const { return {-alpha, -beta, -gamma}; }
+    };
+    const auto side_of = [&](const Vector3d& point, const Vector3d& n) {
+      return Side{n.x() * d.x() + n.y() * d.y(), n.z(),
+                  n.x() * (a.x() - point.x()) + n.y() * (a.y() - point.y()) - n.z() * point.z()};
+    };
+    // The part of `polygon` where every side is <= 0 (Sutherland-Hodgman).
+    const auto clip = [](std::vector<Vector2d> polygon, const std::vector<Side>& sides) {
+      for (const Side& side : sides) {
+        std::vector<Vector2d> kept;
+        for (std::size_t k = 0; k < polygon.size(); ++k) {
+          const Vector2d& p = polygon[k];
+          const Vector2d& q = polygon[(k + 1) % polygon.size()];
+          const double sp = side(p), sq = side(q);
+          if (sp <= 0.0) kept.push_back(p);
+          if ((sp < 0.0 && sq > 0.0) || (sp > 0.0 && sq < 0.0))
+            kept.push_back(p + (q - p) * (sp / (sp - sq)));
+        }
+        polygon = std::move(kept);
       }
-      outline = std::move(kept);
+      return polygon;
+    };
+    // Each half-space taken away, along the piece. Unbounded: the outline clipped to the
+    // other side. Bounded by a prism: what is outside the half-space, and inside it what is
+    // outside the prism, face by face (outside face k, inside the faces before it), so that
+    // the pieces cover what is kept once.
+    // Prisms that do not overlap are taken away one after the other.
+    std::vector<std::vector<Vector2d>> pieces = {outline};
+    for (const Solid::Cut& cut : body.cuts) {
+      const Side removed = side_of(cut.point, cut.removed);
+      const std::vector<Solid::Prism> prisms =
+          cut.prisms.empty() ? std::vector<Solid::Prism>{{}} : cut.prisms;
+      for (const Solid::Prism& prism : prisms) {
+        std::vector<std::vector<Vector2d>> kept;
+        for (const auto& piece : pieces) {
+          kept.push_back(clip(piece, {removed}));
+          std::vector<Side> inside = {removed.flipped()};
+          for (const Solid::Face& face : prism) {
+            const Side out = side_of(face.point, face.outward);
+            inside.push_back(out.flipped());
+            kept.push_back(clip(piece, inside));
+            inside.back() = out;
+          }
+        }
+        pieces.clear();
+        for (auto& piece : kept)
+          if (piece.size() >= 3) pieces.push_back(std::move(piece));
+      }
     }
-    if (outline.size() >= 3) outlines.push_back(std::move(outline));
+    for (auto& piece : pieces) outlines.push_back(std::move(piece));
   }
   // The highest point of any outline over `s` (its edges over s, either end included when
   // `right` says which side of a vertical step counts); nullopt where none is.
@@ -331,6 +449,9 @@ std::vector<std::pair<double, double>> Reader::top_outline(const std::vector<Sol
     for (const Vector2d& p : o)
       if (p.x() > 0.0 && p.x() < length_m) at.push_back(p.x());
   std::sort(at.begin(), at.end());
+  // Pieces of one body share their corners: each place once.
+  at.erase(std::unique(at.begin(), at.end(), [](double x, double y) { return y - x < 1e-9; }),
+           at.end());
   std::vector<std::pair<double, double>> top;
   for (const double s : at)
     for (const bool right : {false, true}) {

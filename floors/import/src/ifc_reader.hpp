@@ -12,6 +12,7 @@
 #include <ifcpp/IFC4/include/IfcLengthMeasure.h>
 #include <ifcpp/IFC4/include/IfcObjectDefinition.h>
 #include <ifcpp/IFC4/include/IfcObjectPlacement.h>
+#include <ifcpp/IFC4/include/IfcPolygonalBoundedHalfSpace.h>
 #include <ifcpp/IFC4/include/IfcProject.h>
 #include <ifcpp/IFC4/include/IfcReal.h>
 #include <ifcpp/IFC4/include/IfcRepresentationItem.h>
@@ -112,9 +113,17 @@ class Reader {
     bool clipped = false;
     /// Half-spaces taken away from it (IfcBooleanClippingResult: a roof's planes over a
     /// gable), in the wall's frame: `point` on the plane, `removed` the unit normal towards
-    /// the side taken away; `bounded` a polygonal bounded half-space, read as unbounded.
+    /// the side taken away. A polygonal bounded half-space takes away only inside its
+    /// prism, held as convex prisms that do not overlap (`prisms`, each its side faces: a
+    /// point on each and its outward unit normal); `bounded` says its boundary could not be
+    /// read (curved, say), so the whole half-space is taken away.
+    struct Face {
+      Vector3d point, outward;
+    };
+    using Prism = std::vector<Face>;
     struct Cut {
       Vector3d point, removed;
+      std::vector<Prism> prisms;
       bool bounded = false;
     };
     std::vector<Cut> cuts;
@@ -122,6 +131,11 @@ class Reader {
   };
   std::optional<Solid> solid_of(const std::shared_ptr<IfcRepresentationItem>& item,
                                 int depth) const;
+  /// A polygonal bounded half-space's prism (its boundary, a polygon in its Position's xy
+  /// plane, swept along that Position's z) as convex prisms (the boundary cut into
+  /// triangles where it is not convex), in the frame the half-space is placed in; empty
+  /// when the boundary is curved, crosses itself or cannot be read.
+  std::vector<Solid::Prism> prisms_of(const IfcPolygonalBoundedHalfSpace& half) const;
   /// The upper outline of a wall's solids along its piece from `a` to `b` (the wall's
   /// frame), as FoundWall::piece_tops holds it; `z0_m` the wall's frame's z in the model's.
   static std::vector<std::pair<double, double>> top_outline(const std::vector<Solid>& bodies,
