@@ -266,6 +266,60 @@ TEST(ImportCommand, ADrawingImportedSchedulesAsTheDrawingNamedDirectly) {
   fs::remove_all(dir);
 }
 
+// A drafted drawing's door and window blocks without SILL or HEAD attributes take their
+// layer's heights, else the defaults, given as import flags or in a building naming the
+// drawing: both give the same schedule. A layer that holds no doors or windows, or a layer
+// given no height, is refused with exit 2 and nothing written.
+TEST(ImportCommand, DrawnOpeningsTakeTheirLayersHeightsFromFlagsOrTheBuilding) {
+  const fs::path dir = scratch("layer_heights");
+  const std::string drafted = testing::source_path("tests/data/drawings/drafted_mm.dxf").string();
+  const std::string layers = " --wall-layers A-WALL --door-layers A-DOOR --window-layers A-GLAZ";
+  const auto imported = run_ccbuild("import " + drafted + layers +
+                                    " --door-head 2.3 --layer-heights a-glaz=1.2: --layer-height "
+                                    "0.5 -o " +
+                                    (dir / "flags.yaml").string());
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  const std::string plan = slurp(dir / "flags.plan.yaml");
+  EXPECT_TRUE(contains(plan, "width: 0.9, sill: 0, head: 2.3}  # insert 11C of block DOOR900"))
+      << plan;
+  EXPECT_TRUE(contains(plan, "sill: 1, head: 2.2}  # insert 11D of block WIN1200")) << plan;
+  EXPECT_TRUE(contains(plan, "sill: 1.2, head: 2.1}  # insert 121 of block WIN1200")) << plan;
+  const std::string config = testing::source_path("config").string();
+  const auto building = [&](const std::string& heights) {
+    return "units: m\nlayer_height: 0.5\nmaterial: " + config +
+           "/materials/standard-mix.yaml\nmachine: " + config +
+           "/machines/cc-gantry.yaml\nfloors:\n  - {height: 3, plan: {dxf: " + drafted +
+           ", wall_layers: A-WALL, door_layers: A-DOOR, window_layers: A-GLAZ, door_head: 2.3, " +
+           "layer_heights: " + heights + "}}\n";
+  };
+  std::ofstream(dir / "direct.yaml") << building("[{layer: A-GLAZ, sill: 1.2}]");
+  for (const char* name : {"flags", "direct"})
+    ASSERT_EQ(
+        run_ccbuild("schedule " + (dir / (std::string(name) + ".yaml")).string() +
+                    " --quiet --no-compare -o " + (dir / (std::string(name) + ".json")).string())
+            .exit_code,
+        0)
+        << name;
+  const auto diff =
+      run_ccbuild("diff " + (dir / "flags.json").string() + " " + (dir / "direct.json").string());
+  EXPECT_EQ(diff.exit_code, 0) << diff.out;
+  const auto walls = run_ccbuild("import " + drafted + layers + " --layer-heights A-WALL=1:2 -o " +
+                                 (dir / "walls.yaml").string());
+  EXPECT_EQ(walls.exit_code, 2);
+  EXPECT_TRUE(contains(walls.err,
+                       "--layer-heights: layer 'A-WALL' is not among --door-layers or "
+                       "--window-layers"))
+      << walls.err;
+  EXPECT_FALSE(fs::exists(dir / "walls.yaml"));
+  EXPECT_FALSE(fs::exists(dir / "walls.plan.yaml"));
+  std::ofstream(dir / "none.yaml") << building("[{layer: A-GLAZ}]");
+  const auto none = run_ccbuild("validate " + (dir / "none.yaml").string());
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_TRUE(contains(none.err, "none.yaml:6")) << none.err;
+  EXPECT_TRUE(contains(none.err, "give the layer's sill, its head or both")) << none.err;
+  fs::remove_all(dir);
+}
+
 TEST(ScheduleCommand, BadInputIsExitTwo) {
   EXPECT_EQ(run_ccbuild("schedule tests/data/buildings/missing_plan.yaml --quiet").exit_code, 2);
   const auto jobs = run_ccbuild("schedule config/buildings/house.yaml --jobs -1");

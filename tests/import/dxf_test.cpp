@@ -363,5 +363,54 @@ TEST(DxfImport, ABlockInAGapIsThatGapsOpening) {
       << all(narrow.notes);
 }
 
+// A door or window layer's own sill and head (layer_heights, any case) stand in for the
+// kind's defaults where a block has no SILL or HEAD attribute; its attributes still win. A
+// layer that holds no doors or windows, or a sill that ends up at or over its head, is
+// refused naming where each height came from.
+TEST(DxfImport, ALayersOwnSillAndHeadStandInForTheDefaults) {
+  DxfOptions o;
+  o.wall_layers = {"A-WALL"};
+  o.door_layers = {"A-DOOR"};
+  o.window_layers = {"A-GLAZ"};
+  o.layer_heights = {{"a-door", {std::nullopt, 2.4}}, {"A-Glaz", {1.2, std::nullopt}}};
+  const DxfPlan read = read_dxf_plan(drawing("drafted_mm.dxf"), o);
+  ASSERT_EQ(read.plan.openings.size(), 3u);
+  int checked = 0;
+  for (const auto& op : read.plan.openings) {
+    SCOPED_TRACE(op.id + " " + op.source.path);
+    if (op.id[0] == 'D') {  // the door block: the layer's head, a door's sill
+      EXPECT_EQ(op.sill_m, 0.0);
+      EXPECT_NEAR(op.head_m, 2.4, 1e-12);
+      ++checked;
+    } else if (contains(op.source.path, "in the gap")) {  // SILL 1000, HEAD 2200: they win
+      EXPECT_NEAR(op.sill_m, 1.0, 1e-9);
+      EXPECT_NEAR(op.head_m, 2.2, 1e-9);
+      ++checked;
+    } else {  // no attributes: the layer's sill, the windows' default head
+      EXPECT_NEAR(op.sill_m, 1.2, 1e-12);
+      EXPECT_NEAR(op.head_m, o.window_head_m, 1e-12);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 3);
+  EXPECT_NO_THROW(floors::validate_plan(read.plan, 3.0));
+  // A sill exactly at its head: refused, both sources named.
+  o.layer_heights = {{"A-GLAZ", {o.window_head_m, std::nullopt}}};
+  const InputError at_head =
+      expect_input_error([&] { read_dxf_plan(drawing("drafted_mm.dxf"), o); });
+  EXPECT_TRUE(contains(at_head.what(),
+                       "its sill (2.100 m, layer A-GLAZ's) is not below its head (2.100 m, the "
+                       "windows' default)"))
+      << at_head.what();
+  // Just below it: read.
+  o.layer_heights = {{"A-GLAZ", {o.window_head_m - 1e-3, std::nullopt}}};
+  EXPECT_NO_THROW(read_dxf_plan(drawing("drafted_mm.dxf"), o));
+  o.layer_heights = {{"A-WALL", {0.5, std::nullopt}}};
+  const InputError walls = expect_input_error([&] { read_dxf_plan(drawing("drafted_mm.dxf"), o); });
+  EXPECT_EQ(walls.first().field, "layer_heights");
+  EXPECT_TRUE(contains(walls.what(), "layer 'A-WALL' is not among the door or window layers"))
+      << walls.what();
+}
+
 }  // namespace
 }  // namespace ccbuild::import

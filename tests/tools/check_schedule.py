@@ -54,7 +54,9 @@ ones, never used to compute them. It checks:
      slabs, joints and machine time are what the layers and events add up to; each
      layer's concrete its plan's pieces x bead widths x its height, and where the model
      states its walls' volumes (inputs.provenance[].quantities), each floor's printed
-     volume the sum of its layers' pieces.
+     volume the sum of its layers' pieces; each wall's concrete recomputed from the
+     nozzles' timed paths (every extruding span x its bead's width x its layer's height)
+     is what its pieces hold, and a floor's what it prints against the model.
  11. site calendar (inputs.site): the working windows recomputed with Python's zoneinfo;
      every timestamp the local time of its seconds; attended printing, climbs, joints'
      treatments and crew-placed pipes each within one working window; an off-shift wait
@@ -1752,6 +1754,7 @@ def check_quantities(doc, problems, stats):
         if cap is not None and l["peak_flow_m3_h"] > cap * (1 + 1e-6):
             problems.append("%s: its nozzles draw %.3f m3/h, more than the pump's %g m3/h" % (
                 where, l["peak_flow_m3_h"], cap))
+    check_wall_volumes_from_paths(doc, problems, stats)
     total = sum(l["concrete_m3"] for l in layers)
     if abs(doc["totals"]["concrete_m3"] - total) > 1e-5:
         problems.append("totals: concrete_m3 %.6f, the layers hold %.6f" % (doc["totals"]["concrete_m3"], total))
@@ -1792,6 +1795,54 @@ def check_quantities(doc, problems, stats):
             problems.append("provenance floor %d: %d walls state %.6f m3" % (
                 f["floor"], q["walls_modelled"], q["model_volume_m3"]))
         stats["modelled_floors"] = stats.get("modelled_floors", 0) + 1
+
+
+def check_wall_volumes_from_paths(doc, problems, stats):
+    """Each wall's concrete from the nozzles' timed paths, not from the pieces: every
+    extruding span's length x its bead's width (the nozzle's for a one-pass wall) x its
+    layer's height, summed per wall over the building. It must be what the wall's pieces
+    hold (the paths lay each bead once, end to end), and per floor what the floor prints
+    against the model (inputs.provenance[].quantities.printed_m3)."""
+    layers, plans = doc["layers"], doc["plans"]
+    if not all("waypoints" in n for l in layers for n in plans[l["plan"]]["nozzles"]):
+        return
+    nozzle_w = doc["inputs"]["machine"]["nozzle_width_m"]
+    laid, held, floor_laid = {}, {}, {}  # by (floor, wall); by floor
+    for l in layers:
+        plan = plans[l["plan"]]
+        height = l["z_m"] - l["z_bottom_m"]
+        width = {(p["wall"], p["piece"]): p.get("width_m") or nozzle_w for p in plan["pieces"]}
+        for p in plan["pieces"]:
+            key = (l["floor"], p["wall"])
+            held[key] = held.get(key, 0.0) + p["length_m"] * width[(p["wall"], p["piece"])] * height
+        for n in plan["nozzles"]:
+            w = n["waypoints"]
+            for a, b in zip(w, w[1:]):
+                if not a["extruding"]:
+                    continue
+                m3 = math.hypot(b["x_m"] - a["x_m"], b["y_m"] - a["y_m"]) * \
+                    width.get((a["wall"], a["piece"]), nozzle_w) * height
+                key = (l["floor"], a["wall"])
+                laid[key] = laid.get(key, 0.0) + m3
+                floor_laid[l["floor"]] = floor_laid.get(l["floor"], 0.0) + m3
+    off = []
+    for key in sorted(set(laid) | set(held)):
+        got, want = laid.get(key, 0.0), held.get(key, 0.0)
+        # Coordinates are written to the micrometre: a span's length to about 2 um.
+        if abs(got - want) > 1e-5 + 1e-6 * want:
+            off.append("floor %d wall %d: its paths lay %.6f m3, its pieces hold %.6f m3" % (
+                key[0], key[1], got, want))
+    problems.extend(off[:10])
+    if len(off) > 10:
+        problems.append("... and %d more walls whose paths do not lay their pieces" % (len(off) - 10))
+    for f in doc["inputs"].get("provenance") or []:
+        q = f.get("quantities")
+        if q is not None:
+            got = floor_laid.get(f["floor"], 0.0)
+            if abs(q["printed_m3"] - got) > 1e-4 + 1e-6 * got:
+                problems.append("provenance floor %d: quantities.printed_m3 %.6f, its nozzles' "
+                                "paths lay %.6f m3" % (f["floor"], q["printed_m3"], got))
+    stats["walls_volume_from_paths"] = len(laid)
 
 
 # ---------------------------------------------------------------- driver
@@ -1860,7 +1911,9 @@ def summary(doc, stats):
             doc["inputs"]["site"]["time_zone"], stats.get("windows", 0), stats.get("days", 0),
             stats.get("joints", 0)) if doc["inputs"].get("site") is not None else "") + (
         "; %.3f m3 of concrete in %d deliveries" % (stats["concrete_m3"], stats["deliveries"])
-        if "concrete_m3" in stats else "")
+        if "concrete_m3" in stats else "") + (
+        ", %d walls' concrete recomputed from their timed paths" % stats["walls_volume_from_paths"]
+        if "walls_volume_from_paths" in stats else "")
 
 
 # ---------------------------------------------------------------- self-test
@@ -2160,6 +2213,18 @@ def corruptions(doc):
             lambda d: d["layers"][0].update(concrete_m3=d["layers"][0]["concrete_m3"] * 1.01))
         add("a delivery late", "delivery")(
             lambda d: d["deliveries"][-1].update(due_s=d["deliveries"][-1]["due_s"] + 60.0))
+        # A wall's extruding span laid as another wall of the layer: the layer's concrete
+        # is unchanged, the two walls' are not.
+        def relabel(d):
+            for l in d["layers"]:
+                plan = d["plans"][l["plan"]]
+                walls = sorted({p["wall"] for p in plan["pieces"]})
+                for n in plan["nozzles"]:
+                    for a in n.get("waypoints", []):
+                        if a["extruding"] and len(walls) > 1:
+                            a["wall"] = walls[(walls.index(a["wall"]) + 1) % len(walls)]
+                            return
+        add("an extruding span laid as another wall", "its paths lay")(relabel)
         add("a layer's peak flow", "peak_flow_m3_h")(
             lambda d: d["layers"][-1].update(peak_flow_m3_h=d["layers"][-1]["peak_flow_m3_h"] * 0.5))
     return out

@@ -429,6 +429,15 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                              "'; its layers (entities): " + layer_list());
       into->insert(lower(name));
     }
+  std::map<std::string, DxfOptions::Heights> layer_heights;  // by lower-case layer
+  for (const auto& [name, h] : options.layer_heights) {
+    if (!doors_on.count(lower(name)) && !windows_on.count(lower(name)))
+      throw InputError(file, 0, "layer_heights",
+                       "layer '" + name +
+                           "' is not among the door or window layers; sill and head are given "
+                           "for the layers whose blocks are doors or windows");
+    layer_heights[lower(name)] = h;
+  }
   // Wall lines, in metres, checked.
   std::vector<DrawnLine> wall_lines;
   for (const DrawnLine& l : c.lines) {
@@ -533,21 +542,37 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     found =
         join_gaps(std::move(found), glazing, marks, options.gap_openings, scale, options.max_gap_m);
   }
-  // A door's or window's sill and head: the insert's SILL and HEAD attributes, else the
-  // defaults for its kind.
+  // A door's or window's sill and head: the insert's SILL and HEAD attributes, else its
+  // layer's (layer_heights), else the defaults for its kind.
   const auto heights = [&](const Mark& m, floors::Opening& o) {
     o.sill_m = m.door ? 0.0 : options.window_sill_m;
     o.head_m = m.door ? options.door_head_m : options.window_head_m;
-    const auto sill = height_attribute(*m.insert, "SILL", scale, file);
-    const auto head = height_attribute(*m.insert, "HEAD", scale, file);
-    if (sill) o.sill_m = *sill;
-    if (head) o.head_m = *head;
-    if ((sill || head) && !(o.sill_m < o.head_m))
+    std::string sill_from = m.door ? "a door's, on the floor" : "the windows' default",
+                head_from = m.door ? "the doors' default" : "the windows' default";
+    if (const auto layer = layer_heights.find(lower(m.insert->layer));
+        layer != layer_heights.end()) {
+      if (layer->second.sill_m) {
+        o.sill_m = *layer->second.sill_m;
+        sill_from = "layer " + m.insert->layer + "'s";
+      }
+      if (layer->second.head_m) {
+        o.head_m = *layer->second.head_m;
+        head_from = "layer " + m.insert->layer + "'s";
+      }
+    }
+    if (const auto sill = height_attribute(*m.insert, "SILL", scale, file)) {
+      o.sill_m = *sill;
+      sill_from = "attribute SILL";
+    }
+    if (const auto head = height_attribute(*m.insert, "HEAD", scale, file)) {
+      o.head_m = *head;
+      head_from = "attribute HEAD";
+    }
+    if (!(o.sill_m < o.head_m))
       throw InputError(
           file, 0, "entity " + hex_handle(m.insert->handle),
-          printf_string("%s: its sill (%.3f m%s) is not below its head (%.3f m%s)", m.what.c_str(),
-                        o.sill_m, sill ? ", attribute SILL" : ", the floor's default", o.head_m,
-                        head ? ", attribute HEAD" : ", the floor's default"));
+          printf_string("%s: its sill (%.3f m, %s) is not below its head (%.3f m, %s)",
+                        m.what.c_str(), o.sill_m, sill_from.c_str(), o.head_m, head_from.c_str()));
   };
   std::vector<char> in_a_gap(marks.size(), 0);
   if (found.empty()) {
@@ -677,7 +702,7 @@ floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path
                                   floors::LengthUnit unit) {
   MapReader map(plan, {"dxf", "wall_layers", "door_layers", "window_layers", "wall_lines", "unit",
                        "max_thickness", "door_head", "window_sill", "window_head", "gap_openings",
-                       "max_gap"});
+                       "max_gap", "layer_heights"});
   map.reject_unknown();
   const Field file_field = map.required("dxf");
   const std::string name = file_field.as_string();
@@ -727,6 +752,25 @@ floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path
     o.window_sill_m = h->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
   if (auto h = map.optional("window_head"))
     o.window_head_m = h->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
+  if (auto heights = map.optional("layer_heights")) {
+    if (!heights->is_sequence())
+      heights->fail(
+          "expected a list of {layer: NAME, sill: S, head: H} (sill or head may be "
+          "left out)");
+    for (const Field& item : heights->items()) {
+      MapReader h(item, {"layer", "sill", "head"});
+      h.reject_unknown();
+      DxfOptions::Heights given;
+      if (auto f = h.optional("sill"))
+        given.sill_m = f->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
+      if (auto f = h.optional("head"))
+        given.head_m = f->as_number_in(floors::limits::kOpeningHeight_m, unit_name, per);
+      if (!given.sill_m && !given.head_m) item.fail("give the layer's sill, its head or both");
+      const Field layer = h.required("layer");
+      if (!o.layer_heights.emplace(layer.as_string(), given).second)
+        layer.fail("layer '" + echoed(layer.as_string()) + "' is given twice");
+    }
+  }
   DxfPlan read = read_dxf_plan(file, o);
   read.plan.units = unit;  // messages speak the building's unit
   return {std::move(read.plan), std::move(read.notes), file};

@@ -2,10 +2,14 @@
 // a building a user can review and edit: the building file, and its plans in ccbuild's own
 // YAML beside it.
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <optional>
 
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/format.hpp"
@@ -35,6 +39,8 @@ struct ImportOptions {
   bool no_material_filter = false;
   bool gap_openings = false;  ///< DXF: gaps in wall lines as doors and windows
   double max_gap_m = 3.0;
+  double door_head_m = 2.1, window_sill_m = 0.9, window_head_m = 2.1;  ///< DXF defaults
+  std::vector<std::string> layer_heights;  ///< DXF: LAYER=SILL:HEAD, either may be empty
   bool force = false;
 };
 
@@ -203,6 +209,47 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
   for (const auto& q : quantities) std::cout << "quantities: " << q << "\n";
 }
 
+/// --layer-heights items, LAYER=SILL:HEAD in metres (either may be left empty, not both).
+/// Throws InputError (field --layer-heights) naming the item and what was expected.
+std::map<std::string, import::DxfOptions::Heights> layer_heights(
+    const std::vector<std::string>& items) {
+  std::map<std::string, import::DxfOptions::Heights> out;
+  for (const std::string& item : items) {
+    const auto refuse = [&](const std::string& why) {
+      throw InputError("", 0, "--layer-heights", "'" + echoed(item) + "': " + why);
+    };
+    const auto eq = item.rfind('=');
+    if (eq == std::string::npos || eq == 0)
+      refuse(
+          "expected LAYER=SILL:HEAD in metres (A-GLAZ-HIGH=1.5:2.1; A-DOOR=:2.4 for a head "
+          "only)");
+    const std::string heights = item.substr(eq + 1);
+    const auto colon = heights.find(':');
+    if (colon == std::string::npos)
+      refuse("expected SILL:HEAD after the '=' (either may be empty)");
+    import::DxfOptions::Heights h;
+    const auto number = [&](const std::string& text, const char* what) -> std::optional<double> {
+      if (text.empty()) return std::nullopt;
+      std::size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != text.size() || !floors::limits::kOpeningHeight_m.contains(value))
+        refuse(std::string("its ") + what + " '" + echoed(text) + "' is not a height in metres (" +
+               floors::limits::kOpeningHeight_m.describe("m") + ")");
+      return value;
+    };
+    h.sill_m = number(heights.substr(0, colon), "sill");
+    h.head_m = number(heights.substr(colon + 1), "head");
+    if (!h.sill_m && !h.head_m) refuse("give the layer's sill, its head or both");
+    if (!out.emplace(item.substr(0, eq), h).second) refuse("the layer is given twice");
+  }
+  return out;
+}
+
 void run_import(const ImportOptions& o, int& exit_code) {
   const fs::path out(o.output);
   const fs::path folder = out.has_parent_path() ? out.parent_path() : fs::path(".");
@@ -225,7 +272,8 @@ void run_import(const ImportOptions& o, int& exit_code) {
           std::pair{!o.door_layers.empty(), "--door-layers"},
           std::pair{!o.window_layers.empty(), "--window-layers"},
           std::pair{!o.unit.empty(), "--unit"}, std::pair{o.floors != 1, "--floors"},
-          std::pair{o.gap_openings, "--gap-openings"}})
+          std::pair{o.gap_openings, "--gap-openings"},
+          std::pair{!o.layer_heights.empty(), "--layer-heights"}})
       if (given)
         throw InputError("", 0, flag,
                          "is for DXF drawings; an IFC model says its storeys, walls and unit");
@@ -252,6 +300,23 @@ void run_import(const ImportOptions& o, int& exit_code) {
   if (!o.unit.empty()) d.metres_per_unit = import::unit_metres(o.unit);
   d.gap_openings = o.gap_openings;
   d.max_gap_m = o.max_gap_m;
+  d.door_head_m = o.door_head_m;
+  d.window_sill_m = o.window_sill_m;
+  d.window_head_m = o.window_head_m;
+  d.layer_heights = layer_heights(o.layer_heights);
+  for (const auto& [layer, heights] : d.layer_heights) {
+    const auto lower = [](std::string text) {
+      for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return text;
+    };
+    const auto same = [&](const std::string& name) { return lower(name) == lower(layer); };
+    if (std::none_of(o.door_layers.begin(), o.door_layers.end(), same) &&
+        std::none_of(o.window_layers.begin(), o.window_layers.end(), same))
+      throw InputError("", 0, "--layer-heights",
+                       "layer '" + echoed(layer) +
+                           "' is not among --door-layers or --window-layers; sill and head are "
+                           "given for the layers whose blocks are doors or windows");
+  }
   const import::DxfPlan read = import::read_dxf_plan(o.drawing, d);
   floors::validate_plan(read.plan, o.floor_height_m, "the imported plan");
 
@@ -311,6 +376,8 @@ void add_import_command(CLI::App& app, int& exit_code) {
       "  ccbuild import house.ifc --wall-types IfcWall,IfcWallStandardCase,IfcWallElementedCase "
       "--exclude-materials glass -o house.yaml\n"
       "  ccbuild import ground.dxf --wall-layers A-WALL --door-layers A-DOOR -o house.yaml\n"
+      "  ccbuild import ground.dxf --wall-layers A-WALL --door-layers A-DOOR --window-layers "
+      "A-GLAZ,A-GLAZ-HIGH --layer-heights A-GLAZ-HIGH=1.5:2.1 -o house.yaml\n"
       "  ccbuild import plan.dxf --wall-layers WALLS --wall-lines centrelines --unit mm "
       "--floors 3 --floor-height 2.8 -o block.yaml");
   command->add_option("DRAWING", o->drawing, "The IFC model (.ifc) or DXF drawing")->required();
@@ -351,6 +418,27 @@ void add_import_command(CLI::App& app, int& exit_code) {
                    "DXF: the widest gap read as an opening, m (with --gap-openings)")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
+  command
+      ->add_option("--door-head", o->door_head_m,
+                   "DXF: a door's head, m, where its block has no HEAD attribute")
+      ->check(number_in(floors::limits::kOpeningHeight_m, "m"))
+      ->capture_default_str();
+  command
+      ->add_option("--window-sill", o->window_sill_m,
+                   "DXF: a window's sill, m, where its block has no SILL attribute")
+      ->check(number_in(floors::limits::kOpeningHeight_m, "m"))
+      ->capture_default_str();
+  command
+      ->add_option("--window-head", o->window_head_m,
+                   "DXF: a window's head, m, where its block has no HEAD attribute")
+      ->check(number_in(floors::limits::kOpeningHeight_m, "m"))
+      ->capture_default_str();
+  command
+      ->add_option("--layer-heights", o->layer_heights,
+                   "DXF: a door or window layer's own sill and head, m, for its blocks without "
+                   "SILL or HEAD attributes: LAYER=SILL:HEAD, either may be empty "
+                   "(A-GLAZ-HIGH=1.5:2.1,A-DOOR-GARAGE=:2.4)")
+      ->delimiter(',');
   command
       ->add_option("--unit", o->unit,
                    "The drawing's unit (default: its $INSUNITS): mm, cm, m, in, ft")

@@ -12,6 +12,7 @@
 // entity's handle and where it is.
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,12 @@ struct DxfOptions {
   double max_gap_m = 3.0;
   double door_head_m = 2.1;  ///< doors: sill 0
   double window_sill_m = 0.9, window_head_m = 2.1;
+  /// A door or window layer's own sill and head, m, for its blocks that have no SILL or
+  /// HEAD attribute (a high window layer, a garage door layer); unset: the kind's above.
+  struct Heights {
+    std::optional<double> sill_m, head_m;
+  };
+  std::map<std::string, Heights> layer_heights;  ///< by layer name (any case)
 };
 
 struct DxfPlan {
@@ -49,13 +56,16 @@ struct DxfPlan {
 /// layer the drawing does not have, no walls at all, an unknown unit, a coordinate that
 /// is not a finite number or beyond floors::limits::kCoordinate_m, more walls than
 /// floors::limits::kMaxWalls, more openings than floors::limits::kMaxOpenings, or face lines
-/// crowding beyond any plan (then with the entity's line). A face line drawn twice is read
+/// crowding beyond any plan (then with the entity's line), a `layer_heights` layer that is
+/// not a door or window layer, or an opening whose sill is not below its head (naming where
+/// each came from). A face line drawn twice is read
 /// once; the notes list at most limits::kMaxListed of each kind, then how many more.
 DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& options);
 
 /// A floor's `plan: {dxf: FILE, wall_layers: [...], door_layers: [...], window_layers:
 /// [...], wall_lines: faces|centrelines, unit: mm, max_thickness, door_head, window_sill,
-/// window_head}` (lengths in the building's `unit`; FILE relative to `base`), read with
+/// window_head, layer_heights: [{layer, sill, head}, ...]}` (lengths in the building's
+/// `unit`; FILE relative to `base`), read with
 /// read_dxf_plan: the floors::DrawingReader that commands give to load_building. Throws
 /// InputError naming the building file's field, or the drawing.
 floors::ImportedPlan read_drawing(const Field& plan, const std::filesystem::path& base,
