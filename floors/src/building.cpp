@@ -542,8 +542,18 @@ void leave_out_thin_walls(Building& building, const BeadSpec& beads) {
                               "' is thinner than the machine's narrowest bead (" +
                               length_text(narrowest_m, building.units, 3) +
                               "): nothing of it would be printed"));
+    std::set<std::int64_t> ends;  // of the walls left out
+    for (const Wall& w : plan.walls)
+      if (out.count(w.id)) ends.insert({w.start_vertex, w.end_vertex});
     std::erase_if(plan.walls, [&](const Wall& w) { return out.count(w.id) > 0; });
     std::erase_if(plan.openings, [&](const Opening& o) { return out.count(o.wall_id) > 0; });
+    // Their ends no printed wall uses go too: the building's extent on the machine, its
+    // placement and its slab are the printed walls'.
+    for (const Wall& w : plan.walls) {
+      ends.erase(w.start_vertex);
+      ends.erase(w.end_vertex);
+    }
+    std::erase_if(plan.vertices, [&](const Vertex& v) { return ends.count(v.id) > 0; });
   }
 }
 

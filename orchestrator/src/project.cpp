@@ -104,8 +104,11 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     machine::MachineProfile profile = machine::load_machine_profile(machine_path);
     std::string fitted;
     if (profile.family) {
-      // A family: its member is built around the building where it stands.
+      // A family: its member is built around the building where it stands, as printed:
+      // the walls thinner than its beads are the crew's, not the platform's to span or its
+      // units' to pin into.
       place(project, false);
+      floors::leave_out_thin_walls(project.building, bead_spec(profile.gantry, project.building));
       climb::FitOptions fit;
       fs::path out = options.fitted_profile;
       if (out.empty())
@@ -143,6 +146,11 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
     project.material_origin =
         project.material.name + ", " + material_path.string() + " " + material_why;
   }
+  // What the machine prints: walls thinner than its beads are left to the crew before the
+  // building is placed on it (a family's fit left them out already, with the same beads).
+  const floors::BeadSpec beads = bead_spec(*project.machine, project.building);
+  for (auto& floor : project.building.floors) floor.plan.beads = beads;
+  floors::leave_out_thin_walls(project.building, beads);
   if (!project.fit) place(project, options.place_centre);
   // The site's programme: --site FILE, else the building's `site:`.
   std::optional<schedule::SiteProgramme> programme;
@@ -164,9 +172,6 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
       project.conditions = std::make_shared<const schedule::SiteConditions>(
           schedule::constant_conditions(p.temperature_c.value_or(20.0), p.wind_m_s.value_or(0.0)));
   }
-  const floors::BeadSpec beads = bead_spec(*project.machine, project.building);
-  for (auto& floor : project.building.floors) floor.plan.beads = beads;
-  floors::leave_out_thin_walls(project.building, beads);
   check_fit(project);
   return project;
 }

@@ -215,6 +215,45 @@ std::string placed_case(const fs::path& dir, const std::string& site) {
   return (dir / "b.yaml").string();
 }
 
+// A 50 mm garden wall running 3 m on from the cottage is thinner than any bead: left for the
+// crew, with its far end, before the building is placed and before a climbing family is
+// fitted to it. The family's member is the plain cottage's (its platform 9 m x 7 m where
+// the garden wall would make it 12 m), and the slab covers the cottage only.
+TEST(Project, WallsLeftToTheCrewAreNotTheMachinesToReach) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_crew_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto fitted = [&](const std::string& building) {
+    ProjectOptions o;
+    o.machine_profile = testing::source_path("config/machines/cc-climber-family.yaml");
+    o.fitted_profile = dir / "fitted.yaml";
+    const Project p = open_project(testing::data("buildings/" + building), o);
+    EXPECT_TRUE(p.fit) << building;
+    return p;
+  };
+  const Project plain = fitted("cottage-on-site.yaml");  // the cottage with no anchor listed
+  const Project garden = fitted("cottage-garden-wall.yaml");
+  ASSERT_TRUE(plain.fit && garden.fit);
+  EXPECT_NEAR(garden.fit->platform.length_m(), plain.fit->platform.length_m(), 1e-9);
+  EXPECT_NEAR(garden.fit->platform.width_m(), plain.fit->platform.width_m(), 1e-9);
+  EXPECT_NEAR(garden.fit->platform.x_max_m, plain.fit->platform.x_max_m, 1e-9);
+  ASSERT_EQ(garden.building.left_out.size(), 2u);  // on both floors
+  for (const auto& floor : garden.building.floors) {
+    EXPECT_EQ(floor.plan.find_vertex(7), nullptr) << "the garden wall's far end";
+    EXPECT_NE(floor.plan.find_vertex(2), nullptr) << "the corner it starts from";
+  }
+  const floors::Envelope printed = floors::envelope(garden.building);
+  EXPECT_NEAR(printed.size_m().x(), 6.0, 1e-9);
+  EXPECT_NEAR(floors::slab_area_m2(garden.building.floors[0]),
+              floors::slab_area_m2(plain.building.floors[0]), 1e-9);
+  // On a gantry: placed and centred as the printed cottage.
+  ProjectOptions centred;
+  centred.place_centre = true;
+  const Project a = open_project(testing::data("buildings/cottage.yaml"), centred);
+  const Project b = open_project(testing::data("buildings/cottage-garden-wall.yaml"), centred);
+  EXPECT_NEAR(floors::envelope(b.building).min_m.x(), floors::envelope(a.building).min_m.x(), 1e-9);
+  fs::remove_all(dir);
+}
+
 TEST(Project, EveryVertexMustStandWithinTheMachinesTravel) {
   const fs::path dir = fs::temp_directory_path() / ("ccbuild_site_" + std::to_string(::getpid()));
   fs::create_directories(dir);

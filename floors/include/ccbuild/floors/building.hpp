@@ -150,9 +150,11 @@ struct Envelope {
 Envelope envelope(const Building& building);
 
 /// Takes every wall thinner than the narrowest bead of `beads` (wall_beads says kTooThin)
-/// out of its floor's plan, with its openings, into `building.left_out`; nothing when the
-/// print spec refuses thin walls (the fit check then names them). Throws InputError, at the
-/// wall, when an anchor of the floor stands on it or when it is the floor's last wall.
+/// out of its floor's plan, with its openings and the ends no printed wall uses (so that
+/// the building's extent, placement and slab are the printed walls'), into
+/// `building.left_out`; nothing when the print spec refuses thin walls (the fit check then
+/// names them). Throws InputError, at the wall, when an anchor of the floor stands on it or
+/// when it is the floor's last wall.
 void leave_out_thin_walls(Building& building, const BeadSpec& beads);
 
 /// Turns every floor plan's vertices by `rotation_rad` about the plan's origin, then
