@@ -2224,7 +2224,10 @@ def corruptions(doc):
                         if a["extruding"] and len(walls) > 1:
                             a["wall"] = walls[(walls.index(a["wall"]) + 1) % len(walls)]
                             return
-        add("an extruding span laid as another wall", "its paths lay")(relabel)
+        if any(len({p["wall"] for p in doc["plans"][l["plan"]]["pieces"]}) > 1 and
+               any("waypoints" in n for n in doc["plans"][l["plan"]]["nozzles"])
+               for l in doc["layers"]):
+            add("an extruding span laid as another wall", "its paths lay")(relabel)
         add("a layer's peak flow", "peak_flow_m3_h")(
             lambda d: d["layers"][-1].update(peak_flow_m3_h=d["layers"][-1]["peak_flow_m3_h"] * 0.5))
     return out
