@@ -1,6 +1,7 @@
 #include "ccbuild/floors/building.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -326,8 +327,44 @@ Building building_from_document(const Document& doc, const fs::path& path,
   });
   findings.attempt([&] {
     if (auto print = map.optional("print")) {
-      MapReader spec(*print, {"thin_walls"});
+      MapReader spec(*print, {"thin_walls", "wall_types", "exclude_materials"});
       spec.reject_unknown();
+      building.print.stated = true;
+      // Lists of names: IFC entity names for the types, any text for the materials.
+      const auto names = [](const Field& list, bool entity) {
+        if (!list.is_sequence()) list.fail("expected a list of names");
+        const std::vector<Field> items = list.items();
+        if (items.size() > limits::kMaxPrintNames)
+          list.fail(printf_string("expected at most %zu names, got %zu", limits::kMaxPrintNames,
+                                  items.size()));
+        std::vector<std::string> out;
+        for (const Field& item : items) {
+          const std::string name = item.as_string();
+          const bool ok =
+              entity ? name.size() > 3 && name.size() <= 64 && name.rfind("Ifc", 0) == 0 &&
+                           std::all_of(
+                               name.begin(), name.end(),
+                               [](char c) { return std::isalnum(static_cast<unsigned char>(c)); })
+                     : !name.empty() && name.size() <= 100 &&
+                           std::none_of(name.begin(), name.end(), [](char c) {
+                             return std::iscntrl(static_cast<unsigned char>(c));
+                           });
+          if (!ok)
+            item.fail(entity ? "expected an IFC entity name (IfcWall, IfcWallStandardCase), got '" +
+                                   echoed(name) + "'"
+                             : "expected a material's name (1 to 100 characters, no control "
+                               "characters), got '" +
+                                   echoed(name) + "'");
+          out.push_back(name);
+        }
+        return out;
+      };
+      if (auto types = spec.optional("wall_types")) {
+        building.print.wall_types = names(*types, true);
+        if (building.print.wall_types.empty()) types->fail("name at least one wall type");
+      }
+      if (auto materials = spec.optional("exclude_materials"))
+        building.print.excluded_materials = names(*materials, false);
       if (auto thin = spec.optional("thin_walls")) {
         const std::string how = thin->as_string();
         if (how != "leave-out" && how != "refuse")

@@ -153,6 +153,11 @@ TEST(IfcCommands, AModelsOwnWallVolumesArePrintedAgainstWhatIsPrinted) {
                        "(+0.0%); 1 wall states none\n"))
       << imported.out;
   EXPECT_TRUE(contains(slurp(building), "#   floor 'Attic': prints 3.36 m³"));
+  // What is printed, as the import chose it (the default filters), stated in the building.
+  EXPECT_TRUE(contains(slurp(building),
+                       "print: {thin_walls: leave-out, wall_types: [\"IfcWall\", "
+                       "\"IfcWallStandardCase\"],\n        exclude_materials: [\"glass\", "))
+      << slurp(building);
   const fs::path attic = dir / "house.2.plan.yaml";
   std::string plan = slurp(attic);
   EXPECT_TRUE(contains(plan, ", top: 0.7, model_volume: 0.63}")) << plan;
@@ -168,6 +173,10 @@ TEST(IfcCommands, AModelsOwnWallVolumesArePrintedAgainstWhatIsPrinted) {
       << scheduled.out;
   EXPECT_TRUE(contains(scheduled.out, "(floor 0 8.72, floor 1 3.36)")) << scheduled.out;
   const auto s = nlohmann::json::parse(slurp(out));
+  const auto& print = s["inputs"]["print"];
+  EXPECT_EQ(print["thin_walls"], "leave-out");
+  EXPECT_EQ(print["wall_types"], nlohmann::json({"IfcWall", "IfcWallStandardCase"}));
+  EXPECT_EQ(print["exclude_materials"].size(), 8u) << print.dump();
   const auto& q = s["inputs"]["provenance"][1]["quantities"];
   EXPECT_NEAR(q["model_volume_m3"].get<double>(), 2.31, 1e-9);
   EXPECT_NEAR(q["printed_modelled_m3"].get<double>(), 2.31, 1e-9);
@@ -183,6 +192,8 @@ TEST(IfcCommands, AModelsOwnWallVolumesArePrintedAgainstWhatIsPrinted) {
   ASSERT_LE(direct.exit_code, 1) << direct.err;
   EXPECT_EQ(nlohmann::json::parse(slurp(dir / "direct.json"))["inputs"]["provenance"].dump(),
             s["inputs"]["provenance"].dump());
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "direct.json"))["inputs"]["print"].dump(),
+            print.dump());
   // The knee walls printed to the floor's height: validate flags the attic.
   for (std::size_t at; (at = plan.find(", top: 0.7")) != std::string::npos;)
     plan.erase(at, std::string(", top: 0.7").size());

@@ -534,6 +534,54 @@ TEST(PrintSpec, AWallThinnerThanTheNarrowestBeadIsLeftOutForTheCrew) {
   const auto diffed =
       run_ccbuild("diff " + (dir / "s.json").string() + " " + (dir / "s.json").string());
   EXPECT_EQ(diffed.exit_code, 0) << diffed.err;
+  // A building that states no print spec records none (its schedule keeps its bytes).
+  EXPECT_FALSE(doc["inputs"].contains("print")) << doc["inputs"].dump();
+  fs::remove_all(dir);
+}
+
+// The print spec's model filters, stated in a building, are recorded and shown; a type that
+// is not an IFC entity's name or a list that is not one is refused, naming the line.
+TEST(PrintSpec, AModelsFiltersAreStatedInTheBuildingAndRecorded) {
+  const fs::path dir = scratch("print_filters");
+  const std::string plan = testing::source_path("tests/data/hostile/thin_wall.yaml").string();
+  const auto building = [&](const std::string& print) {
+    const fs::path file = dir / "b.yaml";
+    std::ofstream(file) << "units: m\nlayer_height: 0.1\n"
+                        << print << "\nfloors:\n  - {height: 1, plan: " << plan << "}\n";
+    return file.string();
+  };
+  const std::string good = building(
+      "print: {thin_walls: leave-out, wall_types: [IfcWall, IfcWallElementedCase], "
+      "exclude_materials: [glass, \"Gypsum board\"]}");
+  const auto shown = run_ccbuild("validate " + good);
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  EXPECT_TRUE(contains(shown.out,
+                       "  print      walls thinner than the narrowest bead left out for the crew; "
+                       "the model's IfcWall, IfcWallElementedCase read as walls, but not those all "
+                       "of whose materials' names hold one of: glass, Gypsum board\n"))
+      << shown.out;
+  const auto scheduled =
+      run_ccbuild("schedule " + good + " --quiet --no-compare -o " + (dir / "s.json").string());
+  ASSERT_EQ(scheduled.exit_code, 0) << scheduled.err;
+  const auto doc = nlohmann::json::parse(slurp(dir / "s.json"));
+  EXPECT_EQ(doc["inputs"]["print"],
+            nlohmann::json::parse(
+                R"({"thin_walls":"leave-out","wall_types":["IfcWall","IfcWallElementedCase"],)"
+                R"("exclude_materials":["glass","Gypsum board"]})"));
+  EXPECT_EQ(
+      run_ccbuild("diff " + (dir / "s.json").string() + " " + (dir / "s.json").string()).exit_code,
+      0);
+  for (const auto& [print, said] : std::vector<std::pair<std::string, std::string>>{
+           {"print: {wall_types: [Wall]}", "wall_types[0]: expected an IFC entity name"},
+           {"print: {wall_types: IfcWall}", "wall_types: expected a list of names"},
+           {"print: {wall_types: []}", "wall_types: name at least one wall type"},
+           {"print: {exclude_materials: [\"\"]}", "expected a material's name"},
+           {"print: {thin_wall: refuse}", "thin_wall"}}) {
+    const auto refused = run_ccbuild("validate " + building(print));
+    EXPECT_EQ(refused.exit_code, 2) << print;
+    EXPECT_TRUE(contains(refused.err, "b.yaml:3")) << print << ": " << refused.err;
+    EXPECT_TRUE(contains(refused.err, said)) << print << ": " << refused.err;
+  }
   fs::remove_all(dir);
 }
 

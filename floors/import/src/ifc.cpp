@@ -694,6 +694,10 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
           out.metres_per_unit, left_out, left_out == 1 ? "" : "s"));
   out.notes = notes.lines();
   b.import_notes = out.notes;
+  // The filters it was read with: the building's print spec, as an import writes it.
+  b.print.stated = true;
+  b.print.wall_types = options.wall_types;
+  b.print.excluded_materials = options.excluded_materials;
   return out;
 }
 

@@ -240,7 +240,7 @@ RecordedInputs read_inputs(const JsonAt& root) {
   const JsonAt i = root.at("inputs");
   i.only_keys({"building", "name", "units", "layer_height_m", "slab_stage_s", "placement", "seed",
                "files", "machine", "material", "provenance", "site", "objective", "lintels",
-               "slabs", "left_out"});
+               "slabs", "left_out", "print"});
   in.building = i.at("building").string(4096);
   in.name = i.at("name").string(1000);
   in.units = i.at("units").string(10);
@@ -327,6 +327,25 @@ RecordedInputs read_inputs(const JsonAt& root) {
       if (const auto guid = w.maybe("guid")) out.global_id = guid->string(64);
       in.left_out.push_back(std::move(out));
     }
+  }
+  if (const auto p = i.maybe("print")) {
+    p->only_keys({"thin_walls", "wall_types", "exclude_materials"});
+    floors::PrintSpec spec;
+    spec.stated = true;
+    const std::string thin = p->at("thin_walls").string(16);
+    if (thin != "leave-out" && thin != "refuse")
+      p->at("thin_walls").refuse("expected leave-out or refuse");
+    spec.refuse_thin_walls = thin == "refuse";
+    if (const auto types = p->maybe("wall_types")) {
+      for (const auto& t : types->elements(floors::limits::kMaxPrintNames))
+        spec.wall_types.push_back(t.string(64));
+      if (spec.wall_types.empty()) types->refuse("expected at least one wall type");
+      for (const auto& m : p->at("exclude_materials").elements(floors::limits::kMaxPrintNames))
+        spec.excluded_materials.push_back(m.string(100));
+    } else if (p->maybe("exclude_materials")) {
+      p->at("exclude_materials").refuse("expected beside wall_types only");
+    }
+    in.print = std::move(spec);
   }
   if (const auto l = i.maybe("lintels")) {
     l->only_keys({"type", "height_m", "bearing_m", "place_s", "crew", "by"});

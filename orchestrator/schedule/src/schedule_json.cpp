@@ -162,6 +162,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
     if (!p.walls.empty() || !p.openings.empty()) in.provenance.push_back(std::move(p));
   }
   in.left_out = b.left_out;
+  if (b.print.stated) in.print = b.print;
   return in;
 }
 
@@ -242,6 +243,14 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
       if (!w.global_id.empty()) left.back()["guid"] = w.global_id;
     }
     out["inputs"]["left_out"] = left;
+  }
+  if (in.print) {  // only where the building states its print spec: others keep their bytes
+    json print = {{"thin_walls", in.print->refuse_thin_walls ? "refuse" : "leave-out"}};
+    if (!in.print->wall_types.empty()) {
+      print["wall_types"] = in.print->wall_types;
+      print["exclude_materials"] = in.print->excluded_materials;
+    }
+    out["inputs"]["print"] = print;
   }
   {
     const floors::LintelSpec& l = in.lintels;

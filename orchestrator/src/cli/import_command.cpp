@@ -174,7 +174,16 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
   for (const auto& q : quantities) building += "#   " + comment(q) + "\n";
   building += "name: " + quoted(b.name) + "\nunits: m\nlayer_height: " + exact(b.layer_height_m) +
               "\nmaterial: " + quoted(relative_to(material, folder)) +
-              "\nmachine: " + quoted(relative_to(machine, folder)) + "\nfloors:\n";
+              "\nmachine: " + quoted(relative_to(machine, folder)) + "\n";
+  // What is printed, as chosen here: the schedule records it.
+  const auto names = [](const std::vector<std::string>& list) {
+    std::string text;
+    for (const auto& name : list) text += (text.empty() ? "" : ", ") + quoted(name);
+    return "[" + text + "]";
+  };
+  building += "print: {thin_walls: leave-out, wall_types: " + names(b.print.wall_types) +
+              ",\n        exclude_materials: " + names(b.print.excluded_materials) + "}\n";
+  building += "floors:\n";
   // Levels as the model states them; a floor under a level runs up to it under its slab, so
   // a slab added later fills the storey and moves no level (only the top floor's height).
   for (std::size_t k = 0; k < b.floors.size(); ++k) {

@@ -68,6 +68,13 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                         {"min_m", {space.min_m.x(), space.min_m.y()}},
                         {"max_m", {space.max_m.x(), space.max_m.y()}}};
     out["import_notes"] = b.import_notes;
+    if (b.print.stated) {
+      out["print"] = {{"thin_walls", b.print.refuse_thin_walls ? "refuse" : "leave-out"}};
+      if (!b.print.wall_types.empty()) {
+        out["print"]["wall_types"] = b.print.wall_types;
+        out["print"]["exclude_materials"] = b.print.excluded_materials;
+      }
+    }
     out["left_out"] = nlohmann::ordered_json::array();
     for (const auto& w : b.left_out)
       out["left_out"].push_back(
@@ -158,6 +165,22 @@ void run_validate(const ValidateOptions& options, int& exit_code) {
                                  : b.wall_pattern == floors::WallPattern::kSkins ? "a cavity"
                                                                                  : "a zig-zag tie",
                                  floors::wall_pattern_name(b.wall_pattern));
+    std::cout << "\n";
+  }
+  if (b.print.stated) {
+    const auto list = [](const std::vector<std::string>& names) {
+      std::string text;
+      for (const auto& name : names) text += (text.empty() ? "" : ", ") + name;
+      return text;
+    };
+    std::cout << "  print      walls thinner than the narrowest bead "
+              << (b.print.refuse_thin_walls ? "refused" : "left out for the crew");
+    if (!b.print.wall_types.empty())
+      std::cout << "; the model's " << list(b.print.wall_types) << " read as walls"
+                << (b.print.excluded_materials.empty()
+                        ? ", whatever their materials"
+                        : ", but not those all of whose materials' names hold one of: " +
+                              list(b.print.excluded_materials));
     std::cout << "\n";
   }
   for (const auto& note : b.import_notes) std::cout << "  import     " << note << "\n";

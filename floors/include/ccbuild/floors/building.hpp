@@ -47,6 +47,13 @@ struct PrintSpec {
   /// `thin_walls`: a wall thinner than the machine's narrowest bead is left out and said,
   /// for the crew to build (`leave-out`, the default), or stops the run (`refuse`).
   bool refuse_thin_walls = false;
+  /// `wall_types` and `exclude_materials`: which of a model's elements were read as walls
+  /// and whose materials kept them out of the print (IFC: as `ccbuild import` chose them,
+  /// or a model named directly was read with). Empty when the building does not say.
+  std::vector<std::string> wall_types, excluded_materials;
+  /// The building states a print spec (`print:`, or a model named directly): the schedule
+  /// records it.
+  bool stated = false;
 };
 
 /// A wall the print spec left out of what the machine prints, for the crew to build.

@@ -56,6 +56,8 @@ inline constexpr std::int64_t kMaxId = 999'999'999;
 inline constexpr int kMaxFloors = 500;
 inline constexpr std::size_t kMaxVertices = 200'000;
 inline constexpr std::size_t kMaxWalls = 100'000;
+/// Names in a print spec's `wall_types` or `exclude_materials`.
+inline constexpr std::size_t kMaxPrintNames = 100;
 inline constexpr std::size_t kMaxOpenings = 100'000;
 inline constexpr std::size_t kMaxAnchors = 10'000;  ///< per floor
 /// Layers of a whole building (floors x ceil(height / layer height)).

@@ -107,6 +107,8 @@ struct RecordedInputs {
   std::vector<FloorProvenance> provenance;
   /// The walls the print spec left out for the crew (floors::leave_out_thin_walls).
   std::vector<floors::LeftOutWall> left_out;
+  /// The building's print spec, where it states one (`inputs.print`).
+  std::optional<floors::PrintSpec> print;
   /// The site's calendar, when the schedule has one: times then have ISO 8601 timestamps
   /// beside their seconds, and the days are summed up (`days`).
   std::shared_ptr<const SiteCalendar> calendar;
