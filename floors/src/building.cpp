@@ -13,11 +13,30 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/plane.hpp"
+#include "ccbuild/floors/print_names.hpp"
 #include "ccbuild/floors/units.hpp"
 #include "plan_internal.hpp"
 
 namespace ccbuild::floors {
 namespace fs = std::filesystem;
+
+std::string wall_type_name_fault(const std::string& name) {
+  const bool ok = name.size() > 3 && name.size() <= 64 && name.rfind("Ifc", 0) == 0 &&
+                  std::all_of(name.begin(), name.end(),
+                              [](char c) { return std::isalnum(static_cast<unsigned char>(c)); });
+  return ok ? ""
+            : "expected an IFC entity name (IfcWall, IfcWallStandardCase), got '" + echoed(name) +
+                  "'";
+}
+
+std::string excluded_material_name_fault(const std::string& name) {
+  const bool ok = !name.empty() && name.size() <= 100 &&
+                  std::none_of(name.begin(), name.end(),
+                               [](char c) { return std::iscntrl(static_cast<unsigned char>(c)); });
+  return ok ? ""
+            : "expected a material's name (1 to 100 characters, no control characters), got '" +
+                  echoed(name) + "'";
+}
 
 namespace {
 
@@ -340,21 +359,9 @@ Building building_from_document(const Document& doc, const fs::path& path,
         std::vector<std::string> out;
         for (const Field& item : items) {
           const std::string name = item.as_string();
-          const bool ok =
-              entity ? name.size() > 3 && name.size() <= 64 && name.rfind("Ifc", 0) == 0 &&
-                           std::all_of(
-                               name.begin(), name.end(),
-                               [](char c) { return std::isalnum(static_cast<unsigned char>(c)); })
-                     : !name.empty() && name.size() <= 100 &&
-                           std::none_of(name.begin(), name.end(), [](char c) {
-                             return std::iscntrl(static_cast<unsigned char>(c));
-                           });
-          if (!ok)
-            item.fail(entity ? "expected an IFC entity name (IfcWall, IfcWallStandardCase), got '" +
-                                   echoed(name) + "'"
-                             : "expected a material's name (1 to 100 characters, no control "
-                               "characters), got '" +
-                                   echoed(name) + "'");
+          const std::string fault =
+              entity ? wall_type_name_fault(name) : excluded_material_name_fault(name);
+          if (!fault.empty()) item.fail(fault);
           out.push_back(name);
         }
         return out;

@@ -63,7 +63,10 @@ TEST(ImportHostile, NamesThatYamlMustEscapeReadBackExactly) {
   const std::string model = (dir / "model\n#1 \"x\": \xC3\xA9\t.ifc").string();
   ASSERT_EQ(make_ifc("--hostile-names " + sh(model)).exit_code, 0);
   const fs::path out = dir / "b\n\"#1\": \xC3\xA9.yaml";
-  const auto r = run_bounded("import " + sh(model) + " -o " + sh(out.string()));
+  // A material filter of the user's own naming, written into the building's print spec.
+  const std::string odd_material = "gl\"ass: #1 [\xC3\xA9] {x} '";
+  const auto r = run_bounded("import " + sh(model) + " --exclude-materials " +
+                             sh("glass," + odd_material) + " -o " + sh(out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   expect_only_notes(r.err);
   EXPECT_TRUE(contains(r.err, "and 70 more of the same kind: curtain walls left out"));
@@ -74,7 +77,11 @@ TEST(ImportHostile, NamesThatYamlMustEscapeReadBackExactly) {
   std::set<std::string> keys;
   for (const auto& [key, value] : building.root.entries) keys.insert(key);
   EXPECT_EQ(keys, (std::set<std::string>{"name", "units", "layer_height", "material", "machine",
-                                         "floors"}));
+                                         "print", "floors"}));
+  const auto& excluded = entry(entry(building.root, "print"), "exclude_materials").items;
+  ASSERT_EQ(excluded.size(), 2u);
+  EXPECT_EQ(excluded[0].text, "glass");
+  EXPECT_EQ(excluded[1].text, odd_material);
   EXPECT_EQ(entry(building.root, "name").text, "Block \"A\"\n# not: a comment");
   const auto& floors = entry(building.root, "floors").items;
   ASSERT_EQ(floors.size(), 2u);
@@ -98,6 +105,42 @@ TEST(ImportHostile, NamesThatYamlMustEscapeReadBackExactly) {
   const std::string text = testing::slurp(out);
   EXPECT_TRUE(contains(text, "#   and 70 more of the same kind: curtain walls left out\n"));
   EXPECT_TRUE(contains(text, "'Glass\\nscreen # \\\"x\\\": y': a curtain wall"));
+  fs::remove_all(dir);
+}
+
+// A filter the building file could not hold back (a control character, a type that is not
+// an IFC entity, 101 names) is refused by import, naming its flag, before anything is
+// written; the boundary values (100 characters, 100 names) are taken.
+TEST(ImportHostile, FiltersTheBuildingCouldNotReadBackAreRefusedAtTheFlag) {
+  const fs::path dir = testing::scratch_dir("import_cli", "filters");
+  const std::string model = (dir / "m.ifc").string();
+  ASSERT_EQ(make_ifc("--hostile-names " + sh(model)).exit_code, 0);
+  const std::string out = (dir / "b.yaml").string();
+  // "glass," then COUNT - 1 more names: m1,m2,...
+  const auto materials = [](int count) {
+    std::string list = "glass";
+    for (int i = 1; i < count; ++i) list += ",m" + std::to_string(i);
+    return list;
+  };
+  for (const auto& [flags, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"--exclude-materials " + sh("glass,gyp\tsum"),
+            "--exclude-materials: expected a material's name"},
+           {"--exclude-materials " + sh(std::string(101, 'x')),
+            "--exclude-materials: expected a material's name"},
+           {"--wall-types " + sh("IfcWall,Wall"), "--wall-types: expected an IFC entity name"},
+           {"--wall-types " + sh("IfcWall\"x"), "--wall-types: expected an IFC entity name"},
+           {"--exclude-materials " + materials(101),
+            "--exclude-materials: expected at most 100 names, got 101"}}) {
+    const auto r = run_bounded("import " + sh(model) + " " + flags + " -o " + sh(out));
+    EXPECT_EQ(r.exit_code, 2) << flags << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, expected)) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << flags;
+  }
+  const auto longest = run_bounded("import " + sh(model) + " --exclude-materials " + materials(99) +
+                                   "," + std::string(100, 'x') + " -o " + sh(out));
+  ASSERT_EQ(longest.exit_code, 0) << longest.err;
+  const auto valid = run_bounded("validate " + sh(out));
+  EXPECT_EQ(valid.exit_code, 0) << valid.err;
   fs::remove_all(dir);
 }
 

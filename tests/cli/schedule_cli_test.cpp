@@ -571,6 +571,18 @@ TEST(PrintSpec, AModelsFiltersAreStatedInTheBuildingAndRecorded) {
   EXPECT_EQ(
       run_ccbuild("diff " + (dir / "s.json").string() + " " + (dir / "s.json").string()).exit_code,
       0);
+  // A schedule whose recorded names the building file could not hold is refused on reading,
+  // by the same rule, naming the field.
+  for (const auto& [field, name] : std::vector<std::pair<std::string, std::string>>{
+           {"wall_types", "Wall"}, {"exclude_materials", "gyp\tsum"}}) {
+    auto bad = doc;
+    bad["inputs"]["print"][field][1] = name;
+    const fs::path file = dir / ("bad_" + field + ".json");
+    std::ofstream(file) << bad.dump();
+    const auto refused = run_ccbuild("diff " + file.string() + " " + (dir / "s.json").string());
+    EXPECT_EQ(refused.exit_code, 2) << field;
+    EXPECT_TRUE(contains(refused.err, "/inputs/print/" + field + "/1")) << refused.err;
+  }
   for (const auto& [print, said] : std::vector<std::pair<std::string, std::string>>{
            {"print: {wall_types: [Wall]}", "wall_types[0]: expected an IFC entity name"},
            {"print: {wall_types: IfcWall}", "wall_types: expected a list of names"},

@@ -5,6 +5,7 @@
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
+#include "ccbuild/floors/print_names.hpp"
 #include "read_limits.hpp"
 
 namespace ccbuild::schedule::detail {
@@ -337,11 +338,18 @@ RecordedInputs read_inputs(const JsonAt& root) {
       p->at("thin_walls").refuse("expected leave-out or refuse");
     spec.refuse_thin_walls = thin == "refuse";
     if (const auto types = p->maybe("wall_types")) {
-      for (const auto& t : types->elements(floors::limits::kMaxPrintNames))
+      for (const auto& t : types->elements(floors::limits::kMaxPrintNames)) {
         spec.wall_types.push_back(t.string(64));
+        if (const auto fault = floors::wall_type_name_fault(spec.wall_types.back()); !fault.empty())
+          t.refuse(fault);
+      }
       if (spec.wall_types.empty()) types->refuse("expected at least one wall type");
-      for (const auto& m : p->at("exclude_materials").elements(floors::limits::kMaxPrintNames))
+      for (const auto& m : p->at("exclude_materials").elements(floors::limits::kMaxPrintNames)) {
         spec.excluded_materials.push_back(m.string(100));
+        if (const auto fault = floors::excluded_material_name_fault(spec.excluded_materials.back());
+            !fault.empty())
+          m.refuse(fault);
+      }
     } else if (p->maybe("exclude_materials")) {
       p->at("exclude_materials").refuse("expected beside wall_types only");
     }

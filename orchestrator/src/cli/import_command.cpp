@@ -15,6 +15,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
+#include "ccbuild/floors/print_names.hpp"
 #include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/import/dxf.hpp"
 #include "ccbuild/import/ifc.hpp"
@@ -131,6 +132,19 @@ std::string relative_to(const fs::path& target, const fs::path& folder) {
 void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::path& material) {
   const fs::path out(o.output);
   const fs::path folder = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  // The flags are held to the building file's rule for `print:`, which they are written into.
+  for (const auto& [flag, names] : {std::pair{"--wall-types", &o.wall_types},
+                                    std::pair{"--exclude-materials", &o.excluded_materials}}) {
+    if (names->size() > floors::limits::kMaxPrintNames)
+      throw InputError("", 0, flag,
+                       printf_string("expected at most %zu names, got %zu",
+                                     floors::limits::kMaxPrintNames, names->size()));
+    for (const auto& name : *names) {
+      const std::string fault = names == &o.wall_types ? floors::wall_type_name_fault(name)
+                                                       : floors::excluded_material_name_fault(name);
+      if (!fault.empty()) throw InputError("", 0, flag, fault);
+    }
+  }
   import::IfcOptions options;
   if (!o.wall_types.empty()) options.wall_types = o.wall_types;
   if (!o.excluded_materials.empty()) options.excluded_materials = o.excluded_materials;
