@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "layouts.hpp"
 
@@ -149,6 +152,37 @@ TEST(CostModel, ArrivingAtABuiltWallsEndIsNotCrossing) {
       model.evaluate({{0, false}, {1, true}, {2, false}}, PathSpec::open_from({0, 0}));
   // (4,2) -> (4,-2) runs through (4,0), where A ends.
   EXPECT_TRUE(via.moves[2].lifted);
+}
+
+// The crossings between two layer points are cached by the pair: in a table for layers of
+// up to 1,500 points, in a hash table above. Either way every pair, asked in any order and
+// again, gives exactly the walls its straight move crosses (the grid's own answer), and the
+// pair (a, b) is never mistaken for (b, a) or another pair.
+TEST(CostModel, CrossingsByPointPairAreThoseOfTheMoveInSmallAndLargeLayers) {
+  for (const int columns : {10, 400}) {  // 40 and 1,600 points
+    std::vector<std::array<double, 4>> walls;
+    for (int c = 0; c < columns; ++c) {
+      walls.push_back({c * 1.0, 0.0, c * 1.0 + 0.5, 0.0});          // short walls along y = 0
+      walls.push_back({c * 1.0 + 0.25, 1.0, c * 1.0 + 0.25, 3.0});  // posts across y = 2
+    }
+    const auto layer = layer_from_walls(walls);
+    ASSERT_EQ(static_cast<int>(layer.points.size()), 4 * columns);
+    const CostModel model(layer, simple_machine(), Metric::kEuclidean);
+    const int points = static_cast<int>(layer.points.size());
+    std::mt19937 rng(7);
+    std::vector<std::pair<int, int>> pairs;
+    for (int k = 0; k < 3000; ++k)
+      pairs.emplace_back(static_cast<int>(rng() % points), static_cast<int>(rng() % points));
+    int crossing = 0;
+    for (int round = 0; round < 2; ++round)
+      for (const auto& [a, b] : pairs) {
+        const auto& cached = model.crossed_between_points(a, b);
+        EXPECT_EQ(cached, model.crossed_segments(layer.points[a], layer.points[b]))
+            << columns << " columns, points " << a << " and " << b;
+        crossing += cached.empty() ? 0 : 1;
+      }
+    EXPECT_GT(crossing, 0) << "some moves cross a post";
+  }
 }
 
 TEST(CostModel, ClosingMoveReturnsAndUnwinds) {

@@ -411,6 +411,14 @@ TEST(MultiNozzle, AutoSaysWhenDelayWouldHaveBeenFaster) {
   // Delay on its own returns that faster plan.
   const MultiNozzlePlan delay = plan_simple(layer, options(MultiMethod::kDelay, 3.0));
   EXPECT_NEAR(delay.layer_time_s, *stage.faster_delay_s, 1e-9);
+  // Without the comparison (the scheduler's way): the same plan, and nothing said.
+  auto quiet = options(MultiMethod::kAuto, 3.0);
+  quiet.compare_with_delay = false;
+  const MultiNozzlePlan same = plan_simple(layer, quiet);
+  ASSERT_TRUE(same.status);
+  EXPECT_FALSE(same.stages[0].faster_delay_s);
+  EXPECT_EQ(same.stages[0].method, MultiMethod::kPathCycling);
+  EXPECT_EQ(same.layer_time_s, plan.layer_time_s);
 }
 
 TEST(MultiNozzle, EveryReturnedPlanPassesTheExactCheck) {

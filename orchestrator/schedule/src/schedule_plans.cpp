@@ -64,6 +64,11 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
   planner::LayerPlanRequest request;
   request.nozzles = nozzles;
   request.planning.objective = planner::Objective::kTime;
+  // The time objective's search never reads the bound (it only proves distance tours
+  // optimal), and no schedule records it: the connected bound's cutting planes were half
+  // of planning a 3,280-wall layer (bench/README.md, issue 50). The matching bound is
+  // what the multi-nozzle planner takes too.
+  request.planning.bound = planner::BoundKind::kMatching;
   request.planning.seed = options_.seed;
   request.planning.time_limit_s = options_.layer_time_limit_s;
   request.planning.max_kicks = options_.max_kicks;
@@ -71,6 +76,13 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
   request.multi.rail_axis = machine_.rail_axis;
   request.multi.planning = request.planning;
   request.multi.message_unit = project_.building.units;
+  // The multi-nozzle planner's one-nozzle reference and its comparison with the delay
+  // method are only reported, never decided on, and a schedule shows neither: it gives the
+  // reference the plan it already has, and skips the comparison (together two thirds of a
+  // 2,840-wall layer's two-nozzle plan; bench/README.md, issue 50).
+  request.multi.compare_with_delay = false;
+  if (const auto single = planned_.find({geometry, 1}); nozzles > 1 && single != planned_.end())
+    request.multi.single_nozzle_time_s = single->second.layer_time_s;
   try {
     const planner::LayerPlanResult result = planner::plan_layer_nozzles(layer, machine_, request);
     if (!result.status) {

@@ -209,9 +209,10 @@ class Scheduler {
   double crew_start_s(double t_s, double duration_s, bool needs_crew, const std::string& what,
                       int floor, int layer);
   void fail(Infeasibility infeasibility);
-  /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's.
-  void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
-                   double deposition_s);
+  /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's, on
+  /// `nozzles` nozzles, `deposition_s` a nozzle's share of its deposition, s.
+  void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s, double deposition_s,
+                   int nozzles);
 
   const Setup& project_;
   const ScheduleOptions& options_;

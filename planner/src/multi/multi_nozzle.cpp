@@ -99,8 +99,8 @@ Stage plan_stage(detail::StageContext& ctx) {
     stage.time_s = detail::stage_time_s(stage.nozzles);
     // auto keeps the papers' order, but says so when our delay method would have been
     // faster than the papers' method it used.
-    if (ctx.options.method == MultiMethod::kAuto && method != MultiMethod::kDelay &&
-        !ctx.stop.should_stop()) {
+    if (ctx.options.method == MultiMethod::kAuto && ctx.options.compare_with_delay &&
+        method != MultiMethod::kDelay && !ctx.stop.should_stop()) {
       const detail::MethodResult alternative = detail::delay_method(ctx);
       if (alternative.status) {
         const double t = detail::stage_time_s(alternative.paths);

@@ -74,6 +74,10 @@ struct MultiNozzleOptions {
   /// The same layer's single-nozzle layer time when the caller already has it (several
   /// configurations of one layer); unset: planned here, for the comparison.
   std::optional<double> single_nozzle_time_s;
+  /// With `MultiMethod::kAuto`: also run the delay method after the papers' method that
+  /// succeeded, to report when it would have been faster (`Stage::faster_delay_s`). It
+  /// never changes the plan; a caller that does not show it saves that run.
+  bool compare_with_delay = true;
   /// The unit lengths are given in in reasons and errors (planning itself is in metres):
   /// the user's own.
   floors::LengthUnit message_unit = floors::LengthUnit::kMeter;
