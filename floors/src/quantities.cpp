@@ -24,13 +24,16 @@ bool FloorQuantities::off() const {
 FloorQuantities floor_quantities(const Floor& floor, double layer_height_m,
                                  double one_pass_width_m) {
   std::map<std::int64_t, double> printed_m3;  // by wall id
+  // Walls by id, looked up once per piece of every layer (FloorPlan::find_wall searches).
+  std::map<std::int64_t, const Wall*> wall_of;
+  for (const Wall& w : floor.plan.walls) wall_of.emplace(w.id, &w);
   for (const Layer& layer : slice_floor(floor, layer_height_m)) {
     const double thick_m = layer.z_top_m - layer.z_bottom_m;
     for (const LayerSegment& s : layer.segments) {
       double width_m = s.width_m > 0.0 ? s.width_m : one_pass_width_m;
       if (!(width_m > 0.0))
-        if (const Wall* w = floor.plan.find_wall(s.wall_id); w && w->thickness_m)
-          width_m = *w->thickness_m;
+        if (const auto w = wall_of.find(s.wall_id); w != wall_of.end() && w->second->thickness_m)
+          width_m = *w->second->thickness_m;
       printed_m3[s.wall_id] += s.length_m * width_m * thick_m;
     }
   }

@@ -40,6 +40,7 @@
 #include <ifcpp/IFC4/include/IfcMaterialList.h>
 #include <ifcpp/IFC4/include/IfcMeasureWithUnit.h>
 #include <ifcpp/IFC4/include/IfcNonNegativeLengthMeasure.h>
+#include <ifcpp/IFC4/include/IfcObjectPlacement.h>
 #include <ifcpp/IFC4/include/IfcOpeningElement.h>
 #include <ifcpp/IFC4/include/IfcOpeningElementTypeEnum.h>
 #include <ifcpp/IFC4/include/IfcPolyline.h>
@@ -58,6 +59,7 @@
 #include <ifcpp/IFC4/include/IfcRelFillsElement.h>
 #include <ifcpp/IFC4/include/IfcRelVoidsElement.h>
 #include <ifcpp/IFC4/include/IfcRepresentation.h>
+#include <ifcpp/IFC4/include/IfcRepresentationContext.h>
 #include <ifcpp/IFC4/include/IfcRoof.h>
 #include <ifcpp/IFC4/include/IfcSIPrefix.h>
 #include <ifcpp/IFC4/include/IfcSIUnit.h>
@@ -586,7 +588,19 @@ ModelContents read_model(std::string text, const std::string& file, const IfcOpt
                     std::string(error ? "IFC++ error: " : "IFC++ warning: ") + message);
   if (said > 10)
     out.notes.add("IFC++'s messages", printf_string("IFC++: and %zu more messages", said - 10));
-  // IFC++ models hold references in both directions; let them go.
+  // IFC++ models hold references in both directions; let them go. Each entity unlinks
+  // itself from the inverse lists of what it refers to, one linear search per entity: the
+  // lists every representation and placement joins (their context's, the storey's
+  // placement's) are emptied first, or that is quadratic (2.0 of 4.8 s importing the
+  // 40 x 40 rooms benchmark, bench/README.md).
+  for (const auto& [id, entity] : model->getMapIfcEntities()) {
+    if (const auto context = std::dynamic_pointer_cast<IfcRepresentationContext>(entity))
+      context->m_RepresentationsInContext_inverse.clear();
+    if (const auto placement = std::dynamic_pointer_cast<IfcObjectPlacement>(entity)) {
+      placement->m_PlacesObject_inverse.clear();
+      placement->m_ReferencedByPlacements_inverse.clear();
+    }
+  }
   model->unsetInverseAttributes();
   model->clearIfcModel();
   return out;
