@@ -7,6 +7,7 @@
 #include "ccbuild/schedule/schedule.hpp"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/floors/generate.hpp"
@@ -452,6 +454,54 @@ TEST(PipeTime, PipesDelayTheRunOfTheLayerAfterThemAndNothingAfterAFloorsTop) {
   s = detail::pipe_time_in_runs_s(order, {{{0, 0}, 1}}, kPipe_s);
   EXPECT_EQ(s, (std::vector<double>{120, 120, 0, 0, 0, 0, 0, 0}));
   EXPECT_EQ(detail::pipe_time_in_runs_s({}, {{{0, 0}, 1}}, kPipe_s), std::vector<double>{});
+}
+
+// The count of nozzles a run takes: the fewest whose interval fits (at exactly the maximum
+// too), else the fastest usable (the fewer of two equally fast). A count whose share of
+// the deposition alone cannot fit is planned only when it could still be the fastest: at a
+// share equal to the fastest so far it is, above it it is not.
+TEST(NozzleCount, TheFewestThatFitElseTheFastestPlanningOnlyCountsThatCouldBeEither) {
+  using detail::CountPlan;
+  EXPECT_EQ(detail::deposition_share_s(90.0, 3), 30.0);
+  constexpr double kBetween_s = 5.0;
+  // Plans by count (index 0 unused); interval = layer time + 5 s.
+  const auto choose = [&](std::vector<CountPlan> plans, double deposition_s, double max_s,
+                          std::set<int>* planned) {
+    for (auto& p : plans) p.interval_s = p.layer_time_s + kBetween_s;
+    return detail::fewest_fitting_count(
+        static_cast<int>(plans.size()) - 1, deposition_s, kBetween_s, max_s,
+        [&](int n) { return planned->count(n) > 0; },
+        [&](int n) {
+          planned->insert(n);
+          return plans.at(n);
+        });
+  };
+  const std::vector<CountPlan> three = {{}, {true, 100}, {true, 50}, {true, 35}};
+  std::set<int> planned;
+  EXPECT_EQ(choose(three, 90.0, 55.0, &planned), 2);  // 50 + 5 = 55: fits exactly
+  EXPECT_EQ(planned, (std::set<int>{1, 2}));
+  planned.clear();
+  EXPECT_EQ(choose(three, 90.0, 54.999, &planned), 3);
+  planned.clear();
+  // Two nozzles' share (45 s) with the 5 s between cannot fit 40 s: not planned.
+  EXPECT_EQ(choose(three, 90.0, 40.0, &planned), 3);
+  EXPECT_EQ(planned, (std::set<int>{1, 3}));
+  planned.clear();
+  // None fits; the three nozzles' plan is the fastest and two nozzles' share (45 s) cannot
+  // beat its 35 s: not planned.
+  EXPECT_EQ(choose(three, 90.0, 10.0, &planned), 3);
+  EXPECT_EQ(planned, (std::set<int>{1, 3}));
+  planned.clear();
+  // None fits, three nozzles cannot work: two nozzles, unplanned in the first pass, are.
+  EXPECT_EQ(choose({{}, {true, 100}, {true, 50}, {false, 0}}, 90.0, 10.0, &planned), 2);
+  EXPECT_EQ(planned, (std::set<int>{1, 2, 3}));
+  planned.clear();
+  // A share equal to the fastest so far is planned, and the fewer of two equally fast wins.
+  EXPECT_EQ(choose({{}, {true, 100}, {true, 35}, {true, 35}}, 70.0, 10.0, &planned), 2);
+  EXPECT_EQ(planned, (std::set<int>{1, 2, 3}));
+  planned.clear();
+  // Nothing usable: one nozzle.
+  EXPECT_EQ(choose({{}, {false, 0}, {false, 0}}, 0.0, 10.0, &planned), 1);
 }
 
 }  // namespace

@@ -139,7 +139,8 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer
   // the layer in no less than its deposition time over n (on the 40 x 40 rooms benchmark,
   // four 60 s plans of counts that could not be enough, bench/README.md).
   for (int n = machine_.nozzles + 1; n <= std::min(16, machine_.nozzles + 4); ++n) {
-    if (achieved_s - layer_time_s + deposition_s * nozzles / n > required_s) continue;
+    if (achieved_s - layer_time_s + deposition_share_s(deposition_s * nozzles, n) > required_s)
+      continue;
     const Planned& p = planned(slice.geometry, n);
     if (p.usable && achieved_s - layer_time_s + p.layer_time_s <= required_s) {
       inf.nozzles_needed = n;
@@ -294,13 +295,18 @@ void Scheduler::prepare() {
     schedule_.climb_planning_s += batch_s * share;
     schedule_.layer_planning_s += batch_s * (1.0 - share);
   }
-  // Geometries too slow for one nozzle: every count up to the machine's, in parallel.
+  // Geometries too slow for one nozzle: in parallel, the machine's count (the fastest,
+  // as a rule) and every count whose deposition share could fit the maximum interval.
+  // Others are planned by fewest_nozzles only where they could be the fastest.
   {
     std::vector<std::pair<int, int>> more;
     for (int g = 0; g < static_cast<int>(reps_.size()); ++g) {
       const Planned& p = planned_.at({g, 1});
       if (!p.usable || p.layer_time_s > kTryMoreNozzlesShare * material_.max_layer_interval_s)
-        for (int n = 2; n <= machine_.nozzles; ++n) more.push_back({g, n});
+        for (int n = 2; n <= machine_.nozzles; ++n)
+          if (n == machine_.nozzles ||
+              deposition_share_s(deposition_of(g), n) <= material_.max_layer_interval_s)
+            more.push_back({g, n});
     }
     plan_batch(more, "layer geometries too slow for one nozzle");
   }

@@ -215,24 +215,65 @@ const Planned& Scheduler::planned(int geometry, int nozzles) {
   return planned_.at(key);
 }
 
+double Scheduler::deposition_of(int geometry) const {
+  const auto single = planned_.find({geometry, 1});
+  return single == planned_.end() ? 0.0 : single->second.deposition_s;
+}
+
 int Scheduler::fewest_nozzles(int geometry, double between_s) {
+  return fewest_fitting_count(
+      machine_.nozzles, deposition_of(geometry), between_s, material_.max_layer_interval_s,
+      [&](int n) {
+        return planned_.count({geometry, n}) > 0;
+      },
+      [&](int n) {
+        const Planned& p = planned(geometry, n);
+        CountPlan c;
+        c.usable = p.usable;
+        c.layer_time_s = p.layer_time_s;
+        // The next layer like it starts after this one, its pipes and the move up.
+        if (p.usable)
+          c.interval_s = p.layer_time_s + between_s +
+                         planner::layer_change_s(machine_, p.waypoints, p.waypoints,
+                                                 project_.building.layer_height_m);
+        return c;
+      });
+}
+
+double deposition_share_s(double deposition_s, int nozzles) {
+  return deposition_s / nozzles;
+}
+
+int fewest_fitting_count(int max_count, double deposition_s, double between_s,
+                         double max_interval_s, const std::function<bool(int)>& have,
+                         const std::function<CountPlan(int)>& plan) {
   int fastest = 1;
   double fastest_s = kInf;
-  for (int n = 1; n <= machine_.nozzles; ++n) {
-    const Planned& p = planned(geometry, n);
-    if (!p.usable) continue;
-    // The next layer like it starts after this one, its pipes and the move up.
-    if (p.layer_time_s + between_s +
-            planner::layer_change_s(machine_, p.waypoints, p.waypoints,
-                                    project_.building.layer_height_m) <=
-        material_.max_layer_interval_s)
-      return n;
-    if (p.layer_time_s < fastest_s) {
+  const auto faster = [&](int n, const CountPlan& p) {
+    if (p.layer_time_s < fastest_s || (p.layer_time_s == fastest_s && n < fastest)) {
       fastest_s = p.layer_time_s;
       fastest = n;
     }
+  };
+  std::vector<int> unplanned;  // counts that cannot fit, left until none does
+  for (int n = 1; n <= max_count; ++n) {
+    if (n > 1 && !have(n) && deposition_share_s(deposition_s, n) + between_s > max_interval_s) {
+      unplanned.push_back(n);
+      continue;
+    }
+    const CountPlan p = plan(n);
+    if (!p.usable) continue;
+    if (p.interval_s <= max_interval_s) return n;
+    faster(n, p);
   }
-  return fastest;  // none is fast enough: the fastest comes closest
+  // None fits: the fastest comes closest. The counts left, most first (the fastest as a
+  // rule), are planned only where their share could beat it.
+  for (auto n = unplanned.rbegin(); n != unplanned.rend(); ++n) {
+    if (deposition_share_s(deposition_s, *n) > fastest_s) continue;
+    const CountPlan p = plan(*n);
+    if (p.usable) faster(*n, p);
+  }
+  return fastest;
 }
 
 std::string Scheduler::register_plan(const PlanKey& base_key, const Slice& slice, int nozzles,

@@ -68,6 +68,27 @@ std::vector<double> pipe_time_in_runs_s(const std::vector<LayerOrder>& order,
                                         const std::map<std::pair<int, int>, int>& pipes_after,
                                         double pipe_s);
 
+/// A nozzle count's plan as the choice of count weighs it.
+struct CountPlan {
+  bool usable = false;
+  double layer_time_s = 0.0;
+  /// Its layer time with the time between two layers of the run and the move up, s.
+  double interval_s = 0.0;
+};
+
+/// No plan of a layer on `nozzles` nozzles is faster than its deposition shared among
+/// them: `deposition_s` is one nozzle's, s.
+double deposition_share_s(double deposition_s, int nozzles);
+
+/// The fewest of 1..`max_count` nozzles whose plan's interval fits `max_interval_s`; when
+/// none does, the fastest usable count (the fewest of equally fast ones), else 1. `plan(n)`
+/// plans count n. A count n > 1 that `have(n)` says is not planned yet, and whose share of
+/// `deposition_s` with `between_s` already exceeds the maximum, cannot fit: it is planned
+/// only when it could still be the fastest.
+int fewest_fitting_count(int max_count, double deposition_s, double between_s,
+                         double max_interval_s, const std::function<bool(int)>& have,
+                         const std::function<CountPlan(int)>& plan);
+
 }  // namespace ccbuild::schedule::detail
 
 namespace ccbuild::schedule {
@@ -155,6 +176,8 @@ class Scheduler {
   /// above it late at the pieces it did first. `between_s`: the most time spent between
   /// two layers of the run (pipes). When no count is fast enough, the fastest.
   int fewest_nozzles(int geometry, double between_s);
+  /// The one-nozzle plan's deposition of `geometry`, s (0 when there is none yet).
+  double deposition_of(int geometry) const;
   void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
   /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
   /// variant "<base>m1", ... when another layer of its geometry names them differently);
