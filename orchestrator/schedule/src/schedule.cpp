@@ -124,8 +124,9 @@ std::string max_interval_fix(double needed_s) {
 }
 }  // namespace
 
-void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s,
-                            double deposition_s, int nozzles) {
+void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, const Planned& p, int nozzles) {
+  const double layer_time_s = p.layer_time_s;
+  const double deposition_s = p.deposition_s / nozzles;  // a nozzle's share
   const double required_s = inf.required_s, achieved_s = inf.achieved_s;
   const double excess_s = achieved_s - required_s;
   inf.max_interval_needed_s = std::ceil(achieved_s);
@@ -139,10 +140,9 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, double layer
   // the layer in no less than its deposition time over n (on the 40 x 40 rooms benchmark,
   // four 60 s plans of counts that could not be enough, bench/README.md).
   for (int n = machine_.nozzles + 1; n <= std::min(16, machine_.nozzles + 4); ++n) {
-    if (achieved_s - layer_time_s + deposition_share_s(deposition_s * nozzles, n) > required_s)
-      continue;
-    const Planned& p = planned(slice.geometry, n);
-    if (p.usable && achieved_s - layer_time_s + p.layer_time_s <= required_s) {
+    if (achieved_s - layer_time_s + deposition_share_s(p.deposition_s, n) > required_s) continue;
+    const Planned& more = planned(slice.geometry, n);
+    if (more.usable && achieved_s - layer_time_s + more.layer_time_s <= required_s) {
       inf.nozzles_needed = n;
       break;
     }
@@ -305,7 +305,7 @@ void Scheduler::prepare() {
       if (!p.usable || p.layer_time_s > kTryMoreNozzlesShare * material_.max_layer_interval_s)
         for (int n = 2; n <= machine_.nozzles; ++n)
           if (n == machine_.nozzles ||
-              deposition_share_s(deposition_of(g), n) <= material_.max_layer_interval_s)
+              share_could_fit(deposition_of(g), n, 0.0, material_.max_layer_interval_s))
             more.push_back({g, n});
     }
     plan_batch(more, "layer geometries too slow for one nozzle");
@@ -712,8 +712,7 @@ bool Scheduler::schedule_layer(int i) {
         best->nozzles, best->nozzles == 1 ? "" : "s", material_.max_layer_interval_s,
         best->local_max_s - material_.max_layer_interval_s);
     if (schedule_.feasible) {  // the first one: compute its fixes
-      const Planned& p = *best->planned;
-      compute_fix(inf, slice, p.layer_time_s, p.deposition_s / best->nozzles, best->nozzles);
+      compute_fix(inf, slice, *best->planned, best->nozzles);
       inf.message += "; fix: " + inf.fix;
     }
     fail(inf);

@@ -81,8 +81,8 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
   // reference the plan it already has, and skips the comparison (together two thirds of a
   // 2,840-wall layer's two-nozzle plan; bench/README.md, issue 50).
   request.multi.compare_with_delay = false;
-  if (const auto single = planned_.find({geometry, 1}); nozzles > 1 && single != planned_.end())
-    request.multi.single_nozzle_time_s = single->second.layer_time_s;
+  if (const Planned* single = single_plan(geometry); nozzles > 1 && single)
+    request.multi.single_nozzle_time_s = single->layer_time_s;
   try {
     const planner::LayerPlanResult result = planner::plan_layer_nozzles(layer, machine_, request);
     if (!result.status) {
@@ -215,9 +215,14 @@ const Planned& Scheduler::planned(int geometry, int nozzles) {
   return planned_.at(key);
 }
 
-double Scheduler::deposition_of(int geometry) const {
+const Planned* Scheduler::single_plan(int geometry) const {
   const auto single = planned_.find({geometry, 1});
-  return single == planned_.end() ? 0.0 : single->second.deposition_s;
+  return single == planned_.end() ? nullptr : &single->second;
+}
+
+double Scheduler::deposition_of(int geometry) const {
+  const Planned* single = single_plan(geometry);
+  return single ? single->deposition_s : 0.0;
 }
 
 int Scheduler::fewest_nozzles(int geometry, double between_s) {
@@ -244,6 +249,10 @@ double deposition_share_s(double deposition_s, int nozzles) {
   return deposition_s / nozzles;
 }
 
+bool share_could_fit(double deposition_s, int nozzles, double between_s, double max_interval_s) {
+  return deposition_share_s(deposition_s, nozzles) + between_s <= max_interval_s;
+}
+
 int fewest_fitting_count(int max_count, double deposition_s, double between_s,
                          double max_interval_s, const std::function<bool(int)>& have,
                          const std::function<CountPlan(int)>& plan) {
@@ -257,7 +266,7 @@ int fewest_fitting_count(int max_count, double deposition_s, double between_s,
   };
   std::vector<int> unplanned;  // counts that cannot fit, left until none does
   for (int n = 1; n <= max_count; ++n) {
-    if (n > 1 && !have(n) && deposition_share_s(deposition_s, n) + between_s > max_interval_s) {
+    if (n > 1 && !have(n) && !share_could_fit(deposition_s, n, between_s, max_interval_s)) {
       unplanned.push_back(n);
       continue;
     }

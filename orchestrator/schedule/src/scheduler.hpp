@@ -80,6 +80,10 @@ struct CountPlan {
 /// them: `deposition_s` is one nozzle's, s.
 double deposition_share_s(double deposition_s, int nozzles);
 
+/// Whether a plan on `nozzles` nozzles could fit `max_interval_s` at all: the share of
+/// `deposition_s` (one nozzle's) with `between_s` is no more than the maximum.
+bool share_could_fit(double deposition_s, int nozzles, double between_s, double max_interval_s);
+
 /// The fewest of 1..`max_count` nozzles whose plan's interval fits `max_interval_s`; when
 /// none does, the fastest usable count (the fewest of equally fast ones), else 1. `plan(n)`
 /// plans count n. A count n > 1 that `have(n)` says is not planned yet, and whose share of
@@ -176,6 +180,8 @@ class Scheduler {
   /// above it late at the pieces it did first. `between_s`: the most time spent between
   /// two layers of the run (pipes). When no count is fast enough, the fastest.
   int fewest_nozzles(int geometry, double between_s);
+  /// The one-nozzle plan of `geometry`; null before it is made.
+  const Planned* single_plan(int geometry) const;
   /// The one-nozzle plan's deposition of `geometry`, s (0 when there is none yet).
   double deposition_of(int geometry) const;
   void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
@@ -232,10 +238,8 @@ class Scheduler {
   double crew_start_s(double t_s, double duration_s, bool needs_crew, const std::string& what,
                       int floor, int layer);
   void fail(Infeasibility infeasibility);
-  /// The fixes of an interval over the maximum: `layer_time_s` is the chosen plan's, on
-  /// `nozzles` nozzles, `deposition_s` a nozzle's share of its deposition, s.
-  void compute_fix(Infeasibility& inf, const Slice& slice, double layer_time_s, double deposition_s,
-                   int nozzles);
+  /// The fixes of an interval over the maximum, for the chosen plan `p` on `nozzles`.
+  void compute_fix(Infeasibility& inf, const Slice& slice, const Planned& p, int nozzles);
 
   const Setup& project_;
   const ScheduleOptions& options_;

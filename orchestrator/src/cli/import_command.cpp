@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 #include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/format.hpp"
@@ -133,17 +134,18 @@ void run_ifc_import(const ImportOptions& o, const fs::path& machine, const fs::p
   const fs::path out(o.output);
   const fs::path folder = out.has_parent_path() ? out.parent_path() : fs::path(".");
   // The flags are held to the building file's rule for `print:`, which they are written into.
-  for (const auto& [flag, names] : {std::pair{"--wall-types", &o.wall_types},
-                                    std::pair{"--exclude-materials", &o.excluded_materials}}) {
+  using Fault = std::string (*)(const std::string&);
+  for (const auto& [flag, names, fault_of] :
+       {std::tuple{"--wall-types", &o.wall_types, Fault{floors::wall_type_name_fault}},
+        std::tuple{"--exclude-materials", &o.excluded_materials,
+                   Fault{floors::excluded_material_name_fault}}}) {
     if (names->size() > floors::limits::kMaxPrintNames)
       throw InputError("", 0, flag,
                        printf_string("expected at most %zu names, got %zu",
                                      floors::limits::kMaxPrintNames, names->size()));
-    for (const auto& name : *names) {
-      const std::string fault = names == &o.wall_types ? floors::wall_type_name_fault(name)
-                                                       : floors::excluded_material_name_fault(name);
-      if (!fault.empty()) throw InputError("", 0, flag, fault);
-    }
+    for (const auto& name : *names)
+      if (const std::string fault = fault_of(name); !fault.empty())
+        throw InputError("", 0, flag, fault);
   }
   import::IfcOptions options;
   if (!o.wall_types.empty()) options.wall_types = o.wall_types;
