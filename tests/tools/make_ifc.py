@@ -50,6 +50,9 @@ centred on the axis. The IFC4 file also has a true north and a map conversion.
                         wall also a cornice swept along it), the east and west walls their
                         elevation extruded through them (the west wall's with a gable);
                         millimetres
+  ring_beam_ifc4.ifc    one storey of four 200 mm cavity walls under a 200 mm roof slab,
+                        each a box per leaf: the outer leaf to the slab's top (3 m), the
+                        inner to its underside; their NetVolume; millimetres
   truncated.ifc         house_ifc4.ifc cut off in the middle of an entity
   self_placement.ifc    a wall whose placement is placed relative to itself
   nan.ifc               a wall whose placement point is 1.0E999 (not a finite number)
@@ -302,14 +305,15 @@ class Model:
 
     def wall(self, storey, name, start, end, thickness_m, height_m, axis=True,
              body="rectangle", material="Concrete", entity=None, curve=None, ridge_m=None,
-             clip=False, body_span=None, bounded=None):
+             clip=False, body_span=None, bounded=None, leaves=None):
         """A straight wall from `start` to `end` (metres, storey frame): placed at its
         start, turned along it; returns (wall, its placement, its length). `body_span`:
         (from, to) along the axis where a rectangular body stands (default: all of it).
         `bounded`: polygonal bounded half-spaces taken away from its box, each
         (z, (at, ref, axis), boundary): everything above the level z (wall frame) inside the
         prism of `boundary` (points in the placement (at, ref, axis)'s xy plane, swept
-        along its z)."""
+        along its z). `leaves`: its body one box per leaf instead, side by side as Revit
+        exports a layered wall, each (centre across the axis, width, bottom z, top z)."""
         f = self.f
         st, st_place = storey
         dx, dy = end[0] - start[0], end[1] - start[1]
@@ -327,7 +331,15 @@ class Model:
             line = f.add("IFCPOLYLINE", "(%s,%s)" % (self.mpoint(0, 0), self.mpoint(length, 0)))
             reps.append(f.add("IFCSHAPEREPRESENTATION", self.axis_context, "'Axis'", "'Curve2D'",
                               "(%s)" % line))
-        if bounded:  # a box, parts of its top taken away
+        if leaves:  # a box per leaf
+            solids = [self.extrusion(self.rectangle((length / 2, y), length, width),
+                                     f.add("IFCAXIS2PLACEMENT3D", self.mpoint(0, 0, z0), "$", "$"),
+                                     z1 - z0)
+                      for y, width, z0, z1 in leaves]
+            reps.append(f.add("IFCSHAPEREPRESENTATION", self.body_context, "'Body'",
+                              "'SweptSolid'", "(%s)" % ",".join(solids)))
+            profile = None
+        elif bounded:  # a box, parts of its top taken away
             box = self.extrusion(self.rectangle((length / 2, 0), length, thickness_m),
                                  f.add("IFCAXIS2PLACEMENT3D", self.origin, "$", "$"), height_m)
             for z, (at, ref, ax), boundary in bounded:
@@ -546,6 +558,25 @@ def bounded_cuts():
     return m.f
 
 
+def ring_beam():
+    """A one-room house (6 m x 4 m) of 0.2 m cavity walls under a 0.2 m roof slab whose top is
+    3 m up, each wall's body a box per leaf (as Revit exports it): the outer leaf (0.1 m)
+    stands to 3.0 m, beside the slab's edge; the inner leaf (0.1 m) stops at 2.8 m, under
+    the slab. Every wall states its body's NetVolume, length along the axis between the
+    other walls' axes."""
+    m = Model("IFC4", "mm")
+    g = m.storey("Ground floor", 0.0)
+    corners = [(0, 0), (6, 0), (6, 4), (0, 4)]
+    for k, name in enumerate(["South wall", "East wall", "North wall", "West wall"]):
+        # The ring runs anticlockwise: a wall's left (+y) is inside.
+        w, _, length = m.wall(g, name, corners[k], corners[(k + 1) % 4], 0.2, 3.0,
+                              leaves=[(-0.05, 0.1, 0.0, 3.0), (0.05, 0.1, 0.0, 2.8)])
+        m.net_volume(w, length * 0.1 * (3.0 + 2.8))
+    m.slab(g, "Roof", "ROOF", 3.0, 0.2)
+    m.finish()
+    return m.f
+
+
 def thick():
     m = Model("IFC4", "m")
     g = m.storey("Ground", 0.0)
@@ -732,6 +763,7 @@ def main():
     write("thick_ifc4.ifc", thick().text("thick_ifc4.ifc"))
     write("feet_ifc2x3.ifc", feet().text("feet_ifc2x3.ifc"))
     write("layered_ifc4.ifc", layered().text("layered_ifc4.ifc"))
+    write("ring_beam_ifc4.ifc", ring_beam().text("ring_beam_ifc4.ifc"))
     write("quantities_ifc4.ifc", quantities("IFC4", "m3").text("quantities_ifc4.ifc"))
     write("quantities_ifc2x3.ifc", quantities("IFC2X3", "dm3").text("quantities_ifc2x3.ifc"))
     write("free_end_ifc4.ifc", free_end().text("free_end_ifc4.ifc"))

@@ -108,9 +108,11 @@ std::vector<std::pair<double, double>> top_on_level(const Piece& piece, const Le
 }
 
 /// The part of a wall's NetVolume that one of its pieces on `level` takes: the piece's
-/// share of the wall's modelled length, times the share of the wall's body height within
-/// the level's floor (from its level up to the slab over it: a wall's part in the slab's
-/// depth is cast with the slab, not printed); the whole height without a body extent.
+/// share of the wall's modelled length, times the share of the wall's body within the
+/// level's floor (from its level up to the slab over it: a wall's part in the slab's depth
+/// is cast with the slab, not printed). The body's share is of its volume where its solids
+/// are uncut (a leaf that stops under a ring beam has less there), else of its height; the
+/// whole without a body.
 std::optional<double> model_volume_m3(const Piece& piece, const Level& level) {
   const FoundWall& w = *piece.wall;
   if (!w.net_volume_m3) return std::nullopt;
@@ -118,8 +120,13 @@ std::optional<double> model_volume_m3(const Piece& piece, const Level& level) {
   for (const auto& [a, b] : w.pieces) modelled_m += (b - a).norm();
   if (!(modelled_m > 0.0)) return std::nullopt;
   double height_share = 1.0;
-  if (w.bottom_m && w.top_m && *w.top_m > *w.bottom_m) {
-    const double top_m = level.elevation_m + level.height_m;
+  const double top_m = level.elevation_m + level.height_m;
+  const double body_m3 = body_volume_between_m3(w, -std::numeric_limits<double>::infinity(),
+                                                std::numeric_limits<double>::infinity());
+  if (body_m3 > 0.0) {
+    height_share =
+        std::clamp(body_volume_between_m3(w, level.elevation_m, top_m) / body_m3, 0.0, 1.0);
+  } else if (w.bottom_m && w.top_m && *w.top_m > *w.bottom_m) {
     height_share =
         std::clamp((std::min(*w.top_m, top_m) - std::max(*w.bottom_m, level.elevation_m)) /
                        (*w.top_m - *w.bottom_m),

@@ -584,6 +584,37 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
       found.bounded_cut = std::any_of(bodies.begin(), bodies.end(), [](const Solid& b) {
         return std::any_of(b.cuts.begin(), b.cuts.end(), [](const auto& c) { return c.bounded; });
       });
+      // Its volume by height, to share its NetVolume between floors where the body is not
+      // of one section all the way up (a leaf stopping under a ring beam).
+      if (std::none_of(bodies.begin(), bodies.end(), [](const Solid& b) { return b.clipped; }))
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+          const Solid& body = bodies[i];
+          const Vector3d along = body.position.linear() * body.extrusion;
+          const double base_z = z0 + body.position.translation().z();
+          FoundWall::UprightPiece piece;
+          if (!across[i]) {
+            double twice = 0.0;
+            for (std::size_t k = 0; k < body.profile.size(); ++k) {
+              const Vector2d &p = body.profile[k], &q = body.profile[(k + 1) % body.profile.size()];
+              twice += p.x() * q.y() - q.x() * p.y();
+            }
+            const double area_m2 = 0.5 * std::abs(twice);
+            const double za = std::min(base_z, base_z + along.z());
+            const double zb = std::max(base_z, base_z + along.z());
+            piece.hz = {{0.0, za}, {area_m2, za}, {area_m2, zb}, {0.0, zb}};
+            piece.depth_m = 1.0;
+          } else {
+            // The profile stands upright: its frame's rows give z (and, across that, the
+            // horizontal) of each profile point, a rotation, so areas are kept.
+            const Vector2d up = body.position.linear().row(2).head<2>().transpose();
+            if (!(up.norm() > 0.5)) continue;
+            const Vector2d u = up.normalized();
+            for (const Vector2d& p : body.profile)
+              piece.hz.emplace_back(u.x() * p.y() - u.y() * p.x(), base_z + up.dot(p));
+            piece.depth_m = std::abs(along.dot(body.position.linear().col(2)));
+          }
+          found.body_volume.push_back(std::move(piece));
+        }
     }
     const auto layers = layer_set(*wall);
     // The centreline in the wall's frame.

@@ -57,8 +57,23 @@ struct FoundWall {
   /// z in the model's frame), linear between them, from the upper outline of its solids in
   /// the wall's elevation (a gable's slope, a step); empty where no solid says.
   std::vector<std::vector<std::pair<double, double>>> piece_tops;
+  /// Its body as upright polygons, each with a depth: the body's volume between two
+  /// heights is, over the polygons, the area between them times the depth. A solid
+  /// extruded upwards is a rectangle as wide as its profile's area and as high as the
+  /// extrusion; one extruded through the wall, its profile in elevation. Empty when a solid
+  /// is cut (a gable under its roof) or there is no body: a share of the wall's NetVolume
+  /// then goes by height.
+  struct UprightPiece {
+    std::vector<Eigen::Vector2d> hz;  ///< (horizontal m, z m in the model's frame)
+    double depth_m = 0.0;
+  };
+  std::vector<UprightPiece> body_volume;
   std::vector<FoundOpening> openings;
 };
+
+/// The volume (m³) of a wall's body between heights `lo_m` and `hi_m` (the model's frame),
+/// from FoundWall::body_volume; 0 when that is empty.
+double body_volume_between_m3(const FoundWall& wall, double lo_m, double hi_m);
 
 struct FoundStorey {
   Element what;
