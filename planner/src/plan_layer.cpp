@@ -89,6 +89,15 @@ constexpr std::size_t kExactPolishKicksMaxSegments = 200;
 /// without a better tour (see docs/planning.md, "When the search stops").
 constexpr long kLinKernighanMaxKicks = 60'000;
 constexpr long kLinKernighanStallKicks = 10'000;
+/// The 2-opt/Or-opt search's kicks in a row without a better tour, at most: on layers of
+/// thousands of walls (the time objective's large layers) a longer stall bought little
+/// (bench/README.md, "40 x 40 rooms"); layers of up to 450 items stay under it.
+constexpr long kTwoOptOrOptStallKicks = 10'000;
+/// The exact-time polish's step evaluations on a large layer, at most (20,000 a wall up
+/// to 2,000 walls): its descent gains less and less per step; on a 6,880-wall layer the
+/// last 98 million steps of 138 million took 3.9 s and 0.065% of its layer time
+/// (bench/README.md, "40 x 40 rooms").
+constexpr long kLargePolishMaxSteps = 40'000'000;
 
 struct Solved {
   Sequence sequence;
@@ -149,6 +158,8 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   if (settings.neighbourhood == Neighbourhood::kLinKernighan) {
     default_kicks = std::min(default_kicks, kLinKernighanMaxKicks);
     default_stall_kicks = std::min(default_stall_kicks, kLinKernighanStallKicks);
+  } else {
+    default_stall_kicks = std::min(default_stall_kicks, kTwoOptOrOptStallKicks);
   }
   if (options.max_kicks || (options.anytime && !anytime_polish)) {
     settings.max_kicks = settings.stall_kicks =
@@ -208,7 +219,7 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
                                                : large ? 0
                                                        : 20);
     polish.max_step_evaluations = small   ? 40'000'000
-                                  : large ? 20'000L * n
+                                  : large ? std::min(20'000L * n, kLargePolishMaxSteps)
                                           : std::min<long>(4'000'000, 400L * n * n);
     if (options.on_progress)
       polish.on_better = [&](long kicks, double cost_s) {

@@ -504,5 +504,60 @@ TEST(NozzleCount, TheFewestThatFitElseTheFastestPlanningOnlyCountsThatCouldBeEit
   EXPECT_EQ(choose({{}, {false, 0}, {false, 0}}, 0.0, 10.0, &planned), 1);
 }
 
+// The counts a schedule plans ahead, in parallel (next_count_to_plan asked until it names
+// none), are exactly those fewest_fitting_count plans one at a time, whatever the plans; and
+// it then plans nothing more and gives the same count.
+TEST(NozzleCount, PlanningAheadPlansWhatTheChoiceWouldAndNothingElse) {
+  using detail::CountPlan;
+  constexpr double kBetween_s = 5.0;
+  struct Case {
+    std::vector<CountPlan> plans;  // by count, index 0 unused; interval = layer time + 5 s
+    double deposition_s, max_s;
+  };
+  const std::vector<Case> cases = {
+      {{{}, {true, 100}, {true, 50}, {true, 35}}, 90.0, 55.0},    // two fit exactly
+      {{{}, {true, 100}, {true, 50}, {true, 35}}, 90.0, 54.999},  // three, two planned
+      {{{}, {true, 100}, {true, 50}, {true, 35}}, 90.0, 40.0},    // two's share cannot fit
+      {{{}, {true, 100}, {true, 50}, {true, 35}}, 90.0, 10.0},    // none fits: the fastest
+      {{{}, {true, 100}, {true, 50}, {false, 0}}, 90.0, 10.0},    // three unusable
+      {{{}, {true, 100}, {true, 35}, {true, 35}}, 70.0, 10.0},    // equally fast
+      {{{}, {true, 100}, {false, 0}, {true, 60}, {true, 45}}, 120.0, 10.0},
+      {{{}, {false, 0}, {false, 0}}, 0.0, 10.0},
+  };
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    SCOPED_TRACE(c);
+    std::vector<CountPlan> plans = cases[c].plans;
+    for (auto& p : plans) p.interval_s = p.layer_time_s + kBetween_s;
+    const int max_count = static_cast<int>(plans.size()) - 1;
+    const auto choose = [&](std::set<int>& planned) {
+      return detail::fewest_fitting_count(
+          max_count, cases[c].deposition_s, kBetween_s, cases[c].max_s,
+          [&](int n) { return planned.count(n) > 0; },
+          [&](int n) {
+            planned.insert(n);
+            return plans.at(n);
+          });
+    };
+    std::set<int> one_at_a_time;
+    const int chosen = choose(one_at_a_time);
+    std::set<int> ahead{1};  // the schedule plans one nozzle first
+    for (int round = 0; round < 10; ++round) {
+      const auto next =
+          detail::next_count_to_plan(max_count, cases[c].deposition_s, kBetween_s, cases[c].max_s,
+                                     [&](int n) -> std::optional<CountPlan> {
+                                       if (!ahead.count(n)) return std::nullopt;
+                                       return plans.at(n);
+                                     });
+      if (!next) break;
+      EXPECT_FALSE(ahead.count(*next)) << *next;
+      ahead.insert(*next);
+    }
+    EXPECT_EQ(ahead, one_at_a_time);
+    std::set<int> after = ahead;
+    EXPECT_EQ(choose(after), chosen);
+    EXPECT_EQ(after, ahead);  // nothing more planned
+  }
+}
+
 }  // namespace
 }  // namespace ccbuild::schedule

@@ -335,6 +335,7 @@ void Scheduler::prepare() {
     pipe_counts[key] = static_cast<int>(anchors.size());
   run_between_s_ = pipe_time_in_runs_s(order, pipe_counts,
                                        project_.climber ? project_.climber->pipe_embed_s : 0.0);
+  plan_counts_ahead();
 }
 
 std::vector<double> pipe_time_in_runs_s(const std::vector<LayerOrder>& order,

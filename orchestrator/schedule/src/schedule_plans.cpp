@@ -6,6 +6,8 @@
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
+#include <set>
+#include <utility>
 
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/common/sha256.hpp"
@@ -231,18 +233,60 @@ int Scheduler::fewest_nozzles(int geometry, double between_s) {
       [&](int n) {
         return planned_.count({geometry, n}) > 0;
       },
+      [&](int n) { return count_plan(planned(geometry, n), between_s); });
+}
+
+CountPlan Scheduler::count_plan(const Planned& p, double between_s) const {
+  CountPlan c;
+  c.usable = p.usable;
+  c.layer_time_s = p.layer_time_s;
+  // The next layer like it starts after this one, its pipes and the move up.
+  if (p.usable)
+    c.interval_s = p.layer_time_s + between_s +
+                   planner::layer_change_s(machine_, p.waypoints, p.waypoints,
+                                           project_.building.layer_height_m);
+  return c;
+}
+
+void Scheduler::plan_counts_ahead() {
+  std::set<std::pair<int, double>> asked;  // (geometry, pipe time), in a stable order
+  for (std::size_t i = 0; i < slices_.size(); ++i)
+    asked.emplace(slices_[i].geometry, run_between_s_[i]);
+  // Each round plans at least one more count of each geometry still asking, so a geometry
+  // is done within the machine's counts; a count named again (never, by the rule above)
+  // ends the rounds rather than asking for ever.
+  for (int round = 0; round < machine_.nozzles; ++round) {
+    std::vector<std::pair<int, int>> missing;
+    for (const auto& [geometry, between_s] : asked)
+      if (const auto n = next_count_to_plan(machine_.nozzles, deposition_of(geometry), between_s,
+                                            material_.max_layer_interval_s,
+                                            [&](int count) -> std::optional<CountPlan> {
+                                              const auto it = planned_.find({geometry, count});
+                                              if (it == planned_.end()) return std::nullopt;
+                                              return count_plan(it->second, between_s);
+                                            }))
+        if (!planned_.count({geometry, *n})) missing.emplace_back(geometry, *n);
+    if (missing.empty()) return;
+    plan_batch(missing, "nozzle counts that could be the fastest");
+  }
+}
+
+std::optional<int> next_count_to_plan(int max_count, double deposition_s, double between_s,
+                                      double max_interval_s,
+                                      const std::function<std::optional<CountPlan>(int)>& known) {
+  // Up to the first count not known its path is the one it takes; past it, unknown.
+  std::optional<int> missing;
+  fewest_fitting_count(
+      max_count, deposition_s, between_s, max_interval_s,
+      [&](int n) { return known(n).has_value(); },
       [&](int n) {
-        const Planned& p = planned(geometry, n);
-        CountPlan c;
-        c.usable = p.usable;
-        c.layer_time_s = p.layer_time_s;
-        // The next layer like it starts after this one, its pipes and the move up.
-        if (p.usable)
-          c.interval_s = p.layer_time_s + between_s +
-                         planner::layer_change_s(machine_, p.waypoints, p.waypoints,
-                                                 project_.building.layer_height_m);
-        return c;
+        if (!missing) {
+          if (auto p = known(n)) return *p;
+          missing = n;
+        }
+        return CountPlan{};
       });
+  return missing;
 }
 
 double deposition_share_s(double deposition_s, int nozzles) {

@@ -93,6 +93,14 @@ int fewest_fitting_count(int max_count, double deposition_s, double between_s,
                          double max_interval_s, const std::function<bool(int)>& have,
                          const std::function<CountPlan(int)>& plan);
 
+/// The first count that fewest_fitting_count, given the same figures, would plan that
+/// `known` (count -> its plan, none when not planned) does not hold; none when it needs
+/// no more. Planning that count and asking again, until none, plans what
+/// fewest_fitting_count would have, so that it then plans nothing and answers as before.
+std::optional<int> next_count_to_plan(int max_count, double deposition_s, double between_s,
+                                      double max_interval_s,
+                                      const std::function<std::optional<CountPlan>(int)>& known);
+
 }  // namespace ccbuild::schedule::detail
 
 namespace ccbuild::schedule {
@@ -180,6 +188,16 @@ class Scheduler {
   /// above it late at the pieces it did first. `between_s`: the most time spent between
   /// two layers of the run (pipes). When no count is fast enough, the fastest.
   int fewest_nozzles(int geometry, double between_s);
+  /// What fewest_nozzles weighs of plan `p`: usable, its layer time, and the interval to
+  /// the next layer like it (`between_s` and the move up to its own start).
+  CountPlan count_plan(const Planned& p, double between_s) const;
+  /// Plans, in parallel batches, the counts fewest_nozzles will ask for on the layers'
+  /// geometries and pipe times, so that it does not plan them one at a time: it is run on
+  /// each (geometry, pipe time) of the layers, stopping at the first count it asks for
+  /// that is not planned; those are planned together, and again until it asks for none.
+  /// Its answers are those it would give without this: it asks for the same counts, in
+  /// the same order.
+  void plan_counts_ahead();
   /// The one-nozzle plan of `geometry`; null before it is made.
   const Planned* single_plan(int geometry) const;
   /// The one-nozzle plan's deposition of `geometry`, s (0 when there is none yet).
