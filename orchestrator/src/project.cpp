@@ -1,5 +1,6 @@
 #include "ccbuild/orchestrator/project.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -34,11 +35,11 @@ floors::MaterialProfile default_material() {
 
 // Places the building in the machine's frame: its site's rotation, then its site's origin
 // or (asked for either way) the middle of the machine's x and y travel.
-void place(Project& project, bool centre) {
+void place(Project& project, bool centre, std::optional<double> rotation_deg) {
   floors::Building& b = project.building;
   const floors::Site site = b.site.value_or(floors::Site{});
   schedule::Placement& placed = project.placement;
-  placed.rotation_rad = site.rotation_rad;
+  placed.rotation_rad = rotation_deg ? *rotation_deg * M_PI / 180.0 : site.rotation_rad;
   floors::place_building(b, placed.rotation_rad, Eigen::Vector2d::Zero());
   if (centre || site.centre) {
     const machine::MachineModel& m = *project.machine;
@@ -54,6 +55,80 @@ void place(Project& project, bool centre) {
 }
 
 }  // namespace
+
+std::optional<double> turn_that_fits(const floors::Building& building, double now_deg,
+                                     double reach_x_m, double reach_y_m) {
+  // The outline's convex hull (Andrew's monotone chain): a footprint's narrowest boxes lie
+  // along its hull's edges.
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& floor : building.floors)
+    for (const auto& v : floor.plan.vertices) points.push_back(v.position_m);
+  if (points.size() < 2) return std::nullopt;
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);
+  // Each edge along x or along y; the turn as `site: rotation_deg` says it (from the
+  // building's own axes), rounded to 0.01 degree. The hull's corners rank the turns by the
+  // room they leave; the best few are checked at their rounded value, walls included. The
+  // most room to spare wins, the smaller turn on a tie.
+  constexpr std::size_t kMostHullCorners = 1000, kTurnsChecked = 8;
+  constexpr double kLeastRoom_m = 1e-6;
+  if (hull.size() > kMostHullCorners) return std::nullopt;
+  std::vector<std::pair<double, double>> ranked;  // (room by the corners, m; turn, deg)
+  for (std::size_t e = 0; e < hull.size(); ++e) {
+    const Eigen::Vector2d d = hull[(e + 1) % hull.size()] - hull[e];
+    if (d.norm() < 1e-9) continue;
+    const double edge_deg = std::atan2(d.y(), d.x()) * 180.0 / M_PI;
+    for (const double along : {0.0, 90.0}) {
+      // A half turn leaves the footprint's size as it is: the turn within (-90, 90].
+      double deg = std::round(std::remainder(now_deg - edge_deg + along, 180.0) * 100.0) / 100.0;
+      if (deg <= -90.0) deg += 180.0;
+      const Eigen::Rotation2Dd by((deg - now_deg) * M_PI / 180.0);
+      Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+      Eigen::Vector2d hi = -lo;
+      for (const auto& p : hull) {
+        lo = lo.cwiseMin(by * p);
+        hi = hi.cwiseMax(by * p);
+      }
+      ranked.emplace_back(std::min(reach_x_m - (hi - lo).x(), reach_y_m - (hi - lo).y()), deg);
+    }
+  }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::optional<double> best;
+  double best_room_m = -1.0;
+  for (std::size_t i = 0; i < ranked.size() && i < kTurnsChecked; ++i) {
+    const double deg = ranked[i].second;
+    if (ranked[i].first < 0.0) break;
+    floors::Building turned = building;
+    floors::place_building(turned, (deg - now_deg) * M_PI / 180.0, Eigen::Vector2d::Zero());
+    const Eigen::Vector2d size = floors::envelope(turned).size_m();
+    const double room_m = std::min(reach_x_m - size.x(), reach_y_m - size.y());
+    // Within 1 µm of the travel is not proposed: a turn applied anew rounds otherwise.
+    if (room_m < kLeastRoom_m) continue;
+    if (!best || room_m > best_room_m + 1e-9 ||
+        (room_m > best_room_m - 1e-9 && std::abs(deg) < std::abs(*best))) {
+      best = deg;
+      best_room_m = room_m;
+    }
+  }
+  return best;
+}
 
 Project open_project(const fs::path& file, const ProjectOptions& options) {
   Project project;
@@ -107,7 +182,7 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
       // A family: its member is built around the building where it stands, as printed:
       // the walls thinner than its beads are the crew's, not the platform's to span or its
       // units' to pin into.
-      place(project, false);
+      place(project, false, options.rotation_deg);
       floors::leave_out_thin_walls(project.building, bead_spec(profile.gantry, project.building));
       climb::FitOptions fit;
       fs::path out = options.fitted_profile;
@@ -151,7 +226,7 @@ Project open_project(const fs::path& file, const ProjectOptions& options) {
   const floors::BeadSpec beads = bead_spec(*project.machine, project.building);
   for (auto& floor : project.building.floors) floor.plan.beads = beads;
   floors::leave_out_thin_walls(project.building, beads);
-  if (!project.fit) place(project, options.place_centre);
+  if (!project.fit) place(project, options.place_centre, options.rotation_deg);
   // The site's programme: --site FILE, else the building's `site:`.
   std::optional<schedule::SiteProgramme> programme;
   if (!options.site_file.empty()) {
@@ -203,11 +278,23 @@ void check_fit(const Project& project) {
   const floors::Envelope space = floors::envelope(b);
   const Eigen::Vector2d extent = space.size_m();
   const double reach_x = m.x.max_m - m.x.min_m, reach_y = m.y.max_m - m.y.min_m;
-  if (extent.x() > reach_x || extent.y() > reach_y)
+  if (extent.x() > reach_x || extent.y() > reach_y) {
+    std::string turn;
+    const double now_deg = project.placement.rotation_rad * 180.0 / M_PI;
+    if (const auto deg = turn_that_fits(b, now_deg, reach_x, reach_y)) {
+      floors::Building turned = b;
+      floors::place_building(turned, (*deg - now_deg) * M_PI / 180.0, Eigen::Vector2d::Zero());
+      const Eigen::Vector2d fits = floors::envelope(turned).size_m();
+      const std::string d = printf_string("%.2f", *deg);
+      turn = "; turned by " + d + " degrees it is " + L(fits.x()) + " x " + L(fits.y()) +
+             " and fits: `--rotate " + d + " --place centre`, or `site: {rotation_deg: " + d +
+             ", place: centre}` in the building file";
+    }
     throw InputError(where, 0, "",
                      "the building is " + L(extent.x()) + " x " + L(extent.y()) +
                          " but the machine reaches " + L(reach_x) + " x " + L(reach_y) +
-                         " (its x and y joints' ranges)");
+                         " (its x and y joints' ranges)" + turn);
+  }
   // Where it stands: every vertex within each axis's travel.
   DiagnosticSink outside;
   const char* hint = b.site && b.site->places && !b.site->centre

@@ -159,6 +159,8 @@ TEST(HostileInput, FlagsThatDoNotFitAreRefused) {
       {"validate tests/data/plans/cottage.yaml --floor-height nan", "expected a number"},
       {"validate tests/data/plans/cottage.yaml --floor-height inf", "expected a number"},
       {"layers tests/data/plans/cottage.yaml --layer-height nan", "expected a number"},
+      {"validate tests/data/plans/cottage.yaml --rotate nan", "--rotate: expected a number"},
+      {"validate tests/data/plans/cottage.yaml --rotate 360.001", "--rotate: Value 360.001 not in"},
       {"layers tests/data/plans/cottage.yaml --layer-height 1e-9 --floor-height 3",
        "--layer-height: must be from 0.001 to 1 m, got 1e-09 m"},
       {"plan-layer tests/data/plans/cottage.yaml --seed -1", "--seed"},

@@ -93,6 +93,31 @@ std::string fit_case(const fs::path& dir, double length_m, double floor_m, doubl
   return (dir / "b.yaml").string();
 }
 
+// A building too large for the travel as it stands is told a turn under which it fits: an
+// edge of its outline along x or y, within (-90, 90], rounded to 0.01 degree and checked at
+// that value, with 1 µm to spare; said from its own axes whatever turn it stands at now.
+TEST(Project, TheTurnThatFitsLaysAnEdgeOfTheOutlineAlongTheTravel) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_turn_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // One wall 5 m long from (0, 0) to (3, 4): 53.13 degrees off x.
+  std::ofstream(dir / "plan.yaml") << "units: m\nvertices:\n  - {id: 1, x: 0, y: 0}\n"
+                                   << "  - {id: 2, x: 3, y: 4}\nwalls:\n"
+                                   << "  - {id: 1, start: 1, end: 2, thickness: 0.15}\n";
+  floors::Building b =
+      floors::building_from_plan(floors::load_plan(dir / "plan.yaml"), "b", 3.0, 0.1);
+  EXPECT_EQ(turn_that_fits(b, 0.0, 5.0 + 2e-6, 1.0), -53.13);  // along x
+  EXPECT_EQ(turn_that_fits(b, 0.0, 1.0, 5.0 + 2e-6), 36.87);   // along y
+  EXPECT_EQ(turn_that_fits(b, 0.0, 5.0 - 1e-6, 1.0), std::nullopt);
+  EXPECT_EQ(turn_that_fits(b, 0.0, 5.0 + 0.5e-6, 1.0), std::nullopt);  // under 1 µm to spare
+  // Already turned by 10 degrees: the turn is still said from its own axes.
+  floors::place_building(b, 10.0 * M_PI / 180.0, Eigen::Vector2d::Zero());
+  EXPECT_EQ(turn_that_fits(b, 10.0, 5.0 + 2e-6, 1.0), -53.13);
+  // No edge along either axis fits 4 m x 4 m (the diagonal, 3.54 m each way, is not looked
+  // for): none.
+  EXPECT_EQ(turn_that_fits(b, 10.0, 4.0, 4.0), std::nullopt);
+  fs::remove_all(dir);
+}
+
 TEST(Project, TheMachineMustReachEveryWallAndTheTop) {
   // tiny_gantry: 5 m of x travel, z 0..18 m, lifts 0.15 m, nozzle 0.15 m.
   const fs::path dir = fs::temp_directory_path() / ("ccbuild_fit_" + std::to_string(::getpid()));

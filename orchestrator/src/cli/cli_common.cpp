@@ -112,6 +112,13 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                   "middle of the x and y travel (default: the building's `site:`, else its plan "
                   "coordinates are the machine's)")
       ->check(CLI::IsMember({"centre", "center"}));
+  command
+      .add_option("--rotate", options.rotate,
+                  "Turn the building by this many degrees (counter-clockwise) on the machine, "
+                  "instead of the building's `site: rotation_deg` (from -360 to 360); a building "
+                  "too large for the travel as it stands is told the turn that fits, if any")
+      ->check(CLI::Range(-360.0, 360.0))
+      ->check(finite_number());
   command.add_option("--site", options.site,
                      "The site's programme (YAML): `start` (local date and time), `time_zone`, "
                      "`working_hours`, `holidays`, `printing: attended|unattended`, `pipes` "
@@ -149,6 +156,7 @@ orchestrator::ProjectOptions project_options(const InputOptions& options) {
   project.machine_profile = options.machine;
   project.material_profile = options.material;
   project.place_centre = !options.place.empty();
+  project.rotation_deg = options.rotate;
   project.site_file = options.site;
   return project;
 }

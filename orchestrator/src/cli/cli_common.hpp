@@ -44,6 +44,7 @@ struct InputOptions {
   std::string machine;                 ///< --machine: overrides the building's
   std::string material;                ///< --material: overrides the building's
   std::string place;                   ///< --place: "centre", or empty (the site's)
+  std::optional<double> rotate;        ///< --rotate: degrees, instead of the site's
   std::string site;                    ///< --site: the site's programme file
 };
 

@@ -45,6 +45,9 @@ struct ProjectOptions {
   /// --place centre: the building centred on the machine's x and y travel, whatever its
   /// `site:` says (its rotation is kept).
   bool place_centre = false;
+  /// --rotate DEG: the building turned by this many degrees (counter-clockwise) on the
+  /// machine, instead of its `site: rotation_deg`.
+  std::optional<double> rotation_deg;
   /// Where a family's fitted profile is written (by `ccbuild fit`) or would be: its URDF
   /// is named after it. Empty: beside the family, "<family>-fitted.yaml" (not written).
   std::filesystem::path fitted_profile;
@@ -83,6 +86,15 @@ Project open_project(const std::filesystem::path& file, const ProjectOptions& op
 /// one bead or two skins of the machine's bead widths (floors::wall_beads, bead_spec).
 /// Throws InputError.
 void check_fit(const Project& project);
+
+/// A turn of `building` (degrees, counter-clockwise, as `site: rotation_deg` says it; the
+/// building now stands turned by `now_deg`) under which its footprint, walls included,
+/// spans at most `reach_x_m` x `reach_y_m` (with 1 µm to spare): an edge of its outline's convex hull along x or
+/// y, within (-90, 90] (a half turn changes no size), rounded to 0.01 degree and checked
+/// at that value; the one leaving the most room, the smaller on a tie.
+/// None when no such turn fits (or the outline has over 1,000 hull corners).
+std::optional<double> turn_that_fits(const floors::Building& building, double now_deg,
+                                     double reach_x_m, double reach_y_m);
 
 /// How the machine lays a building's walls: its nozzle's width, its bead widths (the widest
 /// no wider than its pump feeds at the building's layer height and the deposition speed,
