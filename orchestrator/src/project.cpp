@@ -98,6 +98,7 @@ std::optional<double> turn_that_fits(const floors::Building& building, double no
       // A half turn leaves the footprint's size as it is: the turn within (-90, 90].
       double deg = std::round(std::remainder(now_deg - edge_deg + along, 180.0) * 100.0) / 100.0;
       if (deg <= -90.0) deg += 180.0;
+      deg += 0.0;  // -0 is said as 0
       const Eigen::Rotation2Dd by((deg - now_deg) * M_PI / 180.0);
       Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
       Eigen::Vector2d hi = -lo;
