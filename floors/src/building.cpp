@@ -584,35 +584,10 @@ void leave_out_thin_walls(Building& building, const BeadSpec& beads) {
 }
 
 double slab_area_m2(const Floor& floor) {
-  // Andrew's monotone chain, then the shoelace formula.
-  std::vector<Eigen::Vector2d> p;
-  for (const auto& v : floor.plan.vertices) p.push_back(v.position_m);
-  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (p.size() < 3) return 0.0;
-  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-  };
-  std::vector<Eigen::Vector2d> hull(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
-    hull[k++] = p[i];
-  }
-  hull.resize(k - 1);
-  double twice = 0.0;
-  for (std::size_t i = 0; i < hull.size(); ++i) {
-    const auto& a = hull[i];
-    const auto& b = hull[(i + 1) % hull.size()];
-    twice += a.x() * b.y() - b.x() * a.y();
-  }
-  return 0.5 * std::abs(twice);
+  std::vector<Eigen::Vector2d> points;
+  for (const auto& v : floor.plan.vertices) points.push_back(v.position_m);
+  if (points.size() < 3) return 0.0;
+  return polygon_area(convex_hull(std::move(points)));
 }
 
 Envelope envelope(const Building& building) {

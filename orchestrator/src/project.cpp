@@ -8,6 +8,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/floors/plane.hpp"
 #include "ccbuild/import/dxf.hpp"
 #include "ccbuild/import/ifc.hpp"
 
@@ -56,32 +57,14 @@ void place(Project& project, bool centre, std::optional<double> rotation_deg) {
 
 }  // namespace
 
-std::optional<double> turn_that_fits(const floors::Building& building, double now_deg,
-                                     double reach_x_m, double reach_y_m) {
-  // The outline's convex hull (Andrew's monotone chain): a footprint's narrowest boxes lie
-  // along its hull's edges.
+std::optional<FittingTurn> turn_that_fits(const floors::Building& building, double now_deg,
+                                          double reach_x_m, double reach_y_m) {
+  // A footprint's narrowest boxes lie along its outline's convex hull's edges.
   std::vector<Eigen::Vector2d> points;
   for (const auto& floor : building.floors)
     for (const auto& v : floor.plan.vertices) points.push_back(v.position_m);
   if (points.size() < 2) return std::nullopt;
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
-                        const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  std::vector<Eigen::Vector2d> hull(2 * points.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
-    hull[k++] = points[i];
-  }
-  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k > 1 ? k - 1 : k);
+  const std::vector<Eigen::Vector2d> hull = floors::convex_hull(std::move(points));
   // Each edge along x or along y; the turn as `site: rotation_deg` says it (from the
   // building's own axes), rounded to 0.01 degree. The hull's corners rank the turns by the
   // room they leave; the best few are checked at their rounded value, walls included. The
@@ -111,7 +94,7 @@ std::optional<double> turn_that_fits(const floors::Building& building, double no
   }
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::optional<double> best;
+  std::optional<FittingTurn> best;
   double best_room_m = -1.0;
   for (std::size_t i = 0; i < ranked.size() && i < kTurnsChecked; ++i) {
     const double deg = ranked[i].second;
@@ -123,8 +106,8 @@ std::optional<double> turn_that_fits(const floors::Building& building, double no
     // Within 1 µm of the travel is not proposed: a turn applied anew rounds otherwise.
     if (room_m < kLeastRoom_m) continue;
     if (!best || room_m > best_room_m + 1e-9 ||
-        (room_m > best_room_m - 1e-9 && std::abs(deg) < std::abs(*best))) {
-      best = deg;
+        (room_m > best_room_m - 1e-9 && std::abs(deg) < std::abs(best->deg))) {
+      best = FittingTurn{deg, size};
       best_room_m = room_m;
     }
   }
@@ -282,13 +265,11 @@ void check_fit(const Project& project) {
   if (extent.x() > reach_x || extent.y() > reach_y) {
     std::string turn;
     const double now_deg = project.placement.rotation_rad * 180.0 / M_PI;
-    if (const auto deg = turn_that_fits(b, now_deg, reach_x, reach_y)) {
-      floors::Building turned = b;
-      floors::place_building(turned, (*deg - now_deg) * M_PI / 180.0, Eigen::Vector2d::Zero());
-      const Eigen::Vector2d fits = floors::envelope(turned).size_m();
-      const std::string d = printf_string("%.2f", *deg);
-      turn = "; turned by " + d + " degrees it is " + L(fits.x()) + " x " + L(fits.y()) +
-             " and fits: `--rotate " + d + " --place centre`, or `site: {rotation_deg: " + d +
+    if (const auto fits = turn_that_fits(b, now_deg, reach_x, reach_y)) {
+      const std::string d = printf_string("%.2f", fits->deg);
+      turn = "; turned by " + d + " degrees it is " + L(fits->size_m.x()) + " x " +
+             L(fits->size_m.y()) + " and fits: `--rotate " + d +
+             " --place centre`, or `site: {rotation_deg: " + d +
              ", place: centre}` in the building file";
     }
     throw InputError(where, 0, "",

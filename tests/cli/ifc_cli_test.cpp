@@ -260,15 +260,17 @@ TEST(IfcCommands, ThePublicGymzaalSchedulesTurnedOntoTheRailsItsTiledWallsLeftTo
   const std::string model = "tests/data/ifc/public/example_project_location.ifc";
   // The message says the turn under which it fits, and the turn, applied as written,
   // works: with the flags on the model itself (no hand edit) and in the imported building.
-  const std::string turn = "turned by 67.58 degrees it is 34.52 m x 20.54 m and fits: "
-                           "`--rotate 67.58 --place centre`, or `site: {rotation_deg: 67.58, "
-                           "place: centre}` in the building file";
+  const std::string turn =
+      "turned by 67.58 degrees it is 34.52 m x 20.54 m and fits: "
+      "`--rotate 67.58 --place centre`, or `site: {rotation_deg: 67.58, "
+      "place: centre}` in the building file";
   for (const std::string& place : {std::string(), std::string(" --place centre")}) {
     const auto r = run_ccbuild("validate " + model + place);
     EXPECT_EQ(r.exit_code, 2) << place;
     EXPECT_TRUE(contains(r.err,
                          "the building is 20.90 m x 38.98 m but the machine reaches "
-                         "64.00 m x 29.00 m (its x and y joints' ranges); " + turn))
+                         "64.00 m x 29.00 m (its x and y joints' ranges); " +
+                             turn))
         << r.err;
   }
   const auto on_flags = run_ccbuild("validate " + model + " --rotate 67.58 --place centre");

@@ -96,6 +96,11 @@ std::string fit_case(const fs::path& dir, double length_m, double floor_m, doubl
 // A building too large for the travel as it stands is told a turn under which it fits: an
 // edge of its outline along x or y, within (-90, 90], rounded to 0.01 degree and checked at
 // that value, with 1 µm to spare; said from its own axes whatever turn it stands at now.
+std::optional<double> turn_deg(const floors::Building& b, double now_deg, double x_m, double y_m) {
+  const auto turn = turn_that_fits(b, now_deg, x_m, y_m);
+  return turn ? std::optional<double>(turn->deg) : std::nullopt;
+}
+
 TEST(Project, TheTurnThatFitsLaysAnEdgeOfTheOutlineAlongTheTravel) {
   const fs::path dir = fs::temp_directory_path() / ("ccbuild_turn_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -105,16 +110,20 @@ TEST(Project, TheTurnThatFitsLaysAnEdgeOfTheOutlineAlongTheTravel) {
                                    << "  - {id: 1, start: 1, end: 2, thickness: 0.15}\n";
   floors::Building b =
       floors::building_from_plan(floors::load_plan(dir / "plan.yaml"), "b", 3.0, 0.1);
-  EXPECT_EQ(turn_that_fits(b, 0.0, 5.0 + 2e-6, 1.0), -53.13);  // along x
-  EXPECT_EQ(turn_that_fits(b, 0.0, 1.0, 5.0 + 2e-6), 36.87);   // along y
-  EXPECT_EQ(turn_that_fits(b, 0.0, 5.0 - 1e-6, 1.0), std::nullopt);
-  EXPECT_EQ(turn_that_fits(b, 0.0, 5.0 + 0.5e-6, 1.0), std::nullopt);  // under 1 µm to spare
+  EXPECT_EQ(turn_deg(b, 0.0, 5.0 + 2e-6, 1.0), -53.13);  // along x
+  const auto along_x = turn_that_fits(b, 0.0, 5.0 + 2e-6, 1.0);
+  ASSERT_TRUE(along_x);
+  EXPECT_NEAR(along_x->size_m.x(), 5.0, 1e-6);  // the size as turned, said in the message
+  EXPECT_NEAR(along_x->size_m.y(), 0.0, 1e-4);
+  EXPECT_EQ(turn_deg(b, 0.0, 1.0, 5.0 + 2e-6), 36.87);  // along y
+  EXPECT_EQ(turn_deg(b, 0.0, 5.0 - 1e-6, 1.0), std::nullopt);
+  EXPECT_EQ(turn_deg(b, 0.0, 5.0 + 0.5e-6, 1.0), std::nullopt);  // under 1 µm to spare
   // Already turned by 10 degrees: the turn is still said from its own axes.
   floors::place_building(b, 10.0 * M_PI / 180.0, Eigen::Vector2d::Zero());
-  EXPECT_EQ(turn_that_fits(b, 10.0, 5.0 + 2e-6, 1.0), -53.13);
+  EXPECT_EQ(turn_deg(b, 10.0, 5.0 + 2e-6, 1.0), -53.13);
   // No edge along either axis fits 4 m x 4 m (the diagonal, 3.54 m each way, is not looked
   // for): none.
-  EXPECT_EQ(turn_that_fits(b, 10.0, 4.0, 4.0), std::nullopt);
+  EXPECT_EQ(turn_deg(b, 10.0, 4.0, 4.0), std::nullopt);
   fs::remove_all(dir);
 }
 

@@ -81,6 +81,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/limits.hpp"
+#include "ccbuild/floors/plane.hpp"
 #include "ifc_reader.hpp"
 
 namespace ccbuild::import::ifc::detail {
@@ -593,12 +594,7 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
           const double base_z = z0 + body.position.translation().z();
           FoundWall::UprightPiece piece;
           if (!across[i]) {
-            double twice = 0.0;
-            for (std::size_t k = 0; k < body.profile.size(); ++k) {
-              const Vector2d &p = body.profile[k], &q = body.profile[(k + 1) % body.profile.size()];
-              twice += p.x() * q.y() - q.x() * p.y();
-            }
-            const double area_m2 = 0.5 * std::abs(twice);
+            const double area_m2 = floors::polygon_area(body.profile);
             const double za = std::min(base_z, base_z + along.z());
             const double zb = std::max(base_z, base_z + along.z());
             piece.hz = {{0.0, za}, {area_m2, za}, {area_m2, zb}, {0.0, zb}};

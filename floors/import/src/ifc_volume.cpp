@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ccbuild/floors/plane.hpp"
 #include "ifc_internal.hpp"
 
 namespace ccbuild::import::ifc {
@@ -29,23 +30,13 @@ std::vector<Vector2d> clip_at(const std::vector<Vector2d>& polygon, double cut, 
   return out;
 }
 
-double area_m2(const std::vector<Vector2d>& polygon) {
-  double twice = 0.0;
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    const Vector2d& p = polygon[k];
-    const Vector2d& q = polygon[(k + 1) % polygon.size()];
-    twice += p.x() * q.y() - q.x() * p.y();
-  }
-  return 0.5 * std::abs(twice);
-}
-
 }  // namespace
 
 double body_volume_between_m3(const FoundWall& wall, double lo_m, double hi_m) {
   if (!(hi_m > lo_m)) return 0.0;
   double m3 = 0.0;
   for (const FoundWall::UprightPiece& piece : wall.body_volume)
-    m3 += area_m2(clip_at(clip_at(piece.hz, lo_m, true), hi_m, false)) * piece.depth_m;
+    m3 += floors::polygon_area(clip_at(clip_at(piece.hz, lo_m, true), hi_m, false)) * piece.depth_m;
   return m3;
 }
 

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <vector>
 
 namespace ccbuild::floors {
 
@@ -17,5 +18,12 @@ inline double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 inline double round_to_nanometre(double value_m) {
   return std::round(value_m * 1e9) / 1e9;
 }
+
+/// The convex hull of `points`, anticlockwise, without collinear corners (Andrew's
+/// monotone chain); fewer than two points come back as they are.
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points);
+
+/// The area of a simple polygon (either way round), from its corners: the shoelace formula.
+double polygon_area(const std::vector<Eigen::Vector2d>& polygon);
 
 }  // namespace ccbuild::floors

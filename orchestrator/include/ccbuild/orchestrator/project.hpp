@@ -89,12 +89,16 @@ void check_fit(const Project& project);
 
 /// A turn of `building` (degrees, counter-clockwise, as `site: rotation_deg` says it; the
 /// building now stands turned by `now_deg`) under which its footprint, walls included,
-/// spans at most `reach_x_m` x `reach_y_m` (with 1 µm to spare): an edge of its outline's convex hull along x or
-/// y, within (-90, 90] (a half turn changes no size), rounded to 0.01 degree and checked
-/// at that value; the one leaving the most room, the smaller on a tie.
-/// None when no such turn fits (or the outline has over 1,000 hull corners).
-std::optional<double> turn_that_fits(const floors::Building& building, double now_deg,
-                                     double reach_x_m, double reach_y_m);
+/// spans at most `reach_x_m` x `reach_y_m` (with 1 µm to spare): an edge of its outline's convex
+/// hull along x or y, within (-90, 90] (a half turn changes no size), rounded to 0.01 degree and
+/// checked at that value; the one leaving the most room, the smaller on a tie. None when no such
+/// turn fits (or the outline has over 1,000 hull corners).
+struct FittingTurn {
+  double deg = 0.0;        ///< the turn, as `site: rotation_deg` says it
+  Eigen::Vector2d size_m;  ///< the footprint's x and y extent so turned
+};
+std::optional<FittingTurn> turn_that_fits(const floors::Building& building, double now_deg,
+                                          double reach_x_m, double reach_y_m);
 
 /// How the machine lays a building's walls: its nozzle's width, its bead widths (the widest
 /// no wider than its pump feeds at the building's layer height and the deposition speed,
