@@ -123,8 +123,10 @@ std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineMod
                  {"z", p.z_m[k] - p.z_m[k - 1], m.z.speed_m_s},
                  {"heading", p.heading_rad[k] - p.heading_rad[k - 1], m.rotation_speed_rad_s}};
     for (const auto& move : moves) {
-      if (std::abs(move.delta) <= kRounding) continue;  // no move, once rounded
-      if (dt <= 0.0 || over_limit(move.delta, dt, move.limit))
+      // No move, once rounded: two ends one micro-unit apart differ by a hair over 1e-6
+      // in doubles (1.570797 - 1.570796), and may share a time.
+      if (std::abs(move.delta) <= kRounding * (1.0 + 1e-9)) continue;
+      if (dt < 0.0 || over_limit(move.delta, dt, move.limit))
         return std::pair<std::int8_t, std::string>(
             ccbuild_fault_t::VELOCITY_LIMIT,
             printf_string("waypoints %zu-%zu: %s moves %.4f in %.4f s, over its limit of %.4f/s",

@@ -124,6 +124,15 @@ TEST(SimMachine, LimitsHoldAtTheirBoundary) {
   turn.heading_rad = {0.0, at_limit_rad + 3e-6};
   ASSERT_TRUE(machine::limit_breach(m, turn, true));
   EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  // Two waypoints at one time, their headings one µrad apart as rounded (1.570797 -
+  // 1.570796 is 1.0000000000287557e-06 in doubles): no move (the public Gymzaal's clean
+  // dry-run stopped on it). Four µrad apart at one time is a turn with no time: refused.
+  turn.t_s = {5.0, 5.0};
+  turn.heading_rad = {1.570796, 1.570797};
+  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  turn.heading_rad = {1.570796, 1.5708};
+  ASSERT_TRUE(machine::limit_breach(m, turn, true));
+  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
   // Heights: outside z range is refused, unless the machine climbs.
   auto high = two_points(10.0, 1.0, 1.0);
   high.z_m = {m.z.max_m + 0.5, m.z.max_m + 0.5};
