@@ -62,7 +62,6 @@ struct CostModel::Index {
 };
 
 namespace {
-constexpr double kCoincident_m = 1e-9;
 
 void require_positive(double value, const char* field) {
   if (!(value > 0.0) || !std::isfinite(value))
@@ -91,7 +90,7 @@ CostModel::CostModel(std::shared_ptr<const floors::Layer> shared,
   if (index_->point_count <= 1500)
     index_->dense_slot.assign(static_cast<std::size_t>(index_->point_count) * index_->point_count,
                               0);
-  deposition_s_ = layer.total_length_m() / machine_.deposition_speed_m_s;
+  deposition_s_ = deposition_time_s(layer, machine_);
   segment_heading_rad_.reserve(layer.segments.size());
   for (const auto& seg : layer.segments) {
     const Vec2 d = layer.end_m(seg) - layer.start_m(seg);
@@ -105,24 +104,6 @@ CostModel::CostModel(const floors::Layer& layer, const machine::MachineModel& ma
 
 CostModel::~CostModel() = default;
 CostModel::CostModel(CostModel&&) noexcept = default;
-
-double CostModel::distance_m(const Vec2& a, const Vec2& b) const {
-  return metric_distance_m(metric_, a, b);
-}
-
-double CostModel::travel_s(const Vec2& a, const Vec2& b) const {
-  const Vec2 d = b - a;
-  if (metric_ == Metric::kEuclidean) return d.norm() / machine_.travel_speed_m_s;
-  // One axis at a time, each at its own speed.
-  return std::abs(d.x()) / machine_.x.speed_m_s + std::abs(d.y()) / machine_.y.speed_m_s;
-}
-
-double CostModel::move_time_s(const Vec2& a, const Vec2& b, double rotation_rad,
-                              bool lifted) const {
-  const bool coincident = distance_m(a, b) <= kCoincident_m;
-  const double motion_s = coincident ? 0.0 : travel_s(a, b) + machine_.accel_delay_s;
-  return combine_move_s(motion_s, turn_s(rotation_rad), lifted && !coincident);
-}
 
 bool CostModel::path_crosses(const Vec2& a, const Vec2& b, int segment) const {
   const auto legs = detail::travel_legs(a, b, metric_ == Metric::kRectilinear);
@@ -162,12 +143,20 @@ const std::vector<int>& CostModel::crossed_between_points(int from_point, int to
     slot = &index.sparse_slot[(static_cast<std::uint64_t>(from_point) << 32) |
                               static_cast<std::uint32_t>(to_point)];
   }
+  // Slots: 0 not yet known, -1 crosses nothing (most moves: no list to fetch), k the k-th
+  // list.
+  static const std::vector<int> kNone;
   if (*slot == 0) {
-    index.pair_lists.push_back(
-        crossed_segments(layer_->points[from_point], layer_->points[to_point]));
-    *slot = static_cast<int>(index.pair_lists.size());
+    std::vector<int> crossed =
+        crossed_segments(layer_->points[from_point], layer_->points[to_point]);
+    if (crossed.empty()) {
+      *slot = -1;
+    } else {
+      index.pair_lists.push_back(std::move(crossed));
+      *slot = static_cast<int>(index.pair_lists.size());
+    }
   }
-  return index.pair_lists[*slot - 1];
+  return *slot < 0 ? kNone : index.pair_lists[*slot - 1];
 }
 
 double CostModel::stopper_turn_rad(double from_rad, double target_rad) const {
@@ -190,6 +179,10 @@ double CostModel::stopper_turn_rad(double from_rad, double target_rad) const {
     return std::max(lo - (from_rad + turn), (from_rad + turn) - hi);
   };
   return overshoot(short_way) <= overshoot(long_way) ? short_way : long_way;
+}
+
+double deposition_time_s(const floors::Layer& layer, const machine::MachineModel& machine) {
+  return layer.total_length_m() / machine.deposition_speed_m_s;
 }
 
 bool covers_every_segment_once(const Sequence& sequence, std::size_t segment_count) {

@@ -132,7 +132,9 @@ std::vector<int> PointGrid::nearest(int index, int k, Skip&& skip) const {
 
 /// Signed angle wrapped into (-pi, pi].
 inline double wrap_angle(double a) {
-  a = std::fmod(a, 2.0 * M_PI);
+  // fmod returns a itself when |a| < 2 pi (it is exact): skipped there, the searches' usual
+  // case (fmod was 2% of a large layer's planning time).
+  if (!(std::abs(a) < 2.0 * M_PI)) a = std::fmod(a, 2.0 * M_PI);
   if (a <= -M_PI) a += 2.0 * M_PI;
   if (a > M_PI) a -= 2.0 * M_PI;
   return a;

@@ -81,10 +81,6 @@ double LayerPlan::gap() const {
 
 namespace {
 
-/// Largest layer whose time-objective tours get kicks in the exact-time polish (larger
-/// ones get its descent alone) and the Lin–Kernighan search.
-constexpr std::size_t kExactPolishKicksMaxSegments = 200;
-
 /// The default budget of the Lin–Kernighan search: kicks in all, and kicks in a row
 /// without a better tour (see docs/planning.md, "When the search stops").
 constexpr long kLinKernighanMaxKicks = 60'000;
@@ -138,7 +134,7 @@ Solved solve_cc_tsp(const CostModel& model, const PathSpec& path, const PlanOpti
   settings.seed = options.seed;
   settings.neighbourhood = options.neighbourhood;
   settings.two_opt_before_lk = options.objective == Objective::kTime;
-  const bool large = static_cast<std::size_t>(n) > kExactPolishKicksMaxSegments;
+  const bool large = static_cast<std::size_t>(n) > detail::kExactPolishKicksMaxSegments;
   // The time objective on large layers: LK's tours were no faster in exact airtime on
   // 1,000-wall plans (after the polish's descent) and took twice as long to find
   // (bench/README.md), so these keep the 2-opt/Or-opt search.

@@ -14,6 +14,10 @@
 
 namespace ccbuild::planner::detail {
 
+/// Largest layer whose time-objective tours get kicks in the exact-time polish (larger
+/// ones get its descent alone) and the Lin–Kernighan search.
+inline constexpr std::size_t kExactPolishKicksMaxSegments = 200;
+
 /// Walls in the given order, each in its drawn direction.
 Sequence original_sequence(const std::vector<int>& segments);
 

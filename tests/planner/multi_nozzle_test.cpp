@@ -419,6 +419,17 @@ TEST(MultiNozzle, AutoSaysWhenDelayWouldHaveBeenFaster) {
   EXPECT_FALSE(same.stages[0].faster_delay_s);
   EXPECT_EQ(same.stages[0].method, MultiMethod::kPathCycling);
   EXPECT_EQ(same.layer_time_s, plan.layer_time_s);
+  // Nor the one-nozzle reference (a schedule without the layer's one-nozzle plan): the same
+  // plan, and no reference time.
+  EXPECT_GT(plan.single_nozzle_time_s, plan.layer_time_s);
+  quiet.plan_single_nozzle_reference = false;
+  const MultiNozzlePlan bare = plan_simple(layer, quiet);
+  ASSERT_TRUE(bare.status);
+  EXPECT_EQ(bare.single_nozzle_time_s, 0.0);
+  EXPECT_EQ(bare.layer_time_s, plan.layer_time_s);
+  ASSERT_EQ(bare.stages[0].nozzles.size(), plan.stages[0].nozzles.size());
+  for (std::size_t n = 0; n < plan.stages[0].nozzles.size(); ++n)
+    EXPECT_EQ(bare.stages[0].nozzles[n].sequence, plan.stages[0].nozzles[n].sequence);
 }
 
 TEST(MultiNozzle, EveryReturnedPlanPassesTheExactCheck) {

@@ -198,7 +198,7 @@ MultiNozzlePlan plan_layer_multi(const floors::Layer& layer, const machine::Mach
   MultiNozzlePlan plan;
   if (options.single_nozzle_time_s) {
     plan.single_nozzle_time_s = *options.single_nozzle_time_s;
-  } else {
+  } else if (options.plan_single_nozzle_reference) {
     PlanOptions single = options.planning;
     single.algorithm = Algorithm::kCcTsp;
     single.path = PathSpec::closed_tour();

@@ -99,14 +99,29 @@ class CostModel {
   template <class Deposited>
   Move close(PathState& state, const Step& first, Deposited&& deposited) const;
 
+  /// Points no farther apart than this are one point: a move between them does not move.
+  static constexpr double kCoincident_m = 1e-9;
+  // The three below are in the header: the searches call them for every candidate move
+  // (a quarter of a large layer's planning time, out of line; bench/README.md, issue 50).
   /// Distance between two points in this model's metric, m.
-  double distance_m(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  double distance_m(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+    return metric_distance_m(metric_, a, b);
+  }
   /// Motion time of an air move between two distinct points, without delays, s.
-  double travel_s(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  double travel_s(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+    const Eigen::Vector2d d = b - a;
+    if (metric_ == Metric::kEuclidean) return d.norm() / machine_.travel_speed_m_s;
+    // One axis at a time, each at its own speed.
+    return std::abs(d.x()) / machine_.x.speed_m_s + std::abs(d.y()) / machine_.y.speed_m_s;
+  }
   /// Time of a move of `distance_m` turning by `rotation_rad` (absolute), lifted or not:
   /// the rule above, for optimisers that approximate.
   double move_time_s(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double rotation_rad,
-                     bool lifted) const;
+                     bool lifted) const {
+    const bool coincident = distance_m(a, b) <= kCoincident_m;
+    const double motion_s = coincident ? 0.0 : travel_s(a, b) + machine_.accel_delay_s;
+    return combine_move_s(motion_s, turn_s(rotation_rad), lifted && !coincident);
+  }
   /// Time of a turn by `rotation_rad` (either sign) at the nozzle's rotation speed, s.
   double turn_s(double rotation_rad) const {
     return std::abs(rotation_rad) / machine_.rotation_speed_rad_s;
@@ -183,9 +198,11 @@ Move CostModel::make_move(const PathState& state, int to_point, double rotation_
   m.rotation_rad = rotation_rad;
   m.rotation_s = turn_s(rotation_rad);
   m.next_step = next_step;
-  const bool moves = m.distance_m > 1e-9;  // as move_time_s: coincident points do not move
+  const bool moves = m.distance_m > kCoincident_m;  // as move_time_s
   if (moves) {
-    m.travel_s = travel_s(m.from_m, m.to_m);
+    // Euclidean: the distance over the speed, as travel_s has it, without a second root.
+    m.travel_s = metric_ == Metric::kEuclidean ? m.distance_m / machine_.travel_speed_m_s
+                                               : travel_s(m.from_m, m.to_m);
     const std::vector<int>& crossed = state.point >= 0
                                           ? crossed_between_points(state.point, to_point)
                                           : crossed_segments(m.from_m, m.to_m);
@@ -240,5 +257,9 @@ Move CostModel::close(PathState& state, const Step& first, Deposited&& deposited
 
 /// True when `sequence` deposits every segment of the layer exactly once.
 bool covers_every_segment_once(const Sequence& sequence, std::size_t segment_count);
+
+/// The time a layer's walls take to lay, s: their length at the machine's deposition
+/// speed, whatever their order and however many nozzles share them.
+double deposition_time_s(const floors::Layer& layer, const machine::MachineModel& machine);
 
 }  // namespace ccbuild::planner

@@ -72,8 +72,13 @@ struct MultiNozzleOptions {
   /// Cycle pairs checked by the cycling methods before they give up.
   long max_cycle_checks = 200000;
   /// The same layer's single-nozzle layer time when the caller already has it (several
-  /// configurations of one layer); unset: planned here, for the comparison.
+  /// configurations of one layer); unset: planned here, for the comparison, unless
+  /// `plan_single_nozzle_reference` is false.
   std::optional<double> single_nozzle_time_s;
+  /// False: no one-nozzle reference is planned (MultiNozzlePlan::single_nozzle_time_s
+  /// stays 0). It never changes the plan; a caller that does not show it saves a whole
+  /// one-nozzle plan of the layer.
+  bool plan_single_nozzle_reference = true;
   /// With `MultiMethod::kAuto`: also run the delay method after the papers' method that
   /// succeeded, to report when it would have been faster (`Stage::faster_delay_s`). It
   /// never changes the plan; a caller that does not show it saves that run.
@@ -140,7 +145,7 @@ struct MultiNozzlePlan {
   double machine_time_s = 0.0;  ///< sum of busy time over nozzles and stages
   int vertex_count = 0;
   double min_gap_m = 0.0;
-  double single_nozzle_time_s = 0.0;  ///< the same layer planned for one nozzle
+  double single_nozzle_time_s = 0.0;  ///< the same layer planned for one nozzle (0: not planned)
 };
 
 /// Plans a layer for several nozzles, within `options.planning.time_limit_s` for the
