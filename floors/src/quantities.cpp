@@ -23,11 +23,20 @@ bool FloorQuantities::off() const {
 
 FloorQuantities floor_quantities(const Floor& floor, double layer_height_m,
                                  double one_pass_width_m) {
+  const std::vector<Layer> layers = slice_floor(floor, layer_height_m);
+  std::vector<const Layer*> each;
+  for (const Layer& layer : layers) each.push_back(&layer);
+  return floor_quantities(floor, each, one_pass_width_m);
+}
+
+FloorQuantities floor_quantities(const Floor& floor, const std::vector<const Layer*>& layers,
+                                 double one_pass_width_m) {
   std::map<std::int64_t, double> printed_m3;  // by wall id
   // Walls by id, looked up once per piece of every layer (FloorPlan::find_wall searches).
   std::map<std::int64_t, const Wall*> wall_of;
   for (const Wall& w : floor.plan.walls) wall_of.emplace(w.id, &w);
-  for (const Layer& layer : slice_floor(floor, layer_height_m)) {
+  for (const Layer* each : layers) {
+    const Layer& layer = *each;
     const double thick_m = layer.z_top_m - layer.z_bottom_m;
     for (const LayerSegment& s : layer.segments) {
       double width_m = s.width_m > 0.0 ? s.width_m : one_pass_width_m;

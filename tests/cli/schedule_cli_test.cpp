@@ -62,7 +62,7 @@ TEST(ScheduleCommand, TheHouseSchedulesWithTheSameBytesWhateverTheJobs) {
   const auto two = run_ccbuild("schedule config/buildings/house.yaml --jobs 2 -o " +
                                (dir / "two.json").string());
   ASSERT_EQ(two.exit_code, 0) << two.err;
-  EXPECT_TRUE(contains(two.err, "planning 6 layer geometries"));  // progress on stderr
+  EXPECT_TRUE(contains(two.err, "planning 6 layer plans"));  // progress on stderr
   EXPECT_EQ(slurp(dir / "one.json"), slurp(dir / "two.json"));
   const auto doc = nlohmann::json::parse(slurp(dir / "one.json"));
   EXPECT_EQ(doc["format"], "ccbuild-schedule");

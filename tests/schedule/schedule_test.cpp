@@ -148,6 +148,27 @@ TEST(Schedule, TheHouseIsFeasibleAndKeepsEveryRule) {
   EXPECT_GE(first_upper->start_s, std::prev(first_upper)->end_s + house.building.slab_stage_s);
 }
 
+// The schedule's quantities are each floor's as floor_quantities slices it (the text and
+// the JSON read them there rather than slice the building again), floor by floor.
+TEST(Schedule, ItsQuantitiesAreEachFloorsAsSliced) {
+  const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
+  const Schedule s = build_schedule(house, quick());
+  const floors::Building& b = house.building;
+  ASSERT_EQ(s.quantities.size(), b.floors.size());
+  ASSERT_GE(b.floors.size(), 2u);
+  double concrete_m3 = 0.0;
+  for (std::size_t f = 0; f < b.floors.size(); ++f) {
+    SCOPED_TRACE(f);
+    const floors::FloorQuantities q =
+        floors::floor_quantities(b.floors[f], b.layer_height_m, house.machine->nozzle_width_m);
+    EXPECT_GT(q.printed_m3, 0.0);
+    EXPECT_DOUBLE_EQ(s.quantities[f].printed_m3, q.printed_m3);
+    EXPECT_EQ(s.quantities[f].walls_unmodelled, q.walls_unmodelled);
+    concrete_m3 += q.printed_m3;
+  }
+  EXPECT_NEAR(concrete_m3, s.totals.concrete_m3, 0.01);
+}
+
 TEST(Schedule, TheSameWhateverTheJobs) {
   const Project house = open_project(testing::source_path("config/buildings/house.yaml"));
   const auto one = schedule_json(house, quick(1), build_schedule(house, quick(1))).dump();
@@ -459,7 +480,7 @@ TEST(PipeTime, PipesDelayTheRunOfTheLayerAfterThemAndNothingAfterAFloorsTop) {
 // The count of nozzles a run takes: the fewest whose interval fits (at exactly the maximum
 // too), else the fastest usable (the fewer of two equally fast). A count whose share of
 // the deposition alone cannot fit is planned only when it could still be the fastest: at a
-// share equal to the fastest so far it is, above it it is not.
+// share equal to the fastest so far it is, above it it is not; one nozzle too.
 TEST(NozzleCount, TheFewestThatFitElseTheFastestPlanningOnlyCountsThatCouldBeEither) {
   using detail::CountPlan;
   EXPECT_EQ(detail::deposition_share_s(90.0, 3), 30.0);
@@ -478,35 +499,52 @@ TEST(NozzleCount, TheFewestThatFitElseTheFastestPlanningOnlyCountsThatCouldBeEit
   };
   const std::vector<CountPlan> three = {{}, {true, 100}, {true, 50}, {true, 35}};
   std::set<int> planned;
+  // One nozzle's deposition with the 5 s between (95 s) cannot fit 55 s: not planned.
   EXPECT_EQ(choose(three, 90.0, 55.0, &planned), 2);  // 50 + 5 = 55: fits exactly
+  EXPECT_EQ(planned, (std::set<int>{2}));
+  planned.clear();
+  // ... and at exactly the maximum it could: planned (and it fits).
+  EXPECT_EQ(choose(three, 90.0, 95.0, &planned), 2);
   EXPECT_EQ(planned, (std::set<int>{1, 2}));
+  planned.clear();
+  EXPECT_EQ(choose(three, 90.0, 105.0, &planned), 1);  // 100 + 5 = 105
+  EXPECT_EQ(planned, (std::set<int>{1}));
   planned.clear();
   EXPECT_EQ(choose(three, 90.0, 54.999, &planned), 3);
   planned.clear();
   // Two nozzles' share (45 s) with the 5 s between cannot fit 40 s: not planned.
   EXPECT_EQ(choose(three, 90.0, 40.0, &planned), 3);
-  EXPECT_EQ(planned, (std::set<int>{1, 3}));
+  EXPECT_EQ(planned, (std::set<int>{3}));
   planned.clear();
   // None fits; the three nozzles' plan is the fastest and two nozzles' share (45 s) cannot
   // beat its 35 s: not planned.
   EXPECT_EQ(choose(three, 90.0, 10.0, &planned), 3);
-  EXPECT_EQ(planned, (std::set<int>{1, 3}));
+  EXPECT_EQ(planned, (std::set<int>{3}));
   planned.clear();
-  // None fits, three nozzles cannot work: two nozzles, unplanned in the first pass, are.
+  // None fits, three nozzles cannot work: two nozzles, unplanned in the first pass, are;
+  // one nozzle's deposition (90 s) cannot beat their 50 s.
   EXPECT_EQ(choose({{}, {true, 100}, {true, 50}, {false, 0}}, 90.0, 10.0, &planned), 2);
+  EXPECT_EQ(planned, (std::set<int>{2, 3}));
+  planned.clear();
+  // ... and where no more nozzles can work, one is planned and taken.
+  EXPECT_EQ(choose({{}, {true, 100}, {false, 0}, {false, 0}}, 90.0, 10.0, &planned), 1);
+  EXPECT_EQ(planned, (std::set<int>{1, 2, 3}));
+  planned.clear();
+  // One nozzle whose deposition equals the fastest so far is planned, and wins the tie.
+  EXPECT_EQ(choose({{}, {true, 35}, {true, 50}, {true, 35}}, 35.0, 10.0, &planned), 1);
   EXPECT_EQ(planned, (std::set<int>{1, 2, 3}));
   planned.clear();
   // A share equal to the fastest so far is planned, and the fewer of two equally fast wins.
   EXPECT_EQ(choose({{}, {true, 100}, {true, 35}, {true, 35}}, 70.0, 10.0, &planned), 2);
-  EXPECT_EQ(planned, (std::set<int>{1, 2, 3}));
+  EXPECT_EQ(planned, (std::set<int>{2, 3}));
   planned.clear();
   // Nothing usable: one nozzle.
   EXPECT_EQ(choose({{}, {false, 0}, {false, 0}}, 0.0, 10.0, &planned), 1);
 }
 
 // The counts a schedule plans ahead, in parallel (next_count_to_plan asked until it names
-// none), are exactly those fewest_fitting_count plans one at a time, whatever the plans; and
-// it then plans nothing more and gives the same count.
+// none, from none planned), are exactly those fewest_fitting_count plans one at a time,
+// whatever the plans; and it then plans nothing more and gives the same count.
 TEST(NozzleCount, PlanningAheadPlansWhatTheChoiceWouldAndNothingElse) {
   using detail::CountPlan;
   constexpr double kBetween_s = 5.0;
@@ -540,7 +578,7 @@ TEST(NozzleCount, PlanningAheadPlansWhatTheChoiceWouldAndNothingElse) {
     };
     std::set<int> one_at_a_time;
     const int chosen = choose(one_at_a_time);
-    std::set<int> ahead{1};  // the schedule plans one nozzle first
+    std::set<int> ahead;
     for (int round = 0; round < 10; ++round) {
       const auto next =
           detail::next_count_to_plan(max_count, cases[c].deposition_s, kBetween_s, cases[c].max_s,

@@ -163,16 +163,32 @@ void Scheduler::compute_fix(Infeasibility& inf, const Slice& slice, const Planne
 
 void Scheduler::prepare() {
   const floors::Building& b = project_.building;
-  // Every layer with walls, bottom to top; geometries by first appearance.
+  // Every layer with walls, bottom to top; geometries by first appearance (unless taken
+  // from another scheduler of this building).
   std::map<floors::GeometryKey, int> geometry_of;
-  for (const auto& f : b.floors)
-    for (auto& l : floors::slice_floor(f, b.layer_height_m)) {
-      if (l.segments.empty()) continue;
-      floors::GeometryKey key(l);
-      auto [it, fresh] = geometry_of.try_emplace(std::move(key), static_cast<int>(reps_.size()));
-      if (fresh) reps_.push_back(l);
-      slices_.push_back({f.index, std::move(l), it->second});
-    }
+  if (slices_.empty()) {
+    // The floors sliced in parallel (their beads are most of it: 3 s for the 40 x 40 rooms
+    // benchmark's two floors one after the other).
+    std::vector<std::vector<floors::Layer>> sliced(b.floors.size());
+    std::vector<std::function<void()>> tasks;
+    for (std::size_t f = 0; f < b.floors.size(); ++f)
+      tasks.push_back([&, f] { sliced[f] = floors::slice_floor(b.floors[f], b.layer_height_m); });
+    run_parallel(tasks, jobs_, nullptr);
+    for (std::size_t f = 0; f < b.floors.size(); ++f)
+      for (auto& l : sliced[f]) {
+        if (l.segments.empty()) continue;
+        floors::GeometryKey key(l);
+        auto [it, fresh] = geometry_of.try_emplace(std::move(key), static_cast<int>(reps_.size()));
+        if (fresh) reps_.push_back(l);
+        slices_.push_back({b.floors[f].index, std::move(l), it->second});
+      }
+  }
+  for (const auto& f : b.floors) {
+    std::vector<const floors::Layer*> layers;
+    for (const Slice& slice : slices_)
+      if (slice.floor == f.index) layers.push_back(&slice.layer);
+    schedule_.quantities.push_back(floors::floor_quantities(f, layers, machine_.nozzle_width_m));
+  }
   if (slices_.empty())
     throw InputError(project_.file.string(), 0, "",
                      "nothing to print: no layer of any floor has a wall outside its openings");
@@ -246,11 +262,28 @@ void Scheduler::prepare() {
   {
     std::vector<std::function<void()>> tasks;
     std::vector<std::pair<int, int>> first;
-    for (int g = 0; g < static_cast<int>(reps_.size()); ++g)
-      if (!recall(g, 1)) first.push_back({g, 1});
+    // One nozzle, except where it cannot fit: where its deposition alone is over the
+    // maximum interval (every geometry of the 40 x 40 rooms benchmark, whose 12 one-nozzle
+    // plans took a quarter of the run; bench/README.md) the geometry's counts for more
+    // nozzles are planned at once. The count choice plans one nozzle where it could still
+    // be the fastest. A geometry whose deposition alone is over the share that makes one
+    // nozzle too slow (below) gets those counts with its one-nozzle plan: no plan is faster
+    // than its deposition.
+    for (int g = 0; g < static_cast<int>(reps_.size()); ++g) {
+      const bool one_could_fit =
+          machine_.nozzles == 1 ||
+          share_could_fit(deposition_of(g), 1, 0.0, material_.max_layer_interval_s);
+      std::vector<std::pair<int, int>> keys;
+      if (one_could_fit) keys.emplace_back(g, 1);
+      if (!one_could_fit ||
+          deposition_of(g) > kTryMoreNozzlesShare * material_.max_layer_interval_s)
+        for (const auto& key : counts_past_one(g)) keys.push_back(key);
+      for (const auto& key : keys)
+        if (!recall(key.first, key.second)) first.push_back(key);
+    }
     std::vector<Planned> results(first.size());
     for (std::size_t k = 0; k < first.size(); ++k)
-      tasks.push_back([&, k] { results[k] = plan(first[k].first, 1); });
+      tasks.push_back([&, k] { results[k] = plan(first[k].first, first[k].second); });
     std::vector<int> climbs_planned;
     for (int c = 0; c < climb_count; ++c) {
       if (options_.memo)
@@ -274,7 +307,7 @@ void Scheduler::prepare() {
     if (!tasks.empty())
       run_parallel(tasks, jobs_, [&](int done, int total) {
         progress(
-            printf_string("planning %zu layer geometries and %zu climbs: %d of %d done "
+            printf_string("planning %zu layer plans and %zu climbs: %d of %d done "
                           "(%.1f s)",
                           first.size(), climbs_planned.size(), done, total, seconds_since(t0)));
       });
@@ -295,18 +328,15 @@ void Scheduler::prepare() {
     schedule_.climb_planning_s += batch_s * share;
     schedule_.layer_planning_s += batch_s * (1.0 - share);
   }
-  // Geometries too slow for one nozzle: in parallel, the machine's count (the fastest,
-  // as a rule) and every count whose deposition share could fit the maximum interval.
-  // Others are planned by fewest_nozzles only where they could be the fastest.
+  // Geometries whose one-nozzle plan is too slow or unusable: their counts for more (those
+  // planned above are not planned again).
   {
     std::vector<std::pair<int, int>> more;
     for (int g = 0; g < static_cast<int>(reps_.size()); ++g) {
-      const Planned& p = planned_.at({g, 1});
-      if (!p.usable || p.layer_time_s > kTryMoreNozzlesShare * material_.max_layer_interval_s)
-        for (int n = 2; n <= machine_.nozzles; ++n)
-          if (n == machine_.nozzles ||
-              share_could_fit(deposition_of(g), n, 0.0, material_.max_layer_interval_s))
-            more.push_back({g, n});
+      const Planned* p = single_plan(g);
+      if (p &&
+          (!p->usable || p->layer_time_s > kTryMoreNozzlesShare * material_.max_layer_interval_s))
+        for (const auto& key : counts_past_one(g)) more.push_back(key);
     }
     plan_batch(more, "layer geometries too slow for one nozzle");
   }
@@ -1013,7 +1043,8 @@ std::shared_ptr<PlanMemo> make_plan_memo() {
 Schedule build_schedule(const Setup& project, const ScheduleOptions& given) {
   ScheduleOptions options = given;  // plans memoised, for the proof below
   if (!options.memo) options.memo = std::make_shared<PlanMemo>();
-  Schedule s = detail::Scheduler(project, options).run();
+  detail::Scheduler first(project, options);
+  Schedule s = first.run();
   // The maximum interval a failure proposes is proven by scheduling with it: the intervals
   // depend on the plans chosen before, so the first failing layer's interval alone may fall
   // short further up. Raised until the rule holds (a few tries, plans memoised), so that
@@ -1030,7 +1061,9 @@ Schedule build_schedule(const Setup& project, const ScheduleOptions& given) {
   double needed_s = first_s;
   for (int attempt = 0; attempt < 4; ++attempt) {
     tried.material.max_layer_interval_s = needed_s;
-    const Schedule t = detail::Scheduler(tried, quiet).run();
+    detail::Scheduler proof(tried, quiet);
+    proof.take_slices_of(first);
+    const Schedule t = proof.run();
     if (t.feasible || !t.infeasibility ||
         t.infeasibility->kind != InfeasibilityKind::kMaxInterval ||
         !t.infeasibility->max_interval_needed_s)

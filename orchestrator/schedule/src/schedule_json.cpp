@@ -104,7 +104,8 @@ json maturity_json(const floors::MaterialProfile& m) {
 
 }  // namespace
 
-RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& options) {
+RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& options,
+                               const Schedule* schedule) {
   RecordedInputs in;
   const floors::Building& b = project.building;
   in.building = project.file.string();
@@ -154,8 +155,11 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
       if (!w.global_id.empty()) p.walls.emplace_back(w.id, w.global_id);
     for (const auto& o : floor.plan.openings)
       if (!o.global_id.empty() && !o.id.empty()) p.openings.emplace_back(o.id, o.global_id);
+    const std::size_t at = &floor - b.floors.data();
     const floors::FloorQuantities q =
-        floors::floor_quantities(floor, b.layer_height_m, m.nozzle_width_m);
+        schedule && at < schedule->quantities.size()
+            ? schedule->quantities[at]
+            : floors::floor_quantities(floor, b.layer_height_m, m.nozzle_width_m);
     if (q.model_m3)
       p.quantities = FloorProvenance::Quantities{*q.model_m3, q.printed_modelled_m3, q.printed_m3,
                                                  q.walls_modelled, q.walls_unmodelled};
@@ -168,7 +172,7 @@ RecordedInputs recorded_inputs(const Setup& project, const ScheduleOptions& opti
 
 nlohmann::ordered_json schedule_json(const Setup& project, const ScheduleOptions& options,
                                      const Schedule& schedule) {
-  return schedule_json(recorded_inputs(project, options), schedule);
+  return schedule_json(recorded_inputs(project, options, &schedule), schedule);
 }
 
 nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& schedule,

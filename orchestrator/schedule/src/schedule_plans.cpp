@@ -80,11 +80,13 @@ Planned Scheduler::plan(int geometry, int nozzles) const {
   request.multi.message_unit = project_.building.units;
   // The multi-nozzle planner's one-nozzle reference and its comparison with the delay
   // method are only reported, never decided on, and a schedule shows neither: it gives the
-  // reference the plan it already has, and skips the comparison (together two thirds of a
-  // 2,840-wall layer's two-nozzle plan; bench/README.md, issue 50).
+  // reference the plan it already has (none when it has none), and skips the comparison
+  // (together two thirds of a 2,840-wall layer's two-nozzle plan; bench/README.md, issue 50).
   request.multi.compare_with_delay = false;
   if (const Planned* single = single_plan(geometry); nozzles > 1 && single)
     request.multi.single_nozzle_time_s = single->layer_time_s;
+  else
+    request.multi.plan_single_nozzle_reference = false;
   try {
     const planner::LayerPlanResult result = planner::plan_layer_nozzles(layer, machine_, request);
     if (!result.status) {
@@ -222,9 +224,17 @@ const Planned* Scheduler::single_plan(int geometry) const {
   return single == planned_.end() ? nullptr : &single->second;
 }
 
+std::vector<std::pair<int, int>> Scheduler::counts_past_one(int geometry) const {
+  std::vector<std::pair<int, int>> out;
+  for (int n = 2; n <= machine_.nozzles; ++n)
+    if (n == machine_.nozzles ||
+        share_could_fit(deposition_of(geometry), n, 0.0, material_.max_layer_interval_s))
+      out.emplace_back(geometry, n);
+  return out;
+}
+
 double Scheduler::deposition_of(int geometry) const {
-  const Planned* single = single_plan(geometry);
-  return single ? single->deposition_s : 0.0;
+  return planner::deposition_time_s(reps_[geometry], machine_);
 }
 
 int Scheduler::fewest_nozzles(int geometry, double between_s) {
@@ -310,7 +320,7 @@ int fewest_fitting_count(int max_count, double deposition_s, double between_s,
   };
   std::vector<int> unplanned;  // counts that cannot fit, left until none does
   for (int n = 1; n <= max_count; ++n) {
-    if (n > 1 && !have(n) && !share_could_fit(deposition_s, n, between_s, max_interval_s)) {
+    if (!have(n) && !share_could_fit(deposition_s, n, between_s, max_interval_s)) {
       unplanned.push_back(n);
       continue;
     }

@@ -86,9 +86,10 @@ bool share_could_fit(double deposition_s, int nozzles, double between_s, double 
 
 /// The fewest of 1..`max_count` nozzles whose plan's interval fits `max_interval_s`; when
 /// none does, the fastest usable count (the fewest of equally fast ones), else 1. `plan(n)`
-/// plans count n. A count n > 1 that `have(n)` says is not planned yet, and whose share of
+/// plans count n. A count that `have(n)` says is not planned yet, and whose share of
 /// `deposition_s` with `between_s` already exceeds the maximum, cannot fit: it is planned
-/// only when it could still be the fastest.
+/// only when it could still be the fastest (one nozzle included: a layer whose deposition
+/// alone is over the maximum is planned on one nozzle only when no more is faster).
 int fewest_fitting_count(int max_count, double deposition_s, double between_s,
                          double max_interval_s, const std::function<bool(int)>& have,
                          const std::function<CountPlan(int)>& plan);
@@ -165,6 +166,13 @@ class Scheduler {
   }
 
   Schedule run();
+  /// Takes `other`'s layers, as it sliced them, instead of slicing the building again:
+  /// for a scheduler of the same building (the proof of a proposed interval changes only
+  /// the material). Before run().
+  void take_slices_of(const Scheduler& other) {
+    slices_ = other.slices_;
+    reps_ = other.reps_;
+  }
 
  private:
   struct Slice {
@@ -200,8 +208,13 @@ class Scheduler {
   void plan_counts_ahead();
   /// The one-nozzle plan of `geometry`; null before it is made.
   const Planned* single_plan(int geometry) const;
-  /// The one-nozzle plan's deposition of `geometry`, s (0 when there is none yet).
+  /// The deposition of `geometry` on one nozzle, s (planner::deposition_time_s).
   double deposition_of(int geometry) const;
+  /// The counts planned ahead for `geometry` when one nozzle is too slow for it: the
+  /// machine's (the fastest, as a rule) and every count whose share of the deposition
+  /// could fit the maximum interval (others are planned by the count choice only where
+  /// they could be the fastest), as (geometry, count).
+  std::vector<std::pair<int, int>> counts_past_one(int geometry) const;
   void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
   /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
   /// variant "<base>m1", ... when another layer of its geometry names them differently);

@@ -115,8 +115,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   } else {
     project = open_input(o.file, o.input);
     schedule::ScheduleOptions options;
-    schedule = {schedule::recorded_inputs(*project, options),
-                schedule::build_schedule(*project, options)};
+    schedule::Schedule made = schedule::build_schedule(*project, options);
+    schedule = {schedule::recorded_inputs(*project, options, &made), std::move(made)};
   }
   for (const auto& f : schedule.inputs.files) outputs.add_input(f.path);
   if (!o.input.machine.empty()) outputs.add_input(o.input.machine);

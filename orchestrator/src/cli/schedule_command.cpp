@@ -90,7 +90,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   }
   std::vector<std::string> exported;
   if (!o.output.empty() || !o.report.empty() || !o.exports.empty()) {
-    const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options), s};
+    const schedule::ScheduleDocument doc{schedule::recorded_inputs(project, options, &s), s};
     for (std::size_t k = 0; k < o.exports.size(); ++k)
       exported.push_back(write_export(doc, {}, export_formats_given[k], o.exports[k], outputs));
     if (!o.output.empty())
@@ -300,11 +300,11 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
             : "",
         s.deliveries.size(), floors::volume_text(project.material.delivery_batch_m3, unit).c_str());
     // Against the model's own wall volumes, where the building was imported with them.
-    for (const auto& floor : project.building.floors) {
-      const floors::FloorQuantities q = floors::floor_quantities(
-          floor, project.building.layer_height_m, project.machine->nozzle_width_m);
-      if (q.model_m3) std::cout << "quantities: " << floors::quantities_text(floor.name, q) << "\n";
-    }
+    for (std::size_t f = 0; f < s.quantities.size(); ++f)
+      if (s.quantities[f].model_m3)
+        std::cout << "quantities: "
+                  << floors::quantities_text(project.building.floors[f].name, s.quantities[f])
+                  << "\n";
   }
   // Said whether or not the run is quiet: the crew has these walls to build.
   for (const auto& w : project.building.left_out)

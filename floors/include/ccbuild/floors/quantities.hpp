@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ccbuild/floors/building.hpp"
+#include "ccbuild/floors/slice.hpp"
 
 namespace ccbuild::floors {
 
@@ -43,6 +44,10 @@ struct FloorQuantities {
 /// `one_pass_width_m` wide (the machine's nozzle), or its wall's thickness where that is 0
 /// (a building not yet on a machine: the wall as drawn).
 FloorQuantities floor_quantities(const Floor& floor, double layer_height_m,
+                                 double one_pass_width_m);
+/// The same from the floor's layers as slice_floor gave them (layers without walls may be
+/// left out): a caller that has sliced the floor does not slice it again.
+FloorQuantities floor_quantities(const Floor& floor, const std::vector<const Layer*>& layers,
                                  double one_pass_width_m);
 
 /// One line on a floor's quantities, m³ (`name` names the floor): "prints V m³ of walls",

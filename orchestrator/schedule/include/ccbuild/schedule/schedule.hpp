@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "ccbuild/climb/climb.hpp"
+#include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/planner/timeline.hpp"
 #include "ccbuild/schedule/setup.hpp"
 
@@ -301,6 +302,9 @@ struct Schedule {
   std::vector<WorkDay> days;
   std::vector<Delivery> deliveries;  ///< by due time
   std::vector<std::string> warnings;
+  /// Each floor's concrete against its model's, in the building's floor order, from the
+  /// layers as this schedule sliced them (not in the JSON's schedule: its inputs carry it).
+  std::vector<floors::FloorQuantities> quantities;
   /// Wall-clock seconds spent planning layers, planning climbs, and on the rest (not in
   /// the JSON, which stays byte-identical).
   double layer_planning_s = 0.0, climb_planning_s = 0.0, bookkeeping_s = 0.0;

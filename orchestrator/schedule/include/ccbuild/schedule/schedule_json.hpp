@@ -122,9 +122,11 @@ struct ScheduleDocument {
   Schedule schedule;
 };
 
-/// The inputs of a run on `setup`. Throws InputError when an input file cannot be read
-/// back for its checksum.
-RecordedInputs recorded_inputs(const Setup& setup, const ScheduleOptions& options);
+/// The inputs of a run on `setup`; each floor's quantities from `schedule` when given (as
+/// it sliced the floors; else sliced here). Throws InputError when an input file cannot be
+/// read back for its checksum.
+RecordedInputs recorded_inputs(const Setup& setup, const ScheduleOptions& options,
+                               const Schedule* schedule = nullptr);
 
 struct ScheduleJsonOptions {
   /// Each nozzle's timed path as its digest (PathDigest) instead of its waypoints: a
