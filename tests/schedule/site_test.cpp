@@ -53,6 +53,18 @@ InputError programme_error(const std::string& yaml) {
   return InputError("", 0, "", "");
 }
 
+// One table of weekday names for the text, the exports and the week's hours: days since
+// 1970-01-01 (a Thursday), before it too, and a date the calendar parses.
+TEST(SiteCalendar, WeekdaysCountFromAThursday) {
+  EXPECT_STREQ(weekday_names()[weekday_of(0)], "Thu");
+  EXPECT_STREQ(weekday_names()[weekday_of(-1)], "Wed");
+  EXPECT_STREQ(weekday_names()[weekday_of(-7)], "Thu");
+  EXPECT_STREQ(weekday_names()[weekday_of(4)], "Mon");
+  EXPECT_STREQ(weekday_names()[weekday_of(*parse_local_date("2027-03-01"))], "Mon");
+  EXPECT_STREQ(weekday_names()[weekday_of(*parse_local_date("2026-12-06"))], "Sun");
+  EXPECT_EQ(weekday_keys().size(), weekday_names().size());
+}
+
 TEST(SiteProgramme, DefaultsToMondayToFridaySevenToFive) {
   const SiteProgramme p = programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n");
   for (int d = 0; d < 5; ++d) EXPECT_EQ(p.week[d], (std::vector<WorkingHours>{{420, 1020}}));

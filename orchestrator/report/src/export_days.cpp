@@ -9,14 +9,14 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/report/day_packages.hpp"
 #include "ccbuild/report/site_tasks.hpp"
+#include "ccbuild/schedule/site.hpp"
 
 namespace ccbuild::report {
 
 namespace {
 
 const char* weekday_of_day(long long day) {
-  static const char* kNames[] = {"Thu", "Fri", "Sat", "Sun", "Mon", "Tue", "Wed"};
-  return kNames[((day % 7) + 7) % 7];  // 1970-01-01 was a Thursday
+  return schedule::weekday_names()[schedule::weekday_of(day)];
 }
 
 /// The local day of schedule seconds, and its bounds: days since 1970-01-01 on a calendar

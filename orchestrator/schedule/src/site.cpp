@@ -139,6 +139,16 @@ const std::array<const char*, 7>& weekday_keys() {
   return kDayNames;
 }
 
+const std::array<const char*, 7>& weekday_names() {
+  static constexpr std::array<const char*, 7> kNames = {"Mon", "Tue", "Wed", "Thu",
+                                                        "Fri", "Sat", "Sun"};
+  return kNames;
+}
+
+int weekday_of(std::int64_t day) {
+  return static_cast<int>(((day % 7) + 7 + 3) % 7);  // day 0 was a Thursday (3)
+}
+
 std::optional<SiteProgramme> read_site_programme(const Field& site,
                                                  const std::vector<std::string>& placement_keys) {
   std::vector<std::string> allowed = kProgrammeKeys;
@@ -373,7 +383,7 @@ std::string SiteCalendar::tzdb_version() const {
 
 std::string SiteCalendar::week_text() const {
   // Runs of consecutive days with the same hours: "Mon-Fri 07:00-17:00, Sat 07:00-12:00".
-  static constexpr const char* kNames[7] = {"Mon", "Tue", "Wed", "Thu", "Fri", "Sat", "Sun"};
+  const auto& kNames = weekday_names();
   std::string out;
   for (int d = 0; d < 7;) {
     int last = d;

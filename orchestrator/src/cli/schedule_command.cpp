@@ -12,6 +12,7 @@
 #include "ccbuild/report/report.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "ccbuild/schedule/site.hpp"
 #include "ccbuild/schedule/what_if.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -38,7 +39,6 @@ struct ScheduleCommandOptions {
 };
 
 // 1970-01-01, day 0, was a Thursday.
-constexpr const char* kWeekdays[7] = {"Mon", "Tue", "Wed", "Thu", "Fri", "Sat", "Sun"};
 
 /// The unit of a column: the one its largest value is read in.
 template <typename T, typename Seconds>
@@ -173,8 +173,9 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       std::cout << printf_string(
           "  %s %s  %3d layer%s, %s printing, %s, %d deliver%s, "
           "%.1f crew person-hours: %s\n",
-          kWeekdays[(*schedule::parse_local_date(d.date) % 7 + 10) % 7], d.date.c_str(), d.layers,
-          d.layers == 1 ? " " : "s", duration_in(d.printing_s, printing_unit).c_str(),
+          schedule::weekday_names()[schedule::weekday_of(*schedule::parse_local_date(d.date))],
+          d.date.c_str(), d.layers, d.layers == 1 ? " " : "s",
+          duration_in(d.printing_s, printing_unit).c_str(),
           floors::volume_text(d.concrete_m3, project.building.units).c_str(), d.deliveries,
           d.deliveries == 1 ? "y" : "ies", d.crew_h, d.detail.c_str());
   }

@@ -140,5 +140,9 @@ std::string local_start_text(std::int64_t local_s);
 std::string local_date_text(std::int32_t day);
 /// The weekday keys, Monday first: "mon", ..., "sun".
 const std::array<const char*, 7>& weekday_keys();
+/// The weekdays as the text and the exports name them, Monday first: "Mon", ..., "Sun".
+const std::array<const char*, 7>& weekday_names();
+/// The weekday of `day`, days since 1970-01-01 (a Thursday), Monday first: 0 ... 6.
+int weekday_of(std::int64_t day);
 
 }  // namespace ccbuild::schedule
