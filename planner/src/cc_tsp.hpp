@@ -48,7 +48,12 @@ class TourCosts {
     if (is_free(u) || is_free(v)) return 0.0;
     if (objective_ == Objective::kDistance)
       return metric_distance_m(metric_, position_[u], position_[v]);
-    return time_cost(u, v);
+    // Time costs are remembered: the searches ask for the same pairs again and again
+    // (tour edges, candidates), and a time cost has a root and an arc cosine.
+    const std::uint64_t key = (static_cast<std::uint64_t>(u) << 32) | static_cast<std::uint32_t>(v);
+    CachedCost& slot = cache_[(key * 0x9E3779B97F4A7C15ull) >> cache_shift_];
+    if (slot.key != key) slot = {key, time_cost(u, v)};
+    return slot.value;
   }
   /// Neighbour candidates of a node, cheapest first (the free end, if any, first of all).
   const std::vector<int>& neighbours(int node) const { return neighbours_[node]; }
@@ -65,6 +70,12 @@ class TourCosts {
   std::vector<Vec2> position_;
   std::vector<Vec2> arrive_;  ///< unit heading arriving at a node along its wall (0: free to turn)
   std::vector<std::vector<int>> neighbours_;
+  struct CachedCost {
+    std::uint64_t key = ~std::uint64_t{0};
+    double value = 0.0;
+  };
+  mutable std::vector<CachedCost> cache_;  ///< direct-mapped; not thread-safe
+  int cache_shift_ = 64;
   double time_cost(int u, int v) const;
 };
 

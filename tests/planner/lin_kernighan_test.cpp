@@ -279,5 +279,39 @@ TEST(TourCosts, TimeCostsPriceNoLift) {
   EXPECT_GT(crossing, 100);
 }
 
+// Time costs are remembered in a table of about 32 slots a node, so that most pairs share
+// a slot with others: read in any order, each is the cost of its own pair, and the same
+// both ways.
+TEST(TourCosts, RememberedTimeCostsAreEachPairsOwn) {
+  const machine::MachineModel machine = testing::simple_machine();
+  const floors::Layer layer = testing::floor_plan_layer(6, 2);
+  const CostModel model(layer, machine, Metric::kEuclidean);
+  std::vector<int> segments(layer.segments.size());
+  std::iota(segments.begin(), segments.end(), 0);
+  const int nodes = 2 * static_cast<int>(segments.size());
+  ASSERT_GT(nodes, 64);  // more pairs than slots
+  const TourCosts in_order(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
+  const TourCosts shuffled(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
+  std::vector<std::pair<int, int>> pairs;
+  for (int u = 0; u < nodes; ++u)
+    for (int v = 0; v < nodes; ++v)
+      if (u != v) pairs.emplace_back(u, v);
+  std::vector<double> first(pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    first[k] = in_order.cost(pairs[k].first, pairs[k].second);
+  std::vector<std::size_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(7));
+  for (int pass = 0; pass < 2; ++pass)
+    for (const std::size_t k : order) {
+      const auto [u, v] = pairs[k];
+      ASSERT_EQ(shuffled.cost(u, v), first[k]) << u << " " << v << " pass " << pass;
+      ASSERT_EQ(in_order.cost(v, u), first[k]) << u << " " << v << " pass " << pass;
+      const Vec2 &a = in_order.position(u), &b = in_order.position(v);
+      ASSERT_GE(first[k], model.move_time_s(a, b, 0.0, false) - 1e-9) << u << " " << v;
+      ASSERT_LE(first[k], model.move_time_s(a, b, M_PI, false) + 1e-9) << u << " " << v;
+    }
+}
+
 }  // namespace
 }  // namespace ccbuild::planner::detail

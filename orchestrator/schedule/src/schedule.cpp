@@ -281,6 +281,7 @@ void Scheduler::prepare() {
       for (const auto& key : keys)
         if (!recall(key.first, key.second)) first.push_back(key);
     }
+    largest_first(first);
     std::vector<Planned> results(first.size());
     for (std::size_t k = 0; k < first.size(); ++k)
       tasks.push_back([&, k] { results[k] = plan(first[k].first, first[k].second); });

@@ -154,6 +154,14 @@ std::optional<std::string> Scheduler::no_room_to_park(
       idle == 1 ? "s" : "", room_m, "m");
 }
 
+void Scheduler::largest_first(std::vector<std::pair<int, int>>& keys) const {
+  // The plans are independent, and a batch ends with its last plan: started last, a large
+  // layer's plan ran alone on one core for 6 s of the 40 x 40 rooms benchmark's proof.
+  std::stable_sort(keys.begin(), keys.end(), [&](const auto& a, const auto& b) {
+    return reps_[a.first].segments.size() > reps_[b.first].segments.size();
+  });
+}
+
 void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
                            const std::string& what) {
   std::vector<std::pair<int, int>> todo;
@@ -163,6 +171,7 @@ void Scheduler::plan_batch(const std::vector<std::pair<int, int>>& wanted,
       todo.push_back(w);
   if (todo.empty()) return;
   std::vector<Planned> results(todo.size());
+  largest_first(todo);
   std::vector<std::function<void()>> tasks;
   for (std::size_t k = 0; k < todo.size(); ++k)
     tasks.push_back([&, k] { results[k] = plan(todo[k].first, todo[k].second); });

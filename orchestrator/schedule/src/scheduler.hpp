@@ -216,6 +216,8 @@ class Scheduler {
   /// they could be the fastest), as (geometry, count).
   std::vector<std::pair<int, int>> counts_past_one(int geometry) const;
   void plan_batch(const std::vector<std::pair<int, int>>& wanted, const std::string& what);
+  /// Orders (geometry, nozzles) keys by the geometry's pieces, most first (stable).
+  void largest_first(std::vector<std::pair<int, int>>& keys) const;
   /// Registers plan `p` of `slice` under `base`, labelled with the slice's walls (a
   /// variant "<base>m1", ... when another layer of its geometry names them differently);
   /// returns its key.
