@@ -95,9 +95,11 @@ grep -q -- "--array=0-11%2" "$work/slurm/slurm/study.sbatch"
 # Variant v0006 (task 5) crashes: its `ccbuild schedule` killed while it runs.
 crashed=no
 # Only its `schedule` (its output followed by --force): the variant's `report` names the
-# same file, and killing that instead leaves a feasible variant.
+# same file, and killing that instead leaves a feasible variant. Only this test's (its
+# folder): another study test running beside it has a v0006 and a v0011 too (a local
+# study's variant held stopped here hung Study.ALocalStudyKilledPartWayResumes).
 for _ in $(seq 1 3000); do
-  if pkill -KILL -f -- "/variants/v0006/schedule[.]json --force"; then crashed=yes; break; fi
+  if pkill -KILL -f -- "$work/slurm/variants/v0006/schedule[.]json --force"; then crashed=yes; break; fi
   sleep 0.05
 done
 [ "$crashed" = yes ] || { echo "variant v0006 never ran"; exit 1; }
@@ -106,7 +108,7 @@ done
 # RUNNING by squeue had finished before scancel reached it in a CI run.
 held=no
 for _ in $(seq 1 3000); do
-  if pkill -STOP -f -- "/variants/v0011/schedule[.]json --force"; then held=yes; break; fi
+  if pkill -STOP -f -- "$work/slurm/variants/v0011/schedule[.]json --force"; then held=yes; break; fi
   sleep 0.05
 done
 [ "$held" = yes ] || { echo "variant v0011 never ran"; exit 1; }
