@@ -316,32 +316,33 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
     }
   }
   if (job.kind != ccbuild_job_t::DEPOSIT || job.layer <= 0) return std::nullopt;
-  // Each piece end against the same end of the layer below, if this machine laid it.
+  // The interval rule (rules/intervals.hpp) against what this machine laid below.
   const auto below = deposited_.find({job.floor, job.layer - 1});
   if (below == deposited_.end()) return std::nullopt;
-  for (const auto& [k, wall] : piece_ends(path)) {
-    for (const PieceEnd& e : below->second) {
-      if (e.wall != wall || std::abs(e.x_m - path.x_m[k]) > kPieceEndMatch_m ||
-          std::abs(e.y_m - path.y_m[k]) > kPieceEndMatch_m)
-        continue;
-      const double interval_s = start_s + path.t_s[k] - e.t_s;
-      const char* what = nullptr;
-      std::int8_t kind = 0;
-      if (interval_s > options_.max_interval_s + kIntervalSlack_s && !job.on_planned_joint) {
-        what = "a cold joint: covered %.1f s after it was deposited, over the maximum %.1f s";
-        kind = ccbuild_fault_t::COLD_JOINT;
-      } else if (interval_s < options_.min_interval_s - kIntervalSlack_s) {
-        what = "too early: covered %.1f s after it was deposited, under the minimum %.1f s";
-        kind = ccbuild_fault_t::TOO_EARLY;
-      }
-      if (!what) continue;
-      return std::pair<std::int8_t, std::string>(
-          kind, printf_string("floor %d layer %d, wall %lld at (%.3f, %.3f) m: ", job.floor,
-                              job.layer, static_cast<long long>(wall), path.x_m[k], path.y_m[k]) +
-                    printf_string(what, interval_s,
-                                  kind == ccbuild_fault_t::COLD_JOINT ? options_.max_interval_s
-                                                                      : options_.min_interval_s));
+  rules::DepositIndex above;
+  add_deposits(above, path, start_s);
+  const rules::IntervalOffsets offsets = rules::interval_offsets(above, below->second);
+  for (const rules::IntervalOffsets::End& e : offsets.each) {
+    const char* what = nullptr;
+    std::int8_t kind = 0;
+    double interval_s = 0.0;
+    if (e.up_hi_s - e.low_lo_s > options_.max_interval_s + kIntervalSlack_s &&
+        !job.on_planned_joint) {
+      what = "a cold joint: covered %.1f s after it was deposited, over the maximum %.1f s";
+      kind = ccbuild_fault_t::COLD_JOINT;
+      interval_s = e.up_hi_s - e.low_lo_s;
+    } else if (e.up_lo_s - e.low_hi_s < options_.min_interval_s - kIntervalSlack_s) {
+      what = "too early: covered %.1f s after it was deposited, under the minimum %.1f s";
+      kind = ccbuild_fault_t::TOO_EARLY;
+      interval_s = e.up_lo_s - e.low_hi_s;
     }
+    if (!what) continue;
+    return std::pair<std::int8_t, std::string>(
+        kind, printf_string("floor %d layer %d, wall %lld at (%.3f, %.3f) m: ", job.floor,
+                            job.layer, static_cast<long long>(e.at.wall), e.at.x_m, e.at.y_m) +
+                  printf_string(what, interval_s,
+                                kind == ccbuild_fault_t::COLD_JOINT ? options_.max_interval_s
+                                                                    : options_.min_interval_s));
   }
   return std::nullopt;
 }
@@ -568,12 +569,10 @@ void SimMachine::finish(bool completed) {
   // The pipes it placed, for the anchors' age.
   if (run.job.kind == ccbuild_job_t::PIPE && completed && !run.job.unit.empty())
     pipes_[run.job.unit] = end_s;
-  // The piece ends it laid, for the interval check of the layer above.
+  // What it laid, for the interval check of the layer above.
   if (run.job.kind == ccbuild_job_t::DEPOSIT) {
-    auto& ends = deposited_[{run.job.floor, run.job.layer}];
-    for (const auto& [k, wall] : piece_ends(run.path))
-      if (completed || static_cast<int>(k) <= run.stop_point)
-        ends.push_back({wall, run.path.x_m[k], run.path.y_m[k], run.started_s + run.path.t_s[k]});
+    add_deposits(deposited_[{run.job.floor, run.job.layer}], run.path, run.started_s,
+                 completed ? -1 : std::max(0, run.stop_point));
   }
   if (options_.crash_after_jobs > 0 && ++jobs_run_here_ == options_.crash_after_jobs) {
     say(std::string() + "ccbuild-sim " + options_.machine_id + ": (injected) crashed after " +

@@ -97,4 +97,15 @@ std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const TimedPath& p)
   return ends;
 }
 
+void add_deposits(rules::DepositIndex& index, const TimedPath& path, double origin_s,
+                  int stopped_at) {
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    if (stopped_at >= 0 && static_cast<int>(k) + 1 > stopped_at) break;
+    if (!path.extruding[k]) continue;
+    index.add(path.wall[k], {Eigen::Vector2d(path.x_m[k], path.y_m[k]),
+                             Eigen::Vector2d(path.x_m[k + 1], path.y_m[k + 1]),
+                             origin_s + path.t_s[k], origin_s + path.t_s[k + 1], path.piece[k]});
+  }
+}
+
 }  // namespace ccbuild::machine

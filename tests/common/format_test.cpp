@@ -13,6 +13,17 @@
 namespace ccbuild {
 namespace {
 
+// One CSV quoting for every CSV written (exports, study results, sweep): quoted only
+// when a field needs it, its quotes doubled.
+TEST(CsvField, QuotesOnlyWhatNeedsItAndDoublesItsQuotes) {
+  EXPECT_EQ(csv_field("plain text; no comma"), "plain text; no comma");
+  EXPECT_EQ(csv_field(""), "");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_field("the \"gantry\""), "\"the \"\"gantry\"\"\"");
+  EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(csv_field("cr\r"), "\"cr\r\"");
+}
+
 TEST(Durations, TheUnitChangesExactlyAtTwoOfTheNext) {
   EXPECT_EQ(duration_text(119.9), "119.9 s");
   EXPECT_EQ(duration_text(120.0), "2.0 min");

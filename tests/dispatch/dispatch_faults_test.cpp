@@ -604,36 +604,71 @@ TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) 
 
 // --- Re-planning a late run from what the machines laid (replan.hpp) ---
 
-TEST(Replan, AStartWindowKeepsEachPieceEndWithinTheIntervalAndMatchesEndsWithinTwoCm) {
+/// What was laid below: one span of `wall` from (x0, y0) at t0 to (x1, y1) at t1.
+rules::DepositIndex laid(std::int64_t wall, double x0, double y0, double t0, double x1, double y1,
+                         double t1, rules::DepositIndex index = {}) {
+  index.add(wall, {Eigen::Vector2d(x0, y0), Eigen::Vector2d(x1, y1), t0, t1, 1});
+  return index;
+}
+
+/// The start window of piece_job's path over `below` (rules/intervals.hpp).
+StartWindow window_over(const rules::DepositIndex& below, double min_s, double max_s) {
+  rules::DepositIndex above;
+  machine::add_deposits(above, piece_job(20, 1, 0.0).path, 0.0);
+  return rules::start_window(rules::interval_offsets(above, below), min_s, max_s);
+}
+
+TEST(Replan, AStartWindowKeepsEachStretchWithinTheIntervalWithTheBeadsThatCoverIt) {
   // piece_job's path: one piece of wall 1 from x = 0 (t 0) to x = 1 m (t 5 s).
-  const machine::TimedPath path = piece_job(20, 1, 0.0).path;
-  std::vector<LaidEnd> below = {{1, 0.0, 0.0, 100.0}, {1, 1.0, 0.0, 110.0}};
-  StartWindow w = start_window(path, below, 60.0, 500.0);
+  StartWindow w = window_over(laid(1, 0.0, 0.0, 100.0, 1.0, 0.0, 110.0), 60.0, 500.0);
   EXPECT_EQ(w.ends_covered, 2);
   EXPECT_DOUBLE_EQ(w.earliest_s, 165.0);  // x = 0: 100 + 60 - 0; x = 1: 110 + 60 - 5
   EXPECT_DOUBLE_EQ(w.latest_s, 600.0);    // x = 0: 100 + 500 - 0; x = 1: 110 + 500 - 5
   EXPECT_DOUBLE_EQ(w.newest_below_s, 110.0);
-  // The end further along the path bounds the latest start when it was laid earlier.
-  below = {{1, 0.0, 0.0, 100.0}, {1, 1.0, 0.0, 95.0}};
-  w = start_window(path, below, 60.0, 500.0);
+  // Laid the other way: the end further along the path bounds the latest start.
+  w = window_over(laid(1, 1.0, 0.0, 95.0, 0.0, 0.0, 100.0), 60.0, 500.0);
   EXPECT_DOUBLE_EQ(w.earliest_s, 160.0);  // x = 0: 100 + 60 - 0; x = 1: 95 + 60 - 5
   EXPECT_DOUBLE_EQ(w.latest_s, 590.0);    // x = 1: 95 + 500 - 5
   EXPECT_DOUBLE_EQ(w.newest_below_s, 100.0);
   EXPECT_FALSE(w.empty());
-  // An end 19.5 mm off is the same end; 20.5 mm off, or of another wall, is not.
-  EXPECT_EQ(start_window(path, {{1, 1.0195, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 1);
-  EXPECT_EQ(start_window(path, {{1, 1.0205, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 0);
-  EXPECT_EQ(start_window(path, {{2, 1.0, 0.0, 105.0}}, 60.0, 500.0).ends_covered, 0);
+  // A bead 1.9 mm off the line is under it (layers merge points 1 mm apart); 2.1 mm off,
+  // or of another wall, is not.
+  EXPECT_EQ(window_over(laid(1, 0.0, 0.0019, 100.0, 1.0, 0.0019, 110.0), 60, 500).ends_covered, 2);
+  EXPECT_EQ(window_over(laid(1, 0.0, 0.0021, 100.0, 1.0, 0.0021, 110.0), 60, 500).ends_covered, 0);
+  EXPECT_EQ(window_over(laid(2, 0.0, 0.0, 100.0, 1.0, 0.0, 110.0), 60, 500).ends_covered, 0);
+  // The piece of the same wall that meets it at its end, laid much later (a two-skin
+  // wall's loop turning the corner), is not under it: the interval at x = 1 m is the
+  // bead along the piece's (until 2026-12-07 the dispatcher paired every end there,
+  // and re-planned a clean run of a valid schedule 37 times).
+  w = window_over(
+      laid(1, 1.0, 0.0, 400.0, 1.0, 0.5, 402.5, laid(1, 0.0, 0.0, 100.0, 1.0, 0.0, 110.0)), 60.0,
+      500.0);
+  EXPECT_EQ(w.ends_covered, 2);
+  EXPECT_DOUBLE_EQ(w.earliest_s, 165.0);
+  EXPECT_DOUBLE_EQ(w.newest_below_s, 110.0);
+  // Two beads below meeting mid-piece (two gantries): each stretch with its own bead,
+  // the meeting point once from each side.
+  w = window_over(
+      laid(1, 0.0, 0.0, 100.0, 0.5, 0.0, 102.5, laid(1, 0.5, 0.0, 300.0, 1.0, 0.0, 302.5)), 60.0,
+      500.0);
+  EXPECT_EQ(w.ends_covered, 4);
+  EXPECT_DOUBLE_EQ(w.earliest_s, 357.5);  // from x = 0.5 on: 300 + 60 - 2.5
+  EXPECT_DOUBLE_EQ(w.latest_s, 600.0);    // up to x = 0.5: 100 + 500 - 0 = 102.5 + 500 - 2.5
   // Ends laid 440 s apart leave no start for a 60-500 s window; 440 s is its width.
-  StartWindow apart = start_window(path, {{1, 0.0, 0.0, 0.0}, {1, 1.0, 0.0, 445.0}}, 60.0, 500.0);
+  StartWindow apart = window_over(laid(1, 0.0, 0.0, 0.0, 1.0, 0.0, 445.0), 60.0, 500.0);
   EXPECT_DOUBLE_EQ(apart.earliest_s, apart.latest_s);
   EXPECT_FALSE(apart.empty());
-  apart = start_window(path, {{1, 0.0, 0.0, 0.0}, {1, 1.0, 0.0, 445.001}}, 60.0, 500.0);
+  apart = window_over(laid(1, 0.0, 0.0, 0.0, 1.0, 0.0, 445.001), 60.0, 500.0);
   EXPECT_TRUE(apart.empty());
-  // What a deposit laid: every end, or those up to the waypoint it stopped at.
-  EXPECT_EQ(laid_ends(path, 10.0).size(), 2u);
-  EXPECT_EQ(laid_ends(path, 10.0, 0).size(), 1u);
-  EXPECT_DOUBLE_EQ(laid_ends(path, 10.0, 1).back().t_s, 15.0);
+  // What a deposit laid: every stretch, or those up to the waypoint it stopped at.
+  const machine::TimedPath path = piece_job(20, 1, 0.0).path;
+  rules::DepositIndex all, none, one;
+  machine::add_deposits(all, path, 10.0);
+  machine::add_deposits(none, path, 10.0, 0);
+  machine::add_deposits(one, path, 10.0, 1);
+  EXPECT_EQ(all.spans.at(1).size(), 1u);
+  EXPECT_TRUE(none.empty());
+  EXPECT_DOUBLE_EQ(one.spans.at(1).back().tb, 15.0);
 }
 
 /// A layer of two wall pieces along x at 0.2 m/s: wall 1 from x = 0 to 1 m, wall 2 from
@@ -689,16 +724,23 @@ struct LateRun {
   /// each job (when it started, where it stopped) and the paths it was sent: (interval,
   /// laid on a planned joint).
   std::vector<std::pair<double, bool>> intervals() const {
-    std::map<int, std::vector<LaidEnd>> laid;
+    struct End {
+      std::int64_t wall;
+      double x_m, t_s;
+    };
+    std::map<int, std::vector<End>> laid;
     std::vector<std::pair<double, bool>> out;
     for (const std::int64_t id : rig.sim.executed()) {
       const DispatchJob& j = *rig.dispatcher->job(id);
       if (j.kind != JobKind::kDeposit) continue;
       const auto row = rig.journal.rows().at(id);
-      const auto ends = laid_ends(j.path, rig.dispatcher->executed().at(id).first,
-                                  row.state == "done" ? -1 : row.stopped_at);
-      for (const LaidEnd& e : ends)
-        for (const LaidEnd& b : laid[j.layer - 1])
+      const double started_s = rig.dispatcher->executed().at(id).first;
+      std::vector<End> ends;
+      for (const auto& [k, wall] : machine::piece_ends(j.path))
+        if (row.state == "done" || static_cast<int>(k) <= row.stopped_at)
+          ends.push_back({wall, j.path.x_m[k], started_s + j.path.t_s[k]});
+      for (const End& e : ends)
+        for (const End& b : laid[j.layer - 1])
           if (b.wall == e.wall && std::abs(b.x_m - e.x_m) < 1e-9)
             out.emplace_back(e.t_s - b.t_s, j.on_planned_joint);
       laid[j.layer].insert(laid[j.layer].end(), ends.begin(), ends.end());
@@ -784,10 +826,12 @@ TEST(Dispatch, AClogWhoseRestStillFitsTheWindowNeedsNoPlannedJoint) {
 
 TEST(Dispatch, AClogMidPieceLeavesNoPieceEndWhereThePathStopped) {
   // One wall piece a layer, x = 0 to 2 m in 10 s; layer 1 clogs at x = 1 m (65 s), in
-  // the middle of its piece: it laid the end at x = 0 only, and its rest (after the 120 s
-  // purge) lays x = 2 m at 190 s. Layer 2, twice as slow, starts at 240 s: x = 0 covered
-  // 180 s after it was laid (the maximum), x = 2 m at 260 s. Had the clogged job been
-  // counted as laying x = 2 m at 70 s, 190 s before, layer 2 would need a planned joint.
+  // the middle of its piece: it laid x = 0 to 1 m only, and its rest (after the 120 s
+  // purge) lays x = 1 to 2 m by 190 s. Layer 2, twice as slow, starts at 240 s: x = 0
+  // covered 180 s after it was laid, x = 1 m (where the clogged bead ends) 185 s, the
+  // maximum 186 s; the rest's stretch 65 and 70 s after. Had the clogged job been counted
+  // as laying x = 1 to 2 m by 70 s, x = 2 m would be covered 190 s after it: a planned
+  // joint.
   const auto piece = [](std::int64_t id, int layer, double start_s, double duration_s) {
     DispatchJob d = piece_job(id, layer, start_s);
     const double z_m = 0.1 * (layer + 1);
@@ -798,9 +842,9 @@ TEST(Dispatch, AClogMidPieceLeavesNoPieceEndWhereThePathStopped) {
     d.duration_s = duration_s;
     return d;
   };
-  Rig rig(LateRun::with_window(LateRun::clogging(), 180.0),
+  Rig rig(LateRun::with_window(LateRun::clogging(), 186.0),
           {piece(10, 0, 0.0, 10.0), piece(20, 1, 60.0, 10.0), piece(30, 2, 120.0, 20.0)},
-          ":memory:", LateRun::options(180.0));
+          ":memory:", LateRun::options(186.0));
   rig.run();
   ASSERT_FALSE(rig.dispatcher->stopped()) << *rig.dispatcher->stopped();
   EXPECT_TRUE(rig.dispatcher->replans().empty());

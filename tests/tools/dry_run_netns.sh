@@ -9,7 +9,8 @@
 # (then jobs may be left, but none may run twice or go unreported). CHECK_JOINTS checks
 # every joint between layers from the machines' messages (check_joints.py). The summary
 # speaks one unit per column (check_units.py), lengths in LENGTHS (ft or m) when set, and
-# explains every table's columns.
+# explains every table's columns. ON_PLAN=1 requires every layer within 1 s of its plan
+# and no re-plan (a clean run of a valid schedule), naming the first layer off plan.
 # Usage: [EXPECT=...] dry_run_netns.sh CCBUILD ARGS...   (needs root for unshare -n)
 set -euo pipefail
 # As root, a network namespace; otherwise a user namespace with one (needs unprivileged
@@ -89,4 +90,21 @@ while IFS= read -r pattern; do
     { echo "expected a line matching '$pattern'"; cat "$out/progress.txt"; exit 1; }
   echo "found: $pattern"
 done <<< "${EXPECT:-}"
+# ON_PLAN=1: a clean run, on plan. Every layer starts within 1 s of its planned start and
+# nothing is re-planned; with --by-layer the first layer off plan is named.
+if [ -n "${ON_PLAN:-}" ]; then
+  if ! grep -Eq '^deviations: 0 of [0-9]+ layers' "$out/summary.txt" ||
+     ! grep -Eq '^re-plans: 0$' "$out/summary.txt"; then
+    python3 - "$out/summary.txt" <<'PY'
+import re, sys
+for line in open(sys.argv[1]):
+    m = re.match(r"(floor \d+ layer \d+) .* ([+-]\d+\.\d) s ", line)
+    if m and abs(float(m.group(2))) > 1.0:
+        sys.exit("the first layer off plan: " + line.rstrip())
+PY
+    echo "not on plan: a layer started more than 1 s off its planned start, or a re-plan"
+    exit 1
+  fi
+  echo "on plan: every layer within 1 s of its planned start, 0 re-plans"
+fi
 echo "dry_run_netns: $all_jobs jobs on $machines machines, each run exactly once by the machines' own records"

@@ -9,6 +9,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/machine/gantry_yard.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 
 namespace ccbuild::dispatch {
@@ -85,36 +86,28 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
                ? document.inputs.unit_names[unit]
                : std::string();
   };
-  // Where each gantry stands once its last job ends (x, y, z, heading). A gantry idle
-  // for a layer first goes to its park at the far end of the rails: the plan of a layer
-  // on fewer nozzles counts on the others being out of its way.
-  std::map<int, std::array<double, 4>> where;
-  std::set<int> parked;
   const schedule::RecordedMachine& machine = document.inputs.machine;
   // Parks for every gantry of the machine (one never used stays at the far end).
   int gantries = std::max(1, machine.nozzles);
   for (const auto& [key, plan] : schedule.plans)
     for (std::size_t n = 0; n < plan.waypoints.size(); ++n)
       if (!plan.waypoints[n].empty()) gantries = std::max(gantries, static_cast<int>(n) + 1);
-  const int rail = machine.rail_axis == machine::RailAxis::kY ? 1 : 0;
-  const double rail_max_m =
-      machine::rail_coordinate(machine.x_max_m, machine.y_max_m, machine.rail_axis);
-  // A straight move with every axis within its speed: as long as the slowest axis needs.
-  const auto move_time_s = [&](const std::array<double, 4>& a, const std::array<double, 4>& b) {
-    const double speeds[4] = {machine.x_speed_m_s, machine.y_speed_m_s, machine.z_speed_m_s,
-                              machine.rotation_speed_rad_s};
-    double t_s = 0.0;
-    for (int k = 0; k < 4; ++k)
-      if (speeds[k] > 0.0) t_s = std::max(t_s, std::abs(b[k] - a[k]) / speeds[k]);
-    return t_s;
-  };
-  const auto travel = [](const std::array<double, 4>& a, const std::array<double, 4>& b,
+  // Where each gantry stands once its last job ends, and its moves before each layer: the
+  // scheduler's rule for the layer's move time (machine::GantryYard).
+  machine::GantryYard yard(
+      machine::AxisSpeeds{machine.x_speed_m_s, machine.y_speed_m_s, machine.z_speed_m_s,
+                          machine.rotation_speed_rad_s},
+      machine.rail_axis,
+      machine::rail_coordinate(machine.x_max_m, machine.y_max_m, machine.rail_axis), gantries,
+      machine.gantry_width_m);
+  const auto travel = [](const machine::GantryPose& a, const machine::GantryPose& b,
                          double duration_s) {
     machine::TimedPath move;
     move.push_back(0.0, a[0], a[1], a[2], a[3], false, 0, 0);
     move.push_back(duration_s, b[0], b[1], b[2], b[3], false, 0, 0);
     return move;
   };
+  std::vector<machine::GantryMove> parks, to_starts;
   for (const ScheduledLayer& l : schedule.layers) {
     const auto plan_it = schedule.plans.find(l.plan);
     if (plan_it == schedule.plans.end())
@@ -143,54 +136,51 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
         jobs.back().absorbs = DelayAbsorption::kShortenWait;
     }
     const double moves_from_s = waited_from_s - move_s;
-    for (auto& [nozzle, at] : where) {
-      const bool works =
-          nozzle < static_cast<int>(plan.waypoints.size()) && !plan.waypoints[nozzle].empty();
-      if (works || parked.count(nozzle)) continue;
-      std::array<double, 4> park = at;
-      park[rail] = rail_max_m - (gantries - 1 - nozzle) * machine.gantry_width_m;
-      const double park_s = move_time_s(at, park);
-      if (park_s > 0.0)
-        jobs.push_back(job_of(JobKind::kTravel, gantry_id(nozzle), moves_from_s, park_s, floor,
-                              layer, nozzle, "",
-                              printf_string("nozzle %d parks clear at the far end of the rails "
-                                            "(idle on floor %d layer %d)",
-                                            nozzle + 1, floor, layer),
-                              travel(at, park, park_s)));
-      at = park;
-      parked.insert(nozzle);
-    }
+    std::vector<machine::TimedPath> paths(plan.waypoints.size());
+    std::vector<std::optional<machine::GantryPose>> starts(plan.waypoints.size()),
+        ends(plan.waypoints.size());
     for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
-      const int nozzle = static_cast<int>(n);
-      machine::TimedPath path = timed_path(plan.waypoints[n]);
+      paths[n] = timed_path(plan.waypoints[n]);
+      machine::TimedPath& path = paths[n];
       if (path.size() == 0) continue;
       for (double& z_m : path.z_m) z_m += dz_m;  // this layer's height
+      const std::size_t end = path.size() - 1;
+      starts[n] = machine::GantryPose{path.x_m[0], path.y_m[0], path.z_m[0], path.heading_rad[0]};
+      ends[n] =
+          machine::GantryPose{path.x_m[end], path.y_m[end], path.z_m[end], path.heading_rad[end]};
+    }
+    yard.moves_before(starts, parks, to_starts);
+    for (const machine::GantryMove& m : parks)
+      if (m.duration_s > 0.0)
+        jobs.push_back(job_of(JobKind::kTravel, gantry_id(m.nozzle), moves_from_s, m.duration_s,
+                              floor, layer, m.nozzle, "",
+                              printf_string("nozzle %d parks clear at the far end of the rails "
+                                            "(idle on floor %d layer %d)",
+                                            m.nozzle + 1, floor, layer),
+                              travel(m.from, m.to, m.duration_s)));
+    for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
+      const int nozzle = static_cast<int>(n);
+      if (!starts[n]) continue;
       // The move from where this gantry stands to where it starts, in a straight line,
-      // over the layer's move time (longer coming back from its park).
-      const std::array<double, 4> first = {path.x_m[0], path.y_m[0], path.z_m[0],
-                                           path.heading_rad[0]};
-      if (const auto from = where.find(nozzle); from != where.end()) {
-        const double needed_s = move_time_s(from->second, first);
-        if (move_s > 0.0 || needed_s > 1e-6) {
-          const double travel_s = std::max(move_s, needed_s);
+      // over the layer's move time (which the scheduler made long enough for it).
+      for (const machine::GantryMove& m : to_starts)
+        if (m.nozzle == nozzle && (move_s > 0.0 || m.duration_s > 1e-6)) {
+          const double travel_s = std::max(move_s, m.duration_s);
           jobs.push_back(job_of(
               JobKind::kTravel, gantry_id(nozzle), moves_from_s, travel_s, floor, layer, nozzle, "",
               printf_string("move to floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
-              travel(from->second, first, travel_s)));
+              travel(m.from, m.to, travel_s)));
         }
-      }
-      const std::size_t end = path.size() - 1;
-      where[nozzle] = {path.x_m[end], path.y_m[end], path.z_m[end], path.heading_rad[end]};
-      parked.erase(nozzle);
-      const double duration_s = path.t_s.back();
+      const double duration_s = paths[n].t_s.back();
       jobs.push_back(job_of(JobKind::kDeposit, gantry_id(nozzle), start_s, duration_s, floor, layer,
                             nozzle, l.plan,
                             printf_string("floor %d layer %d, nozzle %d", floor, layer, nozzle + 1),
-                            std::move(path)));
+                            std::move(paths[n])));
       jobs.back().on_planned_joint = l.planned_joint;
       jobs.back().z_bottom_m = l.z_bottom_m;
       jobs.back().z_top_m = l.z_top_m;
     }
+    yard.finish_layer(ends);
   }
   for (const Event& e : schedule.events) {
     if (e.kind == Event::Kind::kClimb && e.climb) {
@@ -258,9 +248,9 @@ std::map<std::string, std::array<double, 4>> parking_homes(
       }
   // Gantries never used (beyond `ids`) stand at the far end of the rails.
   const int count = std::max(static_cast<int>(ids.size()), machine.nozzles);
+  const machine::GantryYard yard({}, rail_axis, rail_max_m, count, gantry_width_m);
   for (int k = 0; k < static_cast<int>(ids.size()); ++k)
-    if (homes.count(ids[k]) && !from_first[ids[k]])
-      homes[ids[k]][rail] = rail_max_m - (count - 1 - k) * gantry_width_m;
+    if (homes.count(ids[k]) && !from_first[ids[k]]) homes[ids[k]] = yard.park_of(k, homes[ids[k]]);
   for (int k = 1; k < static_cast<int>(ids.size()); ++k)
     if (homes.count(ids[k]) && homes.count(ids[k - 1]))
       homes[ids[k]][rail] = std::max(homes[ids[k]][rail], homes[ids[k - 1]][rail] + gantry_width_m);

@@ -49,9 +49,8 @@ std::vector<std::size_t> Dispatcher::starting_with(std::size_t index) const {
 void Dispatcher::record_laid(std::size_t index, const JournalRow& row) {
   const DispatchJob& d = jobs_[index];
   if (d.kind != JobKind::kDeposit) return;
-  auto ends = laid_ends(d.path, row.started_s, row.state == "done" ? -1 : row.stopped_at);
-  auto& laid = laid_[{d.floor, d.layer, d.machine_id}];
-  laid.insert(laid.end(), ends.begin(), ends.end());
+  machine::add_deposits(laid_[{d.floor, d.layer}], d.path, row.started_s,
+                        row.state == "done" ? -1 : row.stopped_at);
   auto [at, made] = layer_end_.try_emplace({d.floor, d.layer}, d.z_bottom_m, row.finished_s);
   if (!made) at->second.second = std::max(at->second.second, row.finished_s);
 }
@@ -62,16 +61,16 @@ constexpr double kReplanSlack_s = 5e-4;
 }  // namespace
 
 StartWindow Dispatcher::window_below(const std::vector<std::size_t>& deposits) const {
-  // Each deposit against the piece ends its machine laid below it, as the machine checks
-  // them (docs/dispatch.md).
-  StartWindow w;
-  for (std::size_t k : deposits) {
-    const DispatchJob& d = jobs_[k];
-    if (const auto below = laid_.find({d.floor, d.layer - 1, d.machine_id}); below != laid_.end())
-      w.intersect(
-          start_window(d.path, below->second, options_.min_interval_s, options_.max_interval_s));
-  }
-  return w;
+  // The layer's deposits (times from their common start) against what every machine laid
+  // below, by the scheduler's rule (rules/intervals.hpp; docs/dispatch.md).
+  if (deposits.empty()) return {};
+  const DispatchJob& first = jobs_[deposits.front()];
+  const auto below = laid_.find({first.floor, first.layer - 1});
+  if (below == laid_.end()) return {};
+  rules::DepositIndex above;
+  for (std::size_t k : deposits) machine::add_deposits(above, jobs_[k].path, 0.0);
+  return rules::start_window(rules::interval_offsets(above, below->second), options_.min_interval_s,
+                             options_.max_interval_s);
 }
 
 void Dispatcher::replan(std::size_t index) {
@@ -107,8 +106,8 @@ void Dispatcher::replan(std::size_t index) {
     if (new_start_s <= start_s + kReplanSlack_s) return;
     r.what = "later";
     r.detail = printf_string(
-        "%s starts %.1f s later (at %.1f s): no piece end below is covered sooner than the "
-        "minimum %.0f s after the machines laid it",
+        "%s starts %.1f s later (at %.1f s): no stretch of wall below is covered sooner than "
+        "the minimum %.0f s after the machines laid it",
         what.c_str(), new_start_s - start_s, new_start_s, options_.min_interval_s);
   } else {
     // No start keeps every joint below within the maximum: a planned joint, treated

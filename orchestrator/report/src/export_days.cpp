@@ -9,6 +9,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/report/day_packages.hpp"
 #include "ccbuild/report/site_tasks.hpp"
+#include "ccbuild/rules/crew.hpp"
 #include "ccbuild/schedule/site.hpp"
 
 namespace ccbuild::report {
@@ -147,7 +148,7 @@ std::vector<DayPackage> work_packages(const schedule::ScheduleDocument& schedule
       if (e.count > 1)
         e.what = printf_string("Floor %d: %d × %s", t.floor, e.count, t.kind.c_str());
       e.end_s = t.end_s;
-      e.person_h += t.crew * (t.end_s - t.start_s) / 3600.0;
+      e.person_h += rules::person_hours(t.crew, t.end_s - t.start_s);
       if (t.kind == "pour") e.concrete_m3 += t.concrete_m3;
     }
     if (const auto it = stops.find(p.date); it != stops.end()) {

@@ -23,6 +23,20 @@ double Scheduler::move_between(const std::string& from_key, const std::string& t
                                  project_.building.layer_height_m);
 }
 
+std::vector<std::optional<machine::GantryPose>> Scheduler::gantry_poses(const std::string& key,
+                                                                        double z_top_m,
+                                                                        bool last) const {
+  const SchedulePlan& plan = schedule_.plans.at(key);
+  std::vector<std::optional<machine::GantryPose>> out(plan.waypoints.size());
+  for (std::size_t n = 0; n < plan.waypoints.size(); ++n) {
+    if (plan.waypoints[n].empty()) continue;
+    const planner::Waypoint& w = last ? plan.waypoints[n].back() : plan.waypoints[n].front();
+    out[n] = machine::GantryPose{w.position_m.x(), w.position_m.y(),
+                                 w.z_m + (z_top_m - plan.z_top_m), w.heading_rad};
+  }
+  return out;
+}
+
 double Scheduler::peak_flow_of(const std::string& key) {
   auto it = peak_flow_.find(key);
   if (it == peak_flow_.end()) {
@@ -195,6 +209,11 @@ void Scheduler::prepare() {
   const int count = static_cast<int>(slices_.size());
   layer_end_s_.assign(count, 0.0);
   set_memo_scopes();
+  yard_.emplace(machine::AxisSpeeds{machine_.x.speed_m_s, machine_.y.speed_m_s,
+                                    machine_.z.speed_m_s, machine_.rotation_speed_rad_s},
+                machine_.rail_axis,
+                machine::rail_coordinate(machine_.x.max_m, machine_.y.max_m, machine_.rail_axis),
+                machine_.nozzles, machine_.gantry_width_m);
 
   // Each opening's lintel goes in before the first layer of its floor whose mid-height is
   // at or over its head (the slicer's rule: that layer is no longer cut by the opening).
@@ -474,7 +493,12 @@ bool Scheduler::schedule_layer(int i) {
           floors::flow_text(*machine_.pump_capacity_m3_s, project_.building.units, 2).c_str()));
       return false;
     }
-    c.move_s = previous_key_.empty() ? 0.0 : move_between(previous_key_, c.key);
+    // The model's layer change, or longer where a gantry comes back from its park (or
+    // parks) and its slowest axis needs more: the moves the dispatcher sends.
+    c.move_s = previous_key_.empty() ? 0.0
+                                     : std::max(move_between(previous_key_, c.key),
+                                                yard_->longest_move_before_s(gantry_poses(
+                                                    c.key, slice.layer.z_top_m, false)));
     const double earliest_s = previous_end_s_ + ready_extra_s_ + c.move_s;
     double start_s = earliest_s;
     auto require = [&](double need_s, WaitKind kind, const std::string& detail) {
@@ -824,6 +848,7 @@ bool Scheduler::schedule_layer(int i) {
   layer_end_s_[i] = out.end_s;
   previous_end_s_ = out.end_s;
   previous_key_ = out.plan;
+  yard_->finish_layer(gantry_poses(out.plan, slice.layer.z_top_m, true));
   schedule_.layers.push_back(out);
   ready_extra_s_ = 0.0;
   stopped_since_below_ = false;

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "ccbuild/common/format.hpp"
+#include "ccbuild/rules/crew.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 
 namespace ccbuild::schedule {
@@ -122,7 +123,7 @@ ScheduleTotals totals_of(const std::vector<ScheduledLayer>& layers,
   for (const auto& e : events) {
     tot.makespan_s = std::max(tot.makespan_s, e.end_s);
     const double d = e.end_s - e.start_s;
-    tot.crew_h += e.crew * d / 3600.0;
+    tot.crew_h += rules::person_hours(e.crew, d);
     tot.waits_s += e.wait_before_s;
     switch (e.kind) {
       case Event::Kind::kPipe:
@@ -206,7 +207,7 @@ std::vector<WorkDay> work_days(const std::vector<ScheduledLayer>& layers,
     if (e.crew == 0) continue;
     const std::string date = calendar.local_date(e.start_s);
     for (auto& d : days)
-      if (d.date == date) d.crew_h += e.crew * (e.end_s - e.start_s) / 3600.0;
+      if (d.date == date) d.crew_h += rules::person_hours(e.crew, e.end_s - e.start_s);
   }
   return days;
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "ccbuild/common/format.hpp"
+#include "ccbuild/machine/gantry_yard.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "schedule_deposits.hpp"
 
@@ -239,6 +240,10 @@ class Scheduler {
   /// From the end of the nozzles' paths on plan `from_key` to the start of `to_key`'s, one
   /// layer up (planner::layer_change_s), s.
   double move_between(const std::string& from_key, const std::string& to_key) const;
+  /// Each gantry's first (or last) pose on plan `key` at the layer whose top is at
+  /// `z_top_m`, by nozzle; none where the plan leaves that gantry idle.
+  std::vector<std::optional<machine::GantryPose>> gantry_poses(const std::string& key,
+                                                               double z_top_m, bool last) const;
   const IntervalOffsets& offsets(const Slice& upper, const std::string& upper_key,
                                  const std::string& lower_key);
   /// The earliest start of global layer `i` that the layers below `first_checked` can
@@ -353,6 +358,9 @@ class Scheduler {
   double slab_ready_s_ = -kInf;
   std::string slab_ready_detail_;
   std::string previous_key_;
+  /// Where the gantries stand after the layers so far: the moves before the next layer
+  /// (parks and returns from them) as the dispatcher sends them.
+  std::optional<machine::GantryYard> yard_;
 };
 
 }  // namespace ccbuild::schedule::detail

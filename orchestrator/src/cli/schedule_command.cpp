@@ -10,6 +10,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/report/report.hpp"
+#include "ccbuild/rules/crew.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "ccbuild/schedule/site.hpp"
@@ -265,7 +266,7 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       if (e.crew == 0) continue;
       auto& [count, hours] = by_kind[schedule::to_string(e.kind)];
       ++count;
-      hours += e.crew * (e.end_s - e.start_s) / 3600.0;
+      hours += rules::person_hours(e.crew, e.end_s - e.start_s);
     }
     std::string kinds;
     for (const auto& [kind, v] : by_kind)

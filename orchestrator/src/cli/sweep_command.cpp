@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "ccbuild/common/atomic_file.hpp"
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/slice.hpp"
 #include "ccbuild/machine/machine_model.hpp"
@@ -68,12 +69,6 @@ struct Row {
   double construction_s = 0.0, machine_s = 0.0;
   int vertices = 0;
 };
-
-std::string csv_quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
 
 void run_sweep(const SweepOptions& o, int& exit_code) {
   const orchestrator::Project project = open_input(o.file, o.input);
@@ -206,7 +201,7 @@ void run_sweep(const SweepOptions& o, int& exit_code) {
         << "," << r.methods << "," << planner::to_string(r.status.code()) << ","
         << (r.status ? printf_string("%.6g", r.construction_s) : "") << ","
         << (r.status ? printf_string("%.6g", r.machine_s) : "") << "," << r.vertices << ","
-        << csv_quoted(r.status.reason()) << "\n";
+        << csv_field(r.status.reason()) << "\n";
   if (!o.csv.empty()) outputs.write(o.csv, csv.str());
   outputs.commit();
 

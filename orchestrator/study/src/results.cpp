@@ -28,13 +28,6 @@ std::string number_text(const nlohmann::ordered_json& v) {
   return v.get<std::string>();
 }
 
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 }  // namespace
 
 namespace detail {

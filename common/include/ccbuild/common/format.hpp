@@ -21,6 +21,10 @@ std::string nearest_word(const std::string& word, const std::vector<std::string>
 /// and 1e9 ("0.15", "2400", "1e+308"); "NaN", "infinity" or "-infinity" otherwise.
 std::string plain_number(double value);
 
+/// A CSV field (RFC 4180): as it is, or quoted with its quotes doubled when it holds a
+/// comma, a quote or a line break. Every CSV ccbuild writes quotes its fields so.
+std::string csv_field(const std::string& text);
+
 /// A plausible range of values, closed unless an end is said to be open.
 struct Range {
   double min = 0.0;

@@ -162,11 +162,6 @@ class SimMachine {
     int stop_point = -1;
     std::string stop_message;
   };
-  /// A piece end deposited: which wall, where, when (schedule s).
-  struct PieceEnd {
-    std::int64_t wall;
-    double x_m, y_m, t_s;
-  };
 
   void on_job(const ccbuild_lcm::ccbuild_job_t& job);
   /// A site clock tick: simulates up to `sim_time_s` and answers with a status.
@@ -232,7 +227,7 @@ class SimMachine {
   /// When the last pipe of each climbing unit was placed (schedule s), by unit name.
   std::map<std::string, double> pipes_;
   /// Piece ends deposited per (floor, layer).
-  std::map<std::pair<int, int>, std::vector<PieceEnd>> deposited_;
+  std::map<std::pair<int, int>, rules::DepositIndex> deposited_;  ///< what it laid, site time
   double clock_s_ = 0.0;
   double last_status_s_ = -1e300;
   double real_since_status_s_ = 0.0;

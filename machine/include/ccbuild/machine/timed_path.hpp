@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "ccbuild/rules/intervals.hpp"
+
 namespace ccbuild::machine {
 
 /// Waypoints as parallel columns, the chunk's fields: times from the job's start (s),
@@ -26,6 +28,13 @@ struct TimedPath {
 /// line between waypoints; its first waypoint before it, its last after it. The path must
 /// not be empty.
 std::array<double, 4> position_at(const TimedPath& path, double t_s);
+
+/// The stretches `path` deposits when it starts at `origin_s` (times from then, s): every
+/// one, or when it ended on a fault with `stopped_at` waypoints done (>= 0), those up to
+/// that waypoint (as the machine counts them). Added to `index`, for the interval rule
+/// (rules/intervals.hpp).
+void add_deposits(rules::DepositIndex& index, const TimedPath& path, double origin_s,
+                  int stopped_at = -1);
 
 /// Two piece ends of one wall this close (m, along x and along y) are the same end, one
 /// above the other: where a layer's interval to the layer below is measured.

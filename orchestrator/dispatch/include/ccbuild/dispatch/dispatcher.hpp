@@ -283,7 +283,8 @@ class Dispatcher {
   std::optional<std::string> stopped_;
   double delay_s_ = 0.0;
   /// Piece ends laid, by (floor, layer, machine), as the machines reported their deposits.
-  std::map<std::tuple<int, int, std::string>, std::vector<LaidEnd>> laid_;
+  /// What the machines laid of each (floor, layer), in schedule time.
+  std::map<std::pair<int, int>, rules::DepositIndex> laid_;
   /// Per (floor, layer) laid: its bottom (m) and when its last deposit ended (schedule s).
   std::map<std::pair<int, int>, std::pair<double, double>> layer_end_;
   std::set<std::int64_t> decided_;             ///< jobs whose start was re-planned, or needed none

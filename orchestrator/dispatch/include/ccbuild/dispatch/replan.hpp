@@ -1,8 +1,8 @@
 #pragma once
 // Re-planning the rest of a run from what the machines did (docs/dispatch.md, "When the
-// site runs late"): when each piece end was actually laid, the start window that keeps a
-// deposit's joints within the material's interval, and the re-plans the dispatcher makes
-// and journals.
+// site runs late"): when each stretch of wall was actually laid, from which the start
+// window that keeps a layer's joints within the material's interval follows (its rule is
+// rules/intervals.hpp), and the re-plans the dispatcher makes and journals.
 
 #include <cstdint>
 #include <limits>
@@ -10,42 +10,13 @@
 #include <vector>
 
 #include "ccbuild/machine/timed_path.hpp"
+#include "ccbuild/rules/intervals.hpp"
 
 namespace ccbuild::dispatch {
 
-/// A piece end as a machine laid it: the wall, where (m) and when (schedule s).
-struct LaidEnd {
-  std::int64_t wall = 0;
-  double x_m = 0.0, y_m = 0.0;
-  double t_s = 0.0;
-};
-
-/// The piece ends a deposit of `path` laid when it started at `started_s` (schedule s):
-/// every one, or when it ended on a fault with `stopped_at` waypoints done (>= 0), those
-/// up to that waypoint (as the machine counts them).
-std::vector<LaidEnd> laid_ends(const machine::TimedPath& path, double started_s,
-                               int stopped_at = -1);
-
-/// When a deposit may start (schedule s) so that each of its piece ends above one laid
-/// below is covered no sooner than the minimum interval after it and no later than the
-/// maximum. Unbounded when it covers none.
-struct StartWindow {
-  double earliest_s = -std::numeric_limits<double>::infinity();
-  double latest_s = std::numeric_limits<double>::infinity();
-  int ends_covered = 0;  ///< piece ends of the path above one laid below
-  /// The newest piece end it covers was laid then (schedule s; -inf when none): a planned
-  /// joint's treatment waits for it to be old enough.
-  double newest_below_s = -std::numeric_limits<double>::infinity();
-  bool empty() const { return earliest_s > latest_s; }
-  /// The window both this one and `other` allow.
-  StartWindow& intersect(const StartWindow& other);
-};
-
-/// The start window of a deposit of `path` over the piece ends `below` (the same wall,
-/// within machine::kPieceEndMatch_m), for a material whose layers bond between
-/// `min_interval_s` and `max_interval_s` after they were laid.
-StartWindow start_window(const machine::TimedPath& path, const std::vector<LaidEnd>& below,
-                         double min_interval_s, double max_interval_s);
+/// When a layer may start so that its intervals to the layer below keep the material's
+/// window: the rule of rules/intervals.hpp, with the times the machines laid it.
+using rules::StartWindow;
 
 /// One re-plan, as the journal records it (before it is acted on) and a restarted
 /// dispatcher applies it again.

@@ -29,6 +29,7 @@
 #include "ccbuild/climb/climb.hpp"
 #include "ccbuild/floors/quantities.hpp"
 #include "ccbuild/planner/timeline.hpp"
+#include "ccbuild/rules/intervals.hpp"
 #include "ccbuild/schedule/setup.hpp"
 
 namespace ccbuild::schedule {
@@ -98,11 +99,8 @@ struct WaitReason {
 std::string reason_kinds_text(const std::vector<WaitReason>& reasons);
 
 /// One wall piece's end, where the local interval is extreme.
-struct PieceEnd {
-  std::int64_t wall = 0;
-  int piece = 0;  ///< 1-based within its layer
-  double x_m = 0.0, y_m = 0.0;
-};
+/// A point of a wall piece (rules/intervals.hpp): wall, 1-based piece, where (m).
+using PieceEnd = rules::PieceEnd;
 
 struct ScheduledLayer {
   int floor = 0;

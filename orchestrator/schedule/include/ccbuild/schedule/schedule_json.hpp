@@ -22,7 +22,8 @@ namespace ccbuild::schedule {
 
 /// 2: local intervals taken where beads meet mid-piece too (piece_ends_checked counts them).
 inline constexpr int kScheduleSchemaVersion = 2;
-inline constexpr const char* kCcbuildVersion = "0.1.0";
+/// The version of ccbuild, stated once: CMake's project(VERSION) (CCBUILD_VERSION).
+inline constexpr const char* kCcbuildVersion = CCBUILD_VERSION;
 /// The largest schedule file read back, bytes. Reading one takes about 6 times its size
 /// in memory at the peak (docs/schedule.md); the ten-storey tower's is 2.1 MB.
 inline constexpr std::uintmax_t kMaxScheduleBytes = 256ull * 1024 * 1024;
