@@ -77,26 +77,6 @@ TimedPath path_of(const std::vector<ccbuild_lcm::ccbuild_path_chunk_t>& chunks) 
   return path;
 }
 
-std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const TimedPath& p) {
-  std::vector<std::pair<std::size_t, std::int64_t>> ends;
-  std::size_t k = 0;
-  while (k + 1 < p.size()) {
-    if (!p.extruding[k]) {
-      ++k;
-      continue;
-    }
-    // A run: from its first waypoint to the one where the nozzle stops depositing this
-    // piece (the next waypoint after the last extruding segment).
-    const std::size_t first = k;
-    while (k + 1 < p.size() && p.extruding[k] && p.wall[k] == p.wall[first] &&
-           p.piece[k] == p.piece[first])
-      ++k;
-    ends.emplace_back(first, p.wall[first]);
-    ends.emplace_back(k, p.wall[first]);
-  }
-  return ends;
-}
-
 void add_deposits(rules::DepositIndex& index, const TimedPath& path, double origin_s,
                   int stopped_at) {
   for (std::size_t k = 0; k + 1 < path.size(); ++k) {

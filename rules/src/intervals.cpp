@@ -150,14 +150,6 @@ IntervalOffsets interval_offsets(const DepositIndex& upper_index, const DepositI
   return out;
 }
 
-StartWindow& StartWindow::intersect(const StartWindow& other) {
-  earliest_s = std::max(earliest_s, other.earliest_s);
-  latest_s = std::min(latest_s, other.latest_s);
-  ends_covered += other.ends_covered;
-  newest_below_s = std::max(newest_below_s, other.newest_below_s);
-  return *this;
-}
-
 StartWindow start_window(const IntervalOffsets& offsets, double min_interval_s,
                          double max_interval_s) {
   StartWindow w;

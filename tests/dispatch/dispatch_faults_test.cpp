@@ -43,6 +43,28 @@ using schedule::ScheduleOptions;
 using ccbuild_lcm::ccbuild_fault_t;
 using testing::contains;
 
+/// The ends of each extruding run of one wall piece in `p`, in path order: (waypoint,
+/// wall) pairs, two per run.
+std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const machine::TimedPath& p) {
+  std::vector<std::pair<std::size_t, std::int64_t>> ends;
+  std::size_t k = 0;
+  while (k + 1 < p.size()) {
+    if (!p.extruding[k]) {
+      ++k;
+      continue;
+    }
+    // A run: from its first waypoint to the one where the nozzle stops depositing this
+    // piece (the next waypoint after the last extruding segment).
+    const std::size_t first = k;
+    while (k + 1 < p.size() && p.extruding[k] && p.wall[k] == p.wall[first] &&
+           p.piece[k] == p.piece[first])
+      ++k;
+    ends.emplace_back(first, p.wall[first]);
+    ends.emplace_back(k, p.wall[first]);
+  }
+  return ends;
+}
+
 const machine::TimedPath& path_of(const DispatchJob& d) {
   return d.path;
 }
@@ -736,7 +758,7 @@ struct LateRun {
       const auto row = rig.journal.rows().at(id);
       const double started_s = rig.dispatcher->executed().at(id).first;
       std::vector<End> ends;
-      for (const auto& [k, wall] : machine::piece_ends(j.path))
+      for (const auto& [k, wall] : piece_ends(j.path))
         if (row.state == "done" || static_cast<int>(k) <= row.stopped_at)
           ends.push_back({wall, j.path.x_m[k], started_s + j.path.t_s[k]});
       for (const End& e : ends)

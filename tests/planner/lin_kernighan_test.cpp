@@ -254,17 +254,25 @@ TEST(LinKernighan, ImprovesOnTwoOptAndOrOptLocalOptima) {
   EXPECT_GT(total_gain, 1e-3);
 }
 
+/// A 6-room layer's search costs in time, built as the search builds them.
+class TimeCosts : public ::testing::Test {
+ protected:
+  TimeCosts() { std::iota(segments.begin(), segments.end(), 0); }
+  TourCosts costs() const {
+    return TourCosts(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
+  }
+  const machine::MachineModel machine = testing::simple_machine();
+  const floors::Layer layer = testing::floor_plan_layer(6, 2);
+  const CostModel model{layer, machine, Metric::kEuclidean};
+  std::vector<int> segments = std::vector<int>(layer.segments.size());
+};
+
 // The search's time costs never price a move as lifted, even one across a wall: whether
 // it lifts depends on what is built before it (the exact-time polish's business). At
 // most a half turn, so each cost stays under an unlifted move with a half turn, which a
 // lift (5 s on this machine, against a 3.14 s half turn) would exceed.
-TEST(TourCosts, TimeCostsPriceNoLift) {
-  const machine::MachineModel machine = testing::simple_machine();
-  const floors::Layer layer = testing::floor_plan_layer(6, 2);
-  const CostModel model(layer, machine, Metric::kEuclidean);
-  std::vector<int> segments(layer.segments.size());
-  std::iota(segments.begin(), segments.end(), 0);
-  TourCosts costs(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
+TEST_F(TimeCosts, PriceNoLift) {
+  const TourCosts costs = this->costs();
   int crossing = 0;
   for (int u = 0; u < 2 * static_cast<int>(segments.size()); ++u) {
     for (int v = 0; v < 2 * static_cast<int>(segments.size()); ++v) {
@@ -282,16 +290,10 @@ TEST(TourCosts, TimeCostsPriceNoLift) {
 // Time costs are remembered in a table of about 32 slots a node, so that most pairs share
 // a slot with others: read in any order, each is the cost of its own pair, and the same
 // both ways.
-TEST(TourCosts, RememberedTimeCostsAreEachPairsOwn) {
-  const machine::MachineModel machine = testing::simple_machine();
-  const floors::Layer layer = testing::floor_plan_layer(6, 2);
-  const CostModel model(layer, machine, Metric::kEuclidean);
-  std::vector<int> segments(layer.segments.size());
-  std::iota(segments.begin(), segments.end(), 0);
+TEST_F(TimeCosts, RememberedAreEachPairsOwn) {
   const int nodes = 2 * static_cast<int>(segments.size());
   ASSERT_GT(nodes, 64);  // more pairs than slots
-  const TourCosts in_order(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
-  const TourCosts shuffled(model, segments, Objective::kTime, false, Vec2::Zero(), std::nullopt);
+  const TourCosts in_order = costs(), shuffled = costs();
   std::vector<std::pair<int, int>> pairs;
   for (int u = 0; u < nodes; ++u)
     for (int v = 0; v < nodes; ++v)

@@ -165,6 +165,14 @@ std::vector<DispatchJob> jobs_of_schedule(const ScheduleDocument& document) {
       // over the layer's move time (which the scheduler made long enough for it).
       for (const machine::GantryMove& m : to_starts)
         if (m.nozzle == nozzle && (move_s > 0.0 || m.duration_s > 1e-6)) {
+          // The scheduler made the layer's move at least as long as the yard's moves; a
+          // schedule that says less (beyond the JSON's rounding, absorbed below) was not
+          // made by it for this machine.
+          if (m.duration_s > move_s + 1e-3)
+            throw InputError("", 0, "move_before_s",
+                             printf_string("floor %d layer %d moves in %.3f s, but nozzle %d's "
+                                           "axes need %.3f s to reach its start",
+                                           floor, layer, move_s, nozzle + 1, m.duration_s));
           const double travel_s = std::max(move_s, m.duration_s);
           jobs.push_back(job_of(
               JobKind::kTravel, gantry_id(nozzle), moves_from_s, travel_s, floor, layer, nozzle, "",

@@ -36,12 +36,4 @@ std::array<double, 4> position_at(const TimedPath& path, double t_s);
 void add_deposits(rules::DepositIndex& index, const TimedPath& path, double origin_s,
                   int stopped_at = -1);
 
-/// Two piece ends of one wall this close (m, along x and along y) are the same end, one
-/// above the other: where a layer's interval to the layer below is measured.
-inline constexpr double kPieceEndMatch_m = 0.02;
-
-/// The ends of each extruding run of one wall piece in `path`, in path order: (waypoint,
-/// wall) pairs, two per run.
-std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const TimedPath& path);
-
 }  // namespace ccbuild::machine

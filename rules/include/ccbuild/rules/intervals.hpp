@@ -95,8 +95,6 @@ struct StartWindow {
   /// treatment waits for it to be old enough.
   double newest_below_s = -std::numeric_limits<double>::infinity();
   bool empty() const { return earliest_s > latest_s; }
-  /// The window both this one and `other` allow.
-  StartWindow& intersect(const StartWindow& other);
 };
 StartWindow start_window(const IntervalOffsets& offsets, double min_interval_s,
                          double max_interval_s);
