@@ -535,6 +535,7 @@ FitResult fit_climbing_machine(const floors::Building& building,
     Member member = build_member(family, best_p, options, description);
     r.profile_yaml = std::move(member.profile_yaml);
     r.urdf_xml = std::move(member.urdf_xml);
+    r.urdf_file = options.urdf_file;
     r.profile = std::move(member.profile);
     r.optimised = printf_string(
         "the smallest platform around the building (%s x %s, the beams %s outside "

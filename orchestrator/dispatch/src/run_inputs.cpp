@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <tuple>
 
+#include "ccbuild/common/atomic_file.hpp"
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/machine/sim_limits.hpp"
@@ -182,6 +185,52 @@ void check_writable_folder(const fs::path& dir, const std::vector<fs::path>& fil
           f.string(), 0, field,
           "cannot be appended to (" + std::string(std::strerror(errno)) + "); nothing was started");
   }
+}
+
+FittedMachineFolder::FittedMachineFolder(FittedMachineFolder&& other) noexcept
+    : folder_(std::move(other.folder_)), profile_(std::move(other.profile_)) {
+  other.folder_.clear();
+  other.profile_.clear();
+}
+
+FittedMachineFolder::~FittedMachineFolder() {
+  std::error_code ec;
+  if (!folder_.empty()) fs::remove_all(folder_, ec);
+}
+
+FittedMachineFolder FittedMachineFolder::write(const climb::FitResult& fit,
+                                               const schedule::RecordedMachine& recorded,
+                                               const std::string& family, const std::string& file) {
+  const machine::MachineModel& member = fit.profile.gantry;
+  for (const auto& [what, now, was] :
+       {std::tuple<const char*, double, double>{"x_max_m", member.x.max_m, recorded.x_max_m},
+        {"y_max_m", member.y.max_m, recorded.y_max_m},
+        {"z_max_m", member.z.max_m, recorded.z_max_m}})
+    if (std::abs(now - was) > 1e-6)
+      throw InputError(file, 0, std::string("/inputs/machine/") + what,
+                       printf_string("the machine was fitted from the family %s; fitted again "
+                                     "it reaches %.6f m, where the schedule records %.6f m: "
+                                     "schedule the building again",
+                                     family.c_str(), now, was));
+  // The profile names its URDF, which goes beside it; a name with a folder in it would
+  // leave the run's own folder.
+  const std::string urdf_file = fit.urdf_file;
+  if (urdf_file.empty() || fs::path(urdf_file).filename() != urdf_file || urdf_file == "." ||
+      urdf_file == "..")
+    throw InputError(file, 0, "urdf",
+                     "the fitted profile names its URDF '" + urdf_file +
+                         "'; expected a file name beside the profile");
+  FittedMachineFolder out;
+  std::error_code ec;
+  const fs::path tmp = fs::temp_directory_path(ec);
+  if (ec) throw InputError("", 0, "TMPDIR", "no temporary folder: " + ec.message());
+  out.folder_ = tmp / ("ccbuild-fitted-" + std::to_string(::getpid()));
+  fs::remove_all(out.folder_, ec);
+  fs::create_directories(out.folder_);
+  out.profile_ = out.folder_ / "fitted.yaml";
+  write_file_atomically(out.folder_ / urdf_file, fit.urdf_xml, true);
+  write_file_atomically(out.profile_, fit.profile_yaml, true);
+  return out;
 }
 
 }  // namespace ccbuild::dispatch

@@ -96,28 +96,13 @@ std::string machine_profile(const schedule::ScheduleDocument& schedule, const Dr
                        "' is not among the schedule's files here; name it with --machine");
 }
 
-/// A fitted machine's profile and URDF, written for the machines to read; removed with it.
-struct FittedMachine {
-  std::filesystem::path folder, profile;
-  FittedMachine() = default;
-  FittedMachine(const FittedMachine&) = delete;
-  FittedMachine(FittedMachine&& other) noexcept
-      : folder(std::move(other.folder)), profile(std::move(other.profile)) {
-    other.folder.clear();
-  }
-  ~FittedMachine() {
-    std::error_code ec;
-    if (!folder.empty()) fs::remove_all(folder, ec);
-  }
-};
-
 /// Where `profile` is a family, or the building was opened with one: the member fitted
-/// to the schedule's building, as the schedule recorded it (its travel must be the
-/// recorded machine's), written to a temporary folder. Empty otherwise.
-FittedMachine fitted_machine(const schedule::ScheduleDocument& schedule, const DryRunOptions& o,
-                             const std::optional<orchestrator::Project>& project,
-                             const std::string& profile) {
-  FittedMachine out;
+/// to the schedule's building, as the schedule recorded it (the building where it stood),
+/// written to a temporary folder. Empty otherwise.
+dispatch::FittedMachineFolder fitted_machine(const schedule::ScheduleDocument& schedule,
+                                             const DryRunOptions& o,
+                                             const std::optional<orchestrator::Project>& project,
+                                             const std::string& profile) {
   std::shared_ptr<const climb::FitResult> fit = project ? project->fit : nullptr;
   std::error_code ec;
   if (!fit && fs::is_regular_file(profile, ec) && machine::load_machine_profile(profile).family) {
@@ -126,36 +111,8 @@ FittedMachine fitted_machine(const schedule::ScheduleDocument& schedule, const D
     again.rotation_deg = schedule.inputs.placement.rotation_rad * 180.0 / M_PI;
     fit = orchestrator::open_project(schedule.inputs.building, again).fit;
   }
-  if (!fit) return out;
-  const schedule::RecordedMachine& recorded = schedule.inputs.machine;
-  const machine::MachineModel& member = fit->profile.gantry;
-  for (const auto& [what, now, was] :
-       {std::tuple<const char*, double, double>{"x_max_m", member.x.max_m, recorded.x_max_m},
-        {"y_max_m", member.y.max_m, recorded.y_max_m},
-        {"z_max_m", member.z.max_m, recorded.z_max_m}})
-    if (std::abs(now - was) > 1e-6)
-      throw InputError(o.file, 0, std::string("/inputs/machine/") + what,
-                       printf_string("the machine was fitted from the family %s; fitted again "
-                                     "it reaches %.6f m, where the schedule records %.6f m: "
-                                     "schedule the building again",
-                                     profile.c_str(), now, was));
-  // The profile names its URDF (`urdf: "NAME"`), which goes beside it.
-  std::string urdf_name = "fitted.urdf";
-  const std::string& yaml = fit->profile_yaml;
-  if (const auto at = yaml.find("\nurdf: "); at != std::string::npos) {
-    const auto end = yaml.find('\n', at + 1);
-    std::string name = yaml.substr(at + 7, end == std::string::npos ? end : end - at - 7);
-    name.erase(std::remove(name.begin(), name.end(), '"'), name.end());
-    if (!name.empty() && name.find('/') == std::string::npos) urdf_name = name;
-  }
-  out.folder = fs::temp_directory_path(ec) / ("ccbuild-fitted-" + std::to_string(::getpid()));
-  if (ec) throw InputError("", 0, "TMPDIR", "no temporary folder: " + ec.message());
-  fs::remove_all(out.folder, ec);
-  fs::create_directories(out.folder);
-  out.profile = out.folder / "fitted.yaml";
-  write_file_atomically(out.folder / urdf_name, fit->urdf_xml, true);
-  write_file_atomically(out.profile, yaml, true);
-  return out;
+  if (!fit) return {};
+  return dispatch::FittedMachineFolder::write(*fit, schedule.inputs.machine, profile, o.file);
 }
 
 /// The site clock's resolution: the rail guard's finest step, schedule s.
@@ -215,8 +172,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   // A machine fitted on the fly (a family given as the machine): the machines are the
   // member the schedule was made for, fitted again as it was (the building where it stood)
   // and written to a folder of the run's own, not the family.
-  const FittedMachine fitted = fitted_machine(schedule, o, project, profile);
-  if (!fitted.profile.empty()) profile = fitted.profile.string();
+  const dispatch::FittedMachineFolder fitted = fitted_machine(schedule, o, project, profile);
+  if (!fitted.profile().empty()) profile = fitted.profile().string();
   const machine::RailAxis rail_axis = machine_rec.rail_axis;
   const double gantry_width_m = machine_rec.gantry_width_m;
   const double rail_speed_m_s = machine_rec.rail_speed_m_s();

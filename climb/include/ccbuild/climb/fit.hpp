@@ -46,6 +46,7 @@ struct FitResult {
   std::string summary;        ///< the member: platform, units and where, mass
   std::string profile_yaml;   ///< the fitted profile, as `ccbuild fit` writes it
   std::string urdf_xml;
+  std::string urdf_file;  ///< the URDF's file name, as the profile names it (beside it)
   /// The fitted machine, loaded from the two texts above as `--machine` would load them.
   machine::MachineProfile profile;
 };

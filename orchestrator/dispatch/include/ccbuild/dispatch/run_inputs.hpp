@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "ccbuild/climb/fit.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
@@ -75,5 +76,28 @@ void check_state_dir(const std::filesystem::path& dir, const std::vector<std::st
 void check_writable_folder(const std::filesystem::path& dir,
                            const std::vector<std::filesystem::path>& files,
                            const std::string& field);
+
+/// A fitted machine's profile and URDF in a temporary folder of the run's own, for the
+/// machines to read; the folder is removed with this.
+class FittedMachineFolder {
+ public:
+  FittedMachineFolder() = default;
+  FittedMachineFolder(const FittedMachineFolder&) = delete;
+  FittedMachineFolder& operator=(const FittedMachineFolder&) = delete;
+  FittedMachineFolder(FittedMachineFolder&& other) noexcept;
+  ~FittedMachineFolder();
+  /// The profile (empty when there is no fitted machine).
+  const std::filesystem::path& profile() const { return profile_; }
+
+  /// Writes `fit`'s member when its travel is the machine the schedule `file` records
+  /// (within 1 um on x, y and z): else InputError naming the field, since the building
+  /// would have to be scheduled again. `family` names the family file in that message.
+  static FittedMachineFolder write(const climb::FitResult& fit,
+                                   const schedule::RecordedMachine& recorded,
+                                   const std::string& family, const std::string& file);
+
+ private:
+  std::filesystem::path folder_, profile_;
+};
 
 }  // namespace ccbuild::dispatch
