@@ -25,18 +25,19 @@ const Range kFcm_mpa = Range::closed(1.0, 200.0);
 const Range kActivation_j_mol = Range::closed(10'000.0, 100'000.0);
 const Range kDatum_c = Range::closed(-30.0, 10.0);
 const Range kAirTemperature_c = Range::closed(-60.0, 60.0);
+constexpr double kDays28_s = 28.0 * 86'400.0;  // EN 1992-1-1's reference age
 }  // namespace
 
 double En1992Strength::strength_at_mpa(double age_s) const {
   if (age_s <= 0.0 || age_s < from_s) return 0.0;
-  return std::exp(s * (1.0 - std::sqrt(28.0 * 86'400.0 / age_s))) * fcm_mpa;
+  return std::exp(s * (1.0 - std::sqrt(kDays28_s / age_s))) * fcm_mpa;
 }
 
 double En1992Strength::age_for_strength_s(double strength_mpa) const {
   if (strength_mpa <= 0.0) return 0.0;
   const double ratio = std::log(strength_mpa / fcm_mpa) / s;  // 1 - sqrt(28 / t)
   if (ratio >= 1.0) return std::numeric_limits<double>::infinity();
-  return std::max(from_s, 28.0 * 86'400.0 / ((1.0 - ratio) * (1.0 - ratio)));
+  return std::max(from_s, kDays28_s / ((1.0 - ratio) * (1.0 - ratio)));
 }
 
 double MaturityFunction::rate(double temperature_c) const {
@@ -49,7 +50,11 @@ double MaturityFunction::rate(double temperature_c) const {
 
 double MaterialProfile::final_strength_mpa() const {
   const double curve = strength_curve.empty() ? 0.0 : strength_curve.back().strength_mpa;
-  return en1992 ? std::max(curve, en1992->fcm_mpa * std::exp(en1992->s)) : curve;
+  if (!en1992) return curve;
+  double limit_mpa = en1992->fcm_mpa * std::exp(en1992->s);  // beta_cc's limit, e^s
+  if (const auto through = from_last_test())
+    limit_mpa = std::min(limit_mpa, through->fcm_mpa * std::exp(through->s));
+  return std::max(curve, limit_mpa);
 }
 
 namespace {
@@ -87,9 +92,30 @@ double curve_age_for(const std::vector<StrengthPoint>& curve, double strength_mp
 
 }  // namespace
 
+double MaterialProfile::last_tested_age_s() const {
+  return strength_curve.empty() ? 0.0 : strength_curve.back().age_s;
+}
+
+std::optional<En1992Strength> MaterialProfile::from_last_test() const {
+  const double last_s = last_tested_age_s();
+  if (!en1992 || last_s <= 0.0) return std::nullopt;
+  // fcm' beta_cc(t_last) = f_last: the class's development through the last test.
+  En1992Strength through = *en1992;
+  through.from_s = 0.0;
+  through.fcm_mpa = strength_curve.back().strength_mpa /
+                    std::exp(en1992->s * (1.0 - std::sqrt(kDays28_s / last_s)));
+  return through;
+}
+
 double MaterialProfile::strength_at_mpa(double age_s) const {
+  // Tested strengths govern up to the last test; from its age on, the smaller of the two
+  // estimates, never below the last test.
   const double table = curve_strength_at(strength_curve, age_s);
-  return en1992 ? std::max(table, en1992->strength_at_mpa(age_s)) : table;
+  if (!en1992 || age_s < last_tested_age_s()) return table;
+  double estimate_mpa = en1992->strength_at_mpa(age_s);
+  if (const auto through = from_last_test())
+    estimate_mpa = std::min(estimate_mpa, through->strength_at_mpa(age_s));
+  return std::max(table, estimate_mpa);
 }
 
 double MaterialProfile::strength_to_carry_mpa(double height_m) const {
@@ -99,8 +125,14 @@ double MaterialProfile::strength_to_carry_mpa(double height_m) const {
 }
 
 double MaterialProfile::age_for_strength_s(double strength_mpa) const {
+  // The tests first; the estimates only from the last test's age on, where both reach it
+  // (strength_at_mpa).
   const double table_s = curve_age_for(strength_curve, strength_mpa);
-  return en1992 ? std::min(table_s, en1992->age_for_strength_s(strength_mpa)) : table_s;
+  if (!en1992 || std::isfinite(table_s)) return table_s;
+  double age_s = en1992->age_for_strength_s(strength_mpa);
+  if (const auto through = from_last_test())
+    age_s = std::max(age_s, through->age_for_strength_s(strength_mpa));
+  return std::max(last_tested_age_s(), age_s);
 }
 
 En1992Strength read_en1992_strength(const Field& field, const std::vector<std::string>& keys) {

@@ -15,7 +15,6 @@ const Range kLoadedSpeed_m_s = Range::above(0.0, 0.05);
 const Range kStroke_m = Range::above(0.0, 5.0);
 const Range kTime_s = Range::closed(0.0, 3600.0);
 const Range kShort_m = Range::closed(0.0, 1.0);
-const Range kStrength_mpa = Range::above(0.0, 100.0);
 const Range kReach_m = Range::closed(0.0, 20.0);
 const Range kMargin_m = Range::closed(0.0, 5.0);
 const Range kLinkMass_kg = Range::above(0.0, 1.0e6);
@@ -222,7 +221,7 @@ std::shared_ptr<const ClimbingMachine> read_climbing(
   m.pin_release_s = map.required("pin_release_s").as_number_in(kTime_s, "s");
   number("pin_gap_m", m.pin_gap_m, kShort_m, "m");
   number("pin_past_centre_m", m.pin_past_centre_m, kShort_m, "m");
-  number("anchor_strength_mpa", m.anchor_strength_mpa, kStrength_mpa, "MPa");
+  number("anchor_strength_mpa", m.anchor_strength_mpa, kAnchorStrength_mpa, "MPa");
   number("anchor_clearance_m", m.anchor_clearance_m, kShort_m, "m");
   number("pipe_embed_s", m.pipe_embed_s, kTime_s, "s");
   number("foundation_anchor_depth_m", m.foundation_anchor_depth_m, kShort_m, "m");

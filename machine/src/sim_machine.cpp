@@ -14,6 +14,7 @@
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/machine/path_chunks.hpp"
+#include "ccbuild/rules/tolerances.hpp"
 #include "ccbuild_lcm/ccbuild_ack_t.hpp"
 #include "ccbuild_lcm/ccbuild_clock_t.hpp"
 #include "ccbuild_lcm/ccbuild_command_t.hpp"
@@ -36,16 +37,7 @@ void say(const std::string& line) {
   std::fwrite(line.data(), 1, line.size(), stderr);
 }
 
-/// Schedules state times, positions and headings rounded to micro-units (µs, µm, µrad;
-/// docs/schedule.md), so each end of a move may be off by half of one.
-constexpr double kRounding = 1e-6;
-
-/// Whether moving `delta` (m or rad) in `dt_s` is faster than `limit` (per s) by more than
-/// the rounding of the move's two ends explains: a move planned at exactly the limit, as
-/// a turn that takes longer than its travel is, stays within it once rounded.
-bool over_limit(double delta, double dt_s, double limit) {
-  return std::abs(delta) - kRounding > limit * (dt_s + kRounding) * (1.0 + 1e-9);
-}
+using rules::kStatedRounding;
 
 /// The fault a job ended on, as the record words it and as the wire codes it.
 std::int8_t fault_code(const std::string& word) {
@@ -125,8 +117,8 @@ std::optional<std::pair<std::int8_t, std::string>> limit_breach(const MachineMod
     for (const auto& move : moves) {
       // No move, once rounded: two ends one micro-unit apart differ by a hair over 1e-6
       // in doubles (1.570797 - 1.570796), and may share a time.
-      if (std::abs(move.delta) <= kRounding * (1.0 + 1e-9)) continue;
-      if (dt < 0.0 || over_limit(move.delta, dt, move.limit))
+      if (std::abs(move.delta) <= kStatedRounding * (1.0 + 1e-9)) continue;
+      if (dt < 0.0 || rules::faster_than(move.delta, dt, move.limit))
         return std::pair<std::int8_t, std::string>(
             ccbuild_fault_t::VELOCITY_LIMIT,
             printf_string("waypoints %zu-%zu: %s moves %.4f in %.4f s, over its limit of %.4f/s",
@@ -306,13 +298,14 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
     {  // the unit's last pipe, by the job's unit field
       const std::string& unit = job.unit;
       const auto pipe = pipes_.find(unit);
-      if (pipe != pipes_.end() && start_s - pipe->second < options_.anchor_min_age_s - 1e-3)
+      const double age_s =
+          pipe == pipes_.end() ? 0.0 : options_.age_clock.age(pipe->second, start_s);
+      if (pipe != pipes_.end() && age_s < options_.anchor_min_age_s - 1e-3)
         return std::pair<std::int8_t, std::string>(
             ccbuild_fault_t::ANCHOR_TOO_YOUNG,
             printf_string("%s: unit %s's anchor is %.1f s old, it needs %.1f s to be strong "
                           "enough",
-                          job.detail.c_str(), unit.c_str(), start_s - pipe->second,
-                          options_.anchor_min_age_s));
+                          job.detail.c_str(), unit.c_str(), age_s, options_.anchor_min_age_s));
     }
   }
   if (job.kind != ccbuild_job_t::DEPOSIT || job.layer <= 0) return std::nullopt;
@@ -326,15 +319,17 @@ std::optional<std::pair<std::int8_t, std::string>> SimMachine::refusal(
     const char* what = nullptr;
     std::int8_t kind = 0;
     double interval_s = 0.0;
-    if (e.up_hi_s - e.low_lo_s > options_.max_interval_s + kIntervalSlack_s &&
-        !job.on_planned_joint) {
+    // In the concrete's (equivalent) age, as the schedule's window is.
+    const double oldest_s = options_.age_clock.age(e.low_lo_s, e.up_hi_s);
+    const double youngest_s = options_.age_clock.age(e.low_hi_s, e.up_lo_s);
+    if (oldest_s > options_.max_interval_s + kIntervalSlack_s && !job.on_planned_joint) {
       what = "a cold joint: covered %.1f s after it was deposited, over the maximum %.1f s";
       kind = ccbuild_fault_t::COLD_JOINT;
-      interval_s = e.up_hi_s - e.low_lo_s;
-    } else if (e.up_lo_s - e.low_hi_s < options_.min_interval_s - kIntervalSlack_s) {
+      interval_s = oldest_s;
+    } else if (youngest_s < options_.min_interval_s - kIntervalSlack_s) {
       what = "too early: covered %.1f s after it was deposited, under the minimum %.1f s";
       kind = ccbuild_fault_t::TOO_EARLY;
-      interval_s = e.up_lo_s - e.low_hi_s;
+      interval_s = youngest_s;
     }
     if (!what) continue;
     return std::pair<std::int8_t, std::string>(

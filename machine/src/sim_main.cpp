@@ -5,8 +5,10 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
@@ -73,7 +75,7 @@ int main(int argc, char** argv) {
       ->check(range(sim_limits::kDelayMax_s))
       ->capture_default_str();
   app.add_option("--seed", options.seed, "Seed of the injected faults")->capture_default_str();
-  std::string profile, clog_at;
+  std::string profile, clog_at, age_clock;
   std::vector<double> home;
   app.add_option("--home", home,
                  "Where the nozzle is parked before its first job: X Y Z HEADING "
@@ -90,6 +92,11 @@ int main(int argc, char** argv) {
   app.add_option("--max-interval", options.max_interval_s,
                  "... its maximum, s (covered later: a cold joint)")
       ->check(range(sim_limits::kMaxInterval_s));
+  app.add_option("--age-clock", age_clock,
+                 "A file of the concrete's equivalent age against schedule time, one "
+                 "breakpoint a line: \"t_s e_s rate\" (the site's weather; ccbuild dry-run "
+                 "writes it): the interval window and the anchors' age are then equivalent "
+                 "ages; default: real time");
   app.add_option("--anchor-min-age", options.anchor_min_age_s,
                  "How old an anchor must be before a unit pins into it, s (a pin sooner after "
                  "the unit's last pipe is refused: anchor too young)")
@@ -120,6 +127,17 @@ int main(int argc, char** argv) {
     if (!profile.empty())
       options.model = std::make_shared<const ccbuild::machine::MachineModel>(
           ccbuild::machine::load_machine(profile));
+    if (!age_clock.empty()) {
+      std::ifstream in(age_clock);
+      if (!in) throw ccbuild::InputError(age_clock, 0, "--age-clock", "cannot open the file");
+      std::stringstream text;
+      text << in.rdbuf();
+      try {
+        options.age_clock = ccbuild::rules::AgeClock::parse(text.str());
+      } catch (const std::invalid_argument& e) {
+        throw ccbuild::InputError(age_clock, 0, "--age-clock", e.what());
+      }
+    }
     ccbuild::machine::Bus bus(url);
     bus.on_malformed([&](const std::string& channel, int size) {
       std::cerr << "ccbuild-sim " << options.machine_id << ": rejected a message on " << channel

@@ -197,8 +197,12 @@ TEST(ClimberFixtures, ANumberOutOfItsRange) {
   BrokenClimber b;
   b.edit_profile("anchor_strength_mpa: 10 ", "anchor_strength_mpa: 1000 ");
   expect_refused(b.climb(),
-                 "climbing.anchor_strength_mpa: must be more than 0 and at most 100 MPa, "
+                 "climbing.anchor_strength_mpa: must be from 5 to 100 MPa, "
                  "got 1000 MPa");
+  // Under the least strength a climbing anchor is loaded from (its lower end, 5, is in).
+  BrokenClimber low;
+  low.edit_profile("anchor_strength_mpa: 10 ", "anchor_strength_mpa: 4.99 ");
+  expect_refused(low.climb(), "must be from 5 to 100 MPa, got 4.99 MPa");
 }
 
 TEST(ClimbCommand, TheApartmentClimbsOnTheClimber) {

@@ -7,9 +7,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 
+#include "ccbuild/common/format.hpp"
 #include "run_command.hpp"
 #include "test_support.hpp"
 
@@ -594,6 +597,71 @@ TEST(PrintSpec, AModelsFiltersAreStatedInTheBuildingAndRecorded) {
     EXPECT_TRUE(contains(refused.err, "b.yaml:3")) << print << ": " << refused.err;
     EXPECT_TRUE(contains(refused.err, said)) << print << ": " << refused.err;
   }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ccbuild
+
+namespace ccbuild {
+namespace {
+
+// The cottage's climb in March weather waits for its youngest anchor (cold weeks slow
+// it), then for working hours: the text gives each cause the hours it held the climb, as
+// the JSON's binding times say, and those are the hours worked out by hand from the
+// reasons (the anchors from the start, the night from when they were strong).
+TEST(WaitCauses, AClimbsWaitIsToldByTheHoursEachCauseHeldIt) {
+  const fs::path dir = fs::temp_directory_path() / ("ccbuild_causes_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const auto run = run_ccbuild(
+      "schedule tests/data/buildings/cottage-on-site.yaml --machine "
+      "config/machines/cc-climber-family.yaml --site "
+      "config/sites/weekdays-berlin-2027-weather.yaml "
+      "--no-compare -o " +
+      (dir / "s.json").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json doc = nlohmann::json::parse(slurp(dir / "s.json"));
+  int climbs = 0;
+  for (const auto& e : doc["events"]) {
+    if (e["kind"] != "climb") continue;
+    ++climbs;
+    double anchors_s = 0.0, night_s = 0.0, anchors_bound_s = 0.0, night_bound_s = 0.0,
+           night_from_s = -1.0;
+    for (const auto& r : e["wait_reasons"]) {
+      if (r["kind"] == "anchor-strength") {
+        anchors_s = std::max(anchors_s, r["required_s"].get<double>());
+        anchors_bound_s += r["binding_s"].get<double>();
+      } else if (r["kind"] == "off-shift") {
+        night_s = r["required_s"].get<double>();
+        night_from_s = r["from_s"].get<double>();
+        night_bound_s += r["binding_s"].get<double>();
+      }
+    }
+    ASSERT_GT(anchors_s, 0.0);
+    ASSERT_GT(night_s, anchors_s);  // the night found once the anchors were strong
+    EXPECT_NEAR(night_from_s, anchors_s, 1e-5);
+    EXPECT_NEAR(anchors_bound_s, anchors_s, 1e-5);
+    EXPECT_NEAR(night_bound_s, night_s - anchors_s, 1e-5);
+    EXPECT_NEAR(anchors_bound_s + night_bound_s, e["wait_before_s"].get<double>(), 1e-5);
+    // The text, in the wait's unit: the same hours, to its two decimals.
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(
+        run.out, m,
+        std::regex(
+            R"(after a wait of ([0-9.]+) (\w+) \(anchor-strength ([0-9.]+) (\w+), off-shift ([0-9.]+) (\w+)\))")))
+        << run.out;
+    const std::map<std::string, double> per_unit_s = {
+        {"s", 1.0}, {"min", 60.0}, {"h", 3600.0}, {"d", 86400.0}};
+    ASSERT_TRUE(per_unit_s.count(m[4]) && per_unit_s.count(m[6])) << m[0];
+    EXPECT_EQ(m[2], m[4]);  // one unit
+    EXPECT_NEAR(std::stod(m[3]) * per_unit_s.at(m[4]), anchors_bound_s,
+                0.005 * per_unit_s.at(m[4]));
+    EXPECT_NEAR(std::stod(m[5]) * per_unit_s.at(m[6]), night_bound_s, 0.005 * per_unit_s.at(m[6]));
+    // The anchor waits the text totals are the anchors' binding hours, not the night's.
+    EXPECT_TRUE(contains(run.out, "anchor waits: " + duration_text(anchors_bound_s) + " of"))
+        << run.out;
+  }
+  EXPECT_EQ(climbs, 1);
   fs::remove_all(dir);
 }
 

@@ -55,17 +55,46 @@ TEST(Material, StandardMixLoadsAndInterpolates) {
   EXPECT_LT(m.min_layer_interval_s, m.max_layer_interval_s);
   EXPECT_DOUBLE_EQ(m.strength_at_mpa(0.0), 0.005);
   EXPECT_NEAR(m.strength_at_mpa(7.5 * 60), 0.0125, 1e-12);  // half way to 15 min
-  // From 6 h on, EN 1992-1-1's curve for fcm 43 MPa, class R (s = 0.20), where larger.
   ASSERT_TRUE(m.en1992.has_value());
+  // The tests govern up to the last one (7 d, 20 MPa): 6.0 MPa at one day, where EN
+  // 1992-1-1's estimate for fcm 43 MPa, class R, would say 18.2.
+  const double day_s = 86400.0, week_s = 7 * day_s;
+  EXPECT_NEAR(m.strength_at_mpa(day_s), 6.0, 1e-12);
+  EXPECT_NEAR(m.en1992->strength_at_mpa(day_s), 18.2, 0.05);
   EXPECT_NEAR(m.strength_at_mpa(5.9 * 3600.0), 0.4 + (2.5 - 0.4) * (5.9 * 60 - 180) / 540, 1e-9);
-  EXPECT_NEAR(m.strength_at_mpa(28 * 86400.0), 43.0, 1e-9);  // beta_cc(28 d) = 1
-  EXPECT_NEAR(m.strength_at_mpa(6 * 3600.0), 43.0 * std::exp(0.2 * (1 - std::sqrt(112.0))), 1e-9);
-  // 10 MPa: 28 d / (1 - ln(10/43) / 0.2)^2 = 9.77 h.
-  const double ten_s = 28 * 86400.0 / std::pow(1 - std::log(10.0 / 43.0) / 0.2, 2);
+  // 10 MPa, the anchors' strength: between the tests at 1 d (6) and 7 d (20), 65.1 h.
+  const double ten_s = day_s + (10.0 - 6.0) / (20.0 - 6.0) * 6 * day_s;
   EXPECT_NEAR(m.age_for_strength_s(10.0), ten_s, 1e-6);
-  EXPECT_NEAR(ten_s / 3600.0, 9.77, 0.01);
+  EXPECT_NEAR(ten_s / 3600.0, 65.14, 0.01);
   EXPECT_NEAR(m.strength_at_mpa(ten_s), 10.0, 1e-9);
-  EXPECT_NEAR(m.final_strength_mpa(), 43.0 * std::exp(0.2), 1e-9);
+  // Both sides of the last test: continuous, 20 MPa.
+  EXPECT_NEAR(m.strength_at_mpa(week_s - 1.0), 20.0 - 14.0 / (6 * day_s), 1e-9);
+  EXPECT_NEAR(m.strength_at_mpa(week_s), 20.0, 1e-9);
+  EXPECT_NEAR(m.age_for_strength_s(20.0), week_s, 1e-6);
+  // Past it, the smaller estimate: the class's development through the last test,
+  // 20 beta(t) / beta(7 d), under the stated fcm's 43 beta(t).
+  const auto beta = [](double age_s) {
+    return std::exp(0.2 * (1 - std::sqrt(28 * 86400.0 / age_s)));
+  };
+  EXPECT_NEAR(m.strength_at_mpa(28 * day_s), 20.0 / beta(week_s), 1e-9);  // 24.4 MPa
+  EXPECT_LT(m.strength_at_mpa(28 * day_s), 43.0);
+  EXPECT_NEAR(m.age_for_strength_s(20.0 / beta(week_s)), 28 * day_s, 1e-3);
+  const double later_mpa = 22.0, later_s = m.age_for_strength_s(later_mpa);
+  EXPECT_GT(later_s, week_s);
+  EXPECT_NEAR(m.strength_at_mpa(later_s), later_mpa, 1e-9);
+  EXPECT_NEAR(m.final_strength_mpa(), 20.0 * std::exp(0.2) / beta(week_s), 1e-9);
+  EXPECT_TRUE(std::isinf(m.age_for_strength_s(m.final_strength_mpa() + 0.01)));
+  // A stated curve under the last test never lowers it; where it is the smaller
+  // estimate, it governs.
+  MaterialProfile weak = m;
+  weak.en1992->fcm_mpa = 22.0;  // 18.0 MPa at 7 d, 19.2 at 10 d, 22 at 28 d
+  EXPECT_NEAR(weak.strength_at_mpa(week_s), 20.0, 1e-9);
+  EXPECT_NEAR(weak.strength_at_mpa(10 * day_s), 20.0, 1e-9);
+  EXPECT_NEAR(weak.strength_at_mpa(28 * day_s), 22.0, 1e-9);
+  EXPECT_NEAR(weak.strength_at_mpa(90 * day_s), 22.0 * beta(90 * day_s), 1e-9);
+  weak.en1992->fcm_mpa = 20.0;  // equal to the last test at 28 d
+  EXPECT_NEAR(weak.strength_at_mpa(28 * day_s), 20.0, 1e-9);
+  EXPECT_NEAR(weak.age_for_strength_s(20.0), week_s, 1e-6);  // the test reaches it first
 }
 
 std::filesystem::path scratch() {

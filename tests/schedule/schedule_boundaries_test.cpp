@@ -248,3 +248,121 @@ TEST(ScheduleBoundaries, TheNozzleFixCountsTheWholeIntervalAndMakesTheScheduleFe
 
 }  // namespace
 }  // namespace ccbuild::schedule
+
+namespace ccbuild::schedule {
+namespace {
+
+std::vector<WaitReason> bound(std::vector<WaitReason> reasons) {
+  bind_wait_reasons(reasons);
+  return reasons;
+}
+
+// A climb held by its anchors until 5 h, then by the night until 14 h, then by the wind
+// until 16.5 h: each hour goes to the cause that held it then, 5 + 9 + 2.5 h.
+TEST(WaitCauses, ANightThenTheWindAfterTheAnchorsEachBindTheirOwnHours) {
+  const double h = 3600.0;
+  const auto r = bound({{WaitKind::kAnchorStrength, 5 * h, "anchors", 0.0},
+                        {WaitKind::kOffShift, 14 * h, "night", 5 * h},
+                        {WaitKind::kWind, 16.5 * h, "wind", 14 * h}});
+  EXPECT_DOUBLE_EQ(r[0].binding_s, 5 * h);
+  EXPECT_DOUBLE_EQ(r[1].binding_s, 9 * h);
+  EXPECT_DOUBLE_EQ(r[2].binding_s, 2.5 * h);
+  EXPECT_DOUBLE_EQ(binding_s(r, WaitKind::kAnchorStrength), 5 * h);
+  EXPECT_DOUBLE_EQ(binding_s(r, WaitKind::kStrength), 0.0);
+}
+
+// Two anchors (strong at 3 h and at 20 h) and a night found at 20 h, until 30 h: the
+// younger anchor holds the first 20 h alone, though the other anchor and a night in
+// between held too; a reason another outlasts never binds.
+TEST(WaitCauses, AReasonOutlastedByAnotherHoldingThenBindsNothing) {
+  const double h = 3600.0;
+  const auto r = bound({{WaitKind::kAnchorStrength, 3 * h, "older anchor", 0.0},
+                        {WaitKind::kAnchorStrength, 20 * h, "younger anchor", 0.0},
+                        {WaitKind::kOffShift, 30 * h, "night", 20 * h}});
+  EXPECT_DOUBLE_EQ(r[0].binding_s, 0.0);
+  EXPECT_DOUBLE_EQ(r[1].binding_s, 20 * h);
+  EXPECT_DOUBLE_EQ(r[2].binding_s, 10 * h);
+  EXPECT_DOUBLE_EQ(binding_s(r, WaitKind::kAnchorStrength), 20 * h);
+}
+
+// Boundaries: equal reasons (the first binds), one that ends where it starts (none), and
+// a moment no reason holds (bound by none: the binding times fall short of the wait).
+TEST(WaitCauses, TiesEmptyReasonsAndGapsAtTheirBoundaries) {
+  auto tie =
+      bound({{WaitKind::kMinInterval, 100.0, "a", 0.0}, {WaitKind::kStrength, 100.0, "b", 0.0}});
+  EXPECT_DOUBLE_EQ(tie[0].binding_s, 100.0);
+  EXPECT_DOUBLE_EQ(tie[1].binding_s, 0.0);
+  auto empty = bound({{WaitKind::kOffShift, 50.0, "a", 50.0}, {WaitKind::kCold, 50.0, "b", 0.0}});
+  EXPECT_DOUBLE_EQ(empty[0].binding_s, 0.0);
+  EXPECT_DOUBLE_EQ(empty[1].binding_s, 50.0);
+  auto gap =
+      bound({{WaitKind::kMinInterval, 10.0, "a", 0.0}, {WaitKind::kOffShift, 30.0, "b", 20.0}});
+  EXPECT_DOUBLE_EQ(gap[0].binding_s, 10.0);
+  EXPECT_DOUBLE_EQ(gap[1].binding_s, 10.0);
+  // Held from the start, the later one outlasts: it binds it all.
+  auto concurrent =
+      bound({{WaitKind::kMinInterval, 100.0, "a", 0.0}, {WaitKind::kStrength, 120.0, "b", 0.0}});
+  EXPECT_DOUBLE_EQ(concurrent[0].binding_s, 0.0);
+  EXPECT_DOUBLE_EQ(concurrent[1].binding_s, 120.0);
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule
+
+#include "ccbuild/rules/age_clock.hpp"
+#include "ccbuild/rules/intervals.hpp"
+
+namespace ccbuild::rules {
+namespace {
+
+// Half speed from t = 0 (a cold spell), full speed from t = 1000 s (E = 500 s there).
+AgeClock cold_then_mild() {
+  return AgeClock({{0.0, 0.0, 0.5}, {1000.0, 500.0, 1.0}});
+}
+
+TEST(AgeClock, AgesAndTheirInverseByHand) {
+  const AgeClock c = cold_then_mild();
+  EXPECT_DOUBLE_EQ(c.age(200.0, 600.0), 200.0);        // 400 s at half speed
+  EXPECT_DOUBLE_EQ(c.age(800.0, 1200.0), 300.0);       // 200 s at half, 200 at full
+  EXPECT_DOUBLE_EQ(c.after(800.0, 300.0), 1200.0);     // and back
+  EXPECT_DOUBLE_EQ(c.after(800.0, 100.0), 1000.0);     // exactly at the breakpoint
+  EXPECT_DOUBLE_EQ(AgeClock().after(5.0, 7.0), 12.0);  // real time
+  // Frozen for ever: never that old.
+  EXPECT_TRUE(std::isinf(AgeClock({{0.0, 0.0, 0.0}}).after(1.0, 1.0)));
+}
+
+TEST(AgeClock, ItsTextRoundTripsAndABadLineIsNamed) {
+  const AgeClock c = cold_then_mild();
+  const AgeClock back = AgeClock::parse(c.text());
+  ASSERT_EQ(back.breakpoints().size(), 2u);
+  EXPECT_EQ(back.at(1234.5), c.at(1234.5));
+  for (const char* bad :
+       {"0 0 0.5\n10 5\n", "0 0 -1\n", "10 0 1\n5 0 1\n", "0 0 1 x\n", "0 nan 1\n"}) {
+    try {
+      AgeClock::parse(bad);
+      ADD_FAILURE() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_TRUE(std::string(e.what()).find("line ") == 0) << e.what();
+    }
+  }
+}
+
+// One stretch laid below from t = 100 to 300 s, covered from 50 to 150 s after the upper
+// layer's start, with a 100-600 s window. On the cold clock the newest end is 100 s old
+// at 500 s and the oldest 600 s old at 1150 s: the layer starts in [450, 1000]; on real
+// time, in [350, 550].
+TEST(AgeClock, TheStartWindowIsOneOfEquivalentAge) {
+  IntervalOffsets o;
+  o.each.push_back({50.0, 150.0, 100.0, 300.0, {}});
+  o.ends = 1;
+  const AgeClock cold = cold_then_mild();
+  const StartWindow w = start_window(o, 100.0, 600.0, &cold);
+  EXPECT_DOUBLE_EQ(w.earliest_s, 500.0 - 50.0);
+  EXPECT_DOUBLE_EQ(w.latest_s, 1150.0 - 150.0);
+  const StartWindow r = start_window(o, 100.0, 600.0);
+  EXPECT_DOUBLE_EQ(r.earliest_s, 400.0 - 50.0);
+  EXPECT_DOUBLE_EQ(r.latest_s, 700.0 - 150.0);
+}
+
+}  // namespace
+}  // namespace ccbuild::rules

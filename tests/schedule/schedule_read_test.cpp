@@ -237,6 +237,25 @@ TEST(ReadSchedule, FeasibilityAndTotalsMustAddUp) {
                         "/layers/4/wait_before_s: waits"));
 }
 
+// What the report's buildability chart draws is the material's strength rule at the
+// layer's recomputed intervals, and the load of the walls above: a value that is not is
+// refused by name.
+TEST(ReadSchedule, TheStrengthTheReportDrawsIsRecomputed) {
+  auto scaled = [](const char* key, double factor) -> std::string {
+    return refusal(
+               [=](json& d) { d["layers"][4][key] = d["layers"][4][key].get<double>() * factor; })
+        .what();
+  };
+  EXPECT_TRUE(testing::contains(scaled("below_strength_mpa", 1.01),
+                                "/layers/4/below_strength_mpa: strength"));
+  EXPECT_TRUE(testing::contains(scaled("below_required_mpa", 0.99),
+                                "/layers/4/below_required_mpa: strength"));
+  // Both or neither.
+  EXPECT_TRUE(testing::contains(
+      refusal([](json& d) { d["layers"][4]["below_required_mpa"] = nullptr; }).what(),
+      "expected a number exactly when below_strength_mpa is one"));
+}
+
 TEST(ReadSchedule, ThePlacementIsReadBackAndDiffNamesAChange) {
   const ScheduleDocument house = parse_schedule(golden_text("house"), "house.json");
   EXPECT_EQ(house.inputs.placement.how, "as drawn");

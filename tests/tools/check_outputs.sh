@@ -75,6 +75,31 @@ PY
     if [ "${REPORT:-1}" != 0 ]; then
       "$python" "$here/check_report.py" "$out/out.html" $([ "$expected" -eq 1 ] && echo --infeasible)
     fi
+    # REPORT_SELF_TEST=1: check_report.py must catch a page that draws other numbers than
+    # the schedule's (a buildability ratio, an anchor's strength, an interval in clock
+    # time where the window is in equivalent age), each planted in the page's script.
+    if [ "${REPORT_SELF_TEST:-0}" = 1 ]; then
+      for plant in \
+        's#l.below_strength_mpa / l.below_required_mpa,#l.below_strength_mpa / l.below_required_mpa * 1.001,#|buildability:' \
+        's#y(q\[1\]).toFixed(2)#y(q[1] * 1.01).toFixed(2)#|climb ' \
+        's#return equivalent ? l.equivalent_interval_min_s : l.local_interval_min_s;#return l.local_interval_min_s;#|intervals:'; do
+        sed "${plant%|*}" "$out/out.html" > "$out/planted.html"
+        if cmp -s "$out/out.html" "$out/planted.html"; then
+          echo "check_outputs: the plant '${plant%|*}' changed nothing in the page" >&2
+          exit 1
+        fi
+        if "$python" "$here/check_report.py" "$out/planted.html" > "$out/planted.txt"; then
+          echo "check_outputs: check_report.py passed a page planted with '${plant%|*}'" >&2
+          exit 1
+        fi
+        if ! grep -q "^problem: ${plant#*|}" "$out/planted.txt"; then
+          echo "check_outputs: check_report.py caught '${plant%|*}' only as:" >&2
+          cat "$out/planted.txt" >&2
+          exit 1
+        fi
+        echo "report self-test: caught ${plant%|*}"
+      done
+    fi
     checker=check_schedule.py
     ;;
   *)

@@ -120,6 +120,104 @@ def alike(named):
     return out
 
 
+def attributes(tag_text):
+    """The attributes of one start tag's text, as a dict."""
+    return dict(re.findall(r'([\w:-]+)="([^"]*)"', tag_text))
+
+
+def chart(dom, chart_id):
+    """The <svg id=chart_id>'s attributes and inner text, or (None, None)."""
+    m = re.search(r'<svg([^>]*\bid="%s"[^>]*)>(.*?)</svg>' % chart_id, dom, re.S)
+    return (attributes(m.group(1)), m.group(2)) if m else (None, None)
+
+
+def inverse(scale_text):
+    """From a chart's data-*-scale ("d0 d1 r0 r1"): pixels to values, and what one pixel is
+    worth in values."""
+    d0, d1, r0, r1 = (float(v) for v in scale_text.split())
+    per_px = (d1 - d0) / (r1 - r0) if r1 != r0 else 0.0
+    return (lambda px: d0 + (px - r0) * per_px), abs(per_px)
+
+
+def check_drawn_values(dom, schedule, problems, counts):
+    """The anchor, buildability and interval charts draw the schedule's own numbers: each
+    drawn point, turned back into values by the chart's scales, equals the JSON's within
+    the drawing's precision (0.01 px)."""
+    layers = schedule["layers"]
+    px = 0.011  # the page writes anchor points to 0.01 px
+    checked = 0
+    climbs = [e for e in schedule["events"] if e.get("kind") == "climb"]
+    attrs, body = chart(dom, "anchor-chart")
+    if climbs and attrs is None:
+        problems.append("no anchor chart for %d climbs" % len(climbs))
+    elif climbs:
+        tx, t_px = inverse(attrs["data-x-scale"])
+        ty, y_px = inverse(attrs["data-y-scale"])
+        for tag in re.findall(r'<polyline([^>]*class="anchor-curve"[^>]*)>', body):
+            a = attributes(tag)
+            climb = climbs[int(a["data-climb"])]
+            want = climb.get("youngest_anchor_strength")
+            if not want:
+                problems.append("climb %s -> %s: the schedule keeps no anchor strength" % (
+                    climb["from_stage"], climb["to_stage"]))
+                continue
+            drawn = [tuple(float(v) for v in p.split(",")) for p in a["points"].split()]
+            if len(drawn) != len(want):
+                problems.append("climb %s -> %s: %d points drawn, %d in the schedule" % (
+                    climb["from_stage"], climb["to_stage"], len(drawn), len(want)))
+                continue
+            for (x, y), (t, mpa) in zip(drawn, want):
+                checked += 1
+                if abs(tx(x) - t) > px * t_px + 1e-6 or abs(ty(y) - mpa) > px * y_px + 1e-9:
+                    problems.append("climb %s -> %s: drawn at %.3f s, %.4f MPa; the schedule "
+                                    "says %.3f s, %.4f MPa" % (climb["from_stage"],
+                                                               climb["to_stage"], tx(x), ty(y), t, mpa))
+                    break
+    attrs, body = chart(dom, "margin-chart")
+    with_margin = [i for i, l in enumerate(layers) if l.get("below_strength_mpa") is not None]
+    if attrs is None:
+        problems.append("no buildability chart")
+    else:
+        tx, t_px = inverse(attrs["data-x-scale"])
+        ty, y_px = inverse(attrs["data-y-scale"])
+        clip = float(attrs["data-clip"])
+        dots = [attributes(t) for t in re.findall(r'<circle([^>]*class="margin-dot"[^>]*)>', body)]
+        if [int(d["data-i"]) for d in dots] != with_margin:
+            problems.append("buildability: %d points drawn for the %d layers the schedule gives "
+                            "a strength below" % (len(dots), len(with_margin)))
+        for d in dots:
+            l = layers[int(d["data-i"])]
+            want = min(l["below_strength_mpa"] / l["below_required_mpa"], clip)
+            checked += 1
+            if abs(ty(float(d["cy"])) - want) > 1e-6 * max(1.0, want) or \
+                    abs(tx(float(d["cx"])) - l["start_s"]) > 1e-6 * max(1.0, l["start_s"]):
+                problems.append("buildability: floor %d layer %d drawn at %.6f x, the schedule "
+                                "says %.6f (%.4f over %.4f MPa)" % (
+                                    l["floor"], l["layer"], ty(float(d["cy"])), want,
+                                    l["below_strength_mpa"], l["below_required_mpa"]))
+                break
+    attrs, body = chart(dom, "interval-chart")
+    if attrs is None:
+        problems.append("no interval chart")
+    else:
+        ty, _ = inverse(attrs["data-y-scale"])
+        equivalent = attrs.get("data-equivalent") == "yes"
+        if equivalent != bool((schedule["inputs"].get("site") or {}).get("conditions")):
+            problems.append("the interval chart draws %s age, the schedule's window is in %s" % (
+                "equivalent" if equivalent else "clock", "equivalent" if not equivalent else "clock"))
+        key = "equivalent_interval_%s_s" if equivalent else "local_interval_%s_s"
+        for tag in re.findall(r'<line([^>]*class="interval-bar"[^>]*)>', body):
+            a = attributes(tag)
+            l = layers[int(a["data-i"])]
+            checked += 1
+            for end, pixel in (("min", a["y1"]), ("max", a["y2"])):
+                if abs(ty(float(pixel)) - l[key % end]) > 1e-6 * max(1.0, l[key % end]):
+                    problems.append("intervals: floor %d layer %d's %s drawn at %.6f s, the "
+                                    "schedule says %.6f s" % (l["floor"], l["layer"], end,
+                                                              ty(float(pixel)), l[key % end]))
+    counts["drawn values checked against the JSON"] = checked
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("report")
@@ -185,6 +283,7 @@ def main():
         if what_ifs and shown != what_ifs:
             problems.append("%d anchor what-ifs in the data, %d in the table" % (what_ifs, shown))
         counts["anchor curves"] = curves
+        check_drawn_values(dom, schedule, problems, counts)
         # Every lintel as a beam in the 3-D view, and on the plan of the layer over it.
         lintels = sum(1 for e in schedule.get("events", []) if e.get("kind") == "lintel")
         beams = re.search(r'data-lintels="(\d+)"', dom)

@@ -137,7 +137,7 @@ LAYER = {"floor": INT, "layer": INT, "z_m": NUM, "z_bottom_m": NUM, "geometry": 
          "local_interval_max_s": (NUM, NULL), "local_interval_min_at": (OBJ, NULL),
          "local_interval_max_at": (OBJ, NULL), "piece_ends_checked": INT}
 PIECE_END = {"wall": INT, "piece": INT, "x_m": NUM, "y_m": NUM}
-REASON = {"kind": STR, "required_s": NUM, "detail": STR}
+REASON = {"kind": STR, "required_s": NUM, "from_s": NUM, "binding_s": NUM, "detail": STR}
 PLAN = {"geometry": INT, "nozzles_used": INT, "method": STR, "z_top_m": NUM,
         "layer_time_s": NUM, "pieces": LIST, "nozzles": LIST}
 PIECE = {"wall": INT, "piece": INT, "piece_count": INT, "start_m": POINT, "end_m": POINT,
@@ -626,19 +626,26 @@ def check_gantries(key, plan, machine, info, problems):
 # ---------------------------------------------------------------- layers (5, 6, 7)
 
 class StrengthModel:
-    """The material's strength against (equivalent) age: its curve, and where it states
-    `strength_en1992`, the larger of that and EN 1992-1-1 §3.1.2's
-    fcm exp(s (1 - sqrt(28 days / t))) from its `from_s` on."""
+    """The material's strength against (equivalent) age: its curve (tested strengths)
+    up to the curve's last age t1 (strength f1); from there on, where it states
+    `strength_en1992`, the larger of f1 and the smaller of two estimates: EN 1992-1-1
+    §3.1.2's fcm b(t) (from its `from_s` on) and f1 b(t) / b(t1), where
+    b(t) = exp(s (1 - sqrt(28 days / t)))."""
 
     def __init__(self, material):
         self.points = [(p["age_s"], p["strength_mpa"]) for p in material["strength_curve"]]
         self.en = material.get("strength_en1992")
 
+    def beta(self, age):
+        return math.exp(self.en["s"] * (1 - math.sqrt(28 * 86400.0 / age))) if age > 0 else 0.0
+
     def eurocode(self, age):
         en = self.en
-        if en is None or age <= 0 or age < en["from_s"]:
+        if en is None or age <= 0:
             return 0.0
-        return en["fcm_mpa"] * math.exp(en["s"] * (1 - math.sqrt(28 * 86400.0 / age)))
+        stated = en["fcm_mpa"] * self.beta(age) if age >= en["from_s"] else 0.0
+        t1, f1 = self.points[-1]
+        return min(stated, f1 * self.beta(age) / self.beta(t1)) if t1 > 0 else stated
 
     def eurocode_age(self, mpa):
         en = self.en
@@ -646,15 +653,23 @@ class StrengthModel:
             return math.inf
         if mpa <= 0:
             return 0.0
-        ratio = math.log(mpa / en["fcm_mpa"]) / en["s"]
-        return math.inf if ratio >= 1 else max(en["from_s"], 28 * 86400.0 / (1 - ratio) ** 2)
+
+        def reaching(fcm, from_s):
+            if fcm <= 0:
+                return math.inf
+            ratio = math.log(mpa / fcm) / en["s"]
+            return math.inf if ratio >= 1 else max(from_s, 28 * 86400.0 / (1 - ratio) ** 2)
+        t1, f1 = self.points[-1]
+        age = reaching(en["fcm_mpa"], en["from_s"])
+        return max(age, reaching(f1 / self.beta(t1), 0.0)) if t1 > 0 else age
 
 
 def strength_at(curve, age):
     """The strength curve at an age: linear between its points, flat outside them (and
-    the Eurocode's, where the material states it and it is larger)."""
+    past its last point the Eurocode's, where the material states it and it is larger)."""
     if isinstance(curve, StrengthModel):
-        return max(strength_at(curve.points, age), curve.eurocode(age))
+        table = strength_at(curve.points, age)
+        return table if age < curve.points[-1][0] else max(table, curve.eurocode(age))
     if age <= curve[0][0]:
         return curve[0][1]
     for (a0, s0), (a1, s1) in zip(curve, curve[1:]):
@@ -666,13 +681,33 @@ def strength_at(curve, age):
 def age_reaching(curve, mpa):
     """The first age at which the curve reaches `mpa` (inf when it never does)."""
     if isinstance(curve, StrengthModel):
-        return min(age_reaching(curve.points, mpa), curve.eurocode_age(mpa))
+        tested = age_reaching(curve.points, mpa)
+        return tested if tested < math.inf else max(curve.points[-1][0], curve.eurocode_age(mpa))
     if curve[0][1] >= mpa:
         return 0.0
     for (a0, s0), (a1, s1) in zip(curve, curve[1:]):
         if s1 >= mpa:
             return a0 + (a1 - a0) * (mpa - s0) / (s1 - s0)
     return math.inf
+
+
+def check_binding(where, reasons, wait, problems):
+    """Each reason's binding_s: how long, of the wait, it held (from from_s to required_s)
+    and was the one of those holding that held the longest; together the whole wait."""
+    cuts = sorted({max(0.0, r["from_s"]) for r in reasons} | {max(0.0, r["required_s"]) for r in reasons})
+    bound = [0.0] * len(reasons)
+    for a, b in zip(cuts, cuts[1:]):
+        holding = [k for k, r in enumerate(reasons) if r["from_s"] <= a and r["required_s"] >= b]
+        if holding:
+            k = max(holding, key=lambda k: (reasons[k]["required_s"], -k))
+            bound[k] += b - a
+    for k, r in enumerate(reasons):
+        if abs(r["binding_s"] - bound[k]) > T_DOC * (len(reasons) + 1):
+            problems.append("%s wait reason %d (%s): binding_s %.6f, it was the binding one for "
+                            "%.6f s" % (where, k, r["kind"], r["binding_s"], bound[k]))
+    if reasons and abs(sum(r["binding_s"] for r in reasons) - wait) > T_DOC * (len(reasons) + 1):
+        problems.append("%s: its reasons bind %.6f s of the %.6f s wait" % (
+            where, sum(r["binding_s"] for r in reasons), wait))
 
 
 def check_layers(doc, infos, problems):
@@ -722,6 +757,7 @@ def check_layers(doc, infos, problems):
         if abs(layer["wait_before_s"] - longest) > T_DOC:
             problems.append("%s: wait_before_s %.6f, its reasons need %.6f s" % (
                 where, layer["wait_before_s"], longest))
+        check_binding(where, reasons, layer["wait_before_s"], problems)
         below = layers[i - 1] if i and layers[i - 1]["floor"] == layer["floor"] and \
             layers[i - 1]["layer"] == layer["layer"] - 1 else None
         if below is None:
@@ -1113,6 +1149,12 @@ def check_intervals(doc, infos, problems, notes, stats):
         # 7. The layer below carries the walls from its bottom to this layer's top.
         load = rho_g_sf * (layer["z_m"] - below["z_bottom_m"])
         age = age_reaching(curve, load)
+        # What the report draws of it: the strength at that age, and the load.
+        if "below_strength_mpa" in layer:
+            for key, want in (("below_strength_mpa", strength_at(curve, smallest)),
+                              ("below_required_mpa", load)):
+                if layer[key] is None or abs(layer[key] - want) > 1e-5:
+                    problems.append("%s: %s %s, recomputed %.6f MPa" % (where, key, layer[key], want))
         if smallest < age - T_DOC:
             # As for the older layers: a load never carried is a note when infeasible.
             (notes if math.isinf(age) and not feasible else problems).append(
@@ -1381,7 +1423,24 @@ def check_climb(doc, i, e, curve, problems, stats):
         if mpa < (required if required is not None else a["required_mpa"]) - 1e-6:
             problems.append("%s: %.6f MPa at %.6f s, under the anchor strength %g MPa (needs %.6f s)" % (
                 at, mpa, equivalent, required, age_reaching(curve, required)))
+    # The youngest anchor's strength the report draws: from its casting to the climb, in
+    # equal steps, each at its (equivalent) age then.
+    points = e.get("youngest_anchor_strength")
+    if points is not None and e["anchors"]:
+        young = min(e["anchors"], key=lambda a: a["age_s"])
+        cast = e["start_s"] - young["age_s"]
+        mat = maturity_of(doc)
+        if len(points) < 2:
+            problems.append("%s: youngest_anchor_strength has %d points" % (where, len(points)))
+        for k, (t, mpa) in enumerate(points):
+            want_t = cast + young["age_s"] * k / (len(points) - 1) if len(points) > 1 else cast
+            want = strength_at(curve, mat.age(cast, want_t) if mat else want_t - cast)
+            if abs(t - want_t) > T_DOC or abs(mpa - want) > 1e-5:
+                problems.append("%s: youngest_anchor_strength point %d is [%.6f, %.6f], "
+                                "recomputed [%.6f, %.6f]" % (where, k, t, mpa, want_t, want))
+                break
     longest = max([r["required_s"] for r in e["wait_reasons"]], default=0.0)
+    check_binding(where, e["wait_reasons"], e["wait_before_s"], problems)
     if abs(e["wait_before_s"] - longest) > T_DOC:
         problems.append("%s: wait_before_s %.6f, its reasons need %.6f s" % (where, e["wait_before_s"], longest))
     for j, r in enumerate(e["wait_reasons"]):
@@ -2126,11 +2185,32 @@ def corruptions(doc):
     add("a wait longer than its reasons", "its reasons need")(
         lambda d: d["layers"][i].update(wait_before_s=d["layers"][i]["wait_before_s"] + 60.0))
     add("an unknown wait reason", "wait reason 0")(
-        lambda d: d["layers"][i]["wait_reasons"].insert(0, {"kind": "lunch", "required_s": 0.0, "detail": "x"}))
+        lambda d: d["layers"][i]["wait_reasons"].insert(0, {"kind": "lunch", "required_s": 0.0, "from_s": 0.0, "binding_s": 0.0, "detail": "x"}))
     add("a wrong local_interval_min_s", "local_interval_min_s")(
         lambda d: d["layers"][i].update(local_interval_min_s=d["layers"][i]["local_interval_min_s"] + 1.0))
     add("a wrong local_interval_max_s", "local_interval_max_s")(
         lambda d: d["layers"][i].update(local_interval_max_s=d["layers"][i]["local_interval_max_s"] - 1.0))
+    if layers[i].get("below_strength_mpa") is not None:
+        add("a drawn strength of the layer below", "below_strength_mpa")(
+            lambda d: d["layers"][i].update(below_strength_mpa=d["layers"][i]["below_strength_mpa"] * 1.01))
+    climbs_drawn = [n for n, e in enumerate(doc["events"])
+                    if e["kind"] == "climb" and e.get("youngest_anchor_strength")]
+    if climbs_drawn:
+        def anchor_point(d):
+            points = d["events"][climbs_drawn[0]]["youngest_anchor_strength"]
+            points[len(points) // 2][1] += 0.5
+        add("a drawn anchor strength", "youngest_anchor_strength point")(anchor_point)
+    # A wait's time blamed on another of its causes.
+    two = [("events", n) for n, e in enumerate(doc["events"]) if len(e.get("wait_reasons", [])) > 1] + \
+        [("layers", n) for n, l in enumerate(layers) if len(l["wait_reasons"]) > 1]
+    if two:
+        def blamed(d):
+            reasons = d[two[0][0]][two[0][1]]["wait_reasons"]
+            moved = min(60.0, max(r["binding_s"] for r in reasons))
+            top = max(range(len(reasons)), key=lambda k: reasons[k]["binding_s"])
+            reasons[top]["binding_s"] -= moved
+            reasons[(top + 1) % len(reasons)]["binding_s"] += moved
+        add("a wait's time blamed on another cause", "binding_s")(blamed)
     add("a minimum interval the schedule breaks", "under the minimum interval")(
         lambda d: d["inputs"]["material"].update(min_layer_interval_s=layers[i]["local_interval_min_s"] + 10.0))
     if doc["feasible"]:
@@ -2203,7 +2283,7 @@ def corruptions(doc):
             lambda d: d["events"][c]["anchors"][0].update(age_s=d["events"][c]["anchors"][0]["age_s"] + 100.0))
         add("a climb's anchor-strength reason", "no anchor needs that")(
             lambda d: d["events"][c]["wait_reasons"].append(
-                {"kind": "anchor-strength", "required_s": 1.0, "detail": "x"}))
+                {"kind": "anchor-strength", "required_s": 1.0, "from_s": 0.0, "binding_s": 0.0, "detail": "x"}))
         add("a pipe without its anchor", "no `anchor`")(
             lambda d: next(e for e in d["events"] if e["kind"] == "pipe").pop("anchor"))
     site_corruptions(doc, add)

@@ -70,7 +70,7 @@ StartWindow Dispatcher::window_below(const std::vector<std::size_t>& deposits) c
   rules::DepositIndex above;
   for (std::size_t k : deposits) machine::add_deposits(above, jobs_[k].path, 0.0);
   return rules::start_window(rules::interval_offsets(above, below->second), options_.min_interval_s,
-                             options_.max_interval_s);
+                             options_.max_interval_s, &options_.age_clock);
 }
 
 void Dispatcher::replan(std::size_t index) {

@@ -145,15 +145,6 @@
     root.addEventListener('dblclick', function () { view = full.slice(); set(); });
     root.setAttribute('data-zoomable', 'yes');
   }
-  function strengthAt(age) {  // linear between points, flat outside
-    var c = mat.strength_curve;
-    if (age <= c[0].age_s) return c[0].strength_mpa;
-    for (var i = 1; i < c.length; i++)
-      if (age <= c[i].age_s)
-        return c[i - 1].strength_mpa + (age - c[i - 1].age_s) / (c[i].age_s - c[i - 1].age_s) *
-          (c[i].strength_mpa - c[i - 1].strength_mpa);
-    return c[c.length - 1].strength_mpa;
-  }
   function layerName(l) { return 'floor ' + l.floor + ' layer ' + l.layer; }
   function section(id, fn) {
     var node = document.getElementById(id);
@@ -169,8 +160,14 @@
   // A linear scale from [d0, d1] to [r0, r1].
   function scale(d0, d1, r0, r1) {
     var f = function (v) { return r0 + (v - d0) / ((d1 - d0) || 1) * (r1 - r0); };
-    f.d0 = d0; f.d1 = d1;
+    f.d0 = d0; f.d1 = d1; f.r0 = r0; f.r1 = r1;
     return f;
+  }
+  // A chart's scales on its <svg>, so that a reader can turn what is drawn back into
+  // values and hold them against the schedule's (tests/tools/check_report.py).
+  function markScales(root, x, y) {
+    root.setAttribute('data-x-scale', [x.d0, x.d1, x.r0, x.r1].join(' '));
+    root.setAttribute('data-y-scale', [y.d0, y.d1, y.r0, y.r1].join(' '));
   }
   function ticks(d0, d1, count) {
     var step = Math.pow(10, Math.floor(Math.log10((d1 - d0) / count || 1)));
@@ -288,27 +285,37 @@
     function add(row, t0, t1, color, text, cls) {
       items.push({ row: row, t0: t0, t1: t1, color: color, text: text, cls: cls || 'gantt-bar' });
     }
+    // A wait from t0: one bar per cause for the time it was the binding one (the
+    // schedule's binding_s), in the order they let go; the text names them all.
+    function addWait(t0, reasons, text) {
+      var t = t0;
+      reasons.slice().sort(function (a, b) { return a.required_s - b.required_s; }).forEach(function (r) {
+        var bound = r.binding_s === undefined ? r.required_s - (t - t0) : r.binding_s;
+        if (!(bound > 0)) return;
+        add('waits', t, t + bound, REASON_COLORS[r.kind] || '#999', r.kind + ' binding for ' + duration(bound) + '\n' + text,
+            'gantt-bar gantt-wait');
+        t += bound;
+      });
+    }
     layers.forEach(function (l) {
       add('floor' + l.floor, l.start_s, l.end_s, COLORS[(l.nozzles - 1) % COLORS.length],
         layerName(l) + '\n' + clock(l.start_s) + ' to ' + clock(l.end_s) + ' (' + duration(l.end_s - l.start_s) +
         ')\n' + l.nozzles + ' nozzle(s), ' + l.method + ', plan ' + l.plan +
         (l.interval_s !== null ? '\ninterval ' + duration(l.interval_s) + ', per piece ' + duration(l.local_interval_min_s) +
           ' to ' + duration(l.local_interval_max_s) : ''));
-      if (l.wait_before_s > 0) {
-        var main = l.wait_reasons.slice().sort(function (a, b) { return b.required_s - a.required_s; })[0];
-        add('waits', l.start_s - l.wait_before_s - (l.purge_before ? machine.purge_s : 0),
-          l.start_s - (l.purge_before ? machine.purge_s : 0), REASON_COLORS[main ? main.kind : 'none'] || '#999',
+      if (l.wait_before_s > 0)
+        addWait(l.start_s - l.wait_before_s - (l.purge_before ? machine.purge_s : 0) -
+                (l.planned_joint && mat.planned_joint ? mat.planned_joint.treatment_s : 0), l.wait_reasons,
           'wait of ' + duration(l.wait_before_s) + ' before ' + layerName(l) + '\n' +
           l.wait_reasons.map(function (r) { return r.kind + ' (' + duration(r.required_s) + '): ' + r.detail; }).join('\n'));
-      }
     });
     S.events.forEach(function (e) {
       var text = e.kind + ': ' + e.detail + '\n' + clock(e.start_s) + ' to ' + clock(e.end_s) + ' (' + duration(e.end_s - e.start_s) + ')';
       if (e.kind === 'climb') {
         if (e.wait_before_s > 0)
-          add('waits', e.start_s - e.wait_before_s, e.start_s, REASON_COLORS['anchor-strength'],
-            'climb ' + e.from_stage + ' -> ' + e.to_stage + ' waits ' + duration(e.wait_before_s) + ' for its anchors\n' +
-            e.wait_reasons.map(function (r) { return r.detail; }).slice(0, 4).join('\n'));
+          addWait(e.start_s - e.wait_before_s, e.wait_reasons,
+            'climb ' + e.from_stage + ' -> ' + e.to_stage + ' waits ' + duration(e.wait_before_s) + '\n' +
+            e.wait_reasons.map(function (r) { return r.kind + ': ' + r.detail; }).slice(0, 4).join('\n'));
         var t = e.start_s;
         (e.climb.phases || []).forEach(function (p, i) {
           add('climb', t, t + p.duration_s, i % 2 ? EVENT_COLORS.climb : '#FCC3B8',
@@ -490,9 +497,15 @@
   section('intervals', function (node) {
     var W = Math.max(900, node.clientWidth - 40), H = 260, left = 60, bottom = 30;
     var root = svg('svg', { width: W, height: H, id: 'interval-chart' }, node);
+    // What the material's window bounds: equivalent age at 20 °C with site weather.
+    var equivalent = layers.some(function (l) { return l.equivalent_interval_min_s !== undefined; });
+    var lo = function (l) { return equivalent ? l.equivalent_interval_min_s : l.local_interval_min_s; };
+    var hi = function (l) { return equivalent ? l.equivalent_interval_max_s : l.local_interval_max_s; };
     var ymax = mat.max_layer_interval_s * 1.15;
-    layers.forEach(function (l) { if (l.local_interval_max_s) ymax = Math.max(ymax, l.local_interval_max_s * 1.05); });
+    layers.forEach(function (l) { if (hi(l)) ymax = Math.max(ymax, hi(l) * 1.05); });
     var x = scale(0, layers.length, left, W - 10), y = scale(0, ymax, H - bottom, 10);
+    markScales(root, x, y);
+    root.setAttribute('data-equivalent', equivalent ? 'yes' : 'no');
     svg('rect', { x: left, width: W - 10 - left, y: y(mat.max_layer_interval_s),
                   height: y(mat.min_layer_interval_s) - y(mat.max_layer_interval_s), fill: '#e3f2e5' }, root);
     // One unit on the axis, the one its top is read in.
@@ -511,15 +524,19 @@
       start += layers.filter(function (l) { return l.floor === f; }).length;
     });
     layers.forEach(function (l, i) {
-      if (l.local_interval_max_s === null) return;
-      var over = l.local_interval_max_s > mat.max_layer_interval_s + 1e-6;
-      var bar = svg('line', { 'class': 'interval-bar', x1: x(i + 0.5), x2: x(i + 0.5), y1: y(l.local_interval_min_s),
-                              y2: y(l.local_interval_max_s), stroke: over ? '#c62828' : '#1f77b4', 'stroke-width': 3 }, root);
-      hover(bar, layerName(l) + '\nper piece: ' + duration(l.local_interval_min_s) + ' to ' + duration(l.local_interval_max_s) +
+      if (hi(l) === null || hi(l) === undefined) return;
+      var over = hi(l) > mat.max_layer_interval_s + 1e-6 && !l.planned_joint;
+      var bar = svg('line', { 'class': 'interval-bar', 'data-i': i, x1: x(i + 0.5), x2: x(i + 0.5), y1: y(lo(l)),
+                              y2: y(hi(l)), stroke: over ? '#c62828' : '#1f77b4', 'stroke-width': 3 }, root);
+      hover(bar, layerName(l) + '\nper piece: ' + duration(lo(l)) + ' to ' + duration(hi(l)) +
+        (equivalent ? ' of equivalent age at 20 °C (' + duration(l.local_interval_min_s) + ' to ' +
+                      duration(l.local_interval_max_s) + ' on the clock)' : '') +
         '\nstart to start: ' + duration(l.interval_s) + (over ? '\nOVER THE MAXIMUM: a cold joint' : ''));
       svg('circle', { cx: x(i + 0.5), cy: y(l.interval_s), r: 1.8, fill: '#333' }, root);
     });
-    el('p', { 'class': 'hint' }, node, 'Each bar: the local intervals of one layer, from its tightest wall piece end to its loosest; the dot: start to start. Green band: the material\'s [min, max].');
+    el('p', { 'class': 'hint' }, node, 'Each bar: the local intervals of one layer, from its tightest wall piece end to its loosest' +
+      (equivalent ? ', in equivalent age at 20 °C (the site\'s weather speeds or slows the concrete)' : '') +
+      '; the dot: start to start, on the clock. Green band: the material\'s [min, max].');
   });
 
   // ---------------------------------------------------------------- heat map ----
@@ -660,18 +677,21 @@
       el('h3', {}, node, 'Anchors: strength from casting to each climb');
       var W = Math.max(900, node.clientWidth - 40), H = 240, left = 60;
       var root = svg('svg', { width: W, height: H, id: 'anchor-chart' }, node);
+      // The curve as the scheduler reckoned it (the schedule's points), not recomputed here.
       var youngest = climbs.map(function (c) {
         var a = c.anchors[0];
         c.anchors.forEach(function (b) { if (b.age_s < a.age_s) a = b; });
-        return { c: c, a: a, cast: c.start_s - a.age_s };
+        return { c: c, a: a, cast: c.start_s - a.age_s, points: c.youngest_anchor_strength || [] };
       });
       var tmin = Infinity, tmax = 0, ymax = 0;
       youngest.forEach(function (p) {
         tmin = Math.min(tmin, p.cast); tmax = Math.max(tmax, p.c.start_s);
         ymax = Math.max(ymax, p.a.strength_mpa, p.a.required_mpa);
+        p.points.forEach(function (q) { ymax = Math.max(ymax, q[1]); });
       });
       ymax *= 1.2;
       var x = scale(tmin, tmax, left, W - 20), y = scale(0, ymax, H - 34, 10);
+      markScales(root, x, y);
       ticks(0, ymax, 5).forEach(function (v) {
         svg('line', { x1: left, x2: W - 20, y1: y(v), y2: y(v), stroke: '#e3e6ea' }, root);
         svg('text', { x: 4, y: y(v) + 4 }, root, v + ' MPa');
@@ -685,15 +705,11 @@
       svg('line', { x1: left, x2: W - 20, y1: y(req), y2: y(req), stroke: '#000', 'stroke-width': 1.5,
                     'stroke-dasharray': '6 4', 'class': 'anchor-required' }, root);
       svg('text', { x: W - 22, y: y(req) - 4, 'text-anchor': 'end' }, root, 'required ' + req + ' MPa');
-      youngest.forEach(function (p) {
-        var pts = [], n = 60, span = p.c.start_s - p.cast;
-        for (var k = 0; k <= n; k++) {
-          var t = p.cast + span * k / n;
-          pts.push(x(t).toFixed(1) + ',' + y(strengthAt(t - p.cast)).toFixed(1));
-        }
+      youngest.forEach(function (p, ci) {
+        var pts = p.points.map(function (q) { return x(q[0]).toFixed(2) + ',' + y(q[1]).toFixed(2); });
         var ok = p.a.strength_mpa >= p.a.required_mpa - 1e-9;
         var line = svg('polyline', { points: pts.join(' '), fill: 'none', stroke: ok ? '#2e7d32' : '#c62828',
-                                     'stroke-width': 2, 'class': 'anchor-curve' }, root);
+                                     'stroke-width': 2, 'class': 'anchor-curve', 'data-climb': ci }, root);
         var wait = p.c.wait_before_s;
         svg('line', { x1: x(p.c.start_s), x2: x(p.c.start_s), y1: y(0), y2: y(p.a.strength_mpa),
                       stroke: '#555', 'stroke-width': 1 }, root);
@@ -705,8 +721,8 @@
           ' MPa at the climb (' + duration(p.c.start_s) + ', age ' + duration(p.a.age_s) + '); required ' +
           p.a.required_mpa + ' MPa' + (wait > 0 ? '. The build waited ' + duration(wait) + ' for it (red tick).' : '.'));
       });
-      el('p', { 'class': 'hint' }, node, 'Each curve: one climb\'s youngest anchor, its strength on the ' +
-        'material\'s curve from the moment it was cast to the climb (the vertical line). The dashed line: the ' +
+      el('p', { 'class': 'hint' }, node, 'Each curve: one climb\'s youngest anchor, its strength as the ' +
+        'scheduler reckoned it (the mix\'s tested strengths, in equivalent age with the site\'s weather) from the moment it was cast to the climb (the vertical line). The dashed line: the ' +
         'strength the climbing units need. Red ticks under the axis: the time the build waited for it.');
       if (S.what_if_anchors && S.what_if_anchors.length) {
         el('h3', {}, node, 'What would shorten the anchor waits');
@@ -731,25 +747,27 @@
     el('h3', {}, node, 'Buildability: the layer below against the walls above it');
     var W2 = Math.max(900, node.clientWidth - 40), H2 = 220, left2 = 60;
     var root2 = svg('svg', { width: W2, height: H2, id: 'margin-chart' }, node);
-    var g = 9.80665, pts = [];
-    layers.forEach(function (l, i) {
-      if (l.local_interval_min_s === null || i === 0) return;
-      var below = layers[i - 1];
-      var need = mat.safety_factor * mat.density_kg_m3 * g * (l.z_m - below.z_bottom_m) * 1e-6;
-      pts.push({ t: l.start_s, m: strengthAt(l.local_interval_min_s) / need, l: l, need: need });
+    var pts = [];
+    layers.forEach(function (l, i) {  // the scheduler's strengths, from the schedule
+      if (l.below_strength_mpa === null || l.below_strength_mpa === undefined) return;
+      pts.push({ t: l.start_s, m: l.below_strength_mpa / l.below_required_mpa, l: l, i: i,
+                 need: l.below_required_mpa });
     });
     var mmax = 2;
     pts.forEach(function (p) { mmax = Math.max(mmax, Math.min(p.m, 20)); });
     var x2 = scale(0, makespan, left2, W2 - 10), y2 = scale(0, mmax * 1.05, H2 - 30, 10);
+    markScales(root2, x2, y2);
+    root2.setAttribute('data-clip', String(mmax));
     ticks(0, mmax, 5).forEach(function (v) {
       svg('line', { x1: left2, x2: W2 - 10, y1: y2(v), y2: y2(v), stroke: v === 1 ? '#c62828' : '#e3e6ea' }, root2);
       svg('text', { x: 4, y: y2(v) + 4 }, root2, v + 'x');
     });
     timeTicks(0, makespan).forEach(function (v) { svg('text', { x: x2(v), y: H2 - 10 }, root2, clock(v)); });
     pts.forEach(function (p) {
-      var c = svg('circle', { 'class': 'margin-dot', cx: x2(p.t), cy: y2(Math.min(p.m, mmax)), r: 2.2,
+      var c = svg('circle', { 'class': 'margin-dot', 'data-i': p.i, cx: x2(p.t), cy: y2(Math.min(p.m, mmax)), r: 2.2,
                               fill: p.m < 1 ? '#c62828' : '#1f77b4' }, root2);
-      hover(c, layerName(p.l) + '\nthe layer below, covered after ' + duration(p.l.local_interval_min_s) + ', is ' +
+      hover(c, layerName(p.l) + '\nthe layer below, covered after ' + duration(p.l.local_interval_min_s) +
+        (p.l.equivalent_interval_min_s !== undefined ? ' (' + duration(p.l.equivalent_interval_min_s) + ' of equivalent age)' : '') + ', is ' +
         p.m.toFixed(2) + ' times as strong as ' + p.need.toFixed(4) + ' MPa (stress x safety factor)');
     });
     el('p', { 'class': 'hint' }, node, 'Strength of the layer just below, at the age its tightest piece is covered, over the stress of the walls from its bottom up (with the safety factor). Under 1x (red line) it could not carry them.');

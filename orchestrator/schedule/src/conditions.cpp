@@ -118,39 +118,19 @@ SiteConditions read_weather_csv(const std::filesystem::path& path, const SiteCal
 EquivalentAge::EquivalentAge(const SiteConditions& conditions,
                              const floors::MaturityFunction& function)
     : conditions_(&conditions), function_(function) {
+  // Each reading's rate from its time on; the age accrued to each reading.
   const auto& r = conditions.readings;
-  e_at_reading_.resize(r.size());
-  rate_.resize(r.size());
+  std::vector<rules::AgeClock::Breakpoint> points(r.size());
   for (std::size_t i = 0; i < r.size(); ++i) {
-    rate_[i] = function.rate(r[i].temperature_c);
-    e_at_reading_[i] =
-        i == 0 ? 0.0 : e_at_reading_[i - 1] + rate_[i - 1] * (r[i].t_s - r[i - 1].t_s);
+    points[i].t_s = r[i].t_s;
+    points[i].rate = function.rate(r[i].temperature_c);
+    points[i].e_s =
+        i == 0 ? 0.0 : points[i - 1].e_s + points[i - 1].rate * (r[i].t_s - r[i - 1].t_s);
   }
   // Counted from the schedule's start: E(0) = 0.
-  const double at_zero = at(0.0);
-  for (double& e : e_at_reading_) e -= at_zero;
-}
-
-double EquivalentAge::at(double t_s) const {
-  const auto& r = conditions_->readings;
-  const auto it = std::upper_bound(r.begin(), r.end(), t_s,
-                                   [](double t, const WeatherReading& w) { return t < w.t_s; });
-  const std::size_t i = it == r.begin() ? 0 : static_cast<std::size_t>(it - r.begin()) - 1;
-  return e_at_reading_[i] + rate_[i] * (t_s - r[i].t_s);
-}
-
-double EquivalentAge::after(double from_s, double age_s) const {
-  if (age_s <= 0.0) return from_s;
-  if (!std::isfinite(age_s)) return kInf;
-  const auto& r = conditions_->readings;
-  const double target = at(from_s) + age_s;
-  // The first reading at which E has reached the target; the time lies in the segment
-  // before it (or after the last reading).
-  const auto it = std::lower_bound(e_at_reading_.begin(), e_at_reading_.end(), target);
-  const std::size_t i = static_cast<std::size_t>(it - e_at_reading_.begin());
-  const std::size_t seg = i == 0 ? 0 : i - 1;
-  if (rate_[seg] <= 0.0) return i == 0 ? from_s : kInf;
-  return std::max(from_s, r[seg].t_s + (target - e_at_reading_[seg]) / rate_[seg]);
+  const double at_zero = rules::AgeClock(points).at(0.0);
+  for (auto& p : points) p.e_s -= at_zero;
+  clock_ = rules::AgeClock(std::move(points));
 }
 
 const WeatherReading& EquivalentAge::reading_at(double t_s) const {

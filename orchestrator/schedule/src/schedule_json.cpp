@@ -22,8 +22,11 @@ json piece_end_json(const PieceEnd& e) {
 json reasons_json(const std::vector<WaitReason>& reasons) {
   json out = json::array();
   for (const auto& r : reasons)
-    out.push_back(
-        {{"kind", to_string(r.kind)}, {"required_s", rounded(r.required_s)}, {"detail", r.detail}});
+    out.push_back({{"kind", to_string(r.kind)},
+                   {"required_s", rounded(r.required_s)},
+                   {"from_s", rounded(r.from_s)},
+                   {"binding_s", rounded(r.binding_s)},
+                   {"detail", r.detail}});
   return out;
 }
 
@@ -372,6 +375,8 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
     j["piece_ends_checked"] = l.piece_ends_checked;
     j["concrete_m3"] = rounded(l.concrete_m3);
     j["peak_flow_m3_h"] = rounded(l.peak_flow_m3_s * 3600.0);
+    j["below_strength_mpa"] = optional_number(l.below_strength_mpa);
+    j["below_required_mpa"] = optional_number(l.below_required_mpa);
     if (in.conditions) {
       j["equivalent_interval_min_s"] = optional_number(l.equivalent_interval_min_s);
       j["equivalent_interval_max_s"] = optional_number(l.equivalent_interval_max_s);
@@ -459,6 +464,10 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
       j["wait_before_s"] = rounded(c.wait_before_s);
       j["wait_reasons"] = reasons_json(c.wait_reasons);
       j["anchors"] = anchors;
+      json strength = json::array();
+      for (const auto& p : c.youngest_anchor_strength)
+        strength.push_back({rounded(p.t_s), rounded(p.strength_mpa)});
+      j["youngest_anchor_strength"] = strength;
       j["climb"] = climb_plan_json(in.unit_names, c.plan, false);
     }
     events.push_back(j);

@@ -47,12 +47,49 @@ std::string reason_kinds_text(const std::vector<WaitReason>& reasons) {
   return text;
 }
 
+namespace {
+constexpr WaitKind kWaitKinds[] = {WaitKind::kMinInterval, WaitKind::kStrength,
+                                   WaitKind::kAnchorStrength, WaitKind::kSlab,
+                                   WaitKind::kOffShift, WaitKind::kJoint,
+                                   WaitKind::kCold, WaitKind::kWind};
+}  // namespace
+
 std::optional<WaitKind> wait_kind_named(const std::string& name) {
-  for (WaitKind k :
-       {WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab,
-        WaitKind::kOffShift, WaitKind::kJoint, WaitKind::kCold, WaitKind::kWind})
+  for (WaitKind k : kWaitKinds)
     if (to_string(k) == name) return k;
   return std::nullopt;
+}
+
+std::string wait_kind_names() {
+  std::string text;
+  for (WaitKind k : kWaitKinds) text += (text.empty() ? "" : ", ") + to_string(k);
+  return text;
+}
+
+void bind_wait_reasons(std::vector<WaitReason>& reasons) {
+  std::vector<double> cuts;
+  for (WaitReason& r : reasons) {
+    r.binding_s = 0.0;
+    cuts.push_back(std::max(0.0, r.from_s));
+    cuts.push_back(std::max(0.0, r.required_s));
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double a = cuts[k], b = cuts[k + 1];
+    WaitReason* binding = nullptr;
+    for (WaitReason& r : reasons)
+      if (r.from_s <= a && r.required_s >= b && (!binding || r.required_s > binding->required_s))
+        binding = &r;
+    if (binding) binding->binding_s += b - a;
+  }
+}
+
+double binding_s(const std::vector<WaitReason>& reasons, WaitKind kind) {
+  double total_s = 0.0;
+  for (const WaitReason& r : reasons)
+    if (r.kind == kind) total_s += r.binding_s;
+  return total_s;
 }
 
 std::string to_string(InfeasibilityKind kind) {

@@ -58,20 +58,26 @@ std::vector<std::string> keys_with(std::vector<std::string> keys, const SiteCale
 
 std::vector<WaitReason> read_reasons(const JsonAt& list) {
   std::vector<WaitReason> out;
+  bool bound = false;
   for (const auto& r : list.elements(kMaxSmall)) {
-    r.only_keys({"kind", "required_s", "detail"});
+    r.only_keys({"kind", "required_s", "from_s", "binding_s", "detail"});
     WaitReason w;
     const std::string kind = r.at("kind").string(100);
     const auto named = wait_kind_named(kind);
-    if (!named)
-      r.at("kind").refuse(
-          "expected min-interval, strength, anchor-strength, slab, off-shift or joint, got \"" +
-          kind + "\"");
+    if (!named) r.at("kind").refuse("expected " + wait_kind_names() + ", got \"" + kind + "\"");
     w.kind = *named;
     w.required_s = r.at("required_s").number(kDuration_s, "s");
+    // When it began to hold and how long it bound (absent before they were kept: then
+    // each held from the start, and the binding times are worked out here).
+    if (const auto from = r.maybe("from_s")) w.from_s = from->number(kDuration_s, "s");
+    if (const auto binding = r.maybe("binding_s")) {
+      w.binding_s = binding->number(kDuration_s, "s");
+      bound = true;
+    }
     w.detail = r.at("detail").string(kMaxText);
     out.push_back(std::move(w));
   }
+  if (!bound) bind_wait_reasons(out);
   return out;
 }
 
@@ -114,6 +120,8 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
        "piece_ends_checked",
        "concrete_m3",
        "peak_flow_m3_h",
+       "below_strength_mpa",
+       "below_required_mpa",
        "planned_joint"},
       calendar,
       conditions ? std::vector<std::string>{"start_time", "end_time", "equivalent_interval_min_s",
@@ -171,6 +179,13 @@ ScheduledLayer read_layer(const JsonAt& j, const SiteCalendar* calendar,
   if (const auto v = j.maybe("concrete_m3")) l.concrete_m3 = v->number(Range::closed(0, 1e6), "m3");
   if (const auto f = j.maybe("peak_flow_m3_h"))
     l.peak_flow_m3_s = f->number(Range::closed(0, 1e6), "m3/h") / 3600.0;
+  // The buildability the report draws (absent in schedules written before it).
+  if (const auto v = j.maybe("below_strength_mpa"))
+    l.below_strength_mpa = v->number_or_null(kStrength_mpa, "MPa");
+  if (const auto v = j.maybe("below_required_mpa"))
+    l.below_required_mpa = v->number_or_null(kStrength_mpa, "MPa");
+  if (l.below_strength_mpa.has_value() != l.below_required_mpa.has_value())
+    j.at("below_required_mpa").refuse("expected a number exactly when below_strength_mpa is one");
   return l;
 }
 
@@ -454,7 +469,8 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
   } else if (kind == "climb") {
     e.kind = Event::Kind::kClimb;
     only({"kind", "start_s", "end_s", "floor", "after_layer", "crew", "detail", "from_stage",
-          "to_stage", "wait_before_s", "wait_reasons", "anchors", "climb"});
+          "to_stage", "wait_before_s", "wait_reasons", "anchors", "youngest_anchor_strength",
+          "climb"});
     ClimbEvent c;
     c.from_stage = static_cast<int>(j.at("from_stage").integer(0, kMaxLayer));
     c.to_stage = static_cast<int>(j.at("to_stage").integer(0, kMaxLayer));
@@ -475,6 +491,14 @@ Event read_event(const JsonAt& j, RecordedInputs& in) {
           in.conditions ? a.at("equivalent_age_s").number(kDuration_s, "s") : load.age_s;
       c.anchors.push_back(std::move(load));
     }
+    // The chart's points (absent in schedules written before them).
+    if (const auto points = j.maybe("youngest_anchor_strength"))
+      for (const auto& p : points->elements(kAnchorCurvePoints)) {
+        const auto pair = p.elements(2);
+        if (pair.size() != 2) p.refuse("expected [time_s, strength_mpa]");
+        c.youngest_anchor_strength.push_back(
+            {pair[0].number(kTime_s, "s"), pair[1].number(kStrength_mpa, "MPa")});
+      }
     c.plan = read_climb_plan(j.at("climb"), in);
     e.climb = std::move(c);
   } else {

@@ -7,6 +7,8 @@
 #include <optional>
 #include <tuple>
 
+#include "ccbuild/rules/tolerances.hpp"
+#include "anchor_strength.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/planner/timeline.hpp"
@@ -21,6 +23,7 @@ namespace {
 constexpr double kRoundLength_m = 2e-6, kRoundTime_s = 2e-6, kRoundAngle_rad = 2e-6;
 /// A time the document states against the one recomputed from rounded paths.
 constexpr double kStated_s = 1e-5;
+constexpr double kStated_mpa = 1e-5;  // strengths are written to 1e-6 MPa
 /// A deposited span against its piece's length.
 constexpr double kCover_m = 1e-3;
 constexpr std::size_t kMostReported = 20;
@@ -207,12 +210,12 @@ class Rules {
       const double dx = std::abs(b.position_m.x() - a.position_m.x());
       const double dy = std::abs(b.position_m.y() - a.position_m.y());
       const double dz = std::abs(b.z_m - a.z_m), d = std::hypot(dx, dy);
-      if (dz > m.z_speed_m_s * (dt + kRoundTime_s) + kRoundLength_m)
+      if (rules::faster_than(dz, dt, m.z_speed_m_s))
         broken(where, "speed",
                printf_string("z changes %.6f m in %.6f s, faster than the z speed %g m/s", dz, dt,
                              m.z_speed_m_s));
       const double turn = std::abs(b.heading_rad - a.heading_rad);
-      if (turn > m.rotation_speed_rad_s * (dt + kRoundTime_s) + kRoundAngle_rad)
+      if (rules::faster_than(turn, dt, m.rotation_speed_rad_s))
         broken(where, "speed",
                printf_string("turns %.6f rad in %.6f s, faster than the rotation speed %g rad/s",
                              turn, dt, m.rotation_speed_rad_s));
@@ -225,9 +228,7 @@ class Rules {
                                static_cast<long long>(a.wall), a.piece, dt > 0 ? d / dt : INFINITY,
                                v));
       } else {
-        const auto fast = [&](double dist_m, double v) {
-          return dist_m > v * dt * (1 + 1e-6) + kRoundLength_m + v * kRoundTime_s;
-        };
+        const auto fast = [&](double dist_m, double v) { return rules::faster_than(dist_m, dt, v); };
         if (fast(dx, m.x_speed_m_s) || fast(dy, m.y_speed_m_s) || fast(d, m.travel_speed_m_s))
           broken(where, "speed",
                  printf_string("an air move of %.6f m (x %.6f, y %.6f) in %.6f s, faster than "
@@ -305,13 +306,23 @@ class Rules {
                            machine::to_string(m.rail_axis).c_str(), room_m));
   }
 
-  /// A wait is as long as its longest reason (none: no wait).
+  /// A wait is as long as its longest reason (none: no wait), and each reason bound it
+  /// as long as bind_wait_reasons says.
   void check_wait(const std::string& at, double wait_s, const std::vector<WaitReason>& reasons) {
     double longest_s = 0.0;
     for (const auto& r : reasons) longest_s = std::max(longest_s, r.required_s);
     if (std::abs(wait_s - longest_s) > kStated_s)
       broken(at + "/wait_before_s", "waits",
              printf_string("%.6f s, but its longest reason needs %.6f s", wait_s, longest_s));
+    std::vector<WaitReason> bound = reasons;
+    bind_wait_reasons(bound);
+    for (std::size_t k = 0; k < reasons.size(); ++k)
+      if (std::abs(reasons[k].binding_s - bound[k].binding_s) >
+          kStated_s * static_cast<double>(reasons.size() + 1))
+        broken(at + "/wait_reasons/" + std::to_string(k) + "/binding_s", "waits",
+               printf_string("%.6f s; from its start and end among the wait's reasons it "
+                             "binds %.6f s",
+                             reasons[k].binding_s, bound[k].binding_s));
   }
 
   // ---------------------------------------------------------------- layers
@@ -494,6 +505,7 @@ class Rules {
                                  "the site's temperatures",
                                  want));
       }
+      check_buildability(at, l, *previous, window_min_s);
       if (s.feasible && window_min_s < material.min_layer_interval_s - kStated_s)
         broken(at + "/local_interval_min_s", "interval window",
                printf_string("a piece is covered %.6f s after it was deposited, under the "
@@ -505,6 +517,54 @@ class Rules {
                printf_string("a piece is covered %.6f s after it was deposited, over the "
                              "material's maximum %.6f s, in a schedule marked feasible",
                              window_max_s, material.max_layer_interval_s));
+    }
+  }
+
+  /// The buildability the report draws: the layer below's strength at the age its soonest
+  /// covered end has (`soonest_s`, recomputed), against what the walls on it need.
+  void check_buildability(const std::string& at, const ScheduledLayer& l,
+                          const ScheduledLayer& below, double soonest_s) {
+    if (!l.below_strength_mpa) return;  // written before it
+    const floors::MaterialProfile& material = doc_.inputs.material;
+    const double strength_mpa = material.strength_at_mpa(soonest_s);
+    const double need_mpa = material.strength_to_carry_mpa(l.z_top_m - below.z_bottom_m);
+    for (const auto& [key, stated, want] :
+         {std::tuple<const char*, double, double>{"/below_strength_mpa", *l.below_strength_mpa,
+                                                  strength_mpa},
+          {"/below_required_mpa", *l.below_required_mpa, need_mpa}})
+      if (std::abs(stated - want) > kStated_mpa)
+        broken(at + key, "strength",
+               printf_string("%.6f MPa; the material and the layer's intervals give %.6f MPa",
+                             stated, want));
+    if (doc_.schedule.feasible && strength_mpa < need_mpa - kStated_mpa)
+      broken(at + "/below_strength_mpa", "strength",
+             printf_string("floor %d layer %d is %.6f MPa strong when this layer covers it, "
+                           "under the %.6f MPa the walls on it need, in a schedule marked "
+                           "feasible",
+                           below.floor, below.layer, strength_mpa, need_mpa));
+  }
+
+  /// The youngest anchor's strength the report draws, recomputed.
+  void check_anchor_strength(const std::string& at, const ClimbEvent& c, double start_s) {
+    if (c.youngest_anchor_strength.empty() && !c.anchors.empty()) return;  // written before it
+    ClimbEvent timed = c;  // as read, its start is the event's
+    timed.start_s = start_s;
+    const auto want = detail::youngest_anchor_strength(timed, doc_.inputs.material,
+                                                       maturity_ ? &*maturity_ : nullptr);
+    if (want.size() != c.youngest_anchor_strength.size()) {
+      broken(at + "/youngest_anchor_strength", "climbs",
+             printf_string("%zu points; expected %zu", c.youngest_anchor_strength.size(),
+                           want.size()));
+      return;
+    }
+    for (std::size_t k = 0; k < want.size(); ++k) {
+      const auto& got = c.youngest_anchor_strength[k];
+      if (std::abs(got.t_s - want[k].t_s) > kStated_s ||
+          std::abs(got.strength_mpa - want[k].strength_mpa) > kStated_mpa)
+        broken(at + "/youngest_anchor_strength/" + std::to_string(k), "climbs",
+               printf_string("[%.6f, %.6f]; the youngest anchor's age and the material give "
+                             "[%.6f, %.6f]",
+                             got.t_s, got.strength_mpa, want[k].t_s, want[k].strength_mpa));
     }
   }
 
@@ -711,6 +771,7 @@ class Rules {
                                "the %d",
                                c.from_stage, c.to_stage, stages));
         check_wait(at, c.wait_before_s, c.wait_reasons);
+        check_anchor_strength(at, c, e.start_s);
       }
     }
     // A purge before every layer that says so, ending where it starts.

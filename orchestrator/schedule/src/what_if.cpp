@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "ccbuild/common/format.hpp"
 
@@ -14,10 +15,11 @@ std::string key(const std::string& id, int floor) {
   return id + "@" + std::to_string(floor);
 }
 
+// The time climbs were held by their anchors, and by nothing else then.
 double anchor_waits_s(const Schedule& s) {
   double total = 0.0;
   for (const auto& e : s.events)
-    if (e.climb) total += e.climb->wait_before_s;
+    if (e.climb) total += binding_s(e.climb->wait_reasons, WaitKind::kAnchorStrength);
   return total;
 }
 
@@ -56,6 +58,14 @@ const floors::MaterialProfile& anchor_mix(const Setup& setup) {
   return setup.anchor_material ? *setup.anchor_material : setup.material;
 }
 
+// The anchors' equivalent age with the site's weather, as the scheduler counts it (none
+// without weather: real age).
+std::optional<EquivalentAge> anchor_maturity(const Setup& setup) {
+  std::optional<EquivalentAge> maturity;
+  if (setup.conditions) maturity.emplace(*setup.conditions, anchor_mix(setup).maturity);
+  return maturity;
+}
+
 }  // namespace
 
 std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
@@ -65,7 +75,9 @@ std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
   for (const auto& e : s.events)
     if (e.kind == Event::Kind::kPipe && e.anchor) pipes[key(e.anchor->id, e.anchor->floor)] = &e;
   const double required_mpa = setup.climber->anchor_strength_mpa;
-  const double age_s = anchor_mix(setup).age_for_strength_s(required_mpa);
+  const floors::MaterialProfile& mix = anchor_mix(setup);
+  const double age_s = mix.age_for_strength_s(required_mpa);
+  const std::optional<EquivalentAge> maturity = anchor_maturity(setup);
   for (const auto& e : s.events) {
     if (!e.climb) continue;
     const ClimbEvent& c = *e.climb;
@@ -74,15 +86,16 @@ std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
     w.to_stage = c.to_stage;
     w.floor = e.floor;
     w.layer = e.layer;
-    w.wait_s = c.wait_before_s;
+    w.wait_s = binding_s(c.wait_reasons, WaitKind::kAnchorStrength);
     w.ready_s = c.start_s - c.wait_before_s;
     w.required_mpa = required_mpa;
     w.strong_s = -std::numeric_limits<double>::infinity();
     for (const auto& a : s.stages[c.to_stage].anchors) {
       const auto it = pipes.find(key(a.id, a.floor));
       const double cast_s = it == pipes.end() ? 0.0 : it->second->end_s;
-      if (cast_s + age_s > w.strong_s) {
-        w.strong_s = cast_s + age_s;
+      const double strong_s = maturity ? maturity->after(cast_s, age_s) : cast_s + age_s;
+      if (strong_s > w.strong_s) {
+        w.strong_s = strong_s;
         w.cast_s = cast_s;
         w.anchor = a.id;
         w.cast_floor = a.floor;
@@ -97,12 +110,12 @@ std::vector<AnchorWait> anchor_waits(const Setup& setup, const Schedule& s) {
 std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& base,
                                           const ScheduleOptions& options,
                                           const floors::MaterialProfile* faster_mix) {
-  std::vector<AnchorWhatIf> out;
-  if (!setup.climber || !base.feasible) return out;
+  std::vector<AnchorWhatIf> all;
+  if (!setup.climber || !base.feasible) return all;
   const std::vector<AnchorWait> waits = anchor_waits(setup, base);
   double waited_s = 0.0;
   for (const auto& w : waits) waited_s += w.wait_s;
-  if (waited_s <= 0.0) return out;
+  if (waited_s <= 0.0) return all;
   const machine::ClimbingMachine& m = *setup.climber;
 
   // 1. Pipes cast a storey earlier: in the top layer of the floor below the one each
@@ -138,7 +151,7 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
                         setup.length(extra_m, 2).c_str(),
                         setup.length(stroke_max_m + m.stroke_end_margin_m + extra_m, 2).c_str(),
                         setup.length(extra_m, 2).c_str()));
-      out.push_back(
+      all.push_back(
           scheduled(w, with_climber(setup, machine::with_longer_legs(m, extra_m)), options));
     }
   }
@@ -150,7 +163,7 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
     if (then_s < now_s) {
       Setup variant = setup;
       variant.anchor_material = *faster_mix;
-      out.push_back(scheduled(
+      all.push_back(scheduled(
           what_if(AnchorWhatIf::Kind::kFasterMix, then_s,
                   printf_string(
                       "pour the anchors' layers with %s (%.1f MPa after %.1f h instead of %.1f h)",
@@ -163,14 +176,19 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
   // 3. A lower anchor strength: what the youngest anchor of the worst-held climb has when
   // the climb is otherwise ready, to the half MPa below.
   {
+    const std::optional<EquivalentAge> maturity = anchor_maturity(setup);
     double lowest_mpa = std::numeric_limits<double>::infinity();
     for (const auto& w : waits)
-      if (w.wait_s > 0.0)
-        lowest_mpa = std::min(
-            lowest_mpa, anchor_mix(setup).strength_at_mpa(std::max(0.0, w.ready_s - w.cast_s)));
+      if (w.wait_s > 0.0) {
+        const double age_s = maturity ? maturity->age(w.cast_s, std::max(w.cast_s, w.ready_s))
+                                      : std::max(0.0, w.ready_s - w.cast_s);
+        lowest_mpa = std::min(lowest_mpa, anchor_mix(setup).strength_at_mpa(age_s));
+      }
     const double mpa = std::floor(lowest_mpa * 2.0 + 1e-9) / 2.0;
-    if (std::isfinite(mpa) && mpa > 0.0 && mpa < m.anchor_strength_mpa) {
-      out.push_back(scheduled(
+    // Only a strength a machine may state (a pipe in younger concrete would tear out).
+    if (std::isfinite(mpa) && machine::kAnchorStrength_mpa.contains(mpa) &&
+        mpa < m.anchor_strength_mpa) {
+      all.push_back(scheduled(
           what_if(AnchorWhatIf::Kind::kLowerStrength, mpa,
                   printf_string("load the anchors from %.1f MPa instead of %.1f MPa, if the "
                                 "climbing units' maker allows it (the strength the youngest "
@@ -187,9 +205,9 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
     const int more = std::min(units + 2, 16);
     const int holding_now = units - m.units_per_transfer;
     const int holding_then = more - m.units_per_transfer;
-    if (more > units && holding_now > 0) {
-      const double mpa = m.anchor_strength_mpa * holding_now / holding_then;
-      out.push_back(scheduled(
+    const double mpa = m.anchor_strength_mpa * holding_now / std::max(1, holding_then);
+    if (more > units && holding_now > 0 && machine::kAnchorStrength_mpa.contains(mpa)) {
+      all.push_back(scheduled(
           what_if(AnchorWhatIf::Kind::kMoreUnits, more,
                   printf_string("%d units instead of %d: %d hold the platform in a transfer "
                                 "instead of %d, each anchor carrying %d/%d of today's load, so "
@@ -200,6 +218,10 @@ std::vector<AnchorWhatIf> anchor_what_ifs(const Setup& setup, const Schedule& ba
           with_anchor_strength(setup, mpa), options));
     }
   }
+  // Only what could be done: a variant that is not feasible is no way to build.
+  std::vector<AnchorWhatIf> out;
+  for (AnchorWhatIf& w : all)
+    if (w.feasible) out.push_back(std::move(w));
   return out;
 }
 

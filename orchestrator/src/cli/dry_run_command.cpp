@@ -32,6 +32,7 @@
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/machine/sim_limits.hpp"
 #include "ccbuild/machine/sim_machine.hpp"
+#include "ccbuild/schedule/conditions.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
@@ -275,6 +276,13 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
   });
   std::unique_ptr<dispatch::MachineSupervisor> machines;
   const fs::path state_dir = o.state_dir.empty() ? work : fs::path(o.state_dir);
+  // With site weather the material's window and the anchors' age are equivalent ages, as
+  // the scheduler kept them: the dispatcher and the machines count them on its clock.
+  rules::AgeClock age_clock;
+  if (schedule.inputs.conditions)
+    age_clock = schedule::EquivalentAge(*schedule.inputs.conditions, material.maturity).clock();
+  const fs::path age_clock_file = work / "age-clock.txt";
+  if (!age_clock.real_time()) write_file_atomically(age_clock_file, age_clock.text(), true);
   if (!o.state_dir.empty()) {
     fs::create_directories(state_dir);
     write_file_atomically(state_dir / "schedule.sha256", schedule_sha256 + "\n", true);
@@ -289,6 +297,8 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
         "--min-interval",  printf_string("%.17g", material.min_layer_interval_s),
         "--max-interval",  printf_string("%.17g", material.max_layer_interval_s)};
     if (o.own_clock) common.push_back("--own-clock");
+    if (!age_clock.real_time())
+      common.insert(common.end(), {"--age-clock", age_clock_file.string()});
     if (climbing) {
       common.push_back("--climbing");
       // The age at which the material reaches the anchor strength the climber needs.
@@ -315,6 +325,7 @@ void run_dry_run(const DryRunOptions& o, int& exit_code) {
     d.min_interval_s = material.min_layer_interval_s;
     d.max_interval_s = material.max_layer_interval_s;
     d.material = &material;  // waits may absorb delay as far as the layers below allow
+    d.age_clock = age_clock;
   }
   d.joint_treatment_s = material.planned_joint.treatment_s;
   d.joint_min_age_s = material.planned_joint.min_age_s;

@@ -189,7 +189,17 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
       column_unit(climbs, [](const schedule::Event* e) { return e->climb->plan.duration_s; });
   for (const schedule::Event* e : climbs) {
     const auto& c = *e->climb;
-    const std::string why = schedule::reason_kinds_text(c.wait_reasons);
+    // Each cause with the time it was the binding one (a night, then the wind, ...).
+    std::string why;
+    std::vector<schedule::WaitKind> told;
+    for (const auto& r : c.wait_reasons) {
+      if (std::find(told.begin(), told.end(), r.kind) != told.end()) continue;
+      told.push_back(r.kind);
+      const double bound_s = schedule::binding_s(c.wait_reasons, r.kind);
+      if (bound_s <= 0.0) continue;
+      why += (why.empty() ? "" : ", ") + schedule::to_string(r.kind) + " " +
+             duration_in(bound_s, climb_wait_unit);  // the wait's column, one unit
+    }
     std::cout << printf_string(
         "climb %d -> %d after floor %d layer %d: starts at %s after a wait of %s%s, %s of "
         "motion\n",
@@ -227,7 +237,10 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
   }
   if (!o.what_if.empty()) {
     if (changes.empty())
-      std::cout << "what-if anchors: no climb waits for its anchors; nothing to shorten\n";
+      std::cout << (anchor_wait_s > 0.0
+                        ? "what-if anchors: no change the profiles allow gives a feasible "
+                          "schedule\n"
+                        : "what-if anchors: no climb waits for its anchors; nothing to shorten\n");
     else
       std::cout << "what-if anchors (each change scheduled in full):\n";
     const TimeUnit makespan_unit =
@@ -239,9 +252,9 @@ void run_schedule(const ScheduleCommandOptions& o, int& exit_code) {
         column_unit(changes, [](const schedule::AnchorWhatIf& w) { return w.anchor_waits_s; });
     for (const auto& w : changes)
       std::cout << printf_string(
-          "  %s: %s (%.0f s)%s, %s%s, anchor waits %s\n", w.change.c_str(),
+          "  %s: %s (%.0f s), %s%s, anchor waits %s\n", w.change.c_str(),
           duration_in(w.makespan_s, makespan_unit).c_str(), w.makespan_s,
-          w.feasible ? "" : " NOT feasible", w.makespan_s <= s.totals.makespan_s ? "-" : "+",
+          w.makespan_s <= s.totals.makespan_s ? "-" : "+",
           duration_in(std::abs(s.totals.makespan_s - w.makespan_s), change_unit).c_str(),
           duration_in(w.anchor_waits_s, waits_unit).c_str());
   }

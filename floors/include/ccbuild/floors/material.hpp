@@ -72,8 +72,8 @@ struct MaterialProfile {
   /// A layer must be this many times stronger than the stress of the walls above it.
   double safety_factor = 1.5;
   PlannedJoint planned_joint;
-  /// `strength_en1992:`: the strength is then the larger of the curve's (early age, green
-  /// strength) and the Eurocode's (hardened concrete).
+  /// `strength_en1992:`: the Eurocode's estimate, which extends the curve past its last
+  /// point (strength_at_mpa).
   std::optional<En1992Strength> en1992;
   /// `maturity:`: the age function used with site temperatures.
   MaturityFunction maturity;
@@ -82,9 +82,20 @@ struct MaterialProfile {
   /// `delivery_batch_m3`: what one delivery brings (a truck mixer's 8 m³ by default).
   double delivery_batch_m3 = 8.0;
 
-  /// Strength at `age_s` (equivalent age at 20 °C): the curve's, linear between points,
-  /// flat outside them, or the Eurocode's where that is larger.
+  /// Strength at `age_s` (equivalent age at 20 °C), MPa: the one strength rule.
+  /// The curve (tested strengths) governs up to its last point, linear between points,
+  /// flat before the first: EN 1992-1-1 §3.1.2 (3.1)-(3.2) is an estimate for where no
+  /// test is at hand (§3.1.2(6) asks for tests where early strength matters), and it
+  /// overrates a printable mix in its first days. From the last point's age on, where
+  /// `en1992` is stated, the smaller of two estimates carries it further, never below the
+  /// last test: the Eurocode's for the stated fcm, and the class's development beta_cc
+  /// through the last test (f_last beta_cc(t) / beta_cc(t_last)). Without `en1992`, flat.
   double strength_at_mpa(double age_s) const;
+  /// The curve's last point's age, s (0 when it has none): where the tests end.
+  double last_tested_age_s() const;
+  /// The class's development through the last test as an EN 1992 strength (its fcm
+  /// f_last / beta_cc(t_last)); none without `en1992` or a test after age 0.
+  std::optional<En1992Strength> from_last_test() const;
   /// The youngest age at which the strength reaches `strength_mpa` (0 when it does from
   /// the start); +infinity when it never does.
   double age_for_strength_s(double strength_mpa) const;

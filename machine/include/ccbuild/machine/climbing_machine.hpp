@@ -35,6 +35,12 @@ struct ClimbingUnit {
   std::vector<int> links;
 };
 
+/// What a climbing machine may state as its anchors' strength (`anchor_strength_mpa`),
+/// MPa: makers of climbing anchors load them in concrete from about 10 MPa; under 5 MPa
+/// an embedded pipe would tear out, over 100 MPa no concrete gets there. A what-if never
+/// proposes a strength outside it.
+inline const Range kAnchorStrength_mpa = Range::closed(5.0, 100.0);
+
 struct ClimbingMachine {
   std::string name;
   MachineModel gantry;  ///< the printing gantry; its joints are relative to the platform
@@ -57,6 +63,8 @@ struct ClimbingMachine {
   double pin_release_s = 45.0;
   double pin_gap_m = 0.05;          ///< between the foot's face and the wall, pin out
   double pin_past_centre_m = 0.02;  ///< an engaged pin's tip beyond the wall's centre line
+  /// The concrete strength from which an anchor may be loaded, MPa, within
+  /// kAnchorStrength_mpa.
   double anchor_strength_mpa = 10.0;
   double anchor_clearance_m = 0.3;  ///< default anchors keep this from wall ends, openings
   double pipe_embed_s = 120.0;

@@ -34,6 +34,7 @@
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
 #include "ccbuild/machine/timed_path.hpp"
+#include "ccbuild/rules/age_clock.hpp"
 #include "ccbuild_lcm/ccbuild_job_t.hpp"
 #include "ccbuild_lcm/ccbuild_path_chunk_t.hpp"
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
@@ -77,6 +78,9 @@ struct SimOptions {
   /// same end on the layer below was deposited (by this machine), no sooner, no later.
   double min_interval_s = 0.0;
   double max_interval_s = std::numeric_limits<double>::infinity();
+  /// With site weather: the concrete's equivalent age against schedule time, in which the
+  /// window above and the anchors' age below are counted (empty: real time).
+  rules::AgeClock age_clock;
   /// How old an anchor must be before a unit pins into it, s (the age at which the
   /// material reaches the machine's anchor strength): an insertion ("climb ...: insert
   /// U1") sooner after the unit's last pipe ("pipe A1 for unit U1") was placed is refused

@@ -13,6 +13,8 @@
 
 namespace ccbuild::rules {
 
+class AgeClock;
+
 /// A point lies on a deposited span when this close to it, m: layers merge points closer
 /// than 1 mm, so a section's cut may move a wall end by up to that.
 inline constexpr double kOnSpan_m = 2e-3;
@@ -96,7 +98,10 @@ struct StartWindow {
   double newest_below_s = -std::numeric_limits<double>::infinity();
   bool empty() const { return earliest_s > latest_s; }
 };
+/// With `clock` (site weather), the interval is the concrete's equivalent age: covered no
+/// sooner than when what lies below is `min_interval_s` old by the clock, no later than
+/// `max_interval_s` old (the offsets' lower times are then the clock's schedule times).
 StartWindow start_window(const IntervalOffsets& offsets, double min_interval_s,
-                         double max_interval_s);
+                         double max_interval_s, const AgeClock* clock = nullptr);
 
 }  // namespace ccbuild::rules

@@ -27,6 +27,7 @@
 #include "ccbuild/floors/material.hpp"
 #include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
+#include "ccbuild/rules/age_clock.hpp"
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
 
 struct sqlite3;
@@ -143,6 +144,10 @@ struct DispatchOptions {
   /// (DispatchJob::absorbs) takes up as much of it as the layers the machines laid can
   /// carry the next layer and its joints keep the minimum (null: never).
   const floors::MaterialProfile* material = nullptr;
+  /// With site weather, the concrete's equivalent age against the schedule's time: the
+  /// window above is then one of equivalent age, as the scheduler kept it (empty: real
+  /// time).
+  rules::AgeClock age_clock;
 };
 
 class Dispatcher {

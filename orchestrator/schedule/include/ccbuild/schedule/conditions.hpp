@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ccbuild/floors/material.hpp"
+#include "ccbuild/rules/age_clock.hpp"
 #include "ccbuild/schedule/site.hpp"
 
 namespace ccbuild::schedule {
@@ -49,12 +50,14 @@ class EquivalentAge {
   EquivalentAge(const SiteConditions& conditions, const floors::MaturityFunction& function);
 
   /// Equivalent seconds accrued from 0 to `t_s`.
-  double at(double t_s) const;
+  double at(double t_s) const { return clock_.at(t_s); }
   /// The equivalent age at `to_s` of concrete placed at `from_s`.
-  double age(double from_s, double to_s) const { return at(to_s) - at(from_s); }
+  double age(double from_s, double to_s) const { return clock_.age(from_s, to_s); }
   /// The earliest time at which concrete placed at `from_s` is `age_s` old in equivalent
   /// age; +infinity when it never is (a Nurse-Saul rate of 0 for ever).
-  double after(double from_s, double age_s) const;
+  double after(double from_s, double age_s) const { return clock_.after(from_s, age_s); }
+  /// The same as a clock the dispatcher and the machines take (rules/age_clock.hpp).
+  const rules::AgeClock& clock() const { return clock_; }
 
   const SiteConditions& conditions() const { return *conditions_; }
   const floors::MaturityFunction& function() const { return function_; }
@@ -68,8 +71,7 @@ class EquivalentAge {
  private:
   const SiteConditions* conditions_;
   floors::MaturityFunction function_;
-  std::vector<double> e_at_reading_;  ///< E at each reading's time
-  std::vector<double> rate_;          ///< the rate from each reading on
+  rules::AgeClock clock_;
 };
 
 }  // namespace ccbuild::schedule

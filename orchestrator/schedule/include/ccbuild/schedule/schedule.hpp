@@ -90,9 +90,26 @@ std::optional<WaitKind> wait_kind_named(const std::string& name);
 /// Why a layer (or a climb) waited: one constraint and its numbers.
 struct WaitReason {
   WaitKind kind = WaitKind::kMinInterval;
-  double required_s = 0.0;  ///< the wait this reason alone requires
+  double required_s = 0.0;  ///< the wait this reason alone requires, s from the earliest start
   std::string detail;       ///< the numbers, in words
+  /// When it began to hold, s from the earliest start (0: from the start of the wait; a
+  /// night found once the anchors were strong holds from then).
+  double from_s = 0.0;
+  /// How long it was the binding reason (bind_wait_reasons): the binding times of a
+  /// wait's reasons add up to the wait.
+  double binding_s = 0.0;
 };
+
+/// Sets each reason's binding_s: at each moment of the wait, of the reasons holding then
+/// (from_s up to required_s), the one that holds the longest binds (on a tie, the first);
+/// a moment none holds binds none.
+void bind_wait_reasons(std::vector<WaitReason>& reasons);
+
+/// The binding time of the reasons of kind `kind`, s.
+double binding_s(const std::vector<WaitReason>& reasons, WaitKind kind);
+
+/// Every kind's name, comma-separated, for messages that list what is expected.
+std::string wait_kind_names();
 
 /// The kinds of `reasons`, each once, in their order: "min-interval, strength" (a wait may
 /// have two strength reasons, the piece below and the layer's bottom).
@@ -132,6 +149,12 @@ struct ScheduledLayer {
   std::optional<double> equivalent_interval_min_s, equivalent_interval_max_s;
   PieceEnd local_min_at, local_max_at;
   int piece_ends_checked = 0;
+  /// The layer just below against the walls it carries once this one is laid (none on a
+  /// floor's first layer): its strength at the age its soonest covered piece end then has
+  /// (equivalent_interval_min_s with site weather, else local_interval_min_s), and the
+  /// strength the walls from its bottom to this layer's top need with the safety factor,
+  /// MPa. What the report's buildability chart draws.
+  std::optional<double> below_strength_mpa, below_required_mpa;
   double concrete_m3 = 0.0;     ///< its pieces' volume
   double peak_flow_m3_s = 0.0;  ///< the most its nozzles deposit at once
 };
@@ -175,6 +198,10 @@ struct SchedulePlan {
   std::vector<PathDigest> digests;
 };
 
+/// How many points of a climb's youngest anchor's strength the schedule keeps (equal
+/// steps in time from its casting to the climb): what the report's anchor chart draws.
+inline constexpr int kAnchorCurvePoints = 25;
+
 struct ClimbEvent {
   int from_stage = 0, to_stage = 0;
   double start_s = 0.0, end_s = 0.0;
@@ -189,6 +216,13 @@ struct ClimbEvent {
     double equivalent_age_s = 0.0;  ///< at 20 °C (age_s without site weather)
   };
   std::vector<AnchorLoad> anchors;  ///< the pins of the stage climbed to
+  /// One anchor's strength from its casting to the climb's start as the scheduler reckoned
+  /// it (in equivalent age with site weather): the youngest one's (the first, if equal).
+  struct StrengthPoint {
+    double t_s = 0.0;  ///< schedule time
+    double strength_mpa = 0.0;
+  };
+  std::vector<StrengthPoint> youngest_anchor_strength;  ///< kAnchorCurvePoints, in time order
   climb::ClimbPlan plan;
 };
 
