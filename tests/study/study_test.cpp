@@ -176,6 +176,27 @@ TEST(StudyResults, MeasuresOfTheHousesSchedule) {
   for (const auto& [key, value] : m.items()) EXPECT_EQ(key, all_measures()[k++]);
 }
 
+// Each wait counted once, under the cause that bound it: on the tower (its climbs wait
+// for their anchors), the wait measures add up to the layers' and the climbs' waits.
+TEST(StudyResults, WaitMeasuresCountEachCauseByItsBindingTime) {
+  const auto schedule = nlohmann::json::parse(
+      read_text_file(testing::source_path("tests/regression/tower.schedule.json")));
+  const auto m = measures_of(schedule);
+  double waited_s = 0.0, anchors_s = 0.0;
+  for (const auto& l : schedule["layers"]) waited_s += l["wait_before_s"].get<double>();
+  for (const auto& e : schedule["events"])
+    if (e["kind"] == "climb") {
+      waited_s += e["wait_before_s"].get<double>();
+      for (const auto& r : e["wait_reasons"])
+        if (r["kind"] == "anchor-strength") anchors_s += r["binding_s"].get<double>();
+    }
+  double measured_s = 0.0;
+  for (const auto kind : schedule::wait_kinds()) measured_s += m[wait_measure(kind)].get<double>();
+  EXPECT_NEAR(measured_s, waited_s, 1e-3);
+  EXPECT_GT(anchors_s, 0.0);
+  EXPECT_NEAR(m["wait_anchor_strength_s"].get<double>(), anchors_s, 1e-6);
+}
+
 TEST(StudyResults, TheParetoFrontKeepsTiesAndDropsWhatIsBeaten) {
   Collected c;
   // (cost, makespan): 0 and 1 tie; 2 is cheaper-slower's other end; 3 is beaten by 2;

@@ -48,16 +48,20 @@ std::string reason_kinds_text(const std::vector<WaitReason>& reasons) {
 }
 
 namespace {
-constexpr WaitKind kWaitKinds[] = {WaitKind::kMinInterval, WaitKind::kStrength,
-                                   WaitKind::kAnchorStrength, WaitKind::kSlab,
-                                   WaitKind::kOffShift, WaitKind::kJoint,
-                                   WaitKind::kCold, WaitKind::kWind};
+constexpr WaitKind kWaitKinds[] = {
+    WaitKind::kMinInterval, WaitKind::kStrength, WaitKind::kAnchorStrength, WaitKind::kSlab,
+    WaitKind::kOffShift,    WaitKind::kJoint,    WaitKind::kCold,           WaitKind::kWind};
 }  // namespace
 
 std::optional<WaitKind> wait_kind_named(const std::string& name) {
   for (WaitKind k : kWaitKinds)
     if (to_string(k) == name) return k;
   return std::nullopt;
+}
+
+const std::vector<WaitKind>& wait_kinds() {
+  static const std::vector<WaitKind> kinds(std::begin(kWaitKinds), std::end(kWaitKinds));
+  return kinds;
 }
 
 std::string wait_kind_names() {

@@ -17,6 +17,12 @@
 namespace ccbuild::study {
 namespace fs = std::filesystem;
 
+std::string wait_measure(schedule::WaitKind kind) {
+  std::string key = "wait_" + schedule::to_string(kind) + "_s";
+  std::replace(key.begin(), key.end(), '-', '_');
+  return key;
+}
+
 namespace {
 
 /// A number for the CSV: shortest text that reads back to the same double.
@@ -60,15 +66,18 @@ nlohmann::ordered_json measures_of_located(const JsonAt& s) {
     idle_margin_s = std::min(idle_margin_s, idle_limit_s - number(l, "max_idle_s"));
     if (const auto reasons = l.maybe("wait_reasons"))
       for (const JsonAt& r : reasons->elements(kMaxItems))
-        by_reason[text(r, "kind")] += number(l, "wait_before_s");
+        by_reason[text(r, "kind")] += number(r, "binding_s");
   }
+  // A climb's wait too, each cause by the time it was the binding one.
+  for (const JsonAt& e : s.at("events").elements(kMaxItems))
+    if (const auto reasons = e.maybe("wait_reasons"))
+      for (const JsonAt& r : reasons->elements(kMaxItems))
+        by_reason[text(r, "kind")] += number(r, "binding_s");
   m["nozzles_max"] = nozzles;
   m["waits_s"] = number(totals, "waits_s");
-  for (const char* kind : {"min-interval", "strength", "anchor-strength", "slab", "off-shift",
-                           "joint", "cold", "wind"}) {
-    std::string key = std::string("wait_") + kind + "_s";
-    std::replace(key.begin(), key.end(), '-', '_');
-    m[key] = by_reason.count(kind) ? by_reason.at(kind) : 0.0;
+  for (const schedule::WaitKind kind : schedule::wait_kinds()) {
+    const std::string name = schedule::to_string(kind);
+    m[wait_measure(kind)] = by_reason.count(name) ? by_reason.at(name) : 0.0;
   }
   m["concrete_m3"] = number(totals, "concrete_m3");
   m["crew_h"] = number(totals, "crew_h");

@@ -10,6 +10,7 @@
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
+#include "ccbuild/study/results.hpp"
 #include "ccbuild/study/study.hpp"
 
 namespace ccbuild::study {
@@ -28,24 +29,15 @@ double number_of(const std::string& text) {
   return value;
 }
 
-const std::vector<std::string> kMeasures = {"makespan_s",
-                                            "feasible",
-                                            "nozzles_max",
-                                            "waits_s",
-                                            "wait_min_interval_s",
-                                            "wait_strength_s",
-                                            "wait_anchor_strength_s",
-                                            "wait_slab_s",
-                                            "wait_off_shift_s",
-                                            "wait_joint_s",
-                                            "wait_cold_s",
-                                            "wait_wind_s",
-                                            "concrete_m3",
-                                            "crew_h",
-                                            "climbs",
-                                            "machine_s",
-                                            "idle_margin_s",
-                                            "warnings"};
+// In the order measures_of() gives them; one wait measure per reason kind.
+const std::vector<std::string> kMeasures = [] {
+  std::vector<std::string> out = {"makespan_s", "feasible", "nozzles_max", "waits_s"};
+  for (const schedule::WaitKind kind : schedule::wait_kinds()) out.push_back(wait_measure(kind));
+  for (const char* m :
+       {"concrete_m3", "crew_h", "climbs", "machine_s", "idle_margin_s", "warnings"})
+    out.push_back(m);
+  return out;
+}();
 
 /// A file the study names, relative to the study file's folder; it must exist.
 fs::path study_path(const Field& field, const fs::path& folder) {

@@ -110,6 +110,8 @@ double binding_s(const std::vector<WaitReason>& reasons, WaitKind kind);
 
 /// Every kind's name, comma-separated, for messages that list what is expected.
 std::string wait_kind_names();
+/// Every kind, in the order of the enum: the one list of them.
+const std::vector<WaitKind>& wait_kinds();
 
 /// The kinds of `reasons`, each once, in their order: "min-interval, strength" (a wait may
 /// have two strength reasons, the piece below and the layer's bottom).

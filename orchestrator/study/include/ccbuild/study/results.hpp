@@ -9,15 +9,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/study/runner.hpp"
 
 namespace ccbuild::study {
 
 /// The measures of one schedule JSON (all_measures(), in order): makespan_s, feasible,
-/// nozzles_max, waits_s, wait_<reason>_s (a layer waiting for several reasons counts
-/// under each), concrete_m3, crew_h, climbs, machine_s, idle_margin_s (the least a nozzle
-/// stays under its idle limit), warnings.
+/// nozzles_max, waits_s, wait_<reason>_s (the time that reason was the binding one, over
+/// the layers' and the climbs' waits: they add up to those), concrete_m3, crew_h,
+/// climbs, machine_s, idle_margin_s (the least a nozzle stays under its idle limit),
+/// warnings.
 nlohmann::ordered_json measures_of(const nlohmann::json& schedule);
+
+/// The measure of one wait reason: "wait_anchor_strength_s".
+std::string wait_measure(schedule::WaitKind kind);
 
 struct Collected {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();  ///< one per variant
