@@ -13,6 +13,8 @@
 #include <sstream>
 
 #include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/rules/age_clock.hpp"
+#include "ccbuild/rules/intervals.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "test_support.hpp"
 
@@ -308,9 +310,6 @@ TEST(WaitCauses, TiesEmptyReasonsAndGapsAtTheirBoundaries) {
 
 }  // namespace
 }  // namespace ccbuild::schedule
-
-#include "ccbuild/rules/age_clock.hpp"
-#include "ccbuild/rules/intervals.hpp"
 
 namespace ccbuild::rules {
 namespace {

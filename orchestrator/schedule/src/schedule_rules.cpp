@@ -7,11 +7,11 @@
 #include <optional>
 #include <tuple>
 
-#include "ccbuild/rules/tolerances.hpp"
 #include "anchor_strength.hpp"
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/planner/timeline.hpp"
+#include "ccbuild/rules/tolerances.hpp"
 #include "ccbuild/schedule/quantities.hpp"
 #include "schedule_deposits.hpp"
 
@@ -228,7 +228,9 @@ class Rules {
                                static_cast<long long>(a.wall), a.piece, dt > 0 ? d / dt : INFINITY,
                                v));
       } else {
-        const auto fast = [&](double dist_m, double v) { return rules::faster_than(dist_m, dt, v); };
+        const auto fast = [&](double dist_m, double v) {
+          return rules::faster_than(dist_m, dt, v);
+        };
         if (fast(dx, m.x_speed_m_s) || fast(dy, m.y_speed_m_s) || fast(d, m.travel_speed_m_s))
           broken(where, "speed",
                  printf_string("an air move of %.6f m (x %.6f, y %.6f) in %.6f s, faster than "
