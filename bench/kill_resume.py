@@ -18,7 +18,7 @@ How it works:
   (from its machines' records).
 - For each seed: a fresh state folder and journal. The k-th of K kills falls at a random
   point (seeded) of the k-th of K equal parts of D, counted in running time summed over
-  the runs so far; the orchestrator (`ccbuild dry-run`, only it) gets SIGKILL there. After
+  the runs so far; the dispatcher (`ccbuild dry-run`, only it) gets SIGKILL there. After
   each kill the machines (`ccbuild-sim`) must stop on their own within --grace seconds:
   any process left in the run's network namespace, or any naming the seed's state folder,
   is a finding (reported, then killed by its pid). The dry-run is then started again on
@@ -255,7 +255,7 @@ def run_seed(runner, seed, reference_ids, duration, args):
             hung = delay is None
             if not hung and comm != os.path.basename(args.ccbuild)[:15]:  # comm: 15 chars
                 result["problems"].append(
-                    f"run {attempt}: killed at {elapsed:.2f} s before the orchestrator "
+                    f"run {attempt}: killed at {elapsed:.2f} s before the dispatcher "
                     f"started (process '{comm}')")
             waited, left = wait_machines_gone(namespace, folder, args.grace)
             result["stop_s"].append(waited)

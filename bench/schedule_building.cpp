@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 
 using namespace ccbuild;
@@ -35,9 +35,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
-  orchestrator::ProjectOptions project_options;
+  schedule::ProjectOptions project_options;
   project_options.site_file = site_file;
-  const orchestrator::Project project = orchestrator::open_project(building_file, project_options);
+  const schedule::Project project = schedule::open_project(building_file, project_options);
   std::vector<double> totals;
   std::printf("%s%s%s, %d runs, --jobs %d\n", building_file.c_str(),
               site_file.empty() ? "" : " on ", site_file.c_str(), runs, jobs);

@@ -196,10 +196,10 @@ SlabSpec read_slabs(const Field& field, LengthUnit unit) {
   if (auto concrete = map.optional("concrete"))
     slab.concrete = read_en1992_strength(*concrete, {"fcm_mpa", "cement_class"});
   if (auto ready = map.optional("ready_mpa"))
-    if (slab.ready_mpa >= slab.concrete.fcm_mpa * std::exp(slab.concrete.s))
+    if (slab.ready_mpa >= slab.concrete.ultimate_mpa())
       ready->fail("the slab's concrete never reaches " + plain_number(slab.ready_mpa) +
                   " MPa (EN 1992-1-1: at most fcm e^s = " +
-                  plain_number(slab.concrete.fcm_mpa * std::exp(slab.concrete.s)) + " MPa)");
+                  plain_number(slab.concrete.ultimate_mpa()) + " MPa)");
   if (auto crew = map.optional("crew")) slab.crew = read_crew(*crew);
   if (auto roof = map.optional("roof")) slab.roof = roof->as_bool();
   return slab;

@@ -26,11 +26,16 @@ const Range kActivation_j_mol = Range::closed(10'000.0, 100'000.0);
 const Range kDatum_c = Range::closed(-30.0, 10.0);
 const Range kAirTemperature_c = Range::closed(-60.0, 60.0);
 constexpr double kDays28_s = 28.0 * 86'400.0;  // EN 1992-1-1's reference age
+
+// EN 1992-1-1 (3.2): the development of strength with age, beta_cc(t), t > 0.
+double beta_cc(double s, double age_s) {
+  return std::exp(s * (1.0 - std::sqrt(kDays28_s / age_s)));
+}
 }  // namespace
 
 double En1992Strength::strength_at_mpa(double age_s) const {
   if (age_s <= 0.0 || age_s < from_s) return 0.0;
-  return std::exp(s * (1.0 - std::sqrt(kDays28_s / age_s))) * fcm_mpa;
+  return beta_cc(s, age_s) * fcm_mpa;
 }
 
 double En1992Strength::age_for_strength_s(double strength_mpa) const {
@@ -38,6 +43,10 @@ double En1992Strength::age_for_strength_s(double strength_mpa) const {
   const double ratio = std::log(strength_mpa / fcm_mpa) / s;  // 1 - sqrt(28 / t)
   if (ratio >= 1.0) return std::numeric_limits<double>::infinity();
   return std::max(from_s, kDays28_s / ((1.0 - ratio) * (1.0 - ratio)));
+}
+
+double En1992Strength::ultimate_mpa() const {
+  return fcm_mpa * std::exp(s);
 }
 
 double MaturityFunction::rate(double temperature_c) const {
@@ -51,9 +60,9 @@ double MaturityFunction::rate(double temperature_c) const {
 double MaterialProfile::final_strength_mpa() const {
   const double curve = strength_curve.empty() ? 0.0 : strength_curve.back().strength_mpa;
   if (!en1992) return curve;
-  double limit_mpa = en1992->fcm_mpa * std::exp(en1992->s);  // beta_cc's limit, e^s
+  double limit_mpa = en1992->ultimate_mpa();
   if (const auto through = from_last_test())
-    limit_mpa = std::min(limit_mpa, through->fcm_mpa * std::exp(through->s));
+    limit_mpa = std::min(limit_mpa, through->ultimate_mpa());
   return std::max(curve, limit_mpa);
 }
 
@@ -102,8 +111,7 @@ std::optional<En1992Strength> MaterialProfile::from_last_test() const {
   // fcm' beta_cc(t_last) = f_last: the class's development through the last test.
   En1992Strength through = *en1992;
   through.from_s = 0.0;
-  through.fcm_mpa = strength_curve.back().strength_mpa /
-                    std::exp(en1992->s * (1.0 - std::sqrt(kDays28_s / last_s)));
+  through.fcm_mpa = strength_curve.back().strength_mpa / beta_cc(en1992->s, last_s);
   return through;
 }
 

@@ -153,16 +153,18 @@ IntervalOffsets interval_offsets(const DepositIndex& upper_index, const DepositI
 }
 
 StartWindow start_window(const IntervalOffsets& offsets, double min_interval_s,
-                         double max_interval_s, const AgeClock* clock) {
+                         double max_interval_s, const AgeClock* clock, double lower_origin_s) {
   const AgeClock real_time;
   const AgeClock& aged = clock ? *clock : real_time;
   StartWindow w;
   for (const IntervalOffsets::End& e : offsets.each) {
     // Covered at start + up: from the latest pass below, no sooner than the minimum; from
     // the earliest, no later than the maximum.
-    w.earliest_s = std::max(w.earliest_s, aged.after(e.low_hi_s, min_interval_s) - e.up_lo_s);
-    w.latest_s = std::min(w.latest_s, aged.after(e.low_lo_s, max_interval_s) - e.up_hi_s);
-    w.newest_below_s = std::max(w.newest_below_s, e.low_hi_s);
+    const double earliest_s = aged.after(lower_origin_s + e.low_hi_s, min_interval_s) - e.up_lo_s;
+    if (earliest_s > w.earliest_s) w.earliest_s = earliest_s, w.earliest_at = e.at;
+    const double latest_s = aged.after(lower_origin_s + e.low_lo_s, max_interval_s) - e.up_hi_s;
+    if (latest_s < w.latest_s) w.latest_s = latest_s, w.latest_at = e.at;
+    w.newest_below_s = std::max(w.newest_below_s, lower_origin_s + e.low_hi_s);
   }
   w.ends_covered = offsets.ends;
   return w;

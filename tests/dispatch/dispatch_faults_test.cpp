@@ -18,10 +18,10 @@
 #include "ccbuild/dispatch/dispatcher.hpp"
 #include "ccbuild/dispatch/run_report.hpp"
 #include "ccbuild/dispatch/site_watchdog.hpp"
-#include "ccbuild/machine/bus.hpp"
 #include "ccbuild/machine/machine_model.hpp"
-#include "ccbuild/machine/sim_machine.hpp"
-#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/project.hpp"
+#include "ccbuild/sim/sim_machine.hpp"
+#include "ccbuild/wire/bus.hpp"
 #include "test_support.hpp"
 
 #pragma GCC diagnostic push
@@ -32,10 +32,10 @@
 
 namespace ccbuild::dispatch {
 namespace {
-using orchestrator::open_project;
-using orchestrator::Project;
 using schedule::build_schedule;
+using schedule::open_project;
 using schedule::parse_schedule;
+using schedule::Project;
 using schedule::recorded_inputs;
 using schedule::ScheduleDocument;
 using schedule::ScheduleOptions;
@@ -45,7 +45,7 @@ using testing::contains;
 
 /// The ends of each extruding run of one wall piece in `p`, in path order: (waypoint,
 /// wall) pairs, two per run.
-std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const machine::TimedPath& p) {
+std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const wire::TimedPath& p) {
   std::vector<std::pair<std::size_t, std::int64_t>> ends;
   std::size_t k = 0;
   while (k + 1 < p.size()) {
@@ -65,7 +65,7 @@ std::vector<std::pair<std::size_t, std::int64_t>> piece_ends(const machine::Time
   return ends;
 }
 
-const machine::TimedPath& path_of(const DispatchJob& d) {
+const wire::TimedPath& path_of(const DispatchJob& d) {
   return d.path;
 }
 
@@ -97,7 +97,7 @@ TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {
     int checked = 0;
     for (const auto& job : jobs_of_schedule(example(c.building))) {
       if (job.path.size() == 0) continue;
-      const auto breach = machine::limit_breach(model, path_of(job), c.check_z);
+      const auto breach = sim::limit_breach(model, path_of(job), c.check_z);
       EXPECT_FALSE(breach) << c.building << " job " << job.job_id << ": " << breach->second;
       ++checked;
     }
@@ -105,8 +105,8 @@ TEST(SimMachine, TheExamplesPathsKeepTheirMachinesLimits) {
   }
 }
 
-machine::TimedPath two_points(double t_s, double x0, double x1) {
-  machine::TimedPath p;
+wire::TimedPath two_points(double t_s, double x0, double x1) {
+  wire::TimedPath p;
   p.push_back(0.0, x0, 1.0, 1.0, 0.0, true, 1, 1);
   p.push_back(t_s, x1, 1.0, 1.0, 0.0, false, 0, 0);
   return p;
@@ -116,50 +116,50 @@ TEST(SimMachine, LimitsHoldAtTheirBoundary) {
   const auto m = machine::MachineModel::defaults();  // x 0..50 m at 0.5 m/s
   ASSERT_DOUBLE_EQ(m.x.speed_m_s, 0.5);
   ASSERT_DOUBLE_EQ(m.x.max_m, 50.0);
-  EXPECT_FALSE(machine::limit_breach(m, two_points(10.0, 0.0, 5.0), true));  // exactly 0.5 m/s
-  const auto fast = machine::limit_breach(m, two_points(10.0, 0.0, 5.01), true);
+  EXPECT_FALSE(sim::limit_breach(m, two_points(10.0, 0.0, 5.0), true));  // exactly 0.5 m/s
+  const auto fast = sim::limit_breach(m, two_points(10.0, 0.0, 5.01), true);
   ASSERT_TRUE(fast);
   EXPECT_EQ(fast->first, +ccbuild_fault_t::VELOCITY_LIMIT);
-  EXPECT_FALSE(machine::limit_breach(m, two_points(100.0, 0.0, 50.0), true));  // at its end
-  const auto beyond = machine::limit_breach(m, two_points(100.0, 0.0, 50.01), true);
+  EXPECT_FALSE(sim::limit_breach(m, two_points(100.0, 0.0, 50.0), true));  // at its end
+  const auto beyond = sim::limit_breach(m, two_points(100.0, 0.0, 50.01), true);
   ASSERT_TRUE(beyond);
   EXPECT_EQ(beyond->first, +ccbuild_fault_t::JOINT_LIMIT);
   // Both ends of a move count: it may not start outside either.
-  const auto start_outside = machine::limit_breach(m, two_points(200.0, -0.01, 10.0), true);
+  const auto start_outside = sim::limit_breach(m, two_points(200.0, -0.01, 10.0), true);
   ASSERT_TRUE(start_outside);
   EXPECT_EQ(start_outside->first, +ccbuild_fault_t::JOINT_LIMIT);
   // The stopper, and a turn faster than the nozzle's rotation.
   auto turn = two_points(4.0, 1.0, 1.0);
   turn.heading_rad = {0.0, m.stopper_max_rad};
-  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  EXPECT_FALSE(sim::limit_breach(m, turn, true));
   turn.heading_rad = {0.0, m.stopper_max_rad + 0.01};
-  ASSERT_TRUE(machine::limit_breach(m, turn, true));
+  ASSERT_TRUE(sim::limit_breach(m, turn, true));
   turn.t_s = {0.0, 3.9};
   turn.heading_rad = {0.0, m.stopper_max_rad};
-  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  EXPECT_EQ(sim::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
   // A turn planned at exactly the rotation limit reaches the machine rounded to µs and
   // µrad: within that rounding it holds, 3 µrad past the limit's reach it does not.
   const double at_limit_rad = m.rotation_speed_rad_s * 0.3338;
   turn.t_s = {0.0, 0.3338};
   turn.heading_rad = {0.0, at_limit_rad + 0.9e-6};
-  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  EXPECT_FALSE(sim::limit_breach(m, turn, true));
   turn.heading_rad = {0.0, at_limit_rad + 3e-6};
-  ASSERT_TRUE(machine::limit_breach(m, turn, true));
-  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  ASSERT_TRUE(sim::limit_breach(m, turn, true));
+  EXPECT_EQ(sim::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
   // Two waypoints at one time, their headings one µrad apart as rounded (1.570797 -
   // 1.570796 is 1.0000000000287557e-06 in doubles): no move (the public Gymzaal's clean
   // dry-run stopped on it). Four µrad apart at one time is a turn with no time: refused.
   turn.t_s = {5.0, 5.0};
   turn.heading_rad = {1.570796, 1.570797};
-  EXPECT_FALSE(machine::limit_breach(m, turn, true));
+  EXPECT_FALSE(sim::limit_breach(m, turn, true));
   turn.heading_rad = {1.570796, 1.5708};
-  ASSERT_TRUE(machine::limit_breach(m, turn, true));
-  EXPECT_EQ(machine::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
+  ASSERT_TRUE(sim::limit_breach(m, turn, true));
+  EXPECT_EQ(sim::limit_breach(m, turn, true)->first, +ccbuild_fault_t::VELOCITY_LIMIT);
   // Heights: outside z range is refused, unless the machine climbs.
   auto high = two_points(10.0, 1.0, 1.0);
   high.z_m = {m.z.max_m + 0.5, m.z.max_m + 0.5};
-  EXPECT_TRUE(machine::limit_breach(m, high, true));
-  EXPECT_FALSE(machine::limit_breach(m, high, false));
+  EXPECT_TRUE(sim::limit_breach(m, high, true));
+  EXPECT_FALSE(sim::limit_breach(m, high, false));
 }
 
 /// A deposit job of one wall piece from (0, 0) to (1, 0) in 5 s, for `layer` of floor 0.
@@ -183,7 +183,7 @@ DispatchJob piece_job(std::int64_t id, int layer, double start_s) {
 
 /// Runs `jobs` through a dispatcher and a machine on one memq:// bus until done.
 struct Rig {
-  explicit Rig(machine::SimOptions so, std::vector<DispatchJob> jobs,
+  explicit Rig(sim::SimOptions so, std::vector<DispatchJob> jobs,
                std::filesystem::path journal_path = ":memory:", DispatchOptions o = {})
       : bus("memq://"), journal(journal_path), sim(bus, so) {
     o.speed = so.speed;
@@ -204,14 +204,14 @@ struct Rig {
     for (const auto& f : dispatcher->fault_records()) out.insert(static_cast<std::int8_t>(f.kind));
     return out;
   }
-  machine::Bus bus;
+  wire::Bus bus;
   Journal journal;
-  machine::SimMachine sim;
+  sim::SimMachine sim;
   std::unique_ptr<Dispatcher> dispatcher;
 };
 
-machine::SimOptions window(double min_s, double max_s) {
-  machine::SimOptions so;
+sim::SimOptions window(double min_s, double max_s) {
+  sim::SimOptions so;
   so.speed = 1e4;
   so.min_interval_s = min_s;
   so.max_interval_s = max_s;
@@ -267,7 +267,7 @@ TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
   const std::vector<DispatchJob> climb = {climb_phase(10, "insert U1", 0.0, 60.0),
                                           climb_phase(20, "lift", 60.0, 100.0)};
   {
-    machine::SimOptions so = window(0.0, 1e9);
+    sim::SimOptions so = window(0.0, 1e9);
     so.pin_failures = 2;  // the third attempt finds its pipe
     Rig rig(so, climb);
     rig.run();
@@ -284,7 +284,7 @@ TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
     EXPECT_EQ(states.at(20), "done");
   }
   {
-    machine::SimOptions so = window(0.0, 1e9);
+    sim::SimOptions so = window(0.0, 1e9);
     so.pin_failures = 3;  // never: stop after the third
     Rig rig(so, climb);
     rig.run();
@@ -295,7 +295,7 @@ TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
     EXPECT_EQ(states.count(20), 0u) << "the lift was sent after a pin that never held";
     const auto faults = rig.journal.faults();
     ASSERT_EQ(faults.size(), 4u);  // three misses, then the stop
-    EXPECT_EQ(faults.back().policy, "stop");
+    EXPECT_EQ(faults.back().policy, dispatch::FaultPolicy::kStop);
   }
 }
 
@@ -306,7 +306,7 @@ TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
   pipe.unit = "U1";
   pipe.anchor = "A1";
   for (const double age_s : {3600.0, 3599.99}) {
-    machine::SimOptions so = window(0.0, 1e9);
+    sim::SimOptions so = window(0.0, 1e9);
     so.anchor_min_age_s = 3600.0;
     Rig rig(so, {pipe, climb_phase(20, "insert U2", 120.0, 60.0),
                  climb_phase(30, "insert U1", 120.0 + age_s, 60.0)});
@@ -326,12 +326,12 @@ TEST(SimMachine, APinGoesIntoAnAnchorOnlyOnceItIsOldEnough) {
 TEST(SimMachine, FollowsItsPathBetweenWaypointsOnItsClock) {
   // At machine speed 1, a quarter of the way into the 5 s piece from (0, 0) to (1, 0):
   // at 0.25 m, and so says its status.
-  machine::SimOptions so = window(0.0, 1e9);
+  sim::SimOptions so = window(0.0, 1e9);
   so.speed = 1.0;
   Rig rig(so, {piece_job(10, 0, 0.0)});
   std::vector<double> reported_x_m;
   rig.bus.subscribe<ccbuild_lcm::ccbuild_status_t>(
-      machine::channel("STATUS", "gantry-1"),
+      wire::channel("STATUS", "gantry-1"),
       [&](const ccbuild_lcm::ccbuild_status_t& s) { reported_x_m.push_back(s.x_m); });
   // Until the machine has started the job (on its arrival or at the end of a step).
   for (int k = 0; k < 5'000 && !rig.sim.busy(); ++k) {
@@ -385,7 +385,7 @@ TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto jobs = jobs_of_schedule(golden("house"));
-  machine::SimOptions so = window(0.0, 1e9);
+  sim::SimOptions so = window(0.0, 1e9);
   so.speed = 1e6;
   so.clog_floor = 0;
   so.clog_layer = 2;
@@ -398,7 +398,7 @@ TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
     ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2);
     made_first.assign(rig.dispatcher->jobs().begin() + jobs.size(), rig.dispatcher->jobs().end());
   }
-  machine::SimOptions again = so;
+  sim::SimOptions again = so;
   again.clog_floor = -1;
   Rig rig(again, jobs, dir / "journal.sqlite");
   ASSERT_EQ(rig.dispatcher->jobs().size(), jobs.size() + 2) << "the recovery was not made again";
@@ -473,15 +473,15 @@ struct ClogBesideANeighbour {
       bus.handle(0);
     }
   }
-  static machine::SimOptions gantry(int k) {
-    machine::SimOptions o = window(0.0, 1e9);
+  static sim::SimOptions gantry(int k) {
+    sim::SimOptions o = window(0.0, 1e9);
     o.machine_id = "gantry-" + std::to_string(k);
     if (k == 1) o.clog_floor = o.clog_layer = 0;
     return o;
   }
-  machine::Bus bus;
+  wire::Bus bus;
   Journal journal;
-  machine::SimMachine sim1, sim2;
+  sim::SimMachine sim1, sim2;
   std::optional<Dispatcher> dispatcher;
 };
 
@@ -518,22 +518,22 @@ TEST(Dispatch, AGantryAlreadyAWidthClearOfTheRestOfAClogStaysWhereItIs) {
 
 /// A status of machine `id` at machine time `t_s`, on `channel_of`'s status channel (by
 /// default its own).
-void status(machine::Bus& bus, const std::string& id, double t_s, double x_m,
+void status(wire::Bus& bus, const std::string& id, double t_s, double x_m,
             const std::string& channel_of = "") {
   static std::int64_t seq = 0;
   ccbuild_lcm::ccbuild_status_t s{};
-  s.utime = machine::utime_now();
+  s.utime = wire::utime_now();
   s.machine_id = id;
   s.seq = ++seq;
   s.state = ccbuild_lcm::ccbuild_status_t::BUSY;
   s.sim_time_s = t_s;
   s.x_m = x_m;
-  bus.publish(machine::channel("STATUS", channel_of.empty() ? id : channel_of), s);
+  bus.publish(wire::channel("STATUS", channel_of.empty() ? id : channel_of), s);
   bus.handle(0);
 }
 
 TEST(SiteWatchdog, PausesBelowTheGantryWidthPlusItsMarginNotAtIt) {
-  machine::Bus bus("memq://");
+  wire::Bus bus("memq://");
   WatchdogOptions w;
   w.machines = {"gantry-1", "gantry-2"};
   w.gantry_width_m = 1.5;
@@ -578,7 +578,7 @@ TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) 
     // gantry-1 moves up at 0.125 m/s and has reported at 0 s and `span_s`; gantry-2 has
     // reported 2 s: gantry-1 was at 0.25 m then, exactly 2 m from gantry-2 (at 0.75 m from
     // the wrong end). Statuses at most 8 s apart are interpolated: 8 s is, 8.5 s is not.
-    machine::Bus bus("memq://");
+    wire::Bus bus("memq://");
     WatchdogOptions spanned = w;
     spanned.max_span_s = 8.0;
     SiteWatchdog dog(bus, spanned);
@@ -608,7 +608,7 @@ TEST(SiteWatchdog, MeasuresTheGapAtOneInstantInterpolatingFromTheEarlierStatus) 
   {
     // Now gantry-2 reported later: it moves down from 4 m at 0.2 m/s; at 7.5 s (gantry-1's
     // last status, at 0.5 m) it was at 2.5 m, 2 m from gantry-1; at 8 s, 1.95 m.
-    machine::Bus bus("memq://");
+    wire::Bus bus("memq://");
     SiteWatchdog dog(bus, w);
     status(bus, "gantry-1", 0.0, 0.0);
     status(bus, "gantry-2", 0.0, 4.0);
@@ -636,7 +636,7 @@ rules::DepositIndex laid(std::int64_t wall, double x0, double y0, double t0, dou
 /// The start window of piece_job's path over `below` (rules/intervals.hpp).
 StartWindow window_over(const rules::DepositIndex& below, double min_s, double max_s) {
   rules::DepositIndex above;
-  machine::add_deposits(above, piece_job(20, 1, 0.0).path, 0.0);
+  wire::add_deposits(above, piece_job(20, 1, 0.0).path, 0.0);
   return rules::start_window(rules::interval_offsets(above, below), min_s, max_s);
 }
 
@@ -683,11 +683,11 @@ TEST(Replan, AStartWindowKeepsEachStretchWithinTheIntervalWithTheBeadsThatCoverI
   apart = window_over(laid(1, 0.0, 0.0, 0.0, 1.0, 0.0, 445.001), 60.0, 500.0);
   EXPECT_TRUE(apart.empty());
   // What a deposit laid: every stretch, or those up to the waypoint it stopped at.
-  const machine::TimedPath path = piece_job(20, 1, 0.0).path;
+  const wire::TimedPath path = piece_job(20, 1, 0.0).path;
   rules::DepositIndex all, none, one;
-  machine::add_deposits(all, path, 10.0);
-  machine::add_deposits(none, path, 10.0, 0);
-  machine::add_deposits(one, path, 10.0, 1);
+  wire::add_deposits(all, path, 10.0);
+  wire::add_deposits(none, path, 10.0, 0);
+  wire::add_deposits(one, path, 10.0, 1);
   EXPECT_EQ(all.spans.at(1).size(), 1u);
   EXPECT_TRUE(none.empty());
   EXPECT_DOUBLE_EQ(one.spans.at(1).back().tb, 15.0);
@@ -710,7 +710,7 @@ DispatchJob two_walls(std::int64_t id, int layer, double start_s) {
 /// `max_interval_s` (from 30 s), re-planned by a dispatcher that knows the window.
 struct LateRun {
   explicit LateRun(double max_interval_s,
-                   std::filesystem::path journal = ":memory:", machine::SimOptions so = clogging(),
+                   std::filesystem::path journal = ":memory:", sim::SimOptions so = clogging(),
                    double stop_after_replans = 1e9, double joint_min_age_s = 0.0)
       : rig(with_window(so, max_interval_s), layers(), journal,
             options(max_interval_s, joint_min_age_s)) {
@@ -719,13 +719,13 @@ struct LateRun {
          ++k)
       rig.run(1);
   }
-  static machine::SimOptions clogging() {
-    machine::SimOptions so = window(30.0, 0.0);
+  static sim::SimOptions clogging() {
+    sim::SimOptions so = window(30.0, 0.0);
     so.clog_floor = 0;
     so.clog_layer = 1;
     return so;
   }
-  static machine::SimOptions with_window(machine::SimOptions so, double max_interval_s) {
+  static sim::SimOptions with_window(sim::SimOptions so, double max_interval_s) {
     so.max_interval_s = max_interval_s;
     return so;
   }
@@ -910,7 +910,7 @@ TEST(Dispatch, AWaitAbsorbsDelayAsFarAsTheLayersBelowCanCarryTheNext) {
     return around(JobKind::kWait, 10.0, 1000.0,
                   absorbs ? DelayAbsorption::kShortenWait : DelayAbsorption::kNone, 1010.0);
   };
-  machine::SimOptions so = window(30.0, 5000.0);
+  sim::SimOptions so = window(30.0, 5000.0);
   so.clog_floor = so.clog_layer = 0;
   const struct {
     double carry_age_s;  // when layer 0 can carry layer 1 (0: never)
@@ -950,7 +950,7 @@ TEST(Dispatch, AWaitAbsorbsNoMoreThanItselfAndTheWorkAfterItKeepsItsLength) {
   // 120 s of other work (a joint's treatment, a purge) before layer 1 at 230 s: the wait
   // is all absorbed (from 130 s, of no length), and layer 1 starts 120 s after it, at
   // 250 s, 20 s late. A wait of 200 s absorbs all 120 s: layer 1 at 330 s as planned.
-  machine::SimOptions so = window(30.0, 5000.0);
+  sim::SimOptions so = window(30.0, 5000.0);
   so.clog_floor = so.clog_layer = 0;
   for (const double wait_s : {100.0, 200.0}) {
     SCOPED_TRACE(wait_s);
@@ -985,7 +985,7 @@ TEST(Dispatch, CrewWorkPlannedAfterASlackStartsOnceTheLateWorkBeforeItEnded) {
                   absorbs ? DelayAbsorption::kStartWhenReady : DelayAbsorption::kNone,
                   slab_s + 510.0);
   };
-  machine::SimOptions so = window(30.0, 5000.0);
+  sim::SimOptions so = window(30.0, 5000.0);
   so.clog_floor = so.clog_layer = 0;
   const struct {
     double slab_s;       // planned start of the slab stage
@@ -1085,7 +1085,7 @@ TEST(Dispatch, ARestartedDispatcherReplansIdenticallyFromItsJournal) {
       std::filesystem::temp_directory_path() / ("ccbuild_replan_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
-  machine::SimOptions so = LateRun::clogging();
+  sim::SimOptions so = LateRun::clogging();
   so.state_file = dir / "gantry-1.state";
   std::vector<Replan> first;
   std::vector<DispatchJob> made;

@@ -18,19 +18,19 @@
 
 #include "ccbuild/dispatch/dispatcher.hpp"
 #include "ccbuild/dispatch/job_messages.hpp"
-#include "ccbuild/machine/bus.hpp"
-#include "ccbuild/machine/sim_machine.hpp"
-#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "ccbuild/sim/sim_machine.hpp"
+#include "ccbuild/wire/bus.hpp"
 #include "ccbuild_lcm/ccbuild_fault_t.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::dispatch {
 namespace {
-using orchestrator::open_project;
-using orchestrator::Project;
 using schedule::build_schedule;
+using schedule::open_project;
+using schedule::Project;
 using schedule::recorded_inputs;
 using schedule::ScheduledLayer;
 using schedule::ScheduleDocument;
@@ -143,22 +143,22 @@ TEST(DispatchJobs, PathsSplitIntoChunksAtTheirBoundary) {
 }
 
 TEST(Bus, DeliversTypedMessagesAndCountsMalformedOnes) {
-  machine::Bus bus("memq://");
+  wire::Bus bus("memq://");
   std::vector<std::int64_t> received;
-  bus.subscribe<ccbuild_job_t>(machine::channel("JOB", "gantry-1"),
+  bus.subscribe<ccbuild_job_t>(wire::channel("JOB", "gantry-1"),
                                [&](const ccbuild_job_t& j) { received.push_back(j.job_id); });
   std::vector<std::string> malformed;
   bus.on_malformed([&](const std::string& ch, int) { malformed.push_back(ch); });
   const JobMessages first = messages_of(jobs_of_schedule(house_schedule())[0]);
-  bus.publish(machine::channel("JOB", "gantry-1"), first.job);
-  bus.publish(machine::channel("JOB", "gantry-1"), first.chunks[0]);  // the wrong type
+  bus.publish(wire::channel("JOB", "gantry-1"), first.job);
+  bus.publish(wire::channel("JOB", "gantry-1"), first.chunks[0]);  // the wrong type
   EXPECT_GE(bus.handle(500), 2);
   ASSERT_EQ(received.size(), 1u);
   EXPECT_EQ(received[0], first.job.job_id);
   EXPECT_EQ(bus.malformed_count(), 1);
   ASSERT_EQ(malformed.size(), 1u);
   EXPECT_EQ(malformed[0], "CCBUILD_JOB_gantry-1");
-  EXPECT_EQ(testing::expect_input_error([] { machine::Bus("nosuch://x"); }).first().field,
+  EXPECT_EQ(testing::expect_input_error([] { wire::Bus("nosuch://x"); }).first().field,
             "--lcm-url");
 }
 
@@ -172,7 +172,7 @@ std::filesystem::path scratch(const std::string& name) {
 
 // Steps the dispatcher and the machine on one memq:// bus, a millisecond of real time a
 // step, until the dispatcher is done or `steps` have passed.
-void run(machine::Bus& bus, Dispatcher& d, machine::SimMachine& sim, int steps) {
+void run(wire::Bus& bus, Dispatcher& d, sim::SimMachine& sim, int steps) {
   for (int k = 0; k < steps && !d.finished(); ++k) {
     d.step(1e-3);
     bus.handle(0);
@@ -183,13 +183,13 @@ void run(machine::Bus& bus, Dispatcher& d, machine::SimMachine& sim, int steps) 
 
 TEST(Dispatch, TheHouseRunsEveryJobExactlyOnceInOrder) {
   const auto dir = scratch("once");
-  machine::Bus bus("memq://");
+  wire::Bus bus("memq://");
   const auto jobs = jobs_of_schedule(house_schedule());
   Journal journal(dir / "journal.sqlite");
-  machine::SimOptions so;
+  sim::SimOptions so;
   so.speed = 1e6;
   so.state_file = dir / "gantry-1.state";
-  machine::SimMachine sim(bus, so);
+  sim::SimMachine sim(bus, so);
   DispatchOptions o;
   o.speed = so.speed;
   Dispatcher d(bus, jobs, journal, o);
@@ -211,16 +211,16 @@ TEST(Dispatch, TheHouseRunsEveryJobExactlyOnceInOrder) {
 
 TEST(Dispatch, ARestartedDispatcherAndMachineLoseNothingAndRunNothingTwice) {
   const auto dir = scratch("resume");
-  machine::Bus bus("memq://");
+  wire::Bus bus("memq://");
   const auto jobs = jobs_of_schedule(house_schedule());
-  machine::SimOptions so;
+  sim::SimOptions so;
   so.speed = 1e6;
   so.state_file = dir / "gantry-1.state";
   DispatchOptions o;
   o.speed = so.speed;
   o.ack_timeout_s = 0.01;
   o.done_slack_s = 0.01;
-  auto sim = std::make_unique<machine::SimMachine>(bus, so);
+  auto sim = std::make_unique<sim::SimMachine>(bus, so);
   {
     Journal journal(dir / "journal.sqlite");
     Dispatcher first(bus, jobs, journal, o);
@@ -230,8 +230,8 @@ TEST(Dispatch, ARestartedDispatcherAndMachineLoseNothingAndRunNothingTwice) {
   const std::size_t before = sim->executed().size();
   ASSERT_GT(before, 0u);
   // The machine restarts from its state file too.
-  machine::Bus bus2("memq://");
-  sim = std::make_unique<machine::SimMachine>(bus2, so);
+  wire::Bus bus2("memq://");
+  sim = std::make_unique<sim::SimMachine>(bus2, so);
   EXPECT_EQ(sim->executed().size(), before);
   Journal journal(dir / "journal.sqlite");
   Dispatcher second(bus2, jobs, journal, o);
@@ -273,24 +273,24 @@ TEST(Journal, BelongsToTheScheduleItWasWrittenFor) {
 }
 
 TEST(Dispatch, AMachineRefusesJobsOutOfOrderAndPathsThatDoNotAddUp) {
-  machine::Bus bus("memq://");
+  wire::Bus bus("memq://");
   auto jobs = jobs_of_schedule(house_schedule());
-  machine::SimOptions so;
+  sim::SimOptions so;
   so.speed = 1e9;
-  machine::SimMachine sim(bus, so);
+  sim::SimMachine sim(bus, so);
   std::vector<std::int8_t> faults;
   bus.subscribe<ccbuild_lcm::ccbuild_fault_t>(
-      machine::channel("FAULT", "gantry-1"),
+      wire::channel("FAULT", "gantry-1"),
       [&](const ccbuild_lcm::ccbuild_fault_t& f) { faults.push_back(f.kind); });
   std::int64_t seq = 0;
   auto send = [&](JobMessages d) {
-    d.job.utime = machine::utime_now();
+    d.job.utime = wire::utime_now();
     d.job.seq = ++seq;
-    bus.publish(machine::channel("JOB", "gantry-1"), d.job);
+    bus.publish(wire::channel("JOB", "gantry-1"), d.job);
     for (auto& c : d.chunks) {
       c.utime = d.job.utime;
       c.seq = ++seq;
-      bus.publish(machine::channel("PATH", "gantry-1"), c);
+      bus.publish(wire::channel("PATH", "gantry-1"), c);
     }
     bus.handle(0);
     for (int k = 0; k < 5; ++k) {

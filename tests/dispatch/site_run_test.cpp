@@ -16,8 +16,8 @@
 #include "ccbuild/dispatch/dispatcher.hpp"
 #include "ccbuild/dispatch/site_clock.hpp"
 #include "ccbuild/dispatch/site_run.hpp"
-#include "ccbuild/machine/bus.hpp"
-#include "ccbuild/machine/sim_machine.hpp"
+#include "ccbuild/sim/sim_machine.hpp"
+#include "ccbuild/wire/bus.hpp"
 #include "ccbuild_lcm/ccbuild_clock_t.hpp"
 #include "ccbuild_lcm/ccbuild_status_t.hpp"
 
@@ -53,14 +53,14 @@ struct TwoGantries {
               double stall_at_s, bool guard, double drop = 0.0)
       : bus("memq://"), journal(":memory:") {
     for (int k = 0; k < 2; ++k) {
-      machine::SimOptions so;
+      sim::SimOptions so;
       so.machine_id = "gantry-" + std::to_string(k + 1);
       so.site_clock = true;
       so.home = {homes_m[k], 1.0, 0.1, 0.0};
       so.drop = so.duplicate = so.reorder = drop;
       so.seed = 7 + k;
       if (k == 0) so.stall_at_s = stall_at_s;
-      sims.push_back(std::make_unique<machine::SimMachine>(bus, so));
+      sims.push_back(std::make_unique<sim::SimMachine>(bus, so));
     }
     DispatchOptions o;
     o.speed = speed;
@@ -84,9 +84,9 @@ struct TwoGantries {
   }
   double gap_m() const { return sims[1]->position()[0] - sims[0]->position()[0]; }
 
-  machine::Bus bus;
+  wire::Bus bus;
   Journal journal;
-  std::vector<std::unique_ptr<machine::SimMachine>> sims;
+  std::vector<std::unique_ptr<sim::SimMachine>> sims;
   std::unique_ptr<Dispatcher> dispatcher;
   std::optional<SiteRun> run;
   std::vector<std::string> stops;
@@ -196,17 +196,17 @@ ccbuild_lcm::ccbuild_status_t answer(const std::string& machine, std::int64_t ti
 }
 
 TEST(SiteClock, MovesOnOnlyOnceEveryMachineHasAnsweredTheCurrentTick) {
-  machine::Bus bus("memq://");
+  wire::Bus bus("memq://");
   SiteClockOptions o;
   o.machines = {"gantry-1", "gantry-2"};
   o.copies = 1;
   SiteClock clock(bus, o);
   std::vector<std::int64_t> ticks_sent;
   bus.subscribe<ccbuild_lcm::ccbuild_clock_t>(
-      machine::kClockChannel,
+      wire::kClockChannel,
       [&](const ccbuild_lcm::ccbuild_clock_t& c) { ticks_sent.push_back(c.tick); });
   const auto say = [&](const ccbuild_lcm::ccbuild_status_t& s) {
-    bus.publish(machine::channel("STATUS", s.machine_id), s);
+    bus.publish(wire::channel("STATUS", s.machine_id), s);
     while (bus.handle(0) > 0) {
     }
   };

@@ -13,7 +13,8 @@
 #include "ccbuild/common/document.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/report/exports.hpp"
-#include "ccbuild/schedule/site.hpp"
+#include "ccbuild/report/site_tasks.hpp"
+#include "ccbuild/site/site.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::report {
@@ -118,6 +119,46 @@ TEST(ICalendar, ATaskThatRoundsToAnInstantHasNoEndAndOneAcrossASecondHasOne) {
   EXPECT_FALSE(testing::contains(text, "VTIMEZONE"));  // floating times
 }
 
+// A task's title is made from its fields, never cut out of its words: each event below
+// says something else in its detail, and the titles still name the pipe, the lintel, the
+// climb and its phases, the pour of the roof and the waits by what they are.
+TEST(SiteTasks, TitlesAreMadeFromTheTasksFieldsNotFromTheirWords) {
+  schedule::ScheduleDocument doc;
+  doc.inputs.unit_names = {"U1", "U2"};
+  doc.schedule.layers = {layer(0, 0, 0.0, 100.0), layer(0, 1, 400.0, 500.0)};
+  doc.schedule.layers[1].wait_before_s = 50.0;
+  Event pipe = event(Event::Kind::kPipe, 100.0, 110.0, 0, "words (that say: other, things)");
+  pipe.anchor.emplace();
+  pipe.anchor->id = "A7";
+  pipe.anchor->unit = 1;
+  Event lintel = event(Event::Kind::kLintel, 120.0, 130.0, 2, "x: y, z");
+  lintel.lintel.emplace();
+  lintel.lintel->opening = "W3";
+  lintel.lintel->type = floors::LintelSpec::Type::kPrecast;
+  lintel.wait_before_s = 10.0;
+  Event up = event(Event::Kind::kClimb, 140.0, 200.0, 0, "not a climb: at all");
+  up.climb.emplace();
+  up.climb->from_stage = 1;
+  up.climb->to_stage = 2;
+  up.climb->plan.phases.resize(1);
+  up.climb->plan.phases[0].kind = climb::ClimbPhase::Kind::kTransit;
+  up.climb->plan.phases[0].unit = 0;
+  up.climb->plan.phases[0].duration_s = 60.0;
+  Event pour = event(Event::Kind::kPour, 210.0, 300.0, 4, "nothing (here)");
+  pour.roof = true;
+  doc.schedule.events = {pipe, lintel, up, pour};
+  std::map<std::string, std::string> title;
+  for (const SiteTask& t : tasks_of(doc)) title[t.id] = title_of(t);
+  EXPECT_EQ(title["E1"], "Floor 0: Pipe A7 for unit U2");
+  EXPECT_EQ(title["E2"], "Floor 0: Precast lintel over opening W3");
+  EXPECT_EQ(title["WE2"], "Wait before precast lintel over opening W3");
+  EXPECT_EQ(title["E3"], "Floor 0: Climb from stage 1 to 2");
+  EXPECT_EQ(title["E3.1"], "Transit U1");
+  EXPECT_EQ(title["E4"], "Floor 0: Pour of the roof over floor 0");
+  EXPECT_EQ(title["L0.1"], "Floor 0 layer 1");
+  EXPECT_EQ(title["W0.1"], "Wait before floor 0 layer 1");
+}
+
 /// The MSPDI file's links: ccbuild id -> ids of its predecessors.
 std::map<std::string, std::set<std::string>> links_of(const std::string& xml) {
   std::map<std::string, std::string> id_of_uid;
@@ -185,8 +226,8 @@ TEST(Mspdi, DurationsInWholeHoursWorkTimesTheCrewAndTheSiteWeekFromSunday) {
       "site.yaml");
   schedule::ScheduleDocument doc;
   doc.inputs.name = "t";
-  doc.inputs.calendar = std::make_shared<const schedule::SiteCalendar>(
-      *schedule::read_site_programme(Field::root(site), {}));
+  doc.inputs.calendar =
+      std::make_shared<const site::SiteCalendar>(*site::read_site_programme(Field::root(site), {}));
   // L0.0 in Monday's shift; L0.1 from 16:50 to 17:10, across its end (printed unattended);
   // a slab stage of 25 h (by 4) and a pour of 250 s (by 4) after them.
   doc.schedule.layers = {layer(0, 0, 0.0, 3600.0), layer(0, 1, 35400.0, 36600.0)};

@@ -17,7 +17,7 @@
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/floors/building.hpp"
 #include "ccbuild/floors/slice.hpp"
-#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "test_support.hpp"
@@ -55,7 +55,7 @@ fs::path one_wall_building(const fs::path& dir, double head_m, const std::string
   return dir / "b.yaml";
 }
 
-Schedule schedule_of(const orchestrator::Project& project) {
+Schedule schedule_of(const schedule::Project& project) {
   ScheduleOptions o;
   o.jobs = 1;
   Schedule s = build_schedule(project, o);
@@ -104,7 +104,7 @@ TEST(Lintels, ALintelGoesInBeforeTheFirstLayerAtOrOverItsHeadAtTheBoundary) {
   // the first no longer cut, and the lintel goes in before it; 1 mm higher, before layer 13.
   for (const auto& [head_m, first_over] : {std::pair{1.25, 12}, std::pair{1.251, 13}}) {
     const fs::path dir = scratch("boundary");
-    const auto project = orchestrator::open_project(
+    const auto project = schedule::open_project(
         one_wall_building(dir, head_m, "lintels: {place_min: 10, crew: 3}\n"));
     const Schedule s = schedule_of(project);
     ASSERT_TRUE(s.feasible) << s.infeasibility->message;
@@ -132,7 +132,7 @@ TEST(Lintels, ALintelGoesInBeforeTheFirstLayerAtOrOverItsHeadAtTheBoundary) {
 
 TEST(Lintels, AnOpeningUpToTheFloorsTopNeedsNone) {
   const fs::path dir = scratch("full");
-  const auto project = orchestrator::open_project(one_wall_building(dir, 2.0, ""));
+  const auto project = schedule::open_project(one_wall_building(dir, 2.0, ""));
   const Schedule s = schedule_of(project);
   EXPECT_TRUE(events_of(s, Event::Kind::kLintel).empty());
   EXPECT_TRUE(events_of(s, Event::Kind::kJoint).empty());
@@ -140,7 +140,7 @@ TEST(Lintels, AnOpeningUpToTheFloorsTopNeedsNone) {
 
 TEST(Lintels, APrecastLintelLeavesItsOpeningAndBearingsOutOfTheLayersItLiesIn) {
   const fs::path dir = scratch("precast");
-  const auto project = orchestrator::open_project(one_wall_building(
+  const auto project = schedule::open_project(one_wall_building(
       dir, 1.2, "lintels: {type: precast, height: 0.2, bearing: 0.25, place_min: 15}\n"));
   const floors::Building& b = project.building;
   const auto layers = floors::slice_floor(b.floors[0], b.layer_height_m);
@@ -184,7 +184,7 @@ TEST(Lintels, APrecastLintelLeavesItsOpeningAndBearingsOutOfTheLayersItLiesIn) {
 TEST(Lintels, EveryOpeningOfEveryExampleGetsOneBeforeTheFirstLayerOverIt) {
   for (const std::string name : {"house", "apartment", "tower"}) {
     const auto project =
-        orchestrator::open_project(testing::source_path("config/buildings/" + name + ".yaml"));
+        schedule::open_project(testing::source_path("config/buildings/" + name + ".yaml"));
     const fs::path golden = testing::source_path("tests/regression/" + name + ".schedule.json");
     const Schedule s = parse_schedule(testing::slurp(golden), golden.string(), true).schedule;
     ASSERT_TRUE(s.feasible) << name << ": " << s.infeasibility->message;
@@ -219,10 +219,10 @@ TEST(Lintels, AfterAShortStopAPlanThatKeepsTheIntervalIsPreferredToAJoint) {
   // Two gantries, a mix that needs both, lintels set by the arm in 3 s: over the ground
   // floor's heads a plan following the layer below, a gantry held back, keeps every
   // interval, so no planned joint is made there.
-  orchestrator::ProjectOptions open;
+  schedule::ProjectOptions open;
   open.machine_profile = testing::source_path("tests/data/machines/two-gantries.yaml");
   open.material_profile = testing::source_path("tests/data/materials/two-gantry-mix.yaml");
-  const auto project = orchestrator::open_project(
+  const auto project = schedule::open_project(
       testing::source_path("tests/data/buildings/house-arm-lintels.yaml"), open);
   const Schedule s = schedule_of(project);
   ASSERT_TRUE(s.feasible) << s.infeasibility->message;
@@ -238,7 +238,7 @@ TEST(Lintels, AfterAShortStopAPlanThatKeepsTheIntervalIsPreferredToAJoint) {
 
 TEST(Slabs, EachFloorsSlabIsFormedPouredAndCuredBeforeTheNextFloorAndTheRoofLast) {
   const fs::path dir = scratch("slabs");
-  const auto project = orchestrator::open_project(
+  const auto project = schedule::open_project(
       one_wall_building(dir, 0.0,
                         "slabs: {thickness: 0.25, setup_h: 2, pour_m3_h: 10, ready_mpa: 5, "
                         "concrete: {fcm_mpa: 38, cement_class: N}, crew: 5}\n",
@@ -282,9 +282,9 @@ TEST(Slabs, EachFloorsSlabIsFormedPouredAndCuredBeforeTheNextFloorAndTheRoofLast
 /// The two-metre room on two floors of 2 m with `slabs` (a `slabs:` map), the ground
 /// floor's own `slab:` thickness when `ground_slab_m` > 0, and `site` (a `site:` block)
 /// when given.
-orchestrator::Project two_room_floors(const fs::path& dir, const std::string& slabs,
-                                      double ground_slab_m = 0.0, const std::string& site = "",
-                                      const std::string& material = "") {
+schedule::Project two_room_floors(const fs::path& dir, const std::string& slabs,
+                                  double ground_slab_m = 0.0, const std::string& site = "",
+                                  const std::string& material = "") {
   const std::string plan = testing::source_path("tests/data/plans/two_metre_room.yaml").string();
   std::ofstream out(dir / "b.yaml");
   out << "name: Two rooms\nunits: m\nlayer_height: 0.1\nmaterial: "
@@ -297,7 +297,7 @@ orchestrator::Project two_room_floors(const fs::path& dir, const std::string& sl
       << (ground_slab_m > 0 ? ", slab: " + std::to_string(ground_slab_m) : std::string())
       << "}\n  - {name: f1, height: 2.0, plan: " << plan << "}\n";
   out.close();
-  return orchestrator::open_project(dir / "b.yaml");
+  return schedule::open_project(dir / "b.yaml");
 }
 
 const ScheduledLayer* first_layer_of(const Schedule& s, int floor) {
@@ -443,7 +443,7 @@ TEST(Slabs, ASlabStageAndSlabsTogetherAndBadLintelsAreRefusedAtTheirKeys) {
     const fs::path dir = scratch("bad");
     const fs::path path = one_wall_building(dir, 1.2, c.extra);
     try {
-      orchestrator::open_project(path);
+      schedule::open_project(path);
       ADD_FAILURE() << "accepted: " << c.extra;
     } catch (const InputError& e) {
       EXPECT_EQ(e.first().file, path.string()) << c.extra;

@@ -12,16 +12,16 @@
 #include <fstream>
 #include <sstream>
 
-#include "ccbuild/orchestrator/project.hpp"
 #include "ccbuild/rules/age_clock.hpp"
 #include "ccbuild/rules/intervals.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::schedule {
 namespace {
-using orchestrator::open_project;
-using orchestrator::Project;
+using schedule::open_project;
+using schedule::Project;
 namespace fs = std::filesystem;
 using testing::contains;
 

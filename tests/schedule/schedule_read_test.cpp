@@ -10,7 +10,7 @@
 #include <functional>
 
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/schedule_diff.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "test_support.hpp"

@@ -19,7 +19,7 @@
 
 #include "ccbuild/common/format.hpp"
 #include "ccbuild/floors/generate.hpp"
-#include "ccbuild/orchestrator/project.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/schedule_diff.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
 #include "scheduler.hpp"
@@ -27,8 +27,8 @@
 
 namespace ccbuild::schedule {
 namespace {
-using orchestrator::open_project;
-using orchestrator::Project;
+using schedule::open_project;
+using schedule::Project;
 namespace fs = std::filesystem;
 using testing::contains;
 

@@ -4,7 +4,7 @@
 // older than its material allows, a layer longer than any shift. On one straight wall
 // whose layers end at known seconds (tests/data/plans/one_wall.yaml).
 
-#include "ccbuild/schedule/site.hpp"
+#include "ccbuild/site/site.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -15,11 +15,11 @@
 #include <fstream>
 
 #include "ccbuild/common/input_error.hpp"
-#include "ccbuild/orchestrator/project.hpp"
-#include "ccbuild/schedule/conditions.hpp"
+#include "ccbuild/schedule/project.hpp"
 #include "ccbuild/schedule/quantities.hpp"
 #include "ccbuild/schedule/schedule.hpp"
 #include "ccbuild/schedule/schedule_json.hpp"
+#include "ccbuild/site/conditions.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::schedule {
@@ -38,9 +38,9 @@ fs::path scratch(const std::string& name) {
 }
 
 /// A programme read from YAML text, as a building's `site:` holds it.
-SiteProgramme programme(const std::string& yaml) {
+site::SiteProgramme programme(const std::string& yaml) {
   const Document doc = parse_yaml(yaml, "site.yaml");
-  return *read_site_programme(Field::root(doc), {});
+  return *site::read_site_programme(Field::root(doc), {});
 }
 
 InputError programme_error(const std::string& yaml) {
@@ -56,23 +56,25 @@ InputError programme_error(const std::string& yaml) {
 // One table of weekday names for the text, the exports and the week's hours: days since
 // 1970-01-01 (a Thursday), before it too, and a date the calendar parses.
 TEST(SiteCalendar, WeekdaysCountFromAThursday) {
-  EXPECT_STREQ(weekday_names()[weekday_of(0)], "Thu");
-  EXPECT_STREQ(weekday_names()[weekday_of(-1)], "Wed");
-  EXPECT_STREQ(weekday_names()[weekday_of(-7)], "Thu");
-  EXPECT_STREQ(weekday_names()[weekday_of(4)], "Mon");
-  EXPECT_STREQ(weekday_names()[weekday_of(*parse_local_date("2027-03-01"))], "Mon");
-  EXPECT_STREQ(weekday_names()[weekday_of(*parse_local_date("2026-12-06"))], "Sun");
-  EXPECT_EQ(weekday_keys().size(), weekday_names().size());
+  EXPECT_STREQ(site::weekday_names()[site::weekday_of(0)], "Thu");
+  EXPECT_STREQ(site::weekday_names()[site::weekday_of(-1)], "Wed");
+  EXPECT_STREQ(site::weekday_names()[site::weekday_of(-7)], "Thu");
+  EXPECT_STREQ(site::weekday_names()[site::weekday_of(4)], "Mon");
+  EXPECT_STREQ(site::weekday_names()[site::weekday_of(*site::parse_local_date("2027-03-01"))],
+               "Mon");
+  EXPECT_STREQ(site::weekday_names()[site::weekday_of(*site::parse_local_date("2026-12-06"))],
+               "Sun");
+  EXPECT_EQ(site::weekday_keys().size(), site::weekday_names().size());
 }
 
 TEST(SiteProgramme, DefaultsToMondayToFridaySevenToFive) {
-  const SiteProgramme p = programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n");
-  for (int d = 0; d < 5; ++d) EXPECT_EQ(p.week[d], (std::vector<WorkingHours>{{420, 1020}}));
+  const site::SiteProgramme p = programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n");
+  for (int d = 0; d < 5; ++d) EXPECT_EQ(p.week[d], (std::vector<site::WorkingHours>{{420, 1020}}));
   EXPECT_TRUE(p.week[5].empty());
   EXPECT_TRUE(p.week[6].empty());
   EXPECT_TRUE(p.printing_attended);
   EXPECT_TRUE(p.pipes_need_crew);
-  EXPECT_EQ(local_start_text(p.start_local_s), "2027-03-01 07:00");
+  EXPECT_EQ(site::local_start_text(p.start_local_s), "2027-03-01 07:00");
 }
 
 TEST(SiteProgramme, RefusesWhatCannotBeACalendarNamingTheKey) {
@@ -107,7 +109,7 @@ TEST(SiteProgramme, RefusesWhatCannotBeACalendarNamingTheKey) {
 
 TEST(SiteCalendar, WindowsSkipWeekendsAndHolidaysInTheZonesSeconds) {
   // Mon 2027-03-01 07:00 CET; Wednesday a holiday.
-  const SiteCalendar c(
+  const site::SiteCalendar c(
       programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\nholidays: [2027-03-03]\n"));
   const auto& w = c.windows();
   ASSERT_GE(w.size(), 5u);
@@ -125,19 +127,19 @@ TEST(SiteCalendar, WindowsSkipWeekendsAndHolidaysInTheZonesSeconds) {
 TEST(SiteCalendar, DaylightSavingChangesMoveTheWindowsByAnHour) {
   // Fri 2027-03-26 16:00 CET; clocks go forward on Sunday 28 March: Monday 07:00 CEST is
   // 05:00 UTC, 2 days 14 h after Friday 15:00 UTC (not 2 days 15 h).
-  const SiteCalendar spring(programme("start: 2027-03-26 16:00\ntime_zone: Europe/Berlin\n"));
+  const site::SiteCalendar spring(programme("start: 2027-03-26 16:00\ntime_zone: Europe/Berlin\n"));
   ASSERT_GE(spring.windows().size(), 2u);
   EXPECT_DOUBLE_EQ(spring.windows()[1].from_s, 2 * 86400.0 + 14 * 3600.0);
   EXPECT_EQ(spring.timestamp(spring.windows()[1].from_s), "2027-03-29T07:00:00+02:00");
   // Around the clock on the change days: 23 h on 28 March, 25 h on 31 October, one window.
-  const SiteCalendar around(programme(
+  const site::SiteCalendar around(programme(
       "start: 2027-03-28 00:00\ntime_zone: Europe/Berlin\nworking_hours: {sun: 00:00-24:00}\n"));
   EXPECT_DOUBLE_EQ(around.windows()[0].to_s - around.windows()[0].from_s, 23 * 3600.0);
-  const SiteCalendar autumn(programme(
+  const site::SiteCalendar autumn(programme(
       "start: 2027-10-31 00:00\ntime_zone: Europe/Berlin\nworking_hours: {sun: 00:00-24:00}\n"));
   EXPECT_DOUBLE_EQ(autumn.windows()[0].to_s - autumn.windows()[0].from_s, 25 * 3600.0);
   // A shift starting in the hour that does not exist starts at the change.
-  const SiteCalendar gap(programme(
+  const site::SiteCalendar gap(programme(
       "start: 2027-03-27 12:00\ntime_zone: Europe/Berlin\nworking_hours: {sun: 02:30-06:00}\n"));
   EXPECT_EQ(gap.timestamp(gap.windows()[0].from_s), "2027-03-28T03:00:00+02:00");
 }
@@ -145,7 +147,7 @@ TEST(SiteCalendar, DaylightSavingChangesMoveTheWindowsByAnHour) {
 TEST(SiteCalendar, ZoneOffsetsListTheChangesUpToTheEndAndNoneAfter) {
   // Mon 2027-03-01 07:00 CET (06:00 UTC). Summer time starts Sun 2027-03-28 01:00 UTC,
   // 26 d 19 h later; CET has held since Sun 2026-10-25 01:00 UTC (+02:00 before).
-  const SiteCalendar c(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
+  const site::SiteCalendar c(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
   const double change_s = 26 * 86400.0 + 19 * 3600.0;
   const auto before = c.zone_offsets(0.0, change_s - 1.0);
   ASSERT_EQ(before.size(), 1u);
@@ -165,7 +167,7 @@ TEST(SiteCalendar, ZoneOffsetsListTheChangesUpToTheEndAndNoneAfter) {
   EXPECT_EQ(after[1].offset_s, 7200);
   // A zone without changes since before 1970 is said to start then, at its one offset.
   for (const char* zone : {"UTC", "Asia/Tokyo"}) {
-    const SiteCalendar still(
+    const site::SiteCalendar still(
         programme("start: 2027-03-01 07:00\ntime_zone: " + std::string(zone) + "\n"));
     const auto offsets = still.zone_offsets(0.0, 365 * 86400.0);
     ASSERT_EQ(offsets.size(), 1u) << zone;
@@ -175,7 +177,7 @@ TEST(SiteCalendar, ZoneOffsetsListTheChangesUpToTheEndAndNoneAfter) {
 }
 
 TEST(SiteCalendar, SpansThatMeetAtMidnightAreOneWindow) {
-  const SiteCalendar c(
+  const site::SiteCalendar c(
       programme("start: 2027-03-01 22:00\ntime_zone: UTC\nworking_hours: {mon: [22:00-24:00], tue: "
                 "[00:00-06:00]}\n"));
   ASSERT_FALSE(c.windows().empty());
@@ -185,7 +187,7 @@ TEST(SiteCalendar, SpansThatMeetAtMidnightAreOneWindow) {
 }
 
 TEST(SiteCalendar, WorkThatFillsTheRestOfAShiftFitsAndOneSecondMoreWaits) {
-  const SiteCalendar c(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
+  const site::SiteCalendar c(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
   EXPECT_DOUBLE_EQ(c.fit_s(30000.0, 6000.0), 30000.0);                  // ends at 17:00 exactly
   EXPECT_DOUBLE_EQ(c.fit_s(30000.0, 6001.0), 86400.0);                  // Tuesday 07:00
   EXPECT_DOUBLE_EQ(c.fit_s(36000.0, 0.0), 36000.0);                     // at the very end
@@ -212,7 +214,7 @@ Schedule one_wall(const fs::path& dir, const std::string& site, const std::strin
                                 << extra << "site:\n"
                                 << site << "floors:\n  - {name: ground, height: 2.0, plan: "
                                 << plan.string() << "}\n";
-  const orchestrator::Project project = orchestrator::open_project(dir / "b.yaml");
+  const schedule::Project project = schedule::open_project(dir / "b.yaml");
   ScheduleOptions o;
   o.jobs = 1;
   Schedule s = build_schedule(project, o);
@@ -255,7 +257,7 @@ TEST(SiteSchedule, AShiftEndingExactlyAtALayersEndKeepsThatLayer) {
   EXPECT_GT(*next.local_interval_max_s, 200.0);  // over the maximum: a joint, not a failure
   for (std::size_t i = 6; i < s.layers.size(); ++i) EXPECT_FALSE(s.layers[i].planned_joint);
   ASSERT_EQ(s.days.size(), 1u);
-  EXPECT_EQ(s.days[0].stop, "finished");
+  EXPECT_EQ(s.days[0].stop, DayEnd::kFinished);
 }
 
 TEST(SiteSchedule, AShiftEndingOneSecondBeforeALayersEndStopsTheLayerBefore) {
@@ -288,12 +290,12 @@ TEST(SiteSchedule, AHolidayAndAWeekendAreSkippedAndTheJointTreatedAfterThem) {
   ASSERT_NE(joint, nullptr);
   // Tuesday 07:00: 3 days 14 h 10 min after Friday 16:50 (no DST change in between).
   EXPECT_NEAR(joint->start_s, 3 * 86400.0 + 14 * 3600.0 + 600.0, kTol_s);
-  const auto& cal = *orchestrator::open_project(dir / "b.yaml").calendar;
+  const auto& cal = *schedule::open_project(dir / "b.yaml").calendar;
   EXPECT_EQ(cal.local_text(joint->start_s), "Tue 2027-03-09 07:00");
   ASSERT_EQ(s.days.size(), 2u);
   EXPECT_EQ(s.days[0].date, "2027-03-05");
   EXPECT_EQ(s.days[0].layers, 6);
-  EXPECT_EQ(s.days[0].stop, "planned-joint");
+  EXPECT_EQ(s.days[0].stop, DayEnd::kPlannedJoint);
   EXPECT_EQ(s.days[1].date, "2027-03-09");
 }
 
@@ -469,19 +471,20 @@ namespace {
 
 // ------------------------------------------------------------------ weather and maturity
 
-SiteConditions readings(std::vector<WeatherReading> r) {
-  SiteConditions c;
+site::SiteConditions readings(std::vector<site::WeatherReading> r) {
+  site::SiteConditions c;
   c.readings = std::move(r);
   return c;
 }
 
 TEST(EquivalentAge, NurseSaulAgesByHandComputedRates) {
   // 20 °C for an hour, 0 °C for an hour, then 30 °C; datum -10 °C: rates 1, 1/3, 4/3.
-  const SiteConditions c = readings({{0.0, 20.0, 0.0}, {3600.0, 0.0, 0.0}, {7200.0, 30.0, 0.0}});
+  const site::SiteConditions c =
+      readings({{0.0, 20.0, 0.0}, {3600.0, 0.0, 0.0}, {7200.0, 30.0, 0.0}});
   floors::MaturityFunction f;
   f.kind = floors::MaturityFunction::Kind::kNurseSaul;
   f.datum_temperature_c = -10.0;
-  const EquivalentAge e(c, f);
+  const site::EquivalentAge e(c, f);
   EXPECT_NEAR(e.at(3600.0), 3600.0, 1e-9);
   EXPECT_NEAR(e.at(7200.0), 4800.0, 1e-9);
   EXPECT_NEAR(e.at(9000.0), 7200.0, 1e-9);
@@ -489,43 +492,43 @@ TEST(EquivalentAge, NurseSaulAgesByHandComputedRates) {
   EXPECT_NEAR(e.after(3600.0, 1200.0), 7200.0, 1e-9);  // the cold hour ages it 20 min
   EXPECT_NEAR(e.after(5400.0, 1000.0), 7200.0 + 400.0 / (4.0 / 3.0), 1e-9);
   // Below the datum it does not age at all.
-  const SiteConditions frost = readings({{0.0, -15.0, 0.0}, {3600.0, 20.0, 0.0}});
-  const EquivalentAge f2(frost, f);
+  const site::SiteConditions frost = readings({{0.0, -15.0, 0.0}, {3600.0, 20.0, 0.0}});
+  const site::EquivalentAge f2(frost, f);
   EXPECT_NEAR(f2.at(3600.0), 0.0, 1e-9);
   EXPECT_NEAR(f2.after(0.0, 60.0), 3660.0, 1e-9);
 }
 
 TEST(EquivalentAge, ArrheniusAgesByHandComputedRates) {
   // E = 40 kJ/mol: exp(-E/R (1/T - 1/293.15 K)) is 0.300709 at 0 °C, 1.718325 at 30 °C.
-  const SiteConditions c = readings({{0.0, 0.0, 0.0}, {3600.0, 30.0, 0.0}});
-  const EquivalentAge e(c, floors::MaturityFunction{});
+  const site::SiteConditions c = readings({{0.0, 0.0, 0.0}, {3600.0, 30.0, 0.0}});
+  const site::EquivalentAge e(c, floors::MaturityFunction{});
   EXPECT_NEAR(e.at(3600.0), 3600.0 * 0.300709, 0.01);
   EXPECT_NEAR(e.at(7200.0), 3600.0 * (0.300709 + 1.718325), 0.01);
   // At 20 °C the rate is exactly 1: equivalent age is age.
-  const SiteConditions twenty = readings({{0.0, 20.0, 0.0}});
-  const EquivalentAge t(twenty, floors::MaturityFunction{});
+  const site::SiteConditions twenty = readings({{0.0, 20.0, 0.0}});
+  const site::EquivalentAge t(twenty, floors::MaturityFunction{});
   EXPECT_DOUBLE_EQ(t.after(123.0, 456.0), 579.0);
 }
 
 TEST(EquivalentAge, WeatherFitsFindTheFirstSpellThatHoldsTheWork) {
-  const SiteConditions c =
+  const site::SiteConditions c =
       readings({{0.0, 10.0, 5.0}, {3600.0, 10.0, 20.0}, {7200.0, 10.0, 5.0}, {10800.0, 4.0, 5.0}});
-  const EquivalentAge e(c, floors::MaturityFunction{});
-  const auto calm = [](const WeatherReading& r) { return r.wind_m_s <= 15.0; };
+  const site::EquivalentAge e(c, floors::MaturityFunction{});
+  const auto calm = [](const site::WeatherReading& r) { return r.wind_m_s <= 15.0; };
   EXPECT_DOUBLE_EQ(e.fit_s(0.0, 3600.0, calm), 0.0);     // ends as the gale starts
   EXPECT_DOUBLE_EQ(e.fit_s(0.0, 3601.0, calm), 7200.0);  // one second into it: after it
-  const auto warm = [](const WeatherReading& r) { return r.temperature_c >= 5.0; };
+  const auto warm = [](const site::WeatherReading& r) { return r.temperature_c >= 5.0; };
   EXPECT_TRUE(std::isinf(e.fit_s(9000.0, 3600.0, warm)));  // the cold holds for ever
-  const auto at_limit = [](const WeatherReading& r) { return r.temperature_c >= 10.0; };
+  const auto at_limit = [](const site::WeatherReading& r) { return r.temperature_c >= 10.0; };
   EXPECT_DOUBLE_EQ(e.fit_s(0.0, 600.0, at_limit), 0.0);  // exactly at the limit is allowed
 }
 
 TEST(Weather, ReadsAnHourlyCsvAndRefusesBadRowsByLineAndColumn) {
   const fs::path dir = scratch("weather");
-  const SiteCalendar cal(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
+  const site::SiteCalendar cal(programme("start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"));
   std::ofstream(dir / "ok.csv") << "timestamp,temperature_c,wind_m_s\n2027-03-01T06:00:00Z,4,3\n"
                                    "2027-03-01 08:00,6.5,12\n";
-  const SiteConditions c = read_weather_csv(dir / "ok.csv", cal);
+  const site::SiteConditions c = site::read_weather_csv(dir / "ok.csv", cal);
   ASSERT_EQ(c.readings.size(), 2u);
   EXPECT_DOUBLE_EQ(c.readings[0].t_s, 0.0);  // 06:00 UTC is 07:00 in Berlin
   EXPECT_DOUBLE_EQ(c.readings[1].t_s, 3600.0);
@@ -546,7 +549,7 @@ TEST(Weather, ReadsAnHourlyCsvAndRefusesBadRowsByLineAndColumn) {
   for (const auto& k : cases) {
     std::ofstream(dir / "bad.csv") << k.body;
     try {
-      read_weather_csv(dir / "bad.csv", cal);
+      site::read_weather_csv(dir / "bad.csv", cal);
       ADD_FAILURE() << "accepted: " << k.body;
     } catch (const InputError& e) {
       EXPECT_EQ(e.first().field, k.column) << e.what();
@@ -728,7 +731,7 @@ TEST(SiteSchedule, AClimbWaitsForTheWindToDropUnderTheMachinesLimit) {
   std::ofstream(dir / "site.yaml") << "start: 2027-03-01 07:00\ntime_zone: Europe/Berlin\n"
                                       "printing: unattended\npipes: unattended\n"
                                       "working_hours: {mon-sun: 00:00-24:00}\n";
-  orchestrator::ProjectOptions po;
+  schedule::ProjectOptions po;
   po.site_file = dir / "site.yaml";
   ScheduleOptions o;
   o.jobs = 2;
@@ -741,20 +744,20 @@ TEST(SiteSchedule, AClimbWaitsForTheWindToDropUnderTheMachinesLimit) {
   std::ofstream(dir / "site.yaml", std::ios::app) << "weather: calm.csv\n";
   // One project and one plan memo for both: only the weather differs, so the second
   // schedule plans nothing again (the tower takes a while to plan).
-  orchestrator::Project tower = orchestrator::open_project("config/buildings/tower.yaml", po);
+  schedule::Project tower = schedule::open_project("config/buildings/tower.yaml", po);
   o.memo = make_plan_memo();
   const Schedule calm = build_schedule(tower, o);
   const Event* c0 = first_climb(calm);
   ASSERT_NE(c0, nullptr);
   const double gale_from_s = std::floor(c0->start_s / 3600.0) * 3600.0;
-  const SiteCalendar& cal = *tower.calendar;
+  const site::SiteCalendar& cal = *tower.calendar;
   const auto local = [&](double t_s) { return cal.timestamp(t_s); };
   std::ofstream(dir / "calm.csv") << "timestamp,temperature_c,wind_m_s\n"
                                   << local(0.0) << ",20,2\n"
                                   << local(gale_from_s) << ",20,22\n"
                                   << local(gale_from_s + 3 * 3600.0) << ",20,15\n";
   tower.conditions =
-      std::make_shared<const SiteConditions>(read_weather_csv(dir / "calm.csv", cal));
+      std::make_shared<const site::SiteConditions>(site::read_weather_csv(dir / "calm.csv", cal));
   const Schedule windy = build_schedule(tower, o);
   const Event* c1 = first_climb(windy);
   ASSERT_NE(c1, nullptr);
@@ -785,7 +788,7 @@ TEST(Quantities, APumpTooSmallForANozzleRefusesItsPlanSayingSo) {
         << "\nmachine: " << (dir / "m.yaml").string()
         << "\nfloors:\n  - {name: g, height: 0.5, plan: "
         << fs::absolute("tests/data/plans/one_wall.yaml").string() << "}\n";
-    const Schedule s = build_schedule(orchestrator::open_project(dir / "b.yaml"));
+    const Schedule s = build_schedule(schedule::open_project(dir / "b.yaml"));
     ASSERT_FALSE(s.layers.empty() && pump_m3_h > 10.0);
     if (pump_m3_h < 10.8) {
       ASSERT_FALSE(s.feasible);
@@ -855,9 +858,9 @@ namespace ccbuild::schedule {
 namespace {
 
 TEST(Objective, ShortestEndsNoLaterAndUsesMoreNozzlesWhereThatFinishesSooner) {
-  orchestrator::ProjectOptions po;
+  schedule::ProjectOptions po;
   po.site_file = "config/sites/weekdays-berlin-2027.yaml";
-  const orchestrator::Project house = orchestrator::open_project("config/buildings/house.yaml", po);
+  const schedule::Project house = schedule::open_project("config/buildings/house.yaml", po);
   ScheduleOptions fewest;
   fewest.jobs = 2;
   ScheduleOptions shortest = fewest;
@@ -873,6 +876,33 @@ TEST(Objective, ShortestEndsNoLaterAndUsesMoreNozzlesWhereThatFinishesSooner) {
   const auto j = schedule_json(recorded_inputs(house, shortest), b);
   EXPECT_EQ(j["inputs"]["objective"], "shortest");
   EXPECT_FALSE(schedule_json(recorded_inputs(house, fewest), a)["inputs"].contains("objective"));
+}
+
+}  // namespace
+}  // namespace ccbuild::schedule
+
+namespace ccbuild::schedule {
+namespace {
+
+// How a day ends is a kind with one name each and one wording (schedule_model.cpp): the
+// days' detail and the day packages' "stop" line are both day_end_text, never cut out of
+// each other's words.
+TEST(SiteSchedule, ADaysEndIsAKindWithOneNameAndOneWording) {
+  for (DayEnd end :
+       {DayEnd::kPlannedJoint, DayEnd::kFloorTop, DayEnd::kFinished, DayEnd::kContinues})
+    EXPECT_EQ(day_end_named(to_string(end)), end);
+  EXPECT_FALSE(day_end_named("lunch").has_value());
+  EXPECT_EQ(day_end_names(), "planned-joint, floor-top, finished, continues");
+  EXPECT_EQ(day_end_text(DayEnd::kFloorTop, 0, 20, 1, 0, true),
+            "stopped at the top of floor 0 (floor 0 layer 20); floor 1 starts on its slab");
+  EXPECT_EQ(day_end_text(DayEnd::kFloorTop, 0, 20, 1, 0, false),
+            "at the top of floor 0 (floor 0 layer 20); floor 1 starts on its slab");
+  EXPECT_EQ(day_end_text(DayEnd::kPlannedJoint, 2, 5, 2, 6, true),
+            "stopped at the end of floor 2 layer 5; floor 2 layer 6 starts on a planned joint");
+  EXPECT_EQ(day_end_text(DayEnd::kContinues, 2, 5, 2, 6, true),
+            "floor 2 layer 5 ends the day; floor 2 layer 6 follows within its interval");
+  EXPECT_EQ(day_end_text(DayEnd::kFinished, 3, 9, 3, 9, true),
+            "the building's walls are finished with floor 3 layer 9");
 }
 
 }  // namespace

@@ -176,6 +176,24 @@ TEST(StudyResults, MeasuresOfTheHousesSchedule) {
   for (const auto& [key, value] : m.items()) EXPECT_EQ(key, all_measures()[k++]);
 }
 
+// A measure is what the schedule says: a value it is made of that the schedule lacks is an
+// error naming where (it was taken as 0, so a study compared a variant's missing crew hours
+// as none).
+TEST(StudyResults, AValueAMeasureNeedsThatTheScheduleLacksIsAnErrorNotZero) {
+  const auto golden = nlohmann::json::parse(
+      read_text_file(testing::source_path("tests/regression/house.schedule.json")));
+  for (const auto& [path, key] : std::vector<std::pair<std::string, std::string>>{
+           {"/totals", "crew_h"}, {"/totals", "makespan_s"}, {"", "feasible"},
+           {"/layers/2", "max_idle_s"}, {"", "warnings"}}) {
+    auto schedule = golden;
+    schedule[nlohmann::json::json_pointer(path)].erase(key);
+    const InputError e = testing::expect_input_error([&] { measures_of(schedule); });
+    EXPECT_EQ(e.first().field, path) << key;
+    EXPECT_TRUE(testing::contains(e.first().message, "\"" + key + "\" is missing"))
+        << e.first().message;
+  }
+}
+
 // Each wait counted once, under the cause that bound it: on the tower (its climbs wait
 // for their anchors), the wait measures add up to the layers' and the climbs' waits.
 TEST(StudyResults, WaitMeasuresCountEachCauseByItsBindingTime) {
@@ -259,7 +277,7 @@ TEST(StudyProcess, ExitCodesSignalsAndTimeoutsAreTold) {
 std::string line_of_text(const std::string& text, int line) {
   std::size_t at = 0;
   for (int k = 1; k < line && at != std::string::npos; ++k) at = text.find('\n', at) + 1;
-  if (at == std::string::npos || at == 0 && line > 1) return "";
+  if (at == std::string::npos || (at == 0 && line > 1)) return "";
   return text.substr(at, text.find('\n', at) - at);
 }
 
@@ -337,8 +355,9 @@ TEST(StudyFiles, AStudyJsonOfWrongTypesIsRefusedWithItsLineAndPointer) {
     // The line is the value's (its key's, for a member).
     const std::string key = c.pointer.substr(c.pointer.rfind('/') + 1);
     ASSERT_GT(d.line, 0) << e.what();
-    if (!key.empty() && !std::isdigit(static_cast<unsigned char>(key[0])))
+    if (!key.empty() && !std::isdigit(static_cast<unsigned char>(key[0]))) {
       EXPECT_TRUE(contains(line_of_text(text, d.line), "\"" + key + "\"")) << e.what();
+    }
   }
   // Not JSON at all, and nested past the limit: refused with the line too.
   std::ofstream(file, std::ios::trunc) << "{\n  \"format\": \"ccbuild-study-plan\",\n  oops\n}\n";

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Reads an LCM log (lcm-logger's format) of a dry-run and measures, from the simulated
-machines' own status messages alone (not the orchestrator's watchdog), how close
+machines' own status messages alone (not the dispatcher's watchdog), how close
 neighbouring gantries came on the rails. Each machine's rail position is interpolated
 between its statuses, and gaps are taken at every status time where both tracks reach.
 

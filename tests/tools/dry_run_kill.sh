@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The orchestrator killed (SIGKILL) at random points and restarted on the same journal and
+# The dispatcher killed (SIGKILL) at random points and restarted on the same journal and
 # the same machine records: the dry-run completes with no job lost and none run twice,
 # by the simulated machines' own records. Each run in a network namespace of its own.
 # Usage: dry_run_kill.sh SEED CCBUILD ARGS...   (needs root for unshare -n)

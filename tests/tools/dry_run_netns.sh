@@ -2,7 +2,7 @@
 # The dry-run as separate processes over udpm:// in a network namespace of its own (never
 # on the shared network): `ccbuild dry-run` and one `ccbuild-sim` per gantry. Checks the
 # exit code, that every job was executed, and, from the simulated machines' own records
-# (not the orchestrator's), that each job ran exactly once.
+# (not the dispatcher's), that each job ran exactly once.
 # The journal must be consistent: every job done, or ended on a fault whose recovery job
 # is done; no fault met by stopping. Lines the summary must hold can be given in EXPECT
 # (one extended regular expression per line); EXPECT_EXIT=1 for a run that must stop

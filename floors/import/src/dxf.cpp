@@ -453,9 +453,9 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
                                        floors::limits::kCoordinate_m.describe("m").c_str()));
     }
     if ((l.b - l.a).norm() * scale <= floors::limits::kMinWallLength_m) {
-      notes.add("lines of 1 mm or less left out", "entity " + hex_handle(l.handle) + " on layer " +
-                                                      l.layer +
-                                                      ": a line of 1 mm or less; left out");
+      notes.left_out("lines of 1 mm or less left out", "entity " + hex_handle(l.handle) +
+                                                           " on layer " + l.layer +
+                                                           ": a line of 1 mm or less; left out");
       continue;
     }
     wall_lines.push_back(l);
@@ -496,10 +496,10 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
       kept.push_back(std::move(w));
       continue;
     }
-    notes.add("walls of 1 mm or less left out",
-              w.source + printf_string(": a wall of %.4f m at (%.3f, %.3f) m, 1 mm or less; "
-                                       "left out",
-                                       (w.b - w.a).norm(), w.a.x(), w.a.y()));
+    notes.left_out("walls of 1 mm or less left out",
+                   w.source + printf_string(": a wall of %.4f m at (%.3f, %.3f) m, 1 mm or less; "
+                                            "left out",
+                                            (w.b - w.a).norm(), w.a.x(), w.a.y()));
   }
   found.swap(kept);
   // Door and window blocks, where they are drawn: in a gap of the wall lines (as drafters
@@ -519,8 +519,8 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
         "insert " + hex_handle(in.handle) + " of block " + in.block + " on layer " + in.layer;
     const auto extent = c.block_extent.find(in.block);
     if (extent == c.block_extent.end() || extent->second.second.x() <= extent->second.first.x()) {
-      notes.add("inserts whose block draws nothing left out",
-                what + ": its block draws nothing to measure its width by; left out");
+      notes.left_out("inserts whose block draws nothing left out",
+                     what + ": its block draws nothing to measure its width by; left out");
       continue;
     }
     const auto [lo, hi] = extent->second;
@@ -666,9 +666,9 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
       }
     }
     if (!on) {
-      notes.add("inserts on no wall left out",
-                what + printf_string(": at (%.3f, %.3f) m, on no wall; left out", centre.x(),
-                                     centre.y()));
+      notes.left_out("inserts on no wall left out",
+                     what + printf_string(": at (%.3f, %.3f) m, on no wall; left out", centre.x(),
+                                          centre.y()));
       continue;
     }
     const Vector2d a = at(on->start_vertex), b = at(on->end_vertex);
@@ -683,8 +683,8 @@ DxfPlan read_dxf_plan(const std::filesystem::path& path, const DxfOptions& optio
     heights(mark_of[k], o);
     o.source = {file, 0, what};
     if (o.width_m <= 1e-3) {
-      notes.add("inserts across their wall left out",
-                what + ": crosses its wall rather than lying along it; left out");
+      notes.left_out("inserts across their wall left out",
+                     what + ": crosses its wall rather than lying along it; left out");
       continue;
     }
     if (plan.openings.size() >= floors::limits::kMaxOpenings)

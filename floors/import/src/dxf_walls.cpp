@@ -131,7 +131,7 @@ std::vector<FoundWall> pair_faces(const std::vector<DrawnLine>& faces, double sc
   }
   for (std::size_t k = 0; k < n; ++k)
     if (taken[k].empty())
-      notes.add(
+      notes.left_out(
           "face lines with no parallel face to make a wall with; left out",
           printf_string("entity %s on layer %s: a face line from (%g, %g) to (%g, %g) with "
                         "no parallel face within %g m to make a wall with; left out",

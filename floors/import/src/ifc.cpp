@@ -275,9 +275,9 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
   for (Piece& p : pieces)
     if ((p.b - p.a).norm() <= floors::limits::kMinWallLength_m) {
       p.alive = false;
-      notes.add("walls of which 1 mm or less is left where they meet others left out",
-                "floor '" + level.name + "': " + p.wall->what.describe() +
-                    ": 1 mm or less of it is left where it meets other walls; left out");
+      notes.left_out("walls of which 1 mm or less is left where they meet others left out",
+                     "floor '" + level.name + "': " + p.wall->what.describe() +
+                         ": 1 mm or less of it is left where it meets other walls; left out");
     }
   remove_overlaps(pieces, options.join_tolerance_m, notes, level.name, file);
   trim_free_ends(pieces, options.join_tolerance_m, notes, level.name);
@@ -366,15 +366,16 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
         s1 = std::clamp(hi, 0.0, length);
       }
       if (!on) {
-        notes.add("openings not on what is left of their wall left out",
-                  "floor '" + level.name + "': " + what + ": not on what is left of " +
-                      w->what.describe() + "; left out");
+        notes.left_out("openings not on what is left of their wall left out",
+                       "floor '" + level.name + "': " + what + ": not on what is left of " +
+                           w->what.describe() + "; left out");
         ++openings_left_out;
         continue;
       }
       if (s1 - s0 <= 1e-3) {
-        notes.add("openings with no width along their wall left out",
-                  "floor '" + level.name + "': " + what + ": no width along its wall; left out");
+        notes.left_out(
+            "openings with no width along their wall left out",
+            "floor '" + level.name + "': " + what + ": no width along its wall; left out");
         ++openings_left_out;
         continue;
       }
@@ -402,9 +403,9 @@ floors::FloorPlan make_plan(const Level& level, const std::string& file, const I
           clash = std::min(clash.value_or(it->second), it->second);
       }
       if (clash) {
-        notes.add("openings overlapping another left out",
-                  "floor '" + level.name + "': " + what + ": overlaps " +
-                      plan.openings[*clash].source.path + "; left out");
+        notes.left_out("openings overlapping another left out",
+                       "floor '" + level.name + "': " + what + ": overlaps " +
+                           plan.openings[*clash].source.path + "; left out");
         ++openings_left_out;
         continue;
       }
@@ -596,8 +597,8 @@ IfcImport read_ifc_building(const std::filesystem::path& path, const IfcOptions&
   if (kept.empty()) {
     std::string why;
     int shown = 0;
-    for (const auto& note : notes.lines())
-      if (note.find("left out") != std::string::npos && ++shown <= 3) why += "; " + note;
+    for (const auto& note : notes.left_out_lines())
+      if (++shown <= 3) why += "; " + note;
     throw InputError(file, 0, "",
                      printf_string("no wall ccbuild can print in any of the model's %zu storeys",
                                    levels.size()) +

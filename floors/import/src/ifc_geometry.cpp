@@ -214,8 +214,9 @@ void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_worl
     if (auto o = as<IfcOpeningElement>(opening)) {
       if (o->m_PredefinedType &&
           o->m_PredefinedType->m_enum == IfcOpeningElementTypeEnum::ENUM_RECESS) {
-        out.notes.add("recesses left out", found.what.describe() + " in " + into.what.describe() +
-                                               ": a recess, not through the wall; left out");
+        out.notes.left_out("recesses left out", found.what.describe() + " in " +
+                                                    into.what.describe() +
+                                                    ": a recess, not through the wall; left out");
         ++out.left_out;
         continue;
       }
@@ -248,16 +249,16 @@ void Reader::read_openings(const IfcElement& wall, const Isometry3d& /*wall_worl
         }
     } catch (const Unusable& u) {
       found.corners_m.clear();
-      out.notes.add(
+      out.notes.left_out(
           "openings that cannot be read left out",
           found.what.describe() + " in " + into.what.describe() + ": " + u.why + "; left out");
       ++out.left_out;
       continue;
     }
     if (found.corners_m.empty()) {
-      out.notes.add("openings without an extruded body left out",
-                    found.what.describe() + " in " + into.what.describe() +
-                        ": no extruded body to measure it by; left out");
+      out.notes.left_out("openings without an extruded body left out",
+                         found.what.describe() + " in " + into.what.describe() +
+                             ": no extruded body to measure it by; left out");
       ++out.left_out;
       continue;
     }
@@ -490,8 +491,8 @@ void Reader::read_wall(const std::shared_ptr<IfcWall>& wall, const Element& pare
       found.what.describe() + (parent.guid.empty() ? "" : " (part of " + parent.describe() + ")");
   // Each reason a kind of its own (a reason with a number in it: `kind` says which).
   const auto skip = [&](const std::string& why, const std::string& kind = std::string()) {
-    out.notes.add("walls left out: " + (kind.empty() ? why : kind),
-                  who + ": " + why + "; left out");
+    out.notes.left_out("walls left out: " + (kind.empty() ? why : kind),
+                       who + ": " + why + "; left out");
     ++out.left_out;
   };
   // A wall made of parts (IfcRelAggregates) without geometry of its own: its parts.

@@ -456,8 +456,8 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
                      ? world(storey->m_ObjectPlacement, s.what).translation().z()
                      : 0.0;
     } catch (const Unusable& u) {
-      out.notes.add("storeys whose placement cannot be read, their elements left out",
-                    s.what.describe() + ": " + u.why + "; its elements left out");
+      out.notes.left_out("storeys whose placement cannot be read, their elements left out",
+                         s.what.describe() + ": " + u.why + "; its elements left out");
       ++out.left_out;
       continue;
     }
@@ -474,7 +474,7 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
         if (auto wall = as<IfcWall>(product)) {
           const Element e = element_of(*wall);
           if (!wall_types.count(lower(type))) {
-            out.notes.add(
+            out.notes.left_out(
                 "walls of a type not read left out", e.describe() + ": an " + type +
                                                          " is not among the wall types read (" +
                                                          [&] {
@@ -500,7 +500,7 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
             printable = printable || !excluded;
           }
           if (!printable) {
-            out.notes.add(
+            out.notes.left_out(
                 "walls of a material not printable left out",
                 e.describe() + ": its material '" + excluded_by + " is not printable; left out");
             ++out.left_out;
@@ -525,8 +525,9 @@ ModelContents Reader::read(const std::shared_ptr<BuildingModel>& model) {
                               ": a roof made of no slab (IfcRelAggregates); not used for "
                               "the floors' heights");
         } else if (as<IfcCurtainWall>(product)) {
-          out.notes.add("curtain walls left out", element_of(*product).describe() +
-                                                      ": a curtain wall, not printable; left out");
+          out.notes.left_out(
+              "curtain walls left out",
+              element_of(*product).describe() + ": a curtain wall, not printable; left out");
           ++out.left_out;
         }
       }

@@ -42,8 +42,10 @@ struct En1992Strength {
   /// is the curve's alone (the Eurocode's expression is meant for hardened concrete).
   double from_s = 0.0;
   double strength_at_mpa(double age_s) const;
-  /// +infinity when it never reaches `strength_mpa` (fcm e^s is its limit).
+  /// +infinity when it never reaches `strength_mpa` (ultimate_mpa is its limit).
   double age_for_strength_s(double strength_mpa) const;
+  /// The strength it tends to and never reaches, fcm e^s, MPa.
+  double ultimate_mpa() const;
 };
 
 /// How temperature speeds or slows hydration: the age function of the maturity method

@@ -96,12 +96,19 @@ struct StartWindow {
   /// The newest point it covers was laid then (-inf when none): a planned joint's
   /// treatment waits for it to be old enough.
   double newest_below_s = -std::numeric_limits<double>::infinity();
+  /// The points that set the earliest and the latest start (the first such point).
+  PieceEnd earliest_at, latest_at;
   bool empty() const { return earliest_s > latest_s; }
 };
 /// With `clock` (site weather), the interval is the concrete's equivalent age: covered no
 /// sooner than when what lies below is `min_interval_s` old by the clock, no later than
-/// `max_interval_s` old (the offsets' lower times are then the clock's schedule times).
+/// `max_interval_s` old. The offsets' lower times are from `lower_origin_s` (the lower
+/// layer's start, for the scheduler's offsets; 0 where they are schedule times already),
+/// and the window is in schedule time. The scheduler, the dispatcher's re-plans and the
+/// schedule's re-checks take the window here; a strength need is the same rule with the
+/// age the load needs as its minimum.
 StartWindow start_window(const IntervalOffsets& offsets, double min_interval_s,
-                         double max_interval_s, const AgeClock* clock = nullptr);
+                         double max_interval_s, const AgeClock* clock = nullptr,
+                         double lower_origin_s = 0.0);
 
 }  // namespace ccbuild::rules
