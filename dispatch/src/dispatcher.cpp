@@ -100,6 +100,33 @@ std::string to_string(FaultPolicy policy) {
   return "stop";
 }
 
+std::string to_string(JobState state) {
+  switch (state) {
+    case JobState::kSent:
+      return "sent";
+    case JobState::kAcked:
+      return "acked";
+    case JobState::kRefused:
+      return "refused";
+    case JobState::kDone:
+      return "done";
+    case JobState::kClogged:
+      return "clogged";
+    case JobState::kPinMissed:
+      return "pin-missed";
+    case JobState::kFailed:
+      break;
+  }
+  return "failed";
+}
+
+std::optional<JobState> job_state_named(const std::string& word) {
+  for (JobState s : {JobState::kSent, JobState::kAcked, JobState::kRefused, JobState::kDone,
+                     JobState::kClogged, JobState::kPinMissed, JobState::kFailed})
+    if (to_string(s) == word) return s;
+  return std::nullopt;
+}
+
 FaultPolicy fault_policy_named(const std::string& text) {
   for (FaultPolicy p : {FaultPolicy::kRetry, FaultPolicy::kReplanLayer, FaultPolicy::kIgnore})
     if (to_string(p) == text) return p;
@@ -131,11 +158,11 @@ Dispatcher::Dispatcher(wire::Bus& bus, std::vector<DispatchJob> jobs, Journal& j
     const auto it = rows.find(jobs_[k].job_id);
     if (it == rows.end()) continue;
     const JournalRow& row = it->second;
-    if (row.state == "done") {
+    if (row.state == JobState::kDone) {
       ended_[k] = true;
       executed_[jobs_[k].job_id] = {row.started_s, row.finished_s};
       record_laid(k, row);
-    } else if (row.state == "clogged" || row.state == "pin-missed") {
+    } else if (row.state == JobState::kClogged || row.state == JobState::kPinMissed) {
       ended_[k] = true;
       executed_[jobs_[k].job_id] = {row.started_s, row.finished_s};
       record_laid(k, row);
@@ -162,7 +189,7 @@ Dispatcher::Dispatcher(wire::Bus& bus, std::vector<DispatchJob> jobs, Journal& j
     const std::size_t k = index_of_.at(id);
     const DispatchJob& o = jobs_[origin_[k]];
     const auto row = rows.find(id);
-    if (row != rows.end() && row->second.state == "done" && o.start_s >= since_s)
+    if (row != rows.end() && row->second.state == JobState::kDone && o.start_s >= since_s)
       delay_s_ = std::max(delay_s_, times.second - (o.start_s + o.duration_s));
   }
   for (auto& [machine, q] : queues_)
@@ -330,7 +357,7 @@ bool Dispatcher::clearing_moves(std::size_t index, const DispatchJob& rest, doub
 bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
   const std::size_t origin = origin_[index];
   const DispatchJob ended = jobs_[index];
-  if (row.state == "clogged") {
+  if (row.state == JobState::kClogged) {
     DispatchJob purge = ended;
     purge.kind = JobKind::kPurge;
     purge.start_s = row.finished_s;
@@ -355,7 +382,7 @@ bool Dispatcher::recover(std::size_t index, const JournalRow& row) {
       if (!insert_after(k, k, std::move(m), false)) return false;
     return true;
   }
-  if (row.state == "pin-missed") {
+  if (row.state == JobState::kPinMissed) {
     int attempts = 1;
     for (std::size_t k = 0; k < jobs_.size(); ++k) attempts += k != origin && origin_[k] == origin;
     if (attempts >= options_.pin_attempts) return false;
@@ -443,11 +470,11 @@ void Dispatcher::on_ack(const std::string& machine_id, std::int64_t job_id, bool
   Queue* q = queue_of(machine_id, job_id);
   if (!q || q->wait != Queue::Wait::kAck || stopped_) return;
   if (!accepted) {
-    journal_.record(job_id, machine_id, "refused");
+    journal_.record(job_id, machine_id, JobState::kRefused);
     q->wait = Queue::Wait::kSend;  // sent again after the timeout; its fault's policy rules
     return;
   }
-  journal_.record(job_id, machine_id, "acked");
+  journal_.record(job_id, machine_id, JobState::kAcked);
   q->wait = Queue::Wait::kDone;
   q->waited_s = 0.0;
 }
@@ -478,7 +505,8 @@ void Dispatcher::on_done(const JobEnd& done) {
   Queue* q = queue_of(done.machine_id, done.job_id);
   if (!q) return;
   const std::size_t index = q->jobs[q->next];
-  JournalRow row{done.machine_id, "done", done.started_s, done.finished_s, done.stopped_at};
+  JournalRow row{done.machine_id, JobState::kDone, done.started_s, done.finished_s,
+                 done.stopped_at};
   if (done.ok) {
     journal_.record(done.job_id, row);
     const DispatchJob& o = jobs_[origin_[index]];
@@ -486,21 +514,24 @@ void Dispatcher::on_done(const JobEnd& done) {
     advance(*q, index, row);
     return;
   }
-  row.state = done.fault == FaultKind::kPumpClog    ? "clogged"
-              : done.fault == FaultKind::kPinMissed ? "pin-missed"
-                                                    : "";
-  if (row.state.empty()) {
-    journal_.record(done.job_id, JournalRow{done.machine_id, "failed", done.started_s,
+  // A clog and a missed pin have recoveries; any other fault fails the job.
+  const std::optional<JobState> recoverable =
+      done.fault == FaultKind::kPumpClog    ? std::optional(JobState::kClogged)
+      : done.fault == FaultKind::kPinMissed ? std::optional(JobState::kPinMissed)
+                                            : std::nullopt;
+  if (!recoverable) {
+    journal_.record(done.job_id, JournalRow{done.machine_id, JobState::kFailed, done.started_s,
                                             done.finished_s, done.stopped_at});
     advance(*q, index, row);
     stop(done.machine_id + ": job " + std::to_string(done.job_id) + " ended on " +
          fault_name(done.fault) + ": " + done.detail);
     return;
   }
+  row.state = *recoverable;
   journal_.record(done.job_id, row);  // before the recovery jobs are made
   if (!recover(index, row)) {
     advance(*queue_of(done.machine_id, done.job_id), index, row);
-    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " (" + row.state +
+    stop(done.machine_id + ": job " + std::to_string(done.job_id) + " (" + to_string(row.state) +
          "): no recovery left");
     return;
   }
@@ -545,7 +576,7 @@ void Dispatcher::step(double real_dt_s) {
     } else {
       q.attempts = 0;
     }
-    journal_.record(job.job_id, job.machine_id, "sent");  // before it goes out
+    journal_.record(job.job_id, job.machine_id, JobState::kSent);  // before it goes out
     send(index);
     q.wait = q.wait == Queue::Wait::kDone ? Queue::Wait::kDone : Queue::Wait::kAck;
     q.waited_s = 0.0;

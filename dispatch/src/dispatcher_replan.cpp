@@ -50,7 +50,7 @@ void Dispatcher::record_laid(std::size_t index, const JournalRow& row) {
   const DispatchJob& d = jobs_[index];
   if (d.kind != JobKind::kDeposit) return;
   wire::add_deposits(laid_[{d.floor, d.layer}], d.path, row.started_s,
-                     row.state == "done" ? -1 : row.stopped_at);
+                     row.state == JobState::kDone ? -1 : row.stopped_at);
   auto [at, made] = layer_end_.try_emplace({d.floor, d.layer}, d.z_bottom_m, row.finished_s);
   if (!made) at->second.second = std::max(at->second.second, row.finished_s);
 }

@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "ccbuild/common/format.hpp"
 #include "ccbuild/common/input_error.hpp"
 #include "ccbuild/dispatch/dispatcher.hpp"
 
@@ -121,7 +122,8 @@ void Journal::record(std::int64_t job_id, const JournalRow& row) {
               "excluded.finished_s, stopped_at = excluded.stopped_at, utime = excluded.utime");
   sqlite3_bind_int64(*s, 1, job_id);
   sqlite3_bind_text(*s, 2, row.machine_id.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_text(*s, 3, row.state.c_str(), -1, SQLITE_TRANSIENT);
+  const std::string state = to_string(row.state);
+  sqlite3_bind_text(*s, 3, state.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_double(*s, 4, row.started_s);
   sqlite3_bind_double(*s, 5, row.finished_s);
   sqlite3_bind_int(*s, 6, row.stopped_at);
@@ -180,14 +182,22 @@ std::map<std::int64_t, JournalRow> Journal::rows() const {
   std::map<std::int64_t, JournalRow> out;
   Statement s(db_,
               "SELECT job_id, machine_id, state, started_s, finished_s, stopped_at FROM job_state");
-  while (sqlite3_step(*s) == SQLITE_ROW)
-    out[sqlite3_column_int64(*s, 0)] = {text(*s, 1), text(*s, 2), sqlite3_column_double(*s, 3),
-                                        sqlite3_column_double(*s, 4), sqlite3_column_int(*s, 5)};
+  while (sqlite3_step(*s) == SQLITE_ROW) {
+    const std::int64_t id = sqlite3_column_int64(*s, 0);
+    const std::string word = text(*s, 2);
+    const auto state = job_state_named(word);
+    if (!state)
+      throw InputError(path_, 0, "job_state",
+                       "job " + std::to_string(id) + " has the state '" + echoed(word) +
+                           "', not one a dispatch journal records");
+    out[id] = {text(*s, 1), *state, sqlite3_column_double(*s, 3), sqlite3_column_double(*s, 4),
+               sqlite3_column_int(*s, 5)};
+  }
   return out;
 }
 
-std::map<std::int64_t, std::string> Journal::states() const {
-  std::map<std::int64_t, std::string> out;
+std::map<std::int64_t, JobState> Journal::states() const {
+  std::map<std::int64_t, JobState> out;
   for (const auto& [id, row] : rows()) out[id] = row.state;
   return out;
 }

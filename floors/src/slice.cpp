@@ -265,6 +265,14 @@ GeometryKey::GeometryKey(const Layer& layer) {
   hash_ = hash;
 }
 
+int GeometryNumbering::number(const Layer& layer, bool* fresh) {
+  if (fresh) *fresh = false;
+  if (layer.segments.empty()) return 0;
+  const auto [it, added] = numbers_.try_emplace(GeometryKey(layer), count() + 1);
+  if (fresh) *fresh = added;
+  return it->second;
+}
+
 std::optional<std::vector<SegmentMatch>> match_segments(const Layer& from, const Layer& to) {
   if (from.segments.size() != to.segments.size()) return std::nullopt;
   // Each quantised segment of `to`, sorted, with where it is and which way it runs.

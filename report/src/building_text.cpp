@@ -55,7 +55,7 @@ void write_building_summary(std::ostream& out, const schedule::Project& project,
                       {"reach_m", {reach_x, reach_y, reach_z}}};
     doc["extent_m"] = {extent.x(), extent.y(), top_m};
     const schedule::Placement& placed = project.placement;
-    doc["placement"] = {{"how", placed.how},
+    doc["placement"] = {{"how", to_string(placed.how)},
                         {"origin_m", {placed.origin_m.x(), placed.origin_m.y()}},
                         {"rotation_deg", placed.rotation_rad * 180.0 / M_PI},
                         {"min_m", {space.min_m.x(), space.min_m.y()}},
@@ -124,10 +124,11 @@ void write_building_summary(std::ostream& out, const schedule::Project& project,
     const schedule::Placement& placed = project.placement;
     out << printf_string(
         "  %-10s %s: x %s to %s, y %s to %s on the machine (travel x %s to %s, y %s to %s)",
-        "placed", placed.how.c_str(), L(space.min_m.x()).c_str(), L(space.max_m.x()).c_str(),
-        L(space.min_m.y()).c_str(), L(space.max_m.y()).c_str(), L(machine.x.min_m).c_str(),
-        L(machine.x.max_m).c_str(), L(machine.y.min_m).c_str(), L(machine.y.max_m).c_str());
-    if (placed.how != "as drawn")
+        "placed", to_string(placed.how).c_str(), L(space.min_m.x()).c_str(),
+        L(space.max_m.x()).c_str(), L(space.min_m.y()).c_str(), L(space.max_m.y()).c_str(),
+        L(machine.x.min_m).c_str(), L(machine.x.max_m).c_str(), L(machine.y.min_m).c_str(),
+        L(machine.y.max_m).c_str());
+    if (placed.how != schedule::PlacedBy::kAsDrawn)
       out << printf_string("; plan origin at (%s, %s), turned %.1f deg",
                            L(placed.origin_m.x()).c_str(), L(placed.origin_m.y()).c_str(),
                            placed.rotation_rad * 180.0 / M_PI);

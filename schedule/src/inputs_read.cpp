@@ -251,11 +251,12 @@ RecordedInputs read_inputs(const JsonAt& root) {
   in.slab_stage_s = i.at("slab_stage_s").number(kDuration_s, "s");
   if (const auto placed = i.maybe("placement")) {
     placed->only_keys({"how", "origin_m", "rotation_deg"});
-    in.placement.how = placed->at("how").string(20);
-    if (in.placement.how != "as drawn" && in.placement.how != "site" &&
-        in.placement.how != "centred")
-      placed->at("how").refuse("expected \"as drawn\", \"site\" or \"centred\", got \"" +
-                               in.placement.how + "\"");
+    const std::string how = placed->at("how").string(20);
+    const auto named = placed_by_named(how);
+    if (!named)
+      placed->at("how").refuse("expected \"as drawn\", \"site\" or \"centred\", got \"" + how +
+                               "\"");
+    in.placement.how = *named;
     const auto origin = placed->at("origin_m").elements(3);
     if (origin.size() != 2) placed->at("origin_m").refuse("expected [x, y]");
     in.placement.origin_m = {origin[0].number(floors::limits::kCoordinate_m, "m"),

@@ -7,7 +7,7 @@ namespace ccbuild::schedule {
 BuildingSummary summarize_building(const floors::Building& building,
                                    const floors::SliceOptions& options) {
   BuildingSummary summary;
-  std::map<floors::GeometryKey, int> labels;
+  floors::GeometryNumbering numbering;
   for (const auto& floor : building.floors) {
     FloorSummary fs;
     fs.floor_index = floor.index;
@@ -20,18 +20,23 @@ BuildingSummary summarize_building(const floors::Building& building,
     const auto layers = floors::slice_floor(floor, building.layer_height_m, options);
     fs.layer_count = static_cast<int>(layers.size());
     std::set<int> distinct;
+    bool gap = false;  // a layer with no walls since the last run: the next starts anew
     for (const auto& layer : layers) {
-      const auto [it, fresh] =
-          labels.emplace(floors::GeometryKey(layer), static_cast<int>(labels.size()) + 1);
-      distinct.insert(it->second);
-      if (!fs.runs.empty() && fs.runs.back().geometry_label == it->second) {
+      const int label = numbering.number(layer);
+      if (label == 0) {  // no walls: nothing printed, no geometry (as the scheduler)
+        gap = true;
+        continue;
+      }
+      distinct.insert(label);
+      if (!gap && !fs.runs.empty() && fs.runs.back().geometry_label == label) {
         fs.runs.back().last_layer = layer.index;
         continue;
       }
+      gap = false;
       LayerRun run;
       run.first_layer = run.last_layer = layer.index;
       run.geometry_hash = layer.geometry_hash;
-      run.geometry_label = it->second;
+      run.geometry_label = label;
       std::set<std::int64_t> walls;
       for (const auto& s : layer.segments) walls.insert(s.wall_id);
       run.wall_count = static_cast<int>(walls.size());
@@ -43,7 +48,7 @@ BuildingSummary summarize_building(const floors::Building& building,
     summary.total_layers += fs.layer_count;
     summary.floors.push_back(std::move(fs));
   }
-  summary.distinct_geometries = static_cast<int>(labels.size());
+  summary.distinct_geometries = numbering.count();
   return summary;
 }
 

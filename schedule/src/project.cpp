@@ -47,10 +47,10 @@ void place(Project& project, bool centre, std::optional<double> rotation_deg) {
     const floors::Envelope space = floors::envelope(b);
     const Eigen::Vector2d middle_m(0.5 * (m.x.min_m + m.x.max_m), 0.5 * (m.y.min_m + m.y.max_m));
     placed.origin_m = middle_m - 0.5 * (space.min_m + space.max_m);
-    placed.how = "centred";
+    placed.how = PlacedBy::kCentred;
   } else if (b.site && b.site->places) {
     placed.origin_m = site.origin_m.value_or(Eigen::Vector2d::Zero());
-    placed.how = "site";
+    placed.how = PlacedBy::kSite;
   }
   floors::place_building(b, 0.0, placed.origin_m);
 }
@@ -393,7 +393,7 @@ std::vector<DistinctLayer> distinct_layers(const Project& project, std::optional
   const floors::Building& b = project.building;
   if (floor) check_floor(project, *floor);
   std::vector<DistinctLayer> out;
-  std::map<floors::GeometryKey, std::size_t> index;
+  floors::GeometryNumbering numbering;
   for (const auto& f : b.floors) {
     if (floor && f.index != *floor) continue;
     std::vector<floors::Layer> layers;
@@ -404,18 +404,18 @@ std::vector<DistinctLayer> distinct_layers(const Project& project, std::optional
     else if (*layer >= 0 && *layer < floors::layer_count(f.height_m, b.layer_height_m))
       layers.push_back(floors::slice_floor_layer(f, b.layer_height_m, *layer));  // that one only
     for (auto& l : layers) {
-      if (l.segments.empty()) continue;
+      bool fresh = false;
+      const int label = numbering.number(l, &fresh);
+      if (label == 0) continue;
       const LayerRef ref{f.index, l.index};
-      floors::GeometryKey key(l);
-      auto [it, fresh] = index.try_emplace(key, out.size());
       if (fresh) {
         DistinctLayer d;
-        d.key = std::move(key);
-        d.label = static_cast<int>(out.size()) + 1;
+        d.key = floors::GeometryKey(l);
+        d.label = label;
         d.layer = std::move(l);
         out.push_back(std::move(d));
       }
-      out[it->second].where.push_back(ref);
+      out[label - 1].where.push_back(ref);
     }
   }
   if (layer && out.empty())

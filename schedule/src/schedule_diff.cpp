@@ -100,8 +100,9 @@ ScheduleDiff diff_schedules(const ScheduleDocument& old_doc, const ScheduleDocum
   if (pa.how != pb.how || pa.origin_m != pb.origin_m || pa.rotation_rad != pb.rotation_rad)
     out.changes.push_back(printf_string(
         "placement: %s, origin (%.3f, %.3f) m, %.2f deg -> %s, origin (%.3f, %.3f) m, %.2f deg",
-        pa.how.c_str(), pa.origin_m.x(), pa.origin_m.y(), pa.rotation_rad * 180.0 / M_PI,
-        pb.how.c_str(), pb.origin_m.x(), pb.origin_m.y(), pb.rotation_rad * 180.0 / M_PI));
+        to_string(pa.how).c_str(), pa.origin_m.x(), pa.origin_m.y(), pa.rotation_rad * 180.0 / M_PI,
+        to_string(pb.how).c_str(), pb.origin_m.x(), pb.origin_m.y(),
+        pb.rotation_rad * 180.0 / M_PI));
 
   // Totals.
   const auto total = [&](const char* key, double x, double y) {

@@ -213,7 +213,7 @@ nlohmann::ordered_json schedule_json(const RecordedInputs& in, const Schedule& s
       {"layer_height_m", rounded(in.layer_height_m)},
       {"slab_stage_s", rounded(in.slab_stage_s)},
       {"placement",
-       {{"how", in.placement.how},
+       {{"how", to_string(in.placement.how)},
         {"origin_m", {rounded(in.placement.origin_m.x()), rounded(in.placement.origin_m.y())}},
         {"rotation_deg", rounded(in.placement.rotation_rad * 180.0 / M_PI)}}},
       {"seed", in.seed},

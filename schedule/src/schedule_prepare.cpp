@@ -23,7 +23,7 @@ void Scheduler::prepare() {
   const floors::Building& b = project_.building;
   // Every layer with walls, bottom to top; geometries by first appearance (unless taken
   // from another scheduler of this building).
-  std::map<floors::GeometryKey, int> geometry_of;
+  floors::GeometryNumbering numbering;
   if (slices_.empty()) {
     // The floors sliced in parallel (their beads are most of it: 3 s for the 40 x 40 rooms
     // benchmark's two floors one after the other).
@@ -34,11 +34,11 @@ void Scheduler::prepare() {
     run_parallel(tasks, jobs_, nullptr);
     for (std::size_t f = 0; f < b.floors.size(); ++f)
       for (auto& l : sliced[f]) {
-        if (l.segments.empty()) continue;
-        floors::GeometryKey key(l);
-        auto [it, fresh] = geometry_of.try_emplace(std::move(key), static_cast<int>(reps_.size()));
+        bool fresh = false;
+        const int number = numbering.number(l, &fresh);
+        if (number == 0) continue;  // no walls
         if (fresh) reps_.push_back(l);
-        slices_.push_back({b.floors[f].index, std::move(l), it->second});
+        slices_.push_back({b.floors[f].index, std::move(l), number - 1});  // reps_'s index
       }
   }
   for (const auto& f : b.floors) {

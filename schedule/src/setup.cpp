@@ -28,4 +28,22 @@ std::vector<std::string> Setup::unit_names() const {
   return names;
 }
 
+std::string to_string(PlacedBy how) {
+  switch (how) {
+    case PlacedBy::kSite:
+      return "site";
+    case PlacedBy::kCentred:
+      return "centred";
+    case PlacedBy::kAsDrawn:
+      break;
+  }
+  return "as drawn";
+}
+
+std::optional<PlacedBy> placed_by_named(const std::string& name) {
+  for (PlacedBy how : {PlacedBy::kAsDrawn, PlacedBy::kSite, PlacedBy::kCentred})
+    if (to_string(how) == name) return how;
+  return std::nullopt;
+}
+
 }  // namespace ccbuild::schedule

@@ -47,9 +47,7 @@ nlohmann::ordered_json measures_of_located(const JsonAt& s) {
   const auto number = [&](const JsonAt& object, const char* key) {
     return object.at(key).number(any);
   };
-  const auto text = [](const JsonAt& object, const char* key) {
-    return object.at(key).string();
-  };
+  const auto text = [](const JsonAt& object, const char* key) { return object.at(key).string(); };
   nlohmann::ordered_json m;
   const JsonAt totals = s.at("totals");
   m["makespan_s"] = number(totals, "makespan_s");
@@ -119,18 +117,20 @@ Collected collect(const Plan& plan) {
         unreadable = e.what();
       }
     }
-    std::string status = result ? result->status : "";
-    if ((status == "feasible" || status == "infeasible") && !finished(plan, v.index)) status = "";
-    row["status"] = status.empty() ? "missing" : status;
-    if (status == "failed") row["reason"] = result->reason;
+    // A result whose inputs changed since, or whose schedule no longer reads, is missing.
+    std::optional<VariantStatus> status;
+    if (result) status = result->status;
+    if (status && *status != VariantStatus::kFailed && !finished(plan, v.index)) status.reset();
+    row["status"] = status ? to_string(*status) : "missing";
+    if (status == VariantStatus::kFailed) row["reason"] = result->reason;
     if (!unreadable.empty()) row["reason"] = "its result.json does not read: " + unreadable;
-    row["measures"] = result && result->measures && !status.empty() && status != "failed"
+    row["measures"] = status && *status != VariantStatus::kFailed && result->measures
                           ? *result->measures
                           : nlohmann::ordered_json(nullptr);
-    (status == "feasible"     ? c.feasible
-     : status == "infeasible" ? c.infeasible
-     : status == "failed"     ? c.failed
-                              : c.missing)
+    (!status                                 ? c.missing
+     : *status == VariantStatus::kFeasible   ? c.feasible
+     : *status == VariantStatus::kInfeasible ? c.infeasible
+                                             : c.failed)
         .push_back(v.index);
     c.rows.push_back(std::move(row));
   }

@@ -25,6 +25,25 @@
 #include "study_files.hpp"
 
 namespace ccbuild::study {
+
+std::string to_string(VariantStatus status) {
+  switch (status) {
+    case VariantStatus::kFeasible:
+      return "feasible";
+    case VariantStatus::kInfeasible:
+      return "infeasible";
+    case VariantStatus::kFailed:
+      break;
+  }
+  return "failed";
+}
+
+std::optional<VariantStatus> variant_status_named(const std::string& name) {
+  for (VariantStatus s :
+       {VariantStatus::kFeasible, VariantStatus::kInfeasible, VariantStatus::kFailed})
+    if (to_string(s) == name) return s;
+  return std::nullopt;
+}
 namespace fs = std::filesystem;
 
 namespace {
@@ -266,7 +285,7 @@ bool finished(const Plan& plan, int index) {
   try {
     const detail::ResultFile r = detail::read_result_file(result);
     const Variant& v = plan.study.variants.at(index);
-    if (r.status != "feasible" && r.status != "infeasible") return false;
+    if (r.status == VariantStatus::kFailed) return false;
     if (r.id != v.id || r.index != index || r.inputs_sha256 != inputs_sha256(v)) return false;
     // The files the schedule read besides those (plans, URDFs) unchanged too.
     schedule::ReadScheduleOptions read;
@@ -314,16 +333,20 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
   result["inputs_sha256"] = inputs_sha256(v);
   result["settings"] = settings_json(v);
   const auto start = std::chrono::steady_clock::now();
+  // What it came to, written into result.json below (status, reason, measures, in order).
+  std::optional<VariantStatus> status;
+  std::string reason;
+  std::optional<nlohmann::ordered_json> measures;
   try {
     if (!v.machine_keys.empty())
       machine = patched_profile(v.machine, v.machine_keys, dir / "machine.yaml");
     if (!v.material_keys.empty())
       material = patched_profile(v.material, v.material_keys, dir / "material.yaml");
   } catch (const std::exception& e) {
-    result["status"] = "failed";
-    result["reason"] = std::string("the variant's profile cannot be written: ") + e.what();
+    status = VariantStatus::kFailed;
+    reason = std::string("the variant's profile cannot be written: ") + e.what();
   }
-  if (!result.contains("status")) {
+  if (!status) {
     if (!machine.empty()) argv.insert(argv.end(), {"--machine", machine.string()});
     if (!material.empty()) argv.insert(argv.end(), {"--material", material.string()});
     if (!v.site.empty()) argv.insert(argv.end(), {"--site", v.site.string()});
@@ -353,36 +376,38 @@ Outcome run_variant(const Plan& plan, int index, const RunOptions& options) {
       return outcome;
     }
     if (r.timed_out) {
-      result["status"] = "failed";
-      result["reason"] =
+      status = VariantStatus::kFailed;
+      reason =
           printf_string("timed out after %.0f s (variant_timeout_s)", plan.study.variant_timeout_s);
     } else if (r.signal) {
-      result["status"] = "failed";
-      result["reason"] = printf_string("killed by signal %d (%s)", r.signal, strsignal(r.signal));
+      status = VariantStatus::kFailed;
+      reason = printf_string("killed by signal %d (%s)", r.signal, strsignal(r.signal));
     } else if ((r.exit_code == 0 || r.exit_code == 1) &&
                fs::is_regular_file(dir / "schedule.json", ec)) {
       try {
-        nlohmann::ordered_json measures = detail::measures_of_file(dir / "schedule.json");
-        result["status"] = measures["feasible"].get<bool>() ? "feasible" : "infeasible";
-        result["measures"] = std::move(measures);
+        measures = detail::measures_of_file(dir / "schedule.json");
+        status = (*measures)["feasible"].get<bool>() ? VariantStatus::kFeasible
+                                                     : VariantStatus::kInfeasible;
       } catch (const InputError& e) {
-        result["status"] = "failed";
-        result["reason"] = std::string("its schedule does not read: ") + e.what();
+        status = VariantStatus::kFailed;
+        reason = std::string("its schedule does not read: ") + e.what();
       }
     } else if (r.exit_code < 0) {
-      result["status"] = "failed";
-      result["reason"] = "ccbuild schedule could not be started (its log says why)";
+      status = VariantStatus::kFailed;
+      reason = "ccbuild schedule could not be started (its log says why)";
     } else {
-      result["status"] = "failed";
-      result["reason"] =
-          printf_string("ccbuild schedule exited %d%s (its log says why)", r.exit_code,
-                        r.exit_code == 2   ? ", bad input"
-                        : r.exit_code == 3 ? ", an internal error"
-                                           : "");
+      status = VariantStatus::kFailed;
+      reason = printf_string("ccbuild schedule exited %d%s (its log says why)", r.exit_code,
+                             r.exit_code == 2   ? ", bad input"
+                             : r.exit_code == 3 ? ", an internal error"
+                                                : "");
     }
   }
-  outcome.status = result["status"];
-  outcome.reason = result.value("reason", "");
+  result["status"] = to_string(*status);
+  if (!reason.empty()) result["reason"] = reason;
+  if (measures) result["measures"] = std::move(*measures);
+  outcome.status = status;
+  outcome.reason = reason;
   outcome.elapsed_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(dir / "result.json",
@@ -412,7 +437,7 @@ void run_variants(const Plan& plan, const std::vector<int>& indices, int jobs,
       try {
         outcome = run_variant(plan, indices[k], options);
       } catch (const std::exception& e) {  // its folder cannot be written: say so, go on
-        outcome.status = "failed";
+        outcome.status = VariantStatus::kFailed;
         outcome.reason = e.what();
       }
       std::lock_guard<std::mutex> lock(told);

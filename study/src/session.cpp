@@ -102,10 +102,10 @@ void run_locally(const Plan& plan, const std::vector<int>& indices, int jobs, bo
     const std::size_t left = indices.size() - done;
     std::string eta =
         run > 0 && left > 0 ? ", about " + duration_text(elapsed_s / run * left) + " left" : "";
-    progress << printf_string("study: %zu of %zu variants (%s %s%s%s), %s%s\n", done,
-                              indices.size(), id.c_str(), o.status.c_str(),
-                              o.reason.empty() ? "" : ": ", o.reason.c_str(),
-                              duration_text(elapsed_s).c_str(), eta.c_str());
+    progress << printf_string(
+        "study: %zu of %zu variants (%s %s%s%s), %s%s\n", done, indices.size(), id.c_str(),
+        o.status ? to_string(*o.status).c_str() : "", o.reason.empty() ? "" : ": ",
+        o.reason.c_str(), duration_text(elapsed_s).c_str(), eta.c_str());
   });
   if (!quiet && skipped > 0)
     progress << printf_string(

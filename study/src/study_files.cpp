@@ -116,11 +116,12 @@ ResultFile read_result_file(const fs::path& file) {
     root.at("inputs_sha256").refuse("expected a SHA-256 as 64 lower-case hex digits");
   settings_of(root.at("settings"));
   const JsonAt status = root.at("status");
-  r.status = status.string(32);
-  if (r.status != "feasible" && r.status != "infeasible" && r.status != "failed")
-    status.refuse("expected feasible, infeasible or failed, got \"" + r.status + "\"");
+  const std::string word = status.string(32);
+  const auto named = variant_status_named(word);
+  if (!named) status.refuse("expected feasible, infeasible or failed, got \"" + word + "\"");
+  r.status = *named;
   if (const auto reason = root.maybe("reason")) r.reason = reason->string(kMaxText);
-  if (r.status == "failed") {
+  if (r.status == VariantStatus::kFailed) {
     if (const auto m = root.maybe("measures")) m->refuse("a failed variant has no measures");
     return r;
   }

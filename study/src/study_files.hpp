@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ccbuild/common/json_reader.hpp"
+#include "ccbuild/study/runner.hpp"
 
 namespace ccbuild::study::detail {
 
@@ -49,8 +50,8 @@ struct ResultFile {
   std::string id;
   int index = 0;
   std::string inputs_sha256;  ///< 64 hex digits
-  std::string status;         ///< feasible, infeasible or failed
-  std::string reason;         ///< why it failed (empty otherwise)
+  VariantStatus status = VariantStatus::kFailed;
+  std::string reason;  ///< why it failed (empty otherwise)
   /// The measures (numbers, true/false or null, by name); given for feasible and
   /// infeasible results.
   std::optional<nlohmann::ordered_json> measures;

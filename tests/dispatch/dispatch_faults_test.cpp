@@ -278,10 +278,10 @@ TEST(Dispatch, AMissedPinIsTriedAgainUpToThreeTimesThenEverythingStops) {
     EXPECT_DOUBLE_EQ(rig.dispatcher->delay_s(), 120.0);  // two insertions more
     EXPECT_DOUBLE_EQ(rig.dispatcher->executed().at(20).first, 180.0);
     const auto states = rig.journal.states();
-    EXPECT_EQ(states.at(10), "pin-missed");
-    EXPECT_EQ(states.at(11), "pin-missed");
-    EXPECT_EQ(states.at(12), "done");
-    EXPECT_EQ(states.at(20), "done");
+    EXPECT_EQ(states.at(10), dispatch::JobState::kPinMissed);
+    EXPECT_EQ(states.at(11), dispatch::JobState::kPinMissed);
+    EXPECT_EQ(states.at(12), dispatch::JobState::kDone);
+    EXPECT_EQ(states.at(20), dispatch::JobState::kDone);
   }
   {
     sim::SimOptions so = window(0.0, 1e9);
@@ -411,7 +411,7 @@ TEST(Dispatch, AClogIsPurgedAndTheRestOfTheLayerRunsTheSameAfterARestart) {
   // The rest is the clogged path from where it stopped, its times from there.
   const auto rows = rig.journal.rows();
   const std::int64_t clogged = purge.job_id - 1;
-  ASSERT_EQ(rows.at(clogged).state, "clogged");
+  ASSERT_EQ(rows.at(clogged).state, dispatch::JobState::kClogged);
   const int stopped_at = rows.at(clogged).stopped_at;
   const DispatchJob* original = nullptr;
   for (const auto& j : jobs)
@@ -759,7 +759,7 @@ struct LateRun {
       const double started_s = rig.dispatcher->executed().at(id).first;
       std::vector<End> ends;
       for (const auto& [k, wall] : piece_ends(j.path))
-        if (row.state == "done" || static_cast<int>(k) <= row.stopped_at)
+        if (row.state == dispatch::JobState::kDone || static_cast<int>(k) <= row.stopped_at)
           ends.push_back({wall, j.path.x_m[k], started_s + j.path.t_s[k]});
       for (const End& e : ends)
         for (const End& b : laid[j.layer - 1])

@@ -5,6 +5,7 @@
 #include "ccbuild/dispatch/dispatch_jobs.hpp"
 
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -198,7 +199,8 @@ TEST(Dispatch, TheHouseRunsEveryJobExactlyOnceInOrder) {
   // The machine's own record: every job once, in schedule order.
   ASSERT_EQ(sim.executed().size(), jobs.size());
   for (std::size_t k = 0; k < jobs.size(); ++k) EXPECT_EQ(sim.executed()[k], jobs[k].job_id);
-  for (const auto& [id, state] : journal.states()) EXPECT_EQ(state, "done") << id;
+  for (const auto& [id, state] : journal.states())
+    EXPECT_EQ(state, dispatch::JobState::kDone) << id;
   // Each job started no earlier than planned and ran for its planned duration.
   for (const auto& j : jobs) {
     const auto& [start_s, end_s] = d.executed().at(j.job_id);
@@ -249,18 +251,18 @@ TEST(Journal, BelongsToTheScheduleItWasWrittenFor) {
   const auto path = dir / "journal.sqlite";
   {
     Journal journal(path, mine);
-    journal.record(10, "gantry-1", "done");
+    journal.record(10, "gantry-1", dispatch::JobState::kDone);
   }
   {
     Journal again(path, mine);  // the same schedule resumes
-    EXPECT_EQ(again.states().at(10), "done");
+    EXPECT_EQ(again.states().at(10), dispatch::JobState::kDone);
   }
   const InputError e = testing::expect_input_error([&] { Journal(path, other); });
   EXPECT_EQ(e.first().field, "--journal");
   EXPECT_TRUE(testing::contains(e.what(), "belongs to another schedule (SHA-256 aaaaaaaaaaaa"));
   // A journal with records but no schedule named (an older ccbuild's): not guessed.
   const auto old = dir / "old.sqlite";
-  { Journal(old).record(10, "gantry-1", "done"); }
+  { Journal(old).record(10, "gantry-1", dispatch::JobState::kDone); }
   EXPECT_TRUE(testing::contains(testing::expect_input_error([&] { Journal(old, mine); }).what(),
                                 "names no schedule"));
   // An empty one takes the schedule given.
@@ -269,6 +271,38 @@ TEST(Journal, BelongsToTheScheduleItWasWrittenFor) {
   EXPECT_TRUE(testing::contains(
       testing::expect_input_error([&] { Journal(dir / "new.sqlite", mine); }).what(),
       "another schedule"));
+  std::filesystem::remove_all(dir);
+}
+
+// A job's state is one of the journal's words, each read back as what it says; a word the
+// journal never writes (a hand edit, another program's row) is refused with the job, not
+// taken for a state the dispatcher would act on.
+TEST(Journal, EachStateReadsBackAndAnUnknownWordIsRefused) {
+  const auto dir = scratch("journal-states");
+  const auto path = dir / "journal.sqlite";
+  const std::vector<JobState> all = {JobState::kSent,  JobState::kAcked,   JobState::kRefused,
+                                     JobState::kDone,  JobState::kClogged, JobState::kPinMissed,
+                                     JobState::kFailed};
+  {
+    Journal journal(path);
+    for (std::size_t k = 0; k < all.size(); ++k) journal.record(10 * (k + 1), "gantry-1", all[k]);
+  }
+  {
+    Journal again(path);
+    const auto states = again.states();
+    for (std::size_t k = 0; k < all.size(); ++k)
+      EXPECT_EQ(states.at(10 * (k + 1)), all[k]) << to_string(all[k]);
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "UPDATE job_state SET state = 'finished' WHERE job_id = 40", nullptr,
+                         nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  Journal damaged(path);
+  const InputError e = testing::expect_input_error([&] { damaged.states(); });
+  EXPECT_EQ(e.first().field, "job_state");
+  EXPECT_TRUE(testing::contains(e.what(), "job 40 has the state 'finished'")) << e.what();
   std::filesystem::remove_all(dir);
 }
 

@@ -4,14 +4,18 @@
 #include "ccbuild/schedule/project.hpp"
 
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "ccbuild/common/document.hpp"
+#include "ccbuild/schedule/layer_summary.hpp"
 #include "test_support.hpp"
 
 namespace ccbuild::schedule {
@@ -331,7 +335,7 @@ TEST(Project, ASiteTurnsThenMovesThePlanOrCentresIt) {
   EXPECT_NEAR(v[0].position_m.y(), 0.0, 1e-12);
   EXPECT_NEAR(v[1].position_m.x(), 2.0, 1e-12);
   EXPECT_NEAR(v[1].position_m.y(), 4.0, 1e-12);
-  EXPECT_EQ(turned.placement.how, "site");
+  EXPECT_EQ(turned.placement.how, PlacedBy::kSite);
   // Centred: the footprint's middle on the travel's middle (2.5, 12.5), whatever the origin.
   for (const std::string site : {"site: {place: centre}", "site: {origin: [50, 50]}"}) {
     ProjectOptions o;
@@ -341,7 +345,7 @@ TEST(Project, ASiteTurnsThenMovesThePlanOrCentresIt) {
     EXPECT_NEAR(c[0].position_m.x(), 0.5, 1e-12) << site;
     EXPECT_NEAR(c[1].position_m.x(), 4.5, 1e-12) << site;
     EXPECT_NEAR(c[1].position_m.y(), 12.5, 1e-12) << site;
-    EXPECT_EQ(centred.placement.how, "centred") << site;
+    EXPECT_EQ(centred.placement.how, PlacedBy::kCentred) << site;
     EXPECT_NEAR(centred.placement.origin_m.x(), 0.5, 1e-12) << site;
   }
   // What a site cannot say.
@@ -407,6 +411,37 @@ TEST(Project, DistinctLayersAreProvenEqualAndCoverTheBuilding) {
   EXPECT_EQ(expect_input_error([&] { layer_of(house, 2, 0); }).first().field, "floor");
   EXPECT_EQ(expect_input_error([&] { layer_of(house, 1, 30); }).first().field, "layer");
   EXPECT_NO_THROW(layer_of(house, 1, 29));
+}
+
+// One numbering of the distinct layers (floors::GeometryNumbering): `ccbuild layers`'
+// geometries, distinct_layers' labels and the schedule's plan keys g<number>n<nozzles>
+// name the same geometry by the same number, layer by layer, on the tower (the apartment's
+// floors repeated under a set-back top); every layer numbered is one the schedule prints.
+TEST(Project, LayersDistinctLayersAndTheScheduleNumberGeometriesAlike) {
+  const auto golden = nlohmann::json::parse(
+      testing::slurp(testing::source_path("tests/regression/tower.schedule.json")));
+  const Project tower = open_project(testing::source_path("config/buildings/tower.yaml"));
+  const BuildingSummary summary = summarize_building(tower.building);
+  std::map<std::pair<int, int>, int> label_of;
+  for (const auto& f : summary.floors)
+    for (const auto& run : f.runs)
+      for (int l = run.first_layer; l <= run.last_layer; ++l)
+        label_of[{f.floor_index, l}] = run.geometry_label;
+  std::map<std::pair<int, int>, int> distinct_label;
+  for (const auto& d : distinct_layers(tower))
+    for (const auto& ref : d.where) distinct_label[{ref.floor, ref.layer}] = d.label;
+  int checked = 0;
+  for (const auto& l : golden["layers"]) {
+    const std::string key = l["plan"];  // g<number>n<nozzles>
+    const int number = std::stoi(key.substr(1, key.find('n') - 1));
+    const std::pair<int, int> at{l["floor"].get<int>(), l["layer"].get<int>()};
+    ASSERT_TRUE(label_of.count(at)) << key;
+    EXPECT_EQ(label_of.at(at), number) << "floor " << at.first << " layer " << at.second;
+    EXPECT_EQ(distinct_label.at(at), number) << "floor " << at.first << " layer " << at.second;
+    ++checked;
+  }
+  EXPECT_EQ(checked, static_cast<int>(label_of.size())) << "a layer numbered but not scheduled";
+  EXPECT_EQ(summary.distinct_geometries, static_cast<int>(distinct_layers(tower).size()));
 }
 
 TEST(Project, PlansALayerWithOneNozzleOrSeveral) {

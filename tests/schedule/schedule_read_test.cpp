@@ -258,7 +258,7 @@ TEST(ReadSchedule, TheStrengthTheReportDrawsIsRecomputed) {
 
 TEST(ReadSchedule, ThePlacementIsReadBackAndDiffNamesAChange) {
   const ScheduleDocument house = parse_schedule(golden_text("house"), "house.json");
-  EXPECT_EQ(house.inputs.placement.how, "as drawn");
+  EXPECT_EQ(house.inputs.placement.how, PlacedBy::kAsDrawn);
   const InputError how = refusal([](json& d) { d["inputs"]["placement"]["how"] = "moved"; });
   EXPECT_EQ(how.first().field, "/inputs/placement/how");
   EXPECT_TRUE(testing::contains(how.what(), "\"as drawn\", \"site\" or \"centred\""));
@@ -268,10 +268,10 @@ TEST(ReadSchedule, ThePlacementIsReadBackAndDiffNamesAChange) {
   // A schedule from before placement was recorded: as drawn.
   json old = json::parse(golden_text("house"));
   old["inputs"].erase("placement");
-  EXPECT_EQ(parse_schedule(text_of(old), "old.json").inputs.placement.how, "as drawn");
+  EXPECT_EQ(parse_schedule(text_of(old), "old.json").inputs.placement.how, PlacedBy::kAsDrawn);
   // Moved by a millimetre: a change, whatever the tolerance (every coordinate moves).
   ScheduleDocument moved = house;
-  moved.inputs.placement.how = "site";
+  moved.inputs.placement.how = PlacedBy::kSite;
   moved.inputs.placement.origin_m.x() = 0.001;
   const ScheduleDiff d = diff_schedules(house, moved, {});
   ASSERT_TRUE(d.differs());

@@ -182,9 +182,12 @@ TEST(StudyResults, MeasuresOfTheHousesSchedule) {
 TEST(StudyResults, AValueAMeasureNeedsThatTheScheduleLacksIsAnErrorNotZero) {
   const auto golden = nlohmann::json::parse(
       read_text_file(testing::source_path("tests/regression/house.schedule.json")));
-  for (const auto& [path, key] : std::vector<std::pair<std::string, std::string>>{
-           {"/totals", "crew_h"}, {"/totals", "makespan_s"}, {"", "feasible"},
-           {"/layers/2", "max_idle_s"}, {"", "warnings"}}) {
+  for (const auto& [path, key] :
+       std::vector<std::pair<std::string, std::string>>{{"/totals", "crew_h"},
+                                                        {"/totals", "makespan_s"},
+                                                        {"", "feasible"},
+                                                        {"/layers/2", "max_idle_s"},
+                                                        {"", "warnings"}}) {
     auto schedule = golden;
     schedule[nlohmann::json::json_pointer(path)].erase(key);
     const InputError e = testing::expect_input_error([&] { measures_of(schedule); });
@@ -403,7 +406,7 @@ TEST(StudyFiles, AResultOfWrongTypesIsListedMissingWithItsLineAndPointer) {
   const fs::path file = dir / "result.json";
   std::ofstream(file) << valid_result(p.plan, 0).dump(2) << "\n";
   const detail::ResultFile read = detail::read_result_file(file);
-  EXPECT_EQ(read.status, "feasible");
+  EXPECT_EQ(read.status, VariantStatus::kFeasible);
   ASSERT_TRUE(read.measures.has_value());
   EXPECT_EQ((*read.measures)["nozzles_max"], 2);
   struct Case {
@@ -649,11 +652,11 @@ TEST(StudyLock, AVariantRunningIsNotRunAgainBeside) {
   ASSERT_TRUE(wait_for_lines(p.dir / "starts", 1));
   const Outcome second = run_variant(p.plan, 0, options);
   EXPECT_TRUE(second.locked);
-  EXPECT_TRUE(second.status.empty());
+  EXPECT_FALSE(second.status.has_value());
   EXPECT_TRUE(contains(second.reason, variant_lock_file(p.plan, 0).string()));
   runner.join();
   EXPECT_FALSE(first.locked);
-  EXPECT_EQ(first.status, "failed");
+  EXPECT_EQ(first.status, VariantStatus::kFailed);
   EXPECT_EQ(starts(p.dir).size(), 1u);
   // Another process's lock (flock on the same file) keeps it from running too.
   fs::create_directories(variant_lock_file(p.plan, 1).parent_path());
@@ -663,7 +666,7 @@ TEST(StudyLock, AVariantRunningIsNotRunAgainBeside) {
   EXPECT_TRUE(run_variant(p.plan, 1, options).locked);
   ::close(fd);
   EXPECT_EQ(starts(p.dir).size(), 1u);
-  EXPECT_EQ(run_variant(p.plan, 1, options).status, "failed");  // free again: run
+  EXPECT_EQ(run_variant(p.plan, 1, options).status, VariantStatus::kFailed);  // free again: run
   EXPECT_EQ(starts(p.dir).size(), 2u);
 }
 
@@ -708,7 +711,7 @@ TEST(StudyStop, AStoppedVariantLeavesNoProcessAndNoResult) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(),
             detail::kStopGrace_s);
   EXPECT_TRUE(o.stopped);
-  EXPECT_TRUE(o.status.empty());
+  EXPECT_FALSE(o.status.has_value());
   EXPECT_FALSE(fs::exists(p.results / "variants" / "v0001" / "result.json"));
   const auto pids = starts(p.dir);
   ASSERT_EQ(pids.size(), 2u);

@@ -85,6 +85,17 @@ RULES = [
         "call": r"\brules::faster_than\(",
     },
     {
+        "rule": "the numbering of distinct layers (the plan keys' g<number>)",
+        "define": r"^int GeometryNumbering::number\(",
+        "home": ["floors/src/slice.cpp"],
+        "copy_allowed": ["floors/include/ccbuild/floors/slice.hpp"],  # its own member
+        "callers": ["schedule/src/schedule_prepare.cpp", "schedule/src/project.cpp",
+                    "schedule/src/layer_summary.cpp"],
+        "call": r"\bnumbering\.number\(",
+        # Geometries numbered by a map of their own.
+        "copy": r"map<\s*(floors::)?GeometryKey\s*,\s*(int|std::size_t)",
+    },
+    {
         "rule": "person-hours",
         "define": r"^inline double person_hours\(",
         "home": ["rules/include/ccbuild/rules/crew.hpp"],

@@ -35,10 +35,17 @@ struct sqlite3;
 namespace ccbuild::dispatch {
 
 /// One job's row in the journal.
+/// A job's last state in the journal: sent, acknowledged, refused by its machine, done,
+/// ended on a clog or a missed pin (recovered), or failed (the run stopped).
+enum class JobState { kSent, kAcked, kRefused, kDone, kClogged, kPinMissed, kFailed };
+/// The journal's word for it: "sent", "acked", "refused", "done", "clogged", "pin-missed",
+/// "failed" (what its table holds, and outside readers of the journal read).
+std::string to_string(JobState state);
+std::optional<JobState> job_state_named(const std::string& word);
+
 struct JournalRow {
   std::string machine_id;
-  /// "sent", "acked", "refused", "done", "clogged", "pin-missed".
-  std::string state;
+  JobState state = JobState::kSent;
   double started_s = 0.0, finished_s = 0.0;  ///< schedule s, once it ended
   int stopped_at = -1;                       ///< waypoints done when it ended on a fault
 };
@@ -91,7 +98,7 @@ class Journal {
 
   /// Records a job's state (durably, before the caller acts on it).
   void record(std::int64_t job_id, const JournalRow& row);
-  void record(std::int64_t job_id, const std::string& machine_id, const std::string& state) {
+  void record(std::int64_t job_id, const std::string& machine_id, JobState state) {
     record(job_id, JournalRow{machine_id, state});
   }
   /// Records a fault and the policy applied (durably, before it is applied).
@@ -99,7 +106,7 @@ class Journal {
   /// Every job recorded.
   std::map<std::int64_t, JournalRow> rows() const;
   /// The state of every job recorded.
-  std::map<std::int64_t, std::string> states() const;
+  std::map<std::int64_t, JobState> states() const;
   std::vector<FaultRecord> faults() const;
   /// Records a re-plan (durably, before it is applied).
   void record_replan(const Replan& replan);

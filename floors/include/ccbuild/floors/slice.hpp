@@ -8,6 +8,7 @@
 #include <array>
 #include <compare>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -118,6 +119,22 @@ class GeometryKey {
  private:
   std::vector<QuantisedSegment> segments_;
   std::uint64_t hash_ = 0;
+};
+
+/// The distinct geometries of a building's layers, numbered from 1 in the order they first
+/// appear (bottom to top); a layer with no walls has none. The one numbering of "distinct
+/// layers": the schedule's plan keys g<number>n<nozzles>, `ccbuild layers`, `sweep` and
+/// `plan-layer` name geometries by it.
+class GeometryNumbering {
+ public:
+  /// The number of `layer`'s geometry, a new one if it is the first of its kind; 0 (and
+  /// nothing counted) for a layer with no walls. `fresh` says whether it was new.
+  int number(const Layer& layer, bool* fresh = nullptr);
+  /// How many distinct geometries were numbered.
+  int count() const { return static_cast<int>(numbers_.size()); }
+
+ private:
+  std::map<GeometryKey, int> numbers_;
 };
 
 /// For std::unordered_map keyed by geometry.

@@ -20,14 +20,19 @@
 
 namespace ccbuild::schedule {
 
+/// How a building was placed on the machine: as drawn (no site), by its site's origin, or
+/// centred (--place centre or `place: centre`).
+enum class PlacedBy { kAsDrawn, kSite, kCentred };
+/// "as drawn", "site", "centred": the schedule's `placement.how`.
+std::string to_string(PlacedBy how);
+std::optional<PlacedBy> placed_by_named(const std::string& name);
+
 /// Where the building stands in the machine's frame, as resolved when it was opened (its
 /// plans are placed already): plan point p is at R(rotation_rad) p + origin_m.
 struct Placement {
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
   double rotation_rad = 0.0;
-  /// "as drawn" (no site), "site" (the building's origin), "centred" (--place centre or
-  /// `place: centre`).
-  std::string how = "as drawn";
+  PlacedBy how = PlacedBy::kAsDrawn;
 };
 
 struct Setup {

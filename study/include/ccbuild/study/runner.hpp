@@ -10,6 +10,7 @@
 #include <atomic>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,11 +58,17 @@ struct RunOptions {
   const std::atomic<int>* stop = nullptr;
 };
 
-/// What a variant came to: "feasible", "infeasible" (a result: the schedule says why), or
-/// "failed" (a crash, a timeout, bad input; `reason` and the log say which); or nothing
-/// (status empty) when it was stopped or is being run by another process.
+/// What a variant came to: feasible, infeasible (a result: the schedule says why), or
+/// failed (a crash, a timeout, bad input; the reason and the log say which).
+enum class VariantStatus { kFeasible, kInfeasible, kFailed };
+/// "feasible", "infeasible", "failed": a result.json's `status`.
+std::string to_string(VariantStatus status);
+std::optional<VariantStatus> variant_status_named(const std::string& name);
+
+/// What running a variant came to: its status, or none when it was stopped or is being run
+/// by another process.
 struct Outcome {
-  std::string status;
+  std::optional<VariantStatus> status;
   std::string reason;
   double elapsed_s = 0.0;
   bool skipped = false;  ///< finished before with the same inputs
